@@ -1,0 +1,1 @@
+//! Ground motions for slipload: record readers, synthetic generators, scaling, spectra.

@@ -1,0 +1,5 @@
+//! Friction contacts: the box-constrained QP that gives each step's friction forces.
+
+pub mod box_qp;
+
+pub use box_qp::{BoxQp, BoxQpError, BoxQpStats};
