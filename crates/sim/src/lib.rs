@@ -1,4 +1,25 @@
 //! slipload-sim: N-storey frames with one friction dissipator per floor under earthquake
 //! records — building model, scenes, plans, integrators, responses and energies.
+//!
+//! Flow: a [`Scene`] (building + excitation + outputs + method) is compiled into a
+//! [`Plan`] that carries only the effects the scene calls for, then run by an
+//! [`Integrator`] into an [`Outcome`] whose [`Response`] is the output contract.
 
+pub mod building;
+pub mod error;
 pub mod friction;
+pub mod integrator;
+pub mod modes;
+pub mod plan;
+pub mod response;
+pub mod scene;
+pub mod simulate;
+pub mod units;
+
+pub use building::{Building, BuildingConfig, Dissipator};
+pub use error::SimError;
+pub use integrator::{Integrator, Newmark};
+pub use plan::Plan;
+pub use response::{Energy, History, Outcome, Response};
+pub use scene::{MethodName, Scene, SceneOverrides};
+pub use simulate::{run_plan, simulate};

@@ -1,0 +1,86 @@
+//! Scene selection shared by `simulate` and `explain`: a scene or building file, or the
+//! embedded default (the benchmark building under the first record of the embedded
+//! synthetic suite), with the flags that override the file.
+
+use anyhow::Context;
+use slipload_motion::Units;
+use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
+use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
+use std::path::{Path, PathBuf};
+
+/// The benchmark building, embedded so the program runs with no files.
+pub const BENCHMARK_BUILDING: &str = include_str!("../../../../configs/benchmark-3story.json");
+
+/// Flags that pick and override a scene.
+#[derive(Debug, clap::Args)]
+pub struct SceneArgs {
+    /// Scene or building JSON file (default: the embedded benchmark building under the
+    /// first record of the embedded synthetic suite)
+    pub scene: Option<PathBuf>,
+    /// Ground-motion record file (PEER .AT2, or CSV/text)
+    #[arg(long)]
+    pub record: Option<PathBuf>,
+    /// Units of the record values: g, m/s2, cm/s2 (AT2 files are in g)
+    #[arg(long)]
+    pub units: Option<Units>,
+    /// Scale the record to this peak ground acceleration, in g
+    #[arg(long)]
+    pub scale_pga_g: Option<f64>,
+    /// Use only the window START,DURATION of the record (seconds)
+    #[arg(long, value_parser = parse_window)]
+    pub window: Option<(f64, f64)>,
+    /// Integration method
+    #[arg(long)]
+    pub method: Option<MethodName>,
+    /// Time step, s (default: T1/200 rounded to divide the record's dt)
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Simulated time, s (default: the record's duration)
+    #[arg(long)]
+    pub duration: Option<f64>,
+}
+
+fn parse_window(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected START,DURATION in seconds, got {s:?}"))?;
+    let a: f64 = a.trim().parse().map_err(|_| format!("window start {a:?} is not a number"))?;
+    let b: f64 = b.trim().parse().map_err(|_| format!("window duration {b:?} is not a number"))?;
+    if !(a >= 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+        return Err(format!("window needs START >= 0 and DURATION > 0, got {a},{b}"));
+    }
+    Ok((a, b))
+}
+
+impl SceneArgs {
+    /// Resolves the scene with `histories` as asked.
+    pub fn load(&self, histories: bool) -> anyhow::Result<Scene> {
+        let over = SceneOverrides {
+            record: self.record.clone(),
+            units: self.units,
+            scale_pga_g: self.scale_pga_g,
+            window: self.window,
+            method: self.method,
+            dt: self.dt,
+            duration: self.duration,
+            histories: Some(histories),
+            energies: None,
+        };
+        match &self.scene {
+            Some(path) => Scene::load(path, &over).with_context(|| format!("loading scene {}", path.display())),
+            None => {
+                let origin = Path::new("configs/benchmark-3story.json (embedded)");
+                let building: BuildingConfig = serde_json::from_str(BENCHMARK_BUILDING).context("embedded benchmark building")?;
+                let cfg = SceneConfig {
+                    name: Some("benchmark-3story, synthetic record 0".into()),
+                    description: None,
+                    building: BuildingRef::Inline(Box::new(building)),
+                    excitation: ExcitationConfig { synthetic: Some(SyntheticConfig { index: 0 }), ..Default::default() },
+                    duration: None,
+                    method: Default::default(),
+                    outputs: Default::default(),
+                    reduce: true,
+                };
+                Ok(Scene::from_config(cfg, origin, &over)?)
+            }
+        }
+    }
+}

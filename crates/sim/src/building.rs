@@ -1,0 +1,393 @@
+//! The building model: floor masses, frame stiffness and damping, storey heights, and at
+//! most one friction dissipator per floor (DESIGN.md § The model).
+//!
+//! A [`BuildingConfig`] is what a JSON file says (unknown fields rejected, units accepted
+//! as strings); [`Building::from_config`] validates it into SI matrices with errors that
+//! name the file and field.
+
+use crate::error::SimError;
+use crate::modes::Modes;
+use crate::units::{Damping, Force, Length, Mass, Stiffness};
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A building file, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BuildingConfig {
+    /// Short name.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Free text: where the numbers come from.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Lumped floor masses, bottom to top (kg). Either this or `mass_matrix`.
+    #[serde(default)]
+    pub floor_masses: Option<Vec<Mass>>,
+    /// Full symmetric mass matrix (kg).
+    #[serde(default)]
+    pub mass_matrix: Option<Vec<Vec<f64>>>,
+    /// Storey (shear) stiffnesses, bottom to top (N/m). Either this or `stiffness_matrix`.
+    #[serde(default)]
+    pub storey_stiffness: Option<Vec<Stiffness>>,
+    /// Full symmetric frame stiffness matrix on floor displacements (N/m), e.g. a
+    /// condensed frame matrix.
+    #[serde(default)]
+    pub stiffness_matrix: Option<Vec<Vec<f64>>>,
+    /// Frame damping; default none.
+    #[serde(default)]
+    pub damping: Option<DampingConfig>,
+    /// Storey heights, bottom to top (m); enables drift ratios.
+    #[serde(default)]
+    pub storey_heights: Option<Vec<Length>>,
+    /// The dissipators, at most one per floor.
+    #[serde(default)]
+    pub dissipators: Vec<DissipatorConfig>,
+}
+
+/// How the frame damping matrix Cˢˢ is given.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum DampingConfig {
+    /// No frame damping.
+    None,
+    /// Rayleigh: C = α M + β K (bare frame matrices).
+    Rayleigh {
+        /// Mass coefficient α, 1/s.
+        alpha: f64,
+        /// Stiffness coefficient β, s.
+        beta: f64,
+    },
+    /// Modal damping ratios of the bare frame: one `ratio` for all modes, or `ratios`
+    /// per mode (missing modes take the last ratio given).
+    Modal {
+        /// Ratio for every mode.
+        #[serde(default)]
+        ratio: Option<f64>,
+        /// Ratios by mode, first mode first.
+        #[serde(default)]
+        ratios: Option<Vec<f64>>,
+    },
+    /// Storey dashpots (shear-building form), bottom to top, N·s/m.
+    Storey(Vec<Damping>),
+    /// Full symmetric damping matrix, N·s/m.
+    Matrix(Vec<Vec<f64>>),
+}
+
+/// One friction dissipator with its brace, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DissipatorConfig {
+    /// Floor it acts on, 1 = first floor above ground.
+    pub floor: usize,
+    /// Brace stiffness k′ (N/m), > 0.
+    pub brace_stiffness: Stiffness,
+    /// Dissipator mass m′ (kg), ≥ 0; 0 makes brace + contact an elastic–perfectly plastic spring.
+    #[serde(default)]
+    pub mass: Option<Mass>,
+    /// Brace damping c′ (N·s/m), ≥ 0.
+    #[serde(default)]
+    pub brace_damping: Option<Damping>,
+    /// Symmetric slip load μN (N), or `"locked"` for a contact that never slips.
+    #[serde(default)]
+    pub slip_load: Option<SlipLoad>,
+    /// Asymmetric friction bounds [F⁻, F⁺] (N), F⁻ ≤ 0 ≤ F⁺. Exclusive with `slip_load`.
+    #[serde(default)]
+    pub bounds: Option<[Force; 2]>,
+}
+
+/// A slip load: a force, or locked (μN → ∞).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum SlipLoad {
+    /// μN in N.
+    Force(f64),
+    /// Never slips: the dissipator moves with its floor.
+    Locked,
+}
+
+impl<'de> Deserialize<'de> for SlipLoad {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Num(f64),
+            Text(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Num(v) => Ok(SlipLoad::Force(v)),
+            Raw::Text(s) if s.trim().eq_ignore_ascii_case("locked") => Ok(SlipLoad::Locked),
+            Raw::Text(s) => crate::units::parse_quantity(&s, crate::units::Dimension::Force)
+                .map(SlipLoad::Force)
+                .map_err(|e| serde::de::Error::custom(format!("{e}, or \"locked\""))),
+        }
+    }
+}
+
+/// A validated dissipator, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dissipator {
+    /// Brace stiffness k′, N/m.
+    pub brace_stiffness: f64,
+    /// Dissipator mass m′, kg.
+    pub mass: f64,
+    /// Brace damping c′, N·s/m.
+    pub brace_damping: f64,
+    /// Lower friction bound F⁻ ≤ 0, N (−∞ when locked).
+    pub lower: f64,
+    /// Upper friction bound F⁺ ≥ 0, N (+∞ when locked).
+    pub upper: f64,
+}
+
+impl Dissipator {
+    /// True when the contact can never slip.
+    pub fn is_locked(&self) -> bool {
+        self.upper == f64::INFINITY && self.lower == f64::NEG_INFINITY
+    }
+    /// True when the contact transmits no force.
+    pub fn is_free(&self) -> bool {
+        self.upper == 0.0 && self.lower == 0.0
+    }
+}
+
+/// A validated building, SI units, floors numbered 0..n from the bottom.
+#[derive(Debug, Clone)]
+pub struct Building {
+    /// Name.
+    pub name: String,
+    /// Frame mass matrix Mˢˢ (kg).
+    pub mass: DMatrix<f64>,
+    /// Frame stiffness matrix Kˢˢ (N/m).
+    pub stiffness: DMatrix<f64>,
+    /// Frame damping matrix Cˢˢ (N·s/m).
+    pub damping: DMatrix<f64>,
+    /// Storey heights (m), when given.
+    pub storey_heights: Option<Vec<f64>>,
+    /// Dissipator of each floor, if any.
+    pub dissipators: Vec<Option<Dissipator>>,
+    /// Modes of the bare frame.
+    pub modes: Modes,
+}
+
+fn square(path: &Path, field: &str, rows: &[Vec<f64>], n: Option<usize>) -> Result<DMatrix<f64>, SimError> {
+    let size = rows.len();
+    if size == 0 {
+        return Err(SimError::invalid(path, field, "must not be empty"));
+    }
+    if let Some(n) = n {
+        if size != n {
+            return Err(SimError::invalid(path, field, format!("has {size} rows, expected {n} (one per floor)")));
+        }
+    }
+    for (i, r) in rows.iter().enumerate() {
+        if r.len() != size {
+            return Err(SimError::invalid(path, format!("{field}[{i}]"), format!("has {} entries, expected {size}", r.len())));
+        }
+        if let Some(j) = r.iter().position(|v| !v.is_finite()) {
+            return Err(SimError::invalid(path, format!("{field}[{i}][{j}]"), "must be finite"));
+        }
+    }
+    let m = DMatrix::from_fn(size, size, |i, j| rows[i][j]);
+    for i in 0..size {
+        for j in 0..i {
+            let (a, b) = (m[(i, j)], m[(j, i)]);
+            let scale = (m[(i, i)].abs() + m[(j, j)].abs()).max(f64::MIN_POSITIVE);
+            if (a - b).abs() > 1e-9 * scale {
+                return Err(SimError::invalid(path, format!("{field}[{i}][{j}]"), format!("matrix is not symmetric: {a} vs {b} at [{j}][{i}]")));
+            }
+        }
+    }
+    Ok((&m + m.transpose()) * 0.5)
+}
+
+fn chain(values: &[f64]) -> DMatrix<f64> {
+    let n = values.len();
+    let mut k = DMatrix::zeros(n, n);
+    for (i, &ki) in values.iter().enumerate() {
+        k[(i, i)] += ki;
+        if i > 0 {
+            k[(i - 1, i - 1)] += ki;
+            k[(i, i - 1)] -= ki;
+            k[(i - 1, i)] -= ki;
+        }
+    }
+    k
+}
+
+impl Building {
+    /// Reads and validates a building JSON file.
+    pub fn load(path: &Path) -> Result<Building, SimError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
+        let cfg: BuildingConfig =
+            serde_json::from_str(&text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
+        Building::from_config(&cfg, path)
+    }
+
+    /// Validates a config; `path` names the source in errors.
+    pub fn from_config(cfg: &BuildingConfig, path: &Path) -> Result<Building, SimError> {
+        let mass = match (&cfg.floor_masses, &cfg.mass_matrix) {
+            (Some(_), Some(_)) => return Err(SimError::invalid(path, "mass_matrix", "give either floor_masses or mass_matrix, not both")),
+            (None, None) => return Err(SimError::invalid(path, "floor_masses", "missing: give floor_masses (kg per floor) or mass_matrix")),
+            (Some(ms), None) => {
+                if ms.is_empty() {
+                    return Err(SimError::invalid(path, "floor_masses", "must list at least one floor"));
+                }
+                for (i, m) in ms.iter().enumerate() {
+                    if !(m.0 > 0.0) || !m.0.is_finite() {
+                        return Err(SimError::invalid(path, format!("floor_masses[{i}]"), format!("must be a positive finite mass, got {}", m.0)));
+                    }
+                }
+                DMatrix::from_diagonal(&DVector::from_iterator(ms.len(), ms.iter().map(|m| m.0)))
+            }
+            (None, Some(rows)) => square(path, "mass_matrix", rows, None)?,
+        };
+        let n = mass.nrows();
+        if mass.clone().cholesky().is_none() {
+            return Err(SimError::invalid(path, "mass_matrix", "must be positive definite"));
+        }
+        let stiffness = match (&cfg.storey_stiffness, &cfg.stiffness_matrix) {
+            (Some(_), Some(_)) => return Err(SimError::invalid(path, "stiffness_matrix", "give either storey_stiffness or stiffness_matrix, not both")),
+            (None, None) => return Err(SimError::invalid(path, "storey_stiffness", "missing: give storey_stiffness (N/m per storey) or stiffness_matrix")),
+            (Some(ks), None) => {
+                if ks.len() != n {
+                    return Err(SimError::invalid(path, "storey_stiffness", format!("has {} values, expected {n} (one per floor)", ks.len())));
+                }
+                for (i, k) in ks.iter().enumerate() {
+                    if !(k.0 > 0.0) || !k.0.is_finite() {
+                        return Err(SimError::invalid(path, format!("storey_stiffness[{i}]"), format!("must be a positive finite stiffness, got {}", k.0)));
+                    }
+                }
+                chain(&ks.iter().map(|k| k.0).collect::<Vec<_>>())
+            }
+            (None, Some(rows)) => square(path, "stiffness_matrix", rows, Some(n))?,
+        };
+        let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| {
+            SimError::invalid(path, if cfg.stiffness_matrix.is_some() { "stiffness_matrix" } else { "storey_stiffness" }, "frame stiffness must be positive definite (the bare frame must be stable)")
+        })?;
+        let damping = match &cfg.damping {
+            None | Some(DampingConfig::None) => DMatrix::zeros(n, n),
+            Some(DampingConfig::Rayleigh { alpha, beta }) => {
+                for (name, v) in [("alpha", *alpha), ("beta", *beta)] {
+                    if !(v >= 0.0) || !v.is_finite() {
+                        return Err(SimError::invalid(path, format!("damping.rayleigh.{name}"), format!("must be finite and ≥ 0, got {v}")));
+                    }
+                }
+                &mass * *alpha + &stiffness * *beta
+            }
+            Some(DampingConfig::Modal { ratio, ratios }) => {
+                let zeta: Vec<f64> = match (ratio, ratios) {
+                    (Some(z), None) => vec![*z; n],
+                    (None, Some(zs)) if !zs.is_empty() => (0..n).map(|i| zs[i.min(zs.len() - 1)]).collect(),
+                    _ => return Err(SimError::invalid(path, "damping.modal", "give exactly one of `ratio` (all modes) or a non-empty `ratios` list")),
+                };
+                if let Some(i) = zeta.iter().position(|z| !(*z >= 0.0 && *z < 1.0)) {
+                    return Err(SimError::invalid(path, "damping.modal", format!("ratio of mode {} must be in [0, 1), got {}", i + 1, zeta[i])));
+                }
+                modes.damping_matrix(&mass, &zeta)
+            }
+            Some(DampingConfig::Storey(cs)) => {
+                if cs.len() != n {
+                    return Err(SimError::invalid(path, "damping.storey", format!("has {} values, expected {n}", cs.len())));
+                }
+                if let Some(i) = cs.iter().position(|c| !(c.0 >= 0.0) || !c.0.is_finite()) {
+                    return Err(SimError::invalid(path, format!("damping.storey[{i}]"), format!("must be finite and ≥ 0, got {}", cs[i].0)));
+                }
+                chain(&cs.iter().map(|c| c.0).collect::<Vec<_>>())
+            }
+            Some(DampingConfig::Matrix(rows)) => {
+                let c = square(path, "damping.matrix", rows, Some(n))?;
+                if c.symmetric_eigenvalues().iter().any(|&l| l < -1e-9 * c.norm()) {
+                    return Err(SimError::invalid(path, "damping.matrix", "must be positive semi-definite"));
+                }
+                c
+            }
+        };
+        let storey_heights = match &cfg.storey_heights {
+            None => None,
+            Some(hs) => {
+                if hs.len() != n {
+                    return Err(SimError::invalid(path, "storey_heights", format!("has {} values, expected {n}", hs.len())));
+                }
+                if let Some(i) = hs.iter().position(|h| !(h.0 > 0.0) || !h.0.is_finite()) {
+                    return Err(SimError::invalid(path, format!("storey_heights[{i}]"), format!("must be a positive length, got {}", hs[i].0)));
+                }
+                Some(hs.iter().map(|h| h.0).collect())
+            }
+        };
+        let mut dissipators = vec![None; n];
+        for (idx, d) in cfg.dissipators.iter().enumerate() {
+            let f = |name: &str| format!("dissipators[{idx}].{name}");
+            if d.floor == 0 || d.floor > n {
+                return Err(SimError::invalid(path, f("floor"), format!("must be a floor number from 1 to {n}, got {}", d.floor)));
+            }
+            if dissipators[d.floor - 1].is_some() {
+                return Err(SimError::invalid(path, f("floor"), format!("floor {} already has a dissipator (one per floor)", d.floor)));
+            }
+            let k = d.brace_stiffness.0;
+            if !(k > 0.0) || !k.is_finite() {
+                return Err(SimError::invalid(path, f("brace_stiffness"), format!("must be positive and finite, got {k}")));
+            }
+            let m = d.mass.map_or(0.0, |m| m.0);
+            if !(m >= 0.0) || !m.is_finite() {
+                return Err(SimError::invalid(path, f("mass"), format!("must be finite and ≥ 0, got {m}")));
+            }
+            let c = d.brace_damping.map_or(0.0, |c| c.0);
+            if !(c >= 0.0) || !c.is_finite() {
+                return Err(SimError::invalid(path, f("brace_damping"), format!("must be finite and ≥ 0, got {c}")));
+            }
+            let (lower, upper) = match (&d.slip_load, &d.bounds) {
+                (Some(_), Some(_)) => return Err(SimError::invalid(path, f("bounds"), "give either slip_load or bounds, not both")),
+                (None, None) => return Err(SimError::invalid(path, f("slip_load"), "missing: give slip_load (N, or \"locked\") or bounds [F-, F+]")),
+                (Some(SlipLoad::Locked), None) => (f64::NEG_INFINITY, f64::INFINITY),
+                (Some(SlipLoad::Force(s)), None) => {
+                    if !(*s >= 0.0) || !s.is_finite() {
+                        return Err(SimError::invalid(path, f("slip_load"), format!("must be finite and ≥ 0, got {s}")));
+                    }
+                    (-*s, *s)
+                }
+                (None, Some([lo, hi])) => {
+                    if !lo.0.is_finite() || lo.0 > 0.0 {
+                        return Err(SimError::invalid(path, f("bounds[0]"), format!("F- must be finite and ≤ 0, got {}", lo.0)));
+                    }
+                    if !hi.0.is_finite() || hi.0 < 0.0 {
+                        return Err(SimError::invalid(path, f("bounds[1]"), format!("F+ must be finite and ≥ 0, got {}", hi.0)));
+                    }
+                    (lo.0, hi.0)
+                }
+            };
+            dissipators[d.floor - 1] = Some(Dissipator { brace_stiffness: k, mass: m, brace_damping: c, lower, upper });
+        }
+        Ok(Building {
+            name: cfg.name.clone().unwrap_or_else(|| path.file_stem().map_or_else(|| "building".into(), |s| s.to_string_lossy().into_owned())),
+            mass,
+            stiffness,
+            damping,
+            storey_heights,
+            dissipators,
+            modes,
+        })
+    }
+
+    /// Number of floors.
+    pub fn floors(&self) -> usize {
+        self.mass.nrows()
+    }
+
+    /// Fundamental period of the bare frame, s.
+    pub fn t1(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.modes.omega[0]
+    }
+
+    /// Replaces the slip load of every dissipator by `slip_loads[i]` (N; `None` keeps the
+    /// floor as it is). Used by sweeps.
+    pub fn with_slip_loads(&self, slip_loads: &[Option<f64>]) -> Building {
+        let mut b = self.clone();
+        for (d, s) in b.dissipators.iter_mut().zip(slip_loads) {
+            if let (Some(d), Some(s)) = (d.as_mut(), s) {
+                d.lower = -s;
+                d.upper = *s;
+            }
+        }
+        b
+    }
+}

@@ -1,0 +1,80 @@
+//! Errors of the simulation crate: typed, carrying the values that explain them.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong while loading, compiling or running a scene.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimError {
+    /// A file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A JSON file does not parse or does not fit the schema (unknown field, wrong type).
+    #[error("{path}: {source}")]
+    Json {
+        /// The file (or `<inline>`).
+        path: PathBuf,
+        /// serde_json's message, with line and column.
+        source: serde_json::Error,
+    },
+    /// A value is out of its valid range or inconsistent with others.
+    #[error("{path}: field `{field}`: {message}")]
+    Invalid {
+        /// The file (or `<inline>`).
+        path: PathBuf,
+        /// The field, as a JSON path (`dissipators[2].brace_stiffness`).
+        field: String,
+        /// What was expected and what was found.
+        message: String,
+    },
+    /// A matrix that must be symmetric positive definite is not.
+    #[error("{what} is not positive definite{hint}")]
+    NotPositiveDefinite {
+        /// Which matrix.
+        what: String,
+        /// Advice, possibly empty.
+        hint: String,
+    },
+    /// The time step is not usable.
+    #[error("time step {dt} s must be positive and finite")]
+    BadTimeStep {
+        /// The step, seconds.
+        dt: f64,
+    },
+    /// The scene asks for something that cannot be run (missing duration, …).
+    #[error("scene: {0}")]
+    Scene(String),
+    /// The state became non-finite: the integration blew up.
+    #[error("state became non-finite at step {step} (t = {t:.6} s); {hint}")]
+    NonFinite {
+        /// Step index.
+        step: usize,
+        /// Time, seconds.
+        t: f64,
+        /// Advice.
+        hint: String,
+    },
+    /// The friction QP failed (should not happen for a valid plan).
+    #[error("friction forces at t = {t:.6} s: {source}")]
+    Friction {
+        /// Time, seconds.
+        t: f64,
+        /// The solver's error.
+        source: crate::friction::BoxQpError,
+    },
+    /// A ground-motion error (reading or scaling a record).
+    #[error(transparent)]
+    Motion(#[from] slipload_motion::MotionError),
+}
+
+impl SimError {
+    /// An [`SimError::Invalid`] for `path`/`field`.
+    pub(crate) fn invalid(path: &std::path::Path, field: impl Into<String>, message: impl Into<String>) -> Self {
+        SimError::Invalid { path: path.to_path_buf(), field: field.into(), message: message.into() }
+    }
+}

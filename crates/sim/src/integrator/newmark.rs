@@ -1,0 +1,565 @@
+//! `newmark` — Newmark/HHT-α with the friction forces of each step solved exactly and
+//! implicitly (DESIGN.md § Integrators).
+//!
+//! With A = M + (1+α)(γΔt C + βΔt² K) factorised once, the step's accelerations are
+//! a = a_free − G F with G = (1+α)A⁻¹B, and the slip rates at the end of the step are
+//! w = w_free − W F with the Delassus matrix W = γΔt BᵀG (+ 1/κ on the diagonal of
+//! elastic–perfectly plastic contacts, κ = k′βΔt/γ + c′, which is the exact condensation
+//! of a massless dissipator DOF). The friction law is then the box QP
+//! F = argmin_{F⁻≤F≤F⁺} ½FᵀWF − Fᵀw_free, solved exactly by [`BoxQp`].
+//!
+//! The linear part of a step is one precomputed n×3n operator applied to (u, v, a).
+//! Nothing is allocated inside the step loop unless histories are asked for.
+//!
+//! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
+//! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
+//! α = 0 is Newmark's average acceleration, for which the energies below balance to
+//! round-off (Δt·v̄ᵀ(equation averaged over the step) is an exact identity of the method).
+
+use crate::error::SimError;
+use crate::friction::box_qp::Bound;
+use crate::friction::BoxQp;
+use crate::integrator::Integrator;
+use crate::plan::{ContactKind, Plan};
+use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
+use nalgebra::{DMatrix, DVector};
+
+/// Newmark/HHT-α with exact implicit friction.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Newmark;
+
+/// Operators fixed for a run.
+struct Operators {
+    n: usize,
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    /// [−A⁻¹K, −A⁻¹(C + (1+α)ΔtK), −(1+α)A⁻¹((½−β)Δt²K + (1−γ)ΔtC)], n × 3n.
+    p: DMatrix<f64>,
+    /// A⁻¹ M r.
+    h: DVector<f64>,
+    /// A⁻¹ e(force floor), when a harmonic force acts.
+    hp: Option<(usize, DVector<f64>)>,
+    /// (1+α) A⁻¹ B, n × nc.
+    g: DMatrix<f64>,
+    /// Delassus matrix, nc × nc.
+    w: DMatrix<f64>,
+    /// κ = k′βΔt/γ + c′ for elastic–perfectly plastic contacts (0 otherwise).
+    kappa: Vec<f64>,
+    /// M r.
+    mr: DVector<f64>,
+}
+
+impl Operators {
+    fn build(plan: &Plan) -> Result<Operators, SimError> {
+        let n = plan.dofs();
+        let dt = plan.method.dt;
+        let alpha = plan.method.alpha;
+        let gamma = 0.5 - alpha;
+        let beta = (1.0 - alpha) * (1.0 - alpha) / 4.0;
+        let (m, c, k) = (&plan.mass, &plan.damping, &plan.stiffness);
+        let a = m + (c * (gamma * dt) + k * (beta * dt * dt)) * (1.0 + alpha);
+        let chol = a.cholesky().ok_or_else(|| SimError::NotPositiveDefinite {
+            what: "Newmark iteration matrix M + γΔtC + βΔt²K".into(),
+            hint: " (a mass, damping or stiffness matrix is invalid)".into(),
+        })?;
+        let pu = -chol.solve(k);
+        let pv = -chol.solve(&(c + k * ((1.0 + alpha) * dt)));
+        let pa = -chol.solve(&(k * ((0.5 - beta) * dt * dt) + c * ((1.0 - gamma) * dt))) * (1.0 + alpha);
+        let mut p = DMatrix::zeros(n, 3 * n);
+        p.view_mut((0, 0), (n, n)).copy_from(&pu);
+        p.view_mut((0, n), (n, n)).copy_from(&pv);
+        p.view_mut((0, 2 * n), (n, n)).copy_from(&pa);
+        let mr = plan.mass_influence();
+        let h = chol.solve(&mr);
+        let hp = plan.harmonic.map(|hm| {
+            let mut e = DVector::zeros(n);
+            e[hm.floor] = 1.0;
+            (hm.floor, chol.solve(&e))
+        });
+        let bm = plan.contact_matrix();
+        let g = chol.solve(&bm) * (1.0 + alpha);
+        let mut w = bm.transpose() * &g * (gamma * dt);
+        let kappa: Vec<f64> = plan
+            .contacts
+            .iter()
+            .map(|ct| match ct.kind {
+                ContactKind::Epp => ct.brace_stiffness * beta * dt / gamma + ct.brace_damping,
+                ContactKind::Dof { .. } => 0.0,
+            })
+            .collect();
+        for (i, kp) in kappa.iter().enumerate() {
+            if *kp > 0.0 {
+                w[(i, i)] += 1.0 / kp;
+            }
+        }
+        let w = (&w + w.transpose()) * 0.5;
+        Ok(Operators { n, alpha, beta, gamma, p, h, hp, g, w, kappa, mr })
+    }
+}
+
+/// Per-contact state of elastic–perfectly plastic elements: dissipator displacement,
+/// velocity, acceleration (Newmark state of the condensed massless DOF).
+#[derive(Debug, Clone, Copy, Default)]
+struct EppState {
+    u: f64,
+    v: f64,
+    a: f64,
+}
+
+/// Slip rate w = Bᵀv for contact `c` given plan velocities and EPP state.
+#[inline]
+fn slip_rate(plan: &Plan, c: usize, v: &[f64], epp: &[EppState]) -> f64 {
+    let ct = &plan.contacts[c];
+    match ct.kind {
+        ContactKind::Dof { dof } => v[ct.floor] - v[dof],
+        ContactKind::Epp => v[ct.floor] - epp[c].v,
+    }
+}
+
+/// Slip (floor minus dissipator displacement) of contact `c`.
+#[inline]
+fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
+    let ct = &plan.contacts[c];
+    match ct.kind {
+        ContactKind::Dof { dof } => u[ct.floor] - u[dof],
+        ContactKind::Epp => u[ct.floor] - epp[c].u,
+    }
+}
+
+/// Kinetic + strain energy (frame, braces with DOF, and EPP braces), J.
+fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f64) {
+    let n = u.len();
+    let uu = DVector::from_column_slice(u);
+    let vv = DVector::from_column_slice(v);
+    let kinetic = 0.5 * vv.dot(&(&plan.mass * &vv));
+    let mut strain = 0.5 * uu.dot(&(&plan.stiffness * &uu));
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        if ct.kind == ContactKind::Epp {
+            let uj = ct.below.map_or(0.0, |j| u[j]);
+            let e = epp[c].u - uj;
+            strain += 0.5 * ct.brace_stiffness * e * e;
+        }
+    }
+    debug_assert_eq!(n, plan.dofs());
+    (kinetic, strain)
+}
+
+struct Start {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    f: Vec<f64>,
+    epp: Vec<EppState>,
+    stuck: Vec<bool>,
+}
+
+/// Consistent initial accelerations and friction forces.
+///
+/// Contacts whose dissipator has mass and whose initial slip rate is non-zero start
+/// sliding at a bound; those with zero slip rate get their forces from the same box QP
+/// at the acceleration level (Delassus BᵀM⁻¹B). A massless dissipator's force is its
+/// brace force, which must lie within the bounds; its initial acceleration is taken
+/// equal to its floor's (it enters only the first predictor, identically in reduced
+/// and full plans).
+fn initial_state(plan: &Plan) -> Result<Start, SimError> {
+    let n = plan.dofs();
+    let nc = plan.contacts.len();
+    let u = plan.u0.clone();
+    let v = plan.v0.clone();
+    let ag0 = plan.ground_accel(0.0);
+    let uu = DVector::from_column_slice(&u);
+    let vv = DVector::from_column_slice(&v);
+    let mut g = -(plan.mass_influence() * ag0) - &plan.damping * &vv - &plan.stiffness * &uu;
+    if let Some(h) = &plan.harmonic {
+        g[h.floor] += h.force(0.0);
+    }
+    let mut f = vec![0.0; nc];
+    let mut known = vec![true; nc];
+    let mut stuck = vec![false; nc];
+    let mut epp = vec![EppState::default(); nc];
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (u[j], v[j]));
+        let massless = match ct.kind {
+            ContactKind::Epp => Some(plan.contact_x0[c]),
+            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => Some((u[dof], v[dof])),
+            ContactKind::Dof { .. } => None,
+        };
+        if let Some((xd, vd)) = massless {
+            let force = ct.brace_stiffness * (xd - uj) + ct.brace_damping * (vd - vj);
+            let tol = 1e-12 * (ct.upper.abs().min(1e300) + ct.lower.abs().min(1e300) + force.abs());
+            if force > ct.upper + tol || force < ct.lower - tol {
+                let consistent = uj + force.clamp(ct.lower, ct.upper) / ct.brace_stiffness;
+                return Err(SimError::Scene(format!(
+                    "initial state: the massless dissipator of floor {} carries a brace force of {force:.6e} N, outside its friction bounds [{:.6e}, {:.6e}] N; a consistent initial dissipator displacement is {consistent:.9e} m",
+                    ct.floor + 1,
+                    ct.lower,
+                    ct.upper
+                )));
+            }
+            f[c] = force.clamp(ct.lower, ct.upper);
+            stuck[c] = f[c] > ct.lower && f[c] < ct.upper;
+            if ct.kind == ContactKind::Epp {
+                epp[c] = EppState { u: xd, v: vd, a: 0.0 };
+            }
+        } else if let ContactKind::Dof { dof } = ct.kind {
+            let w0 = v[ct.floor] - v[dof];
+            let tol = 1e-12 * (v[ct.floor].abs() + v[dof].abs());
+            if w0.abs() > tol {
+                let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
+                if !bound.is_finite() {
+                    return Err(SimError::Scene(format!(
+                        "initial state: the locked dissipator of floor {} cannot slip, but its initial slip rate is {w0:.6e} m/s",
+                        ct.floor + 1
+                    )));
+                }
+                f[c] = bound;
+            } else {
+                known[c] = false;
+                stuck[c] = true;
+            }
+        }
+    }
+    // −B F for the known forces.
+    let apply = |g: &mut DVector<f64>, c: usize, force: f64| {
+        let ct = &plan.contacts[c];
+        g[ct.floor] -= force;
+        match ct.kind {
+            ContactKind::Dof { dof } => g[dof] += force,
+            ContactKind::Epp => {
+                if let Some(j) = ct.below {
+                    g[j] += force;
+                }
+            }
+        }
+    };
+    for c in (0..nc).filter(|&c| known[c]) {
+        apply(&mut g, c, f[c]);
+    }
+    let massive: Vec<usize> = (0..n).filter(|&d| plan.mass[(d, d)] > 0.0).collect();
+    let ns = massive.len();
+    let ms = DMatrix::from_fn(ns, ns, |i, j| plan.mass[(massive[i], massive[j])]);
+    let chol = ms.cholesky().ok_or_else(|| SimError::NotPositiveDefinite { what: "mass matrix".into(), hint: String::new() })?;
+    let pos = |d: usize| massive.iter().position(|&x| x == d);
+    let unknown: Vec<usize> = (0..nc).filter(|&c| !known[c]).collect();
+    if !unknown.is_empty() {
+        let mut bu = DMatrix::zeros(ns, unknown.len());
+        for (k, &c) in unknown.iter().enumerate() {
+            let ct = &plan.contacts[c];
+            if let ContactKind::Dof { dof } = ct.kind {
+                if let (Some(i), Some(j)) = (pos(ct.floor), pos(dof)) {
+                    bu[(i, k)] = 1.0;
+                    bu[(j, k)] = -1.0;
+                }
+            }
+        }
+        let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
+        let y = chol.solve(&bu);
+        let wa = bu.transpose() * &y;
+        let wa = (&wa + wa.transpose()) * 0.5;
+        let ba = bu.transpose() * chol.solve(&gs);
+        let lo: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].lower).collect();
+        let hi: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].upper).collect();
+        let mut fu = vec![0.0; unknown.len()];
+        let mut qp = BoxQp::new(wa.as_slice(), unknown.len()).map_err(|source| SimError::Friction { t: 0.0, source })?;
+        qp.solve(ba.as_slice(), &lo, &hi, &mut fu).map_err(|source| SimError::Friction { t: 0.0, source })?;
+        for (k, &c) in unknown.iter().enumerate() {
+            f[c] = fu[k];
+            stuck[c] = qp.status(k) == Bound::Free;
+            apply(&mut g, c, fu[k]);
+        }
+    }
+    let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
+    let a_s = chol.solve(&gs);
+    let mut a = vec![0.0; n];
+    for (i, &d) in massive.iter().enumerate() {
+        a[d] = a_s[i];
+    }
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        match ct.kind {
+            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => a[dof] = a[ct.floor],
+            ContactKind::Epp => epp[c].a = a[ct.floor],
+            _ => {}
+        }
+    }
+    Ok(Start { u, v, a, f, epp, stuck })
+}
+
+impl Integrator for Newmark {
+    fn name(&self) -> &'static str {
+        "newmark"
+    }
+
+    fn run(&self, plan: &Plan) -> Result<Outcome, SimError> {
+        let dt = plan.method.dt;
+        if !(dt > 0.0) || !dt.is_finite() {
+            return Err(SimError::BadTimeStep { dt });
+        }
+        let ops = Operators::build(plan)?;
+        let n = ops.n;
+        let nf = plan.floors;
+        let nc = plan.contacts.len();
+        let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
+        let c_u = (0.5 - beta) * dt * dt;
+        let c_v = (1.0 - gamma) * dt;
+        let gdt = gamma * dt;
+        let bdt2 = beta * dt * dt;
+        let bg = beta * dt / gamma;
+        let msum: f64 = ops.mr.iter().sum();
+        let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
+        let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
+
+        let start = initial_state(plan)?;
+        let mut s = DVector::zeros(3 * n);
+        s.rows_mut(0, n).copy_from_slice(&start.u);
+        s.rows_mut(n, n).copy_from_slice(&start.v);
+        s.rows_mut(2 * n, n).copy_from_slice(&start.a);
+        let mut f_old = DVector::from_column_slice(&start.f);
+        let mut f_new = DVector::zeros(nc);
+        let mut epp = start.epp;
+        let mut stuck = start.stuck;
+        let mut qp = if nc > 0 {
+            Some(BoxQp::new(ops.w.as_slice(), nc).map_err(|source| SimError::Friction { t: 0.0, source })?)
+        } else {
+            None
+        };
+        let mut af = DVector::zeros(n);
+        let mut ut = vec![0.0; n];
+        let mut vt = vec![0.0; n];
+        let mut wfree = vec![0.0; nc];
+        let mut w_old: Vec<f64> = (0..nc).map(|c| slip_rate(plan, c, &start.v, &epp)).collect();
+        let mut w_new = vec![0.0; nc];
+        let mut v_old = vec![0.0; n];
+        let mut epp_pred = vec![(0.0, 0.0); nc];
+
+        let energies = plan.outputs.energies;
+        let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
+        let initial_energy = k0 + s0;
+        let mut e_input = 0.0;
+        let mut e_viscous = 0.0;
+        let mut e_friction = 0.0;
+        let mut balance_max_rel: f64 = 0.0;
+
+        let mut peaks = Peaks::new(nf);
+        let mut ag0 = plan.ground_accel(0.0);
+        let mut p0 = plan.force(0.0);
+        peaks.observe_floors(&start.u, &start.a, ag0);
+        let hf = ops.hp.as_ref().map(|(f, _)| *f);
+        let base_shear = |a: &[f64], ag: f64, p: f64| -> f64 {
+            let mut vb = msum * ag - p;
+            for (mi, ai) in ops.mr.iter().zip(a) {
+                vb += mi * ai;
+            }
+            vb.abs()
+        };
+        peaks.base_shear = base_shear(&start.a, ag0, p0);
+        for c in 0..nc {
+            let fl = plan.contacts[c].floor;
+            peaks.slip[fl] = peaks.slip[fl].max(slip(plan, c, &start.u, &epp).abs());
+        }
+
+        let mut history = plan.outputs.histories.then(|| {
+            let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
+            cols.extend((1..=nf).map(|i| format!("x{i}_m")));
+            cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
+            cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
+            cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
+            if energies {
+                cols.extend(["E_input_J", "E_kinetic_J", "E_strain_J", "E_viscous_J", "E_friction_J"].map(String::from));
+            }
+            let mut h = History { columns: cols, rows: Vec::new() };
+            h.rows.reserve((plan.steps + 1) * h.columns.len());
+            h
+        });
+        let record_row = |h: &mut History, t: f64, ag: f64, u: &[f64], f: &[f64], epp: &[EppState], e: Option<[f64; 5]>| {
+            h.rows.push(t);
+            h.rows.push(ag);
+            h.rows.extend_from_slice(&u[..nf]);
+            for (c, ct) in plan.contacts.iter().enumerate() {
+                h.rows.push(match ct.kind {
+                    ContactKind::Dof { dof } => u[dof],
+                    ContactKind::Epp => epp[c].u,
+                });
+            }
+            let mut below = 0.0;
+            for &x in &u[..nf] {
+                h.rows.push(x - below);
+                below = x;
+            }
+            h.rows.extend_from_slice(f);
+            if let Some(e) = e {
+                h.rows.extend_from_slice(&e);
+            }
+        };
+        if let Some(h) = history.as_mut() {
+            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+            record_row(h, 0.0, ag0, &start.u, f_old.as_slice(), &epp, e);
+        }
+
+        let mut qp_iter_total: u64 = 0;
+        let mut qp_iter_max: u32 = 0;
+        for step in 0..plan.steps {
+            let t1 = (step + 1) as f64 * dt;
+            let ag1 = plan.ground_accel(t1);
+            let p1 = plan.force(t1);
+            // Linear part: a_free = P (u, v, a) + loads (+ HHT friction memory).
+            af.gemv(1.0, &ops.p, &s, 0.0);
+            af.axpy(-((1.0 + alpha) * ag1 - alpha * ag0), &ops.h, 1.0);
+            if let Some((_, hp)) = &ops.hp {
+                af.axpy((1.0 + alpha) * p1 - alpha * p0, hp, 1.0);
+            }
+            if alpha != 0.0 && nc > 0 {
+                af.gemv(alpha / (1.0 + alpha), &ops.g, &f_old, 1.0);
+            }
+            for i in 0..n {
+                let (u, v, a) = (s[i], s[n + i], s[2 * n + i]);
+                ut[i] = u + dt * v + c_u * a;
+                vt[i] = v + c_v * a;
+            }
+            if let Some(qp) = qp.as_mut() {
+                for (c, ct) in plan.contacts.iter().enumerate() {
+                    let vf = vt[ct.floor] + gdt * af[ct.floor];
+                    wfree[c] = match ct.kind {
+                        ContactKind::Dof { dof } => vf - (vt[dof] + gdt * af[dof]),
+                        ContactKind::Epp => {
+                            let e = epp[c];
+                            let up = e.u + dt * e.v + c_u * e.a;
+                            let vp = e.v + c_v * e.a;
+                            epp_pred[c] = (up, vp);
+                            let (uj, vj, vj_end) = ct.below.map_or((0.0, 0.0, 0.0), |j| (ut[j], vt[j], vt[j] + gdt * af[j]));
+                            let q = (up - uj) - bg * (vp - vj);
+                            vf - vj_end + ct.brace_stiffness / ops.kappa[c] * q
+                        }
+                    };
+                }
+                let stats = qp
+                    .solve(&wfree, &lo, &hi, f_new.as_mut_slice())
+                    .map_err(|source| SimError::Friction { t: t1, source })?;
+                qp_iter_total += u64::from(stats.iterations);
+                qp_iter_max = qp_iter_max.max(stats.iterations);
+                af.gemv(-1.0, &ops.g, &f_new, 1.0);
+            }
+            if energies {
+                v_old.copy_from_slice(s.rows(n, n).as_slice());
+            }
+            let mut finite = 0.0;
+            for i in 0..n {
+                let a = af[i];
+                s[2 * n + i] = a;
+                s[i] = ut[i] + bdt2 * a;
+                s[n + i] = vt[i] + gdt * a;
+                finite += s[i];
+            }
+            if !finite.is_finite() {
+                return Err(SimError::NonFinite {
+                    step: step + 1,
+                    t: t1,
+                    hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
+                });
+            }
+            let (u_now, rest) = s.as_slice().split_at(n);
+            let (v_now, a_now) = rest.split_at(n);
+            if let Some(qp) = qp.as_ref() {
+                for c in 0..nc {
+                    let mut wf = 0.0;
+                    for j in 0..nc {
+                        wf += ops.w[(c, j)] * f_new[j];
+                    }
+                    w_new[c] = wfree[c] - wf;
+                    let ct = &plan.contacts[c];
+                    if ct.kind == ContactKind::Epp {
+                        let (up, vp) = epp_pred[c];
+                        let vd = v_now[ct.floor] - w_new[c];
+                        let ad = (vd - vp) / gdt;
+                        epp[c] = EppState { u: up + bdt2 * ad, v: vd, a: ad };
+                    }
+                    let now_stuck = qp.status(c) == Bound::Free;
+                    if now_stuck != stuck[c] {
+                        peaks.transitions[ct.floor] += 1;
+                        stuck[c] = now_stuck;
+                    }
+                    let sl = slip(plan, c, u_now, &epp).abs();
+                    if sl > peaks.slip[ct.floor] {
+                        peaks.slip[ct.floor] = sl;
+                    }
+                }
+            }
+            peaks.observe_floors(u_now, a_now, ag1);
+            let vb = base_shear(a_now, ag1, p1);
+            if vb > peaks.base_shear {
+                peaks.base_shear = vb;
+            }
+            let mut e_row = None;
+            if energies {
+                let ag_avg = 0.5 * (ag0 + ag1);
+                let mut mrv = 0.0;
+                let mut cvv = 0.0;
+                for i in 0..n {
+                    let va = 0.5 * (v_old[i] + v_now[i]);
+                    mrv += ops.mr[i] * va;
+                    let mut cv = 0.0;
+                    for j in 0..n {
+                        cv += plan.damping[(i, j)] * 0.5 * (v_old[j] + v_now[j]);
+                    }
+                    cvv += va * cv;
+                }
+                let mut d_input = -ag_avg * mrv;
+                if let Some(f) = hf {
+                    d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
+                }
+                e_input += dt * d_input;
+                e_viscous += dt * cvv;
+                for c in 0..nc {
+                    e_friction += dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
+                    let ct = &plan.contacts[c];
+                    if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
+                        // Brace dashpot of a condensed dissipator: ė = v′ − v_below.
+                        let vj_old = ct.below.map_or(0.0, |j| v_old[j]);
+                        let vj_new = ct.below.map_or(0.0, |j| v_now[j]);
+                        let ed_old = (v_old[ct.floor] - w_old[c]) - vj_old;
+                        let ed_new = epp[c].v - vj_new;
+                        let ed = 0.5 * (ed_old + ed_new);
+                        e_viscous += dt * ct.brace_damping * ed * ed;
+                    }
+                }
+                let (ek, es) = stored_energy(plan, u_now, v_now, &epp);
+                let bal = e_input + initial_energy - (ek + es + e_viscous + e_friction);
+                let scale = (e_input.abs() + initial_energy).max(f64::MIN_POSITIVE);
+                balance_max_rel = balance_max_rel.max(bal.abs() / scale);
+                e_row = Some([e_input, ek, es, e_viscous, e_friction]);
+            }
+            if let Some(h) = history.as_mut() {
+                record_row(h, t1, ag1, u_now, f_new.as_slice(), &epp, e_row);
+            }
+            std::mem::swap(&mut f_old, &mut f_new);
+            std::mem::swap(&mut w_old, &mut w_new);
+            ag0 = ag1;
+            p0 = p1;
+        }
+        let (u_end, rest) = s.as_slice().split_at(n);
+        let v_end = &rest[..n];
+        let energy = energies.then(|| {
+            let (ek, es) = stored_energy(plan, u_end, v_end, &epp);
+            Energy {
+                input: e_input,
+                kinetic: ek,
+                strain: es,
+                viscous: e_viscous,
+                friction: e_friction,
+                balance_error: e_input + initial_energy - (ek + es + e_viscous + e_friction),
+            }
+        });
+        let name = if alpha == 0.0 { "newmark" } else { "hht" };
+        let response = peaks.into_response(name, dt, plan.steps, plan.storey_heights.as_deref(), energy);
+        Ok(Outcome {
+            response,
+            diagnostics: Diagnostics {
+                qp_iterations_mean: if plan.steps > 0 { qp_iter_total as f64 / plan.steps as f64 } else { 0.0 },
+                qp_iterations_max: qp_iter_max,
+                balance_error_max_relative: balance_max_rel,
+                initial_energy,
+            },
+            history,
+        })
+    }
+}

@@ -1,0 +1,320 @@
+//! Plans: a scene compiled into only the effects that matter (DESIGN.md § Scenes and plans).
+//!
+//! Degrees of freedom are the floors (0..N) followed by the dissipators that keep one.
+//! With `reduce` on:
+//! - a floor without a dissipator, or whose slip load is zero, has no dissipator DOF and
+//!   no brace (a bare storey: DESIGN.md's μN = 0 limit);
+//! - a locked dissipator (μN = ∞) is merged into its floor: its mass is added to the
+//!   floor and its brace joins floors i−1 and i directly (a braced storey);
+//! - a massless dissipator (m′ = 0) becomes an elastic–perfectly plastic element between
+//!   floors i−1 and i: no DOF, its brace elongation carried as internal state;
+//! - every other dissipator keeps its DOF and a friction contact with its floor.
+//!
+//! With `reduce` off every dissipator keeps its DOF and contact (the full 2N model, with
+//! zero masses where m′ = 0): tests compare both.
+
+use crate::building::Building;
+use crate::error::SimError;
+use crate::scene::{Harmonic, MethodSettings, OutputsConfig, Scene};
+use nalgebra::{DMatrix, DVector};
+use slipload_motion::Record;
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+/// How a contact's dissipator side is modelled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactKind {
+    /// The dissipator is a DOF (`dof`), joined by its brace to the floor below.
+    Dof {
+        /// Index of the dissipator DOF.
+        dof: usize,
+    },
+    /// Massless dissipator condensed into an elastic–perfectly plastic element.
+    Epp,
+}
+
+/// One friction contact between floor `floor` and its dissipator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Floor index (DOF) the contact acts on.
+    pub floor: usize,
+    /// Floor the brace starts from (`None` = the ground).
+    pub below: Option<usize>,
+    /// Dissipator model.
+    pub kind: ContactKind,
+    /// Lower friction bound F⁻, N.
+    pub lower: f64,
+    /// Upper friction bound F⁺, N.
+    pub upper: f64,
+    /// Brace stiffness k′, N/m.
+    pub brace_stiffness: f64,
+    /// Brace damping c′, N·s/m.
+    pub brace_damping: f64,
+}
+
+/// What each floor carries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FloorLink {
+    /// No dissipator in the model.
+    None,
+    /// Friction contact number `.0`.
+    Contact(usize),
+    /// Locked dissipator, merged into the floor.
+    Locked,
+}
+
+/// A compiled scene.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// Scene name.
+    pub name: String,
+    /// Number of floors N.
+    pub floors: usize,
+    /// Mass matrix on the plan's DOFs, kg.
+    pub mass: DMatrix<f64>,
+    /// Damping matrix, N·s/m.
+    pub damping: DMatrix<f64>,
+    /// Stiffness matrix, N/m.
+    pub stiffness: DMatrix<f64>,
+    /// Friction contacts.
+    pub contacts: Vec<Contact>,
+    /// Per floor: its dissipator's model.
+    pub links: Vec<FloorLink>,
+    /// Storey heights, m.
+    pub storey_heights: Option<Vec<f64>>,
+    /// Ground record, m/s².
+    pub record: Option<Arc<Record>>,
+    /// Harmonic floor force.
+    pub harmonic: Option<Harmonic>,
+    /// Initial displacements on the plan's DOFs, m.
+    pub u0: Vec<f64>,
+    /// Initial velocities on the plan's DOFs, m/s.
+    pub v0: Vec<f64>,
+    /// Initial dissipator displacement and velocity per contact (used by EPP contacts).
+    pub contact_x0: Vec<(f64, f64)>,
+    /// Method and time step.
+    pub method: MethodSettings,
+    /// Number of steps.
+    pub steps: usize,
+    /// What to compute.
+    pub outputs: OutputsConfig,
+    /// Fundamental period of the bare frame, s.
+    pub t1: f64,
+    /// One line per decision, for `slipload explain`.
+    pub notes: Vec<String>,
+}
+
+fn add_spring(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
+    m[(i, i)] += k;
+    if let Some(j) = j {
+        m[(j, j)] += k;
+        m[(i, j)] -= k;
+        m[(j, i)] -= k;
+    }
+}
+
+impl Plan {
+    /// Compiles a scene.
+    pub fn compile(scene: &Scene) -> Result<Plan, SimError> {
+        let b: &Building = &scene.building;
+        let n = b.floors();
+        let reduce = scene.reduce;
+        let mut notes = Vec::new();
+        // First pass: which floors keep a dissipator DOF.
+        let mut dof_of = vec![None; n];
+        let mut n_dof = n;
+        for (f, d) in b.dissipators.iter().enumerate() {
+            let Some(d) = d else { continue };
+            let keep = !reduce || !(d.is_free() || d.is_locked() || d.mass == 0.0);
+            if keep {
+                dof_of[f] = Some(n_dof);
+                n_dof += 1;
+            }
+        }
+        let mut mass = DMatrix::zeros(n_dof, n_dof);
+        let mut damping = DMatrix::zeros(n_dof, n_dof);
+        let mut stiffness = DMatrix::zeros(n_dof, n_dof);
+        mass.view_mut((0, 0), (n, n)).copy_from(&b.mass);
+        damping.view_mut((0, 0), (n, n)).copy_from(&b.damping);
+        stiffness.view_mut((0, 0), (n, n)).copy_from(&b.stiffness);
+        let mut contacts = Vec::new();
+        let mut links = vec![FloorLink::None; n];
+        let mut contact_x0 = Vec::new();
+        let ic = &scene.initial;
+        let mut u0: Vec<f64> = ic.floor_displacement.clone();
+        let mut v0: Vec<f64> = ic.floor_velocity.clone();
+        u0.resize(n_dof, 0.0);
+        v0.resize(n_dof, 0.0);
+        for (f, d) in b.dissipators.iter().enumerate() {
+            let storey = f + 1;
+            let below = f.checked_sub(1);
+            let Some(d) = d else {
+                notes.push(format!("floor {storey}: no dissipator"));
+                continue;
+            };
+            if reduce && d.is_free() {
+                notes.push(format!("floor {storey}: slip load 0 -> brace disconnected, no dissipator DOF (bare storey)"));
+                continue;
+            }
+            if reduce && d.is_locked() {
+                mass[(f, f)] += d.mass;
+                add_spring(&mut stiffness, f, below, d.brace_stiffness);
+                add_spring(&mut damping, f, below, d.brace_damping);
+                links[f] = FloorLink::Locked;
+                notes.push(format!(
+                    "floor {storey}: locked -> dissipator merged into the floor (m' = {} kg added), brace k' = {:.6e} N/m joins floors {} and {storey}",
+                    d.mass, d.brace_stiffness, f
+                ));
+                continue;
+            }
+            let kind = match dof_of[f] {
+                Some(dof) => {
+                    mass[(dof, dof)] = d.mass;
+                    add_spring(&mut stiffness, dof, below, d.brace_stiffness);
+                    add_spring(&mut damping, dof, below, d.brace_damping);
+                    u0[dof] = ic.dissipator_displacement[f];
+                    v0[dof] = ic.dissipator_velocity[f];
+                    notes.push(format!(
+                        "floor {storey}: friction contact, dissipator DOF {dof} (m' = {} kg, k' = {:.6e} N/m, c' = {} N*s/m), bounds [{:.6e}, {:.6e}] N{}",
+                        d.mass,
+                        d.brace_stiffness,
+                        d.brace_damping,
+                        d.lower,
+                        d.upper,
+                        if d.mass == 0.0 { " (massless DOF kept: unreduced plan)" } else { "" }
+                    ));
+                    ContactKind::Dof { dof }
+                }
+                None => {
+                    notes.push(format!(
+                        "floor {storey}: m' = 0 -> elastic-perfectly plastic element between floors {f} and {storey} (k' = {:.6e} N/m, c' = {} N*s/m, bounds [{:.6e}, {:.6e}] N), no DOF",
+                        d.brace_stiffness, d.brace_damping, d.lower, d.upper
+                    ));
+                    ContactKind::Epp
+                }
+            };
+            links[f] = FloorLink::Contact(contacts.len());
+            contact_x0.push((ic.dissipator_displacement[f], ic.dissipator_velocity[f]));
+            contacts.push(Contact {
+                floor: f,
+                below,
+                kind,
+                lower: d.lower,
+                upper: d.upper,
+                brace_stiffness: d.brace_stiffness,
+                brace_damping: d.brace_damping,
+            });
+        }
+        // Assembled stiffness must be positive definite (it is for valid buildings; a
+        // check here turns a modelling slip into an error instead of a wrong answer).
+        if stiffness.clone().cholesky().is_none() {
+            return Err(SimError::NotPositiveDefinite {
+                what: "assembled stiffness matrix".into(),
+                hint: " (check the frame stiffness and the brace stiffnesses)".into(),
+            });
+        }
+        let steps = scene.steps();
+        notes.push(format!(
+            "{} DOFs ({} floors + {} dissipators), {} friction contacts ({} with DOF, {} elastic-perfectly plastic)",
+            n_dof,
+            n,
+            n_dof - n,
+            contacts.len(),
+            contacts.iter().filter(|c| matches!(c.kind, ContactKind::Dof { .. })).count(),
+            contacts.iter().filter(|c| c.kind == ContactKind::Epp).count()
+        ));
+        notes.push(format!(
+            "method {} (alpha = {}), dt = {:.6e} s (T1/{:.1}, bare T1 = {:.4} s), {} steps over {:.4} s",
+            scene.method.name.as_str(),
+            scene.method.alpha,
+            scene.method.dt,
+            b.t1() / scene.method.dt,
+            b.t1(),
+            steps,
+            steps as f64 * scene.method.dt
+        ));
+        match &scene.record {
+            Some(r) => notes.push(format!("ground motion: {} ({} samples at dt = {} s, PGA = {:.4} m/s^2)", r.name(), r.len(), r.dt(), r.pga())),
+            None => notes.push("ground motion: none".into()),
+        }
+        if let Some(h) = &scene.harmonic {
+            notes.push(format!("harmonic force on floor {}: {:.6e} N at {} rad/s", h.floor + 1, h.amplitude, h.omega));
+        }
+        notes.push(format!(
+            "outputs: peaks{}{}",
+            if scene.outputs.energies { ", energies" } else { " (energies off: not accumulated)" },
+            if scene.outputs.histories { ", histories" } else { " (no histories: memory independent of duration)" }
+        ));
+        Ok(Plan {
+            name: scene.name.clone(),
+            floors: n,
+            mass,
+            damping,
+            stiffness,
+            contacts,
+            links,
+            storey_heights: b.storey_heights.clone(),
+            record: scene.record.clone(),
+            harmonic: scene.harmonic,
+            u0,
+            v0,
+            contact_x0,
+            method: scene.method,
+            steps,
+            outputs: scene.outputs,
+            t1: b.t1(),
+            notes,
+        })
+    }
+
+    /// Number of DOFs.
+    pub fn dofs(&self) -> usize {
+        self.mass.nrows()
+    }
+
+    /// Ground acceleration at `t`, m/s².
+    #[inline]
+    pub fn ground_accel(&self, t: f64) -> f64 {
+        self.record.as_ref().map_or(0.0, |r| r.accel_at(t))
+    }
+
+    /// Harmonic force at `t`, N (0 without one).
+    #[inline]
+    pub fn force(&self, t: f64) -> f64 {
+        self.harmonic.as_ref().map_or(0.0, |h| h.force(t))
+    }
+
+    /// The influence matrix B (DOFs × contacts): column c is e(floor) − e(dissipator) for a
+    /// contact with DOF, e(floor) − e(floor below) for an elastic–perfectly plastic one.
+    pub fn contact_matrix(&self) -> DMatrix<f64> {
+        let mut bm = DMatrix::zeros(self.dofs(), self.contacts.len());
+        for (c, ct) in self.contacts.iter().enumerate() {
+            bm[(ct.floor, c)] = 1.0;
+            match ct.kind {
+                ContactKind::Dof { dof } => bm[(dof, c)] = -1.0,
+                ContactKind::Epp => {
+                    if let Some(j) = ct.below {
+                        bm[(j, c)] = -1.0;
+                    }
+                }
+            }
+        }
+        bm
+    }
+
+    /// M·r with r = 1 on every DOF (all displacements are relative to the ground), kg.
+    pub fn mass_influence(&self) -> DVector<f64> {
+        let ones = DVector::from_element(self.dofs(), 1.0);
+        &self.mass * ones
+    }
+
+    /// Human-readable description of the plan.
+    pub fn explain(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "plan for {}", self.name);
+        for n in &self.notes {
+            let _ = writeln!(s, "  {n}");
+        }
+        s
+    }
+}

@@ -1,0 +1,178 @@
+//! Responses of one simulation (DESIGN.md § Outputs of a simulation) and the recorder
+//! that accumulates them in place while stepping.
+//!
+//! Peaks are taken at the integration steps ("sampled peaks"); between steps the
+//! continuous solution may exceed them slightly.
+
+use serde::{Deserialize, Serialize};
+
+/// The five energies and the balance error, J (relative formulation).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Energy {
+    /// Input energy ∫(−a_g rᵀM + Pᵀ) u̇ dt.
+    pub input: f64,
+    /// Kinetic energy ½ u̇ᵀ M u̇ at the end.
+    pub kinetic: f64,
+    /// Strain energy ½ uᵀ K u at the end (frame and braces).
+    pub strain: f64,
+    /// Viscous dissipation ∫ u̇ᵀ C u̇ dt.
+    pub viscous: f64,
+    /// Friction dissipation ∫ Fᵀ w dt.
+    pub friction: f64,
+    /// input + initial (kinetic + strain) − (kinetic + strain + viscous + friction).
+    pub balance_error: f64,
+}
+
+/// The output contract of `simulate --format json` (SI units, arrays by storey).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Response {
+    /// Method name.
+    pub method: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// Number of steps.
+    pub steps: usize,
+    /// Wall-clock seconds of the (single-threaded) run.
+    pub cpu_seconds: f64,
+    /// Peak |interstorey drift| per storey, m.
+    pub peak_drift: Vec<f64>,
+    /// Peak drift / storey height per storey (when heights are given).
+    pub peak_drift_ratio: Option<Vec<f64>>,
+    /// Peak |floor displacement| relative to the ground, m.
+    pub peak_displacement: Vec<f64>,
+    /// Peak |absolute floor acceleration|, m/s².
+    pub peak_abs_acceleration: Vec<f64>,
+    /// |Interstorey drift| at the end, m.
+    pub residual_drift: Vec<f64>,
+    /// Peak |base shear|, N.
+    pub peak_base_shear: f64,
+    /// Peak |slip| (damper stroke) per storey, m (0 without a sliding damper).
+    pub peak_slip: Vec<f64>,
+    /// Stick↔slip transitions per storey.
+    pub transitions: Vec<u64>,
+    /// Energies, when asked for.
+    pub energy: Option<Energy>,
+}
+
+/// Extra figures of a run that are not in the output contract.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Diagnostics {
+    /// Friction QP iterations, mean per step.
+    pub qp_iterations_mean: f64,
+    /// Friction QP iterations, max in one step.
+    pub qp_iterations_max: u32,
+    /// Largest |balance error| / max(input + initial energy) over the steps (energies on).
+    pub balance_error_max_relative: f64,
+    /// Initial kinetic + strain energy, J.
+    pub initial_energy: f64,
+}
+
+/// Time histories, one column per quantity, one row per step.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct History {
+    /// Column names with units.
+    pub columns: Vec<String>,
+    /// Row-major values.
+    pub rows: Vec<f64>,
+}
+
+impl History {
+    /// CSV text with a header line.
+    pub fn to_csv(&self) -> String {
+        let mut s = self.columns.join(",");
+        s.push('\n');
+        let w = self.columns.len().max(1);
+        for row in self.rows.chunks(w) {
+            let line: Vec<String> = row.iter().map(|v| format!("{v:.9e}")).collect();
+            s.push_str(&line.join(","));
+            s.push('\n');
+        }
+        s
+    }
+    /// Values of column `name`.
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let j = self.columns.iter().position(|c| c == name)?;
+        let w = self.columns.len();
+        Some(self.rows.chunks(w).map(|r| r[j]).collect())
+    }
+}
+
+/// Everything one run produces.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The contract's responses.
+    pub response: Response,
+    /// Extra figures.
+    pub diagnostics: Diagnostics,
+    /// Histories, when asked for.
+    pub history: Option<History>,
+}
+
+/// Running peaks, updated in place at every step (no allocation while stepping).
+#[derive(Debug, Clone)]
+pub struct Peaks {
+    /// Peak |drift| per storey.
+    pub drift: Vec<f64>,
+    /// Peak |displacement| per floor.
+    pub displacement: Vec<f64>,
+    /// Peak |absolute acceleration| per floor.
+    pub abs_acceleration: Vec<f64>,
+    /// Last drift per storey (signed).
+    pub last_drift: Vec<f64>,
+    /// Peak |base shear|.
+    pub base_shear: f64,
+    /// Peak |slip| per floor.
+    pub slip: Vec<f64>,
+    /// Stick↔slip transitions per floor.
+    pub transitions: Vec<u64>,
+}
+
+impl Peaks {
+    /// Zeroed peaks for `n` floors.
+    pub fn new(n: usize) -> Self {
+        Peaks {
+            drift: vec![0.0; n],
+            displacement: vec![0.0; n],
+            abs_acceleration: vec![0.0; n],
+            last_drift: vec![0.0; n],
+            base_shear: 0.0,
+            slip: vec![0.0; n],
+            transitions: vec![0; n],
+        }
+    }
+
+    /// Records floor displacements `x` and relative accelerations `a` (first n entries
+    /// used) with ground acceleration `ag`.
+    #[inline]
+    pub fn observe_floors(&mut self, x: &[f64], a: &[f64], ag: f64) {
+        let mut below = 0.0;
+        for i in 0..self.drift.len() {
+            let d = x[i] - below;
+            below = x[i];
+            self.last_drift[i] = d;
+            self.drift[i] = self.drift[i].max(d.abs());
+            self.displacement[i] = self.displacement[i].max(x[i].abs());
+            self.abs_acceleration[i] = self.abs_acceleration[i].max((a[i] + ag).abs());
+        }
+    }
+
+    /// Builds the contract's response.
+    pub fn into_response(self, method: &str, dt: f64, steps: usize, heights: Option<&[f64]>, energy: Option<Energy>) -> Response {
+        let ratio = heights.map(|h| self.drift.iter().zip(h).map(|(d, h)| d / h).collect());
+        Response {
+            method: method.to_string(),
+            dt,
+            steps,
+            cpu_seconds: 0.0,
+            peak_drift: self.drift,
+            peak_drift_ratio: ratio,
+            peak_displacement: self.displacement,
+            peak_abs_acceleration: self.abs_acceleration,
+            residual_drift: self.last_drift.iter().map(|d| d.abs()).collect(),
+            peak_base_shear: self.base_shear,
+            peak_slip: self.slip,
+            transitions: self.transitions,
+            energy,
+        }
+    }
+}

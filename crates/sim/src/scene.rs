@@ -1,0 +1,503 @@
+//! Scenes: a building, an excitation, what is asked for, and a method with its settings.
+//!
+//! A scene file names a building (inline or by path relative to the scene file) and may
+//! name a record, a member of the embedded synthetic suite, a harmonic floor force and an
+//! initial state. A building file alone is a valid scene (no excitation: give a record or
+//! a duration through [`SceneOverrides`]). Overrides (the CLI's flags) win over the file.
+
+use crate::building::{Building, BuildingConfig};
+use crate::error::SimError;
+use crate::units::{Force, Length, Time};
+use serde::{Deserialize, Serialize};
+use slipload_motion::{Record, Units, G};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A scene file, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneConfig {
+    /// Short name.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Free text.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// The building: a path (relative to this file) or an inline building object.
+    pub building: BuildingRef,
+    /// Loads and initial state; default: none.
+    #[serde(default)]
+    pub excitation: ExcitationConfig,
+    /// Simulated time (s); default: the record's duration.
+    #[serde(default)]
+    pub duration: Option<Time>,
+    /// Integration method and its accuracy settings.
+    #[serde(default)]
+    pub method: MethodConfig,
+    /// What to compute beyond peak responses.
+    #[serde(default)]
+    pub outputs: OutputsConfig,
+    /// Compile the scene into a reduced plan (default true). `false` keeps every
+    /// dissipator degree of freedom: the full 2N model, for checking the reductions.
+    #[serde(default = "default_true")]
+    pub reduce: bool,
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// A building given by path or inline.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum BuildingRef {
+    /// Path relative to the scene file.
+    Path(PathBuf),
+    /// The building itself.
+    Inline(Box<BuildingConfig>),
+}
+
+/// Loads acting on the building.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExcitationConfig {
+    /// A ground-motion record file.
+    #[serde(default)]
+    pub record: Option<RecordConfig>,
+    /// A member of the embedded synthetic suite (used when no record file is named).
+    #[serde(default)]
+    pub synthetic: Option<SyntheticConfig>,
+    /// A harmonic force on one floor.
+    #[serde(default)]
+    pub harmonic: Option<HarmonicConfig>,
+    /// Initial displacements and velocities.
+    #[serde(default)]
+    pub initial: Option<InitialConfig>,
+}
+
+/// A record file and how to use it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordConfig {
+    /// Path, relative to the scene file.
+    pub file: PathBuf,
+    /// Units of the values ("g", "m/s2", "cm/s2"); AT2 files are in g.
+    #[serde(default)]
+    pub units: Option<String>,
+    /// Sample interval (s) for one-column text files.
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// Scale factor on the accelerations.
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Scale to this peak ground acceleration, in g.
+    #[serde(default)]
+    pub scale_pga_g: Option<f64>,
+    /// Window [start, duration] in s.
+    #[serde(default)]
+    pub window: Option<[f64; 2]>,
+}
+
+/// A member of the embedded synthetic suite.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SyntheticConfig {
+    /// Index in the suite, from 0.
+    #[serde(default)]
+    pub index: usize,
+}
+
+/// P(t) = amplitude · sin(ω t + phase) on one floor.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HarmonicConfig {
+    /// Floor number, 1 = first floor.
+    pub floor: usize,
+    /// Amplitude, N.
+    pub amplitude: Force,
+    /// Circular frequency ω, rad/s.
+    pub omega: f64,
+    /// Phase, rad (default 0).
+    #[serde(default)]
+    pub phase: f64,
+}
+
+/// Initial state (relative to the ground); missing vectors are zero.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialConfig {
+    /// Floor displacements x₀ (m), bottom to top.
+    #[serde(default)]
+    pub floor_displacement: Option<Vec<Length>>,
+    /// Floor velocities (m/s).
+    #[serde(default)]
+    pub floor_velocity: Option<Vec<f64>>,
+    /// Dissipator displacements x′₀ (m); floors without a dissipator ignore theirs.
+    #[serde(default)]
+    pub dissipator_displacement: Option<Vec<Length>>,
+    /// Dissipator velocities (m/s).
+    #[serde(default)]
+    pub dissipator_velocity: Option<Vec<f64>>,
+}
+
+/// The integration methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodName {
+    /// Newmark average acceleration (γ = ½, β = ¼) with exact implicit friction.
+    #[default]
+    Newmark,
+    /// HHT-α (default α = −0.05) with exact implicit friction.
+    Hht,
+}
+
+impl MethodName {
+    /// The name as written in configs and on the command line.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            MethodName::Newmark => "newmark",
+            MethodName::Hht => "hht",
+        }
+    }
+}
+
+impl std::str::FromStr for MethodName {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "newmark" => Ok(MethodName::Newmark),
+            "hht" => Ok(MethodName::Hht),
+            other => Err(format!("unknown method {other:?}: expected newmark or hht")),
+        }
+    }
+}
+
+/// Method and accuracy settings, as written.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MethodConfig {
+    /// Method (default newmark).
+    #[serde(default)]
+    pub name: MethodName,
+    /// Time step (s); default min(record dt, T₁/200) rounded to divide the record's dt.
+    #[serde(default)]
+    pub dt: Option<Time>,
+    /// HHT α in [−1/3, 0] (default −0.05 for hht, 0 for newmark).
+    #[serde(default)]
+    pub alpha: Option<f64>,
+}
+
+/// What to compute beyond peaks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputsConfig {
+    /// Accumulate the energies (default true).
+    #[serde(default = "default_true")]
+    pub energies: bool,
+    /// Store time histories (default false).
+    #[serde(default)]
+    pub histories: bool,
+}
+
+impl Default for OutputsConfig {
+    fn default() -> Self {
+        OutputsConfig { energies: true, histories: false }
+    }
+}
+
+/// Command-line overrides; each `Some` wins over the file.
+#[derive(Debug, Clone, Default)]
+pub struct SceneOverrides {
+    /// Record file (replaces the scene's excitation record).
+    pub record: Option<PathBuf>,
+    /// Units of that record.
+    pub units: Option<Units>,
+    /// Scale to this PGA, g.
+    pub scale_pga_g: Option<f64>,
+    /// Window (start, duration), s.
+    pub window: Option<(f64, f64)>,
+    /// Method.
+    pub method: Option<MethodName>,
+    /// Time step, s.
+    pub dt: Option<f64>,
+    /// Duration, s.
+    pub duration: Option<f64>,
+    /// Store histories.
+    pub histories: Option<bool>,
+    /// Accumulate energies.
+    pub energies: Option<bool>,
+}
+
+/// A harmonic floor force.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Harmonic {
+    /// Floor index from 0.
+    pub floor: usize,
+    /// Amplitude, N.
+    pub amplitude: f64,
+    /// ω, rad/s.
+    pub omega: f64,
+    /// Phase, rad.
+    pub phase: f64,
+}
+
+impl Harmonic {
+    /// P(t), N.
+    #[inline]
+    pub fn force(&self, t: f64) -> f64 {
+        self.amplitude * (self.omega * t + self.phase).sin()
+    }
+}
+
+/// Initial state, SI, one entry per floor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialState {
+    /// Floor displacements, m.
+    pub floor_displacement: Vec<f64>,
+    /// Floor velocities, m/s.
+    pub floor_velocity: Vec<f64>,
+    /// Dissipator displacements, m.
+    pub dissipator_displacement: Vec<f64>,
+    /// Dissipator velocities, m/s.
+    pub dissipator_velocity: Vec<f64>,
+}
+
+impl InitialState {
+    /// At rest.
+    pub fn rest(n: usize) -> Self {
+        InitialState {
+            floor_displacement: vec![0.0; n],
+            floor_velocity: vec![0.0; n],
+            dissipator_displacement: vec![0.0; n],
+            dissipator_velocity: vec![0.0; n],
+        }
+    }
+    /// True when everything is zero.
+    pub fn is_rest(&self) -> bool {
+        [&self.floor_displacement, &self.floor_velocity, &self.dissipator_displacement, &self.dissipator_velocity]
+            .iter()
+            .all(|v| v.iter().all(|x| *x == 0.0))
+    }
+}
+
+/// Method and settings, resolved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MethodSettings {
+    /// Method.
+    pub name: MethodName,
+    /// Time step, s (resolved).
+    pub dt: f64,
+    /// HHT α (0 for Newmark).
+    pub alpha: f64,
+}
+
+/// A resolved scene, ready to compile into a plan.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Name.
+    pub name: String,
+    /// The building.
+    pub building: Building,
+    /// Ground acceleration record, m/s².
+    pub record: Option<Arc<Record>>,
+    /// Harmonic floor force.
+    pub harmonic: Option<Harmonic>,
+    /// Initial state.
+    pub initial: InitialState,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// Method.
+    pub method: MethodSettings,
+    /// What to compute.
+    pub outputs: OutputsConfig,
+    /// Compile into a reduced plan.
+    pub reduce: bool,
+}
+
+/// Default time step: T₁/200 of the bare frame, rounded down so that it divides the
+/// record's sample interval (the record is then sampled at steps, not between them),
+/// and never larger than that interval.
+pub fn default_dt(t1: f64, record_dt: Option<f64>) -> f64 {
+    let target = t1 / 200.0;
+    match record_dt {
+        Some(rdt) => rdt / (rdt / target).ceil().max(1.0),
+        None => target,
+    }
+}
+
+fn vec_or_zero(path: &Path, field: &str, v: Option<Vec<f64>>, n: usize) -> Result<Vec<f64>, SimError> {
+    match v {
+        None => Ok(vec![0.0; n]),
+        Some(v) if v.len() != n => Err(SimError::invalid(path, field, format!("has {} values, expected {n} (one per floor)", v.len()))),
+        Some(v) => match v.iter().position(|x| !x.is_finite()) {
+            Some(i) => Err(SimError::invalid(path, format!("{field}[{i}]"), "must be finite")),
+            None => Ok(v),
+        },
+    }
+}
+
+impl Scene {
+    /// Loads a scene file — or a building file, which is a scene with no excitation.
+    pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
+        Scene::from_json(&text, path, over)
+    }
+
+    /// Parses a scene (or building) from JSON text; `path` names it in errors and anchors
+    /// relative paths.
+    pub fn from_json(text: &str, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
+        let is_scene = value.as_object().is_some_and(|o| o.contains_key("building"));
+        let cfg = if is_scene {
+            serde_json::from_str::<SceneConfig>(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?
+        } else {
+            let b: BuildingConfig =
+                serde_json::from_str(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
+            SceneConfig {
+                name: b.name.clone(),
+                description: None,
+                building: BuildingRef::Inline(Box::new(b)),
+                excitation: ExcitationConfig::default(),
+                duration: None,
+                method: MethodConfig::default(),
+                outputs: OutputsConfig::default(),
+                reduce: true,
+            }
+        };
+        Scene::from_config(cfg, path, over)
+    }
+
+    /// Resolves a config: loads the building and the record, applies overrides, validates.
+    pub fn from_config(cfg: SceneConfig, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
+        let base = path.parent().unwrap_or(Path::new("."));
+        let building = match &cfg.building {
+            BuildingRef::Path(p) => Building::load(&base.join(p))?,
+            BuildingRef::Inline(b) => Building::from_config(b, path)?,
+        };
+        let n = building.floors();
+        // Ground motion: the override's file, else the scene's record, else its synthetic member.
+        let record = if let Some(file) = &over.record {
+            let mut r = slipload_motion::read_record(file, over.units, None)?;
+            if let Some((s, d)) = over.window {
+                r = r.window(s, d)?;
+            }
+            if let Some(pga) = over.scale_pga_g {
+                r = r.scaled_to_pga(pga * G)?;
+            }
+            Some(Arc::new(r))
+        } else if let Some(rc) = &cfg.excitation.record {
+            let units = match &rc.units {
+                None => over.units,
+                Some(u) => Some(u.parse::<Units>().map_err(|e| SimError::invalid(path, "excitation.record.units", e.to_string()))?),
+            };
+            let mut r = slipload_motion::read_record(&base.join(&rc.file), units, rc.dt)?;
+            if let Some([s, d]) = rc.window {
+                r = r.window(s, d)?;
+            }
+            if let Some((s, d)) = over.window {
+                r = r.window(s, d)?;
+            }
+            if rc.scale.is_some() && rc.scale_pga_g.is_some() {
+                return Err(SimError::invalid(path, "excitation.record.scale", "give either scale or scale_pga_g, not both"));
+            }
+            if let Some(f) = rc.scale {
+                if !f.is_finite() {
+                    return Err(SimError::invalid(path, "excitation.record.scale", "must be finite"));
+                }
+                r = r.scaled(f);
+            }
+            match over.scale_pga_g.or(rc.scale_pga_g) {
+                Some(pga) if !(pga > 0.0) || !pga.is_finite() => {
+                    return Err(SimError::invalid(path, "excitation.record.scale_pga_g", format!("must be positive, got {pga}")));
+                }
+                Some(pga) => r = r.scaled_to_pga(pga * G)?,
+                None => {}
+            }
+            Some(Arc::new(r))
+        } else if let Some(s) = &cfg.excitation.synthetic {
+            let mut suite = slipload_motion::default_suite();
+            if s.index >= suite.len() {
+                return Err(SimError::invalid(path, "excitation.synthetic.index", format!("the embedded suite has {} records (0..{}), got {}", suite.len(), suite.len() - 1, s.index)));
+            }
+            let mut r = suite.swap_remove(s.index);
+            if let Some(pga) = over.scale_pga_g {
+                r = r.scaled_to_pga(pga * G)?;
+            }
+            Some(Arc::new(r))
+        } else {
+            None
+        };
+        let harmonic = match &cfg.excitation.harmonic {
+            None => None,
+            Some(h) => {
+                if h.floor == 0 || h.floor > n {
+                    return Err(SimError::invalid(path, "excitation.harmonic.floor", format!("must be a floor from 1 to {n}, got {}", h.floor)));
+                }
+                if !h.amplitude.0.is_finite() || !h.omega.is_finite() || !h.phase.is_finite() {
+                    return Err(SimError::invalid(path, "excitation.harmonic", "amplitude, omega and phase must be finite"));
+                }
+                Some(Harmonic { floor: h.floor - 1, amplitude: h.amplitude.0, omega: h.omega, phase: h.phase })
+            }
+        };
+        let initial = match cfg.excitation.initial.clone() {
+            None => InitialState::rest(n),
+            Some(ic) => InitialState {
+                floor_displacement: vec_or_zero(path, "excitation.initial.floor_displacement", ic.floor_displacement.map(|v| v.iter().map(|x| x.0).collect()), n)?,
+                floor_velocity: vec_or_zero(path, "excitation.initial.floor_velocity", ic.floor_velocity, n)?,
+                dissipator_displacement: vec_or_zero(path, "excitation.initial.dissipator_displacement", ic.dissipator_displacement.map(|v| v.iter().map(|x| x.0).collect()), n)?,
+                dissipator_velocity: vec_or_zero(path, "excitation.initial.dissipator_velocity", ic.dissipator_velocity, n)?,
+            },
+        };
+        let duration = match over.duration.or(cfg.duration.map(|d| d.0)) {
+            Some(d) if !(d > 0.0) || !d.is_finite() => return Err(SimError::invalid(path, "duration", format!("must be positive, got {d}"))),
+            Some(d) => d,
+            None => match &record {
+                Some(r) => r.duration(),
+                None => return Err(SimError::Scene(format!("{}: no record and no duration: give a record (--record) or a duration (--duration)", path.display()))),
+            },
+        };
+        let name = over.method.unwrap_or(cfg.method.name);
+        let alpha = match name {
+            MethodName::Newmark => 0.0,
+            MethodName::Hht => cfg.method.alpha.unwrap_or(-0.05),
+        };
+        if !(-1.0 / 3.0..=0.0).contains(&alpha) {
+            return Err(SimError::invalid(path, "method.alpha", format!("HHT α must be in [-1/3, 0], got {alpha}")));
+        }
+        let dt = over.dt.or(cfg.method.dt.map(|d| d.0)).unwrap_or_else(|| default_dt(building.t1(), record.as_ref().map(|r| r.dt())));
+        if !(dt > 0.0) || !dt.is_finite() {
+            return Err(SimError::BadTimeStep { dt });
+        }
+        let mut outputs = cfg.outputs;
+        if let Some(h) = over.histories {
+            outputs.histories = h;
+        }
+        if let Some(e) = over.energies {
+            outputs.energies = e;
+        }
+        Ok(Scene {
+            name: cfg.name.clone().unwrap_or_else(|| building.name.clone()),
+            building,
+            record,
+            harmonic,
+            initial,
+            duration,
+            method: MethodSettings { name, dt, alpha },
+            outputs,
+            reduce: cfg.reduce,
+        })
+    }
+
+    /// Ground acceleration at `t`, m/s² (zero without a record and after its end).
+    #[inline]
+    pub fn ground_accel(&self, t: f64) -> f64 {
+        self.record.as_ref().map_or(0.0, |r| r.accel_at(t))
+    }
+
+    /// Number of steps: the duration divided by dt, rounded to the nearest whole step
+    /// (at least one).
+    pub fn steps(&self) -> usize {
+        ((self.duration / self.method.dt).round() as usize).max(1)
+    }
+}
