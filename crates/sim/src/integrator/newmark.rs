@@ -364,6 +364,7 @@ impl Integrator for Newmark {
             cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
             cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
             cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
+            cols.extend(plan.contacts.iter().map(|c| format!("w{}_m_s", c.floor + 1)));
             if energies {
                 cols.extend(["E_input_J", "E_kinetic_J", "E_strain_J", "E_viscous_J", "E_friction_J"].map(String::from));
             }
@@ -371,7 +372,7 @@ impl Integrator for Newmark {
             h.rows.reserve((plan.steps + 1) * h.columns.len());
             h
         });
-        let record_row = |h: &mut History, t: f64, ag: f64, u: &[f64], f: &[f64], epp: &[EppState], e: Option<[f64; 5]>| {
+        let record_row = |h: &mut History, t: f64, ag: f64, u: &[f64], f: &[f64], w: &[f64], epp: &[EppState], e: Option<[f64; 5]>| {
             h.rows.push(t);
             h.rows.push(ag);
             h.rows.extend_from_slice(&u[..nf]);
@@ -387,13 +388,14 @@ impl Integrator for Newmark {
                 below = x;
             }
             h.rows.extend_from_slice(f);
+            h.rows.extend_from_slice(w);
             if let Some(e) = e {
                 h.rows.extend_from_slice(&e);
             }
         };
         if let Some(h) = history.as_mut() {
             let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
-            record_row(h, 0.0, ag0, &start.u, f_old.as_slice(), &epp, e);
+            record_row(h, 0.0, ag0, &start.u, f_old.as_slice(), &w_old, &epp, e);
         }
 
         let mut qp_iter_total: u64 = 0;
@@ -529,7 +531,7 @@ impl Integrator for Newmark {
                 e_row = Some([e_input, ek, es, e_viscous, e_friction]);
             }
             if let Some(h) = history.as_mut() {
-                record_row(h, t1, ag1, u_now, f_new.as_slice(), &epp, e_row);
+                record_row(h, t1, ag1, u_now, f_new.as_slice(), &w_new, &epp, e_row);
             }
             std::mem::swap(&mut f_old, &mut f_new);
             std::mem::swap(&mut w_old, &mut w_new);

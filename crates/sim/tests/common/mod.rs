@@ -1,0 +1,100 @@
+//! Helpers shared by the integration tests: paths, scenes from JSON, and the exact
+//! solution of linear structures (matrix exponential of the augmented state-space system).
+#![allow(dead_code)]
+
+use nalgebra::{DMatrix, DVector};
+use slipload_motion::Record;
+use slipload_sim::{Scene, SceneOverrides};
+use std::path::{Path, PathBuf};
+
+/// The repository's configs folder.
+pub fn configs() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs")
+}
+
+/// The shared records folder (beside the repository).
+pub fn records() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/records")
+}
+
+/// A scene from JSON text (relative paths resolve against `configs/`).
+pub fn scene_json(text: &str, over: &SceneOverrides) -> Scene {
+    Scene::from_json(text, &configs().join("inline-test.json"), over).expect("test scene is valid")
+}
+
+/// Loads a shipped config as a scene.
+pub fn scene_file(name: &str, over: &SceneOverrides) -> Scene {
+    Scene::load(&configs().join(name), over).expect("shipped config loads")
+}
+
+/// Linear loads with exact solutions.
+pub enum Load<'a> {
+    /// Ground acceleration, linear between samples.
+    Ground(&'a Record),
+    /// amplitude · sin(ω t) on floor `floor` (from 0).
+    Harmonic { floor: usize, amplitude: f64, omega: f64 },
+}
+
+/// Exact displacements of M ü + C u̇ + K u = load at t = k·h, k = 0..=steps, from rest.
+///
+/// The state is augmented with the load's generator (ground: value and slope, constant
+/// within a sample interval; harmonic: sin and cos) so one matrix exponential per step
+/// length propagates it exactly (Van Loan 1978); h must divide the record's dt.
+pub fn exact_linear(m: &DMatrix<f64>, c: &DMatrix<f64>, k: &DMatrix<f64>, load: Load, h: f64, steps: usize) -> Vec<DVector<f64>> {
+    let n = m.nrows();
+    let minv = m.clone().try_inverse().expect("M invertible");
+    let mut a = DMatrix::zeros(2 * n + 2, 2 * n + 2);
+    a.view_mut((0, n), (n, n)).fill_with_identity();
+    a.view_mut((n, 0), (n, n)).copy_from(&(-&minv * k));
+    a.view_mut((n, n), (n, n)).copy_from(&(-&minv * c));
+    let mut y = DVector::zeros(2 * n + 2);
+    match load {
+        Load::Ground(rec) => {
+            let r = DVector::from_element(n, 1.0);
+            a.view_mut((n, 2 * n), (n, 1)).copy_from(&(-&minv * &m.clone() * &r));
+            a[(2 * n, 2 * n + 1)] = 1.0;
+            let e = (a * h).exp();
+            let per = (rec.dt() / h).round() as usize;
+            assert!((per as f64 * h - rec.dt()).abs() < 1e-12 * rec.dt(), "h must divide the record dt");
+            let mut out = vec![y.rows(0, n).into_owned()];
+            for s in 0..steps {
+                let t0 = s as f64 * h;
+                if s % per == 0 {
+                    let i = (t0 / rec.dt()).round() as usize;
+                    let a0 = rec.samples().get(i).copied().unwrap_or(0.0);
+                    let a1 = rec.samples().get(i + 1).copied().unwrap_or(0.0);
+                    y[2 * n] = rec.accel_at(t0);
+                    y[2 * n + 1] = (a1 - a0) / rec.dt();
+                    if i + 1 >= rec.len() {
+                        y[2 * n] = 0.0;
+                        y[2 * n + 1] = 0.0;
+                    }
+                }
+                y = &e * &y;
+                out.push(y.rows(0, n).into_owned());
+            }
+            out
+        }
+        Load::Harmonic { floor, amplitude, omega } => {
+            let mut f = DVector::zeros(n);
+            f[floor] = amplitude;
+            a.view_mut((n, 2 * n), (n, 1)).copy_from(&(&minv * f));
+            a[(2 * n, 2 * n + 1)] = omega;
+            a[(2 * n + 1, 2 * n)] = -omega;
+            y[2 * n + 1] = 1.0; // sin(0) = 0, cos(0) = 1
+            let e = (a * h).exp();
+            let mut out = vec![y.rows(0, n).into_owned()];
+            for _ in 0..steps {
+                y = &e * &y;
+                out.push(y.rows(0, n).into_owned());
+            }
+            out
+        }
+    }
+}
+
+/// Max over the trajectory of |x_num − x_exact| for floor `floor`, with the numerical
+/// history sampled every `stride` rows onto the exact grid.
+pub fn max_error(hist: &[f64], exact: &[DVector<f64>], floor: usize, stride: usize) -> f64 {
+    exact.iter().enumerate().map(|(k, x)| (hist[k * stride] - x[floor]).abs()).fold(0.0, f64::max)
+}
