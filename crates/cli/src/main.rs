@@ -18,11 +18,13 @@ struct Cli {
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n).build_global() {
-            eprintln!("error: cannot start {n} worker threads: {e}");
-            return std::process::ExitCode::FAILURE;
-        }
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+    {
+        eprintln!("error: cannot start {n} worker threads: {e}");
+        return std::process::ExitCode::FAILURE;
     }
     match cmd::run(cli.command) {
         Ok(()) => std::process::ExitCode::SUCCESS,

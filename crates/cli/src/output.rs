@@ -39,7 +39,10 @@ mod tests {
         let path = dir.join("a.csv");
         write_atomic(&path, b"x,y\n1,2\n").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"x,y\n1,2\n");
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names.len(), 1, "only the final file remains: {names:?}");
         std::fs::remove_dir_all(&dir).unwrap();
     }

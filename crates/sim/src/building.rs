@@ -7,7 +7,7 @@
 
 use crate::error::SimError;
 use crate::modes::Modes;
-use crate::units::{Damping, Force, Length, Mass, Stiffness};
+use crate::units::{Damping, Force, Length, Mass, Stiffness, is_non_negative, is_positive};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -169,22 +169,39 @@ pub struct Building {
     pub modes: Modes,
 }
 
-fn square(path: &Path, field: &str, rows: &[Vec<f64>], n: Option<usize>) -> Result<DMatrix<f64>, SimError> {
+fn square(
+    path: &Path,
+    field: &str,
+    rows: &[Vec<f64>],
+    n: Option<usize>,
+) -> Result<DMatrix<f64>, SimError> {
     let size = rows.len();
     if size == 0 {
         return Err(SimError::invalid(path, field, "must not be empty"));
     }
-    if let Some(n) = n {
-        if size != n {
-            return Err(SimError::invalid(path, field, format!("has {size} rows, expected {n} (one per floor)")));
-        }
+    if let Some(n) = n
+        && size != n
+    {
+        return Err(SimError::invalid(
+            path,
+            field,
+            format!("has {size} rows, expected {n} (one per floor)"),
+        ));
     }
     for (i, r) in rows.iter().enumerate() {
         if r.len() != size {
-            return Err(SimError::invalid(path, format!("{field}[{i}]"), format!("has {} entries, expected {size}", r.len())));
+            return Err(SimError::invalid(
+                path,
+                format!("{field}[{i}]"),
+                format!("has {} entries, expected {size}", r.len()),
+            ));
         }
         if let Some(j) = r.iter().position(|v| !v.is_finite()) {
-            return Err(SimError::invalid(path, format!("{field}[{i}][{j}]"), "must be finite"));
+            return Err(SimError::invalid(
+                path,
+                format!("{field}[{i}][{j}]"),
+                "must be finite",
+            ));
         }
     }
     let m = DMatrix::from_fn(size, size, |i, j| rows[i][j]);
@@ -193,7 +210,11 @@ fn square(path: &Path, field: &str, rows: &[Vec<f64>], n: Option<usize>) -> Resu
             let (a, b) = (m[(i, j)], m[(j, i)]);
             let scale = (m[(i, i)].abs() + m[(j, j)].abs()).max(f64::MIN_POSITIVE);
             if (a - b).abs() > 1e-9 * scale {
-                return Err(SimError::invalid(path, format!("{field}[{i}][{j}]"), format!("matrix is not symmetric: {a} vs {b} at [{j}][{i}]")));
+                return Err(SimError::invalid(
+                    path,
+                    format!("{field}[{i}][{j}]"),
+                    format!("matrix is not symmetric: {a} vs {b} at [{j}][{i}]"),
+                ));
             }
         }
     }
@@ -217,24 +238,49 @@ fn chain(values: &[f64]) -> DMatrix<f64> {
 impl Building {
     /// Reads and validates a building JSON file.
     pub fn load(path: &Path) -> Result<Building, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
-        let cfg: BuildingConfig =
-            serde_json::from_str(&text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let cfg: BuildingConfig = serde_json::from_str(&text).map_err(|source| SimError::Json {
+            path: path.to_path_buf(),
+            source,
+        })?;
         Building::from_config(&cfg, path)
     }
 
     /// Validates a config; `path` names the source in errors.
     pub fn from_config(cfg: &BuildingConfig, path: &Path) -> Result<Building, SimError> {
         let mass = match (&cfg.floor_masses, &cfg.mass_matrix) {
-            (Some(_), Some(_)) => return Err(SimError::invalid(path, "mass_matrix", "give either floor_masses or mass_matrix, not both")),
-            (None, None) => return Err(SimError::invalid(path, "floor_masses", "missing: give floor_masses (kg per floor) or mass_matrix")),
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    "mass_matrix",
+                    "give either floor_masses or mass_matrix, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    "floor_masses",
+                    "missing: give floor_masses (kg per floor) or mass_matrix",
+                ));
+            }
             (Some(ms), None) => {
                 if ms.is_empty() {
-                    return Err(SimError::invalid(path, "floor_masses", "must list at least one floor"));
+                    return Err(SimError::invalid(
+                        path,
+                        "floor_masses",
+                        "must list at least one floor",
+                    ));
                 }
                 for (i, m) in ms.iter().enumerate() {
-                    if !(m.0 > 0.0) || !m.0.is_finite() {
-                        return Err(SimError::invalid(path, format!("floor_masses[{i}]"), format!("must be a positive finite mass, got {}", m.0)));
+                    if !is_positive(m.0) {
+                        return Err(SimError::invalid(
+                            path,
+                            format!("floor_masses[{i}]"),
+                            format!("must be a positive finite mass, got {}", m.0),
+                        ));
                     }
                 }
                 DMatrix::from_diagonal(&DVector::from_iterator(ms.len(), ms.iter().map(|m| m.0)))
@@ -243,18 +289,42 @@ impl Building {
         };
         let n = mass.nrows();
         if mass.clone().cholesky().is_none() {
-            return Err(SimError::invalid(path, "mass_matrix", "must be positive definite"));
+            return Err(SimError::invalid(
+                path,
+                "mass_matrix",
+                "must be positive definite",
+            ));
         }
         let stiffness = match (&cfg.storey_stiffness, &cfg.stiffness_matrix) {
-            (Some(_), Some(_)) => return Err(SimError::invalid(path, "stiffness_matrix", "give either storey_stiffness or stiffness_matrix, not both")),
-            (None, None) => return Err(SimError::invalid(path, "storey_stiffness", "missing: give storey_stiffness (N/m per storey) or stiffness_matrix")),
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    "stiffness_matrix",
+                    "give either storey_stiffness or stiffness_matrix, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    "storey_stiffness",
+                    "missing: give storey_stiffness (N/m per storey) or stiffness_matrix",
+                ));
+            }
             (Some(ks), None) => {
                 if ks.len() != n {
-                    return Err(SimError::invalid(path, "storey_stiffness", format!("has {} values, expected {n} (one per floor)", ks.len())));
+                    return Err(SimError::invalid(
+                        path,
+                        "storey_stiffness",
+                        format!("has {} values, expected {n} (one per floor)", ks.len()),
+                    ));
                 }
                 for (i, k) in ks.iter().enumerate() {
-                    if !(k.0 > 0.0) || !k.0.is_finite() {
-                        return Err(SimError::invalid(path, format!("storey_stiffness[{i}]"), format!("must be a positive finite stiffness, got {}", k.0)));
+                    if !is_positive(k.0) {
+                        return Err(SimError::invalid(
+                            path,
+                            format!("storey_stiffness[{i}]"),
+                            format!("must be a positive finite stiffness, got {}", k.0),
+                        ));
                     }
                 }
                 chain(&ks.iter().map(|k| k.0).collect::<Vec<_>>())
@@ -262,14 +332,26 @@ impl Building {
             (None, Some(rows)) => square(path, "stiffness_matrix", rows, Some(n))?,
         };
         let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| {
-            SimError::invalid(path, if cfg.stiffness_matrix.is_some() { "stiffness_matrix" } else { "storey_stiffness" }, "frame stiffness must be positive definite (the bare frame must be stable)")
+            SimError::invalid(
+                path,
+                if cfg.stiffness_matrix.is_some() {
+                    "stiffness_matrix"
+                } else {
+                    "storey_stiffness"
+                },
+                "frame stiffness must be positive definite (the bare frame must be stable)",
+            )
         })?;
         let damping = match &cfg.damping {
             None | Some(DampingConfig::None) => DMatrix::zeros(n, n),
             Some(DampingConfig::Rayleigh { alpha, beta }) => {
                 for (name, v) in [("alpha", *alpha), ("beta", *beta)] {
-                    if !(v >= 0.0) || !v.is_finite() {
-                        return Err(SimError::invalid(path, format!("damping.rayleigh.{name}"), format!("must be finite and ≥ 0, got {v}")));
+                    if !is_non_negative(v) {
+                        return Err(SimError::invalid(
+                            path,
+                            format!("damping.rayleigh.{name}"),
+                            format!("must be finite and ≥ 0, got {v}"),
+                        ));
                     }
                 }
                 &mass * *alpha + &stiffness * *beta
@@ -277,27 +359,54 @@ impl Building {
             Some(DampingConfig::Modal { ratio, ratios }) => {
                 let zeta: Vec<f64> = match (ratio, ratios) {
                     (Some(z), None) => vec![*z; n],
-                    (None, Some(zs)) if !zs.is_empty() => (0..n).map(|i| zs[i.min(zs.len() - 1)]).collect(),
-                    _ => return Err(SimError::invalid(path, "damping.modal", "give exactly one of `ratio` (all modes) or a non-empty `ratios` list")),
+                    (None, Some(zs)) if !zs.is_empty() => {
+                        (0..n).map(|i| zs[i.min(zs.len() - 1)]).collect()
+                    }
+                    _ => {
+                        return Err(SimError::invalid(
+                            path,
+                            "damping.modal",
+                            "give exactly one of `ratio` (all modes) or a non-empty `ratios` list",
+                        ));
+                    }
                 };
                 if let Some(i) = zeta.iter().position(|z| !(*z >= 0.0 && *z < 1.0)) {
-                    return Err(SimError::invalid(path, "damping.modal", format!("ratio of mode {} must be in [0, 1), got {}", i + 1, zeta[i])));
+                    return Err(SimError::invalid(
+                        path,
+                        "damping.modal",
+                        format!("ratio of mode {} must be in [0, 1), got {}", i + 1, zeta[i]),
+                    ));
                 }
                 modes.damping_matrix(&mass, &zeta)
             }
             Some(DampingConfig::Storey(cs)) => {
                 if cs.len() != n {
-                    return Err(SimError::invalid(path, "damping.storey", format!("has {} values, expected {n}", cs.len())));
+                    return Err(SimError::invalid(
+                        path,
+                        "damping.storey",
+                        format!("has {} values, expected {n}", cs.len()),
+                    ));
                 }
-                if let Some(i) = cs.iter().position(|c| !(c.0 >= 0.0) || !c.0.is_finite()) {
-                    return Err(SimError::invalid(path, format!("damping.storey[{i}]"), format!("must be finite and ≥ 0, got {}", cs[i].0)));
+                if let Some(i) = cs.iter().position(|c| !is_non_negative(c.0)) {
+                    return Err(SimError::invalid(
+                        path,
+                        format!("damping.storey[{i}]"),
+                        format!("must be finite and ≥ 0, got {}", cs[i].0),
+                    ));
                 }
                 chain(&cs.iter().map(|c| c.0).collect::<Vec<_>>())
             }
             Some(DampingConfig::Matrix(rows)) => {
                 let c = square(path, "damping.matrix", rows, Some(n))?;
-                if c.symmetric_eigenvalues().iter().any(|&l| l < -1e-9 * c.norm()) {
-                    return Err(SimError::invalid(path, "damping.matrix", "must be positive semi-definite"));
+                if c.symmetric_eigenvalues()
+                    .iter()
+                    .any(|&l| l < -1e-9 * c.norm())
+                {
+                    return Err(SimError::invalid(
+                        path,
+                        "damping.matrix",
+                        "must be positive semi-definite",
+                    ));
                 }
                 c
             }
@@ -306,10 +415,18 @@ impl Building {
             None => None,
             Some(hs) => {
                 if hs.len() != n {
-                    return Err(SimError::invalid(path, "storey_heights", format!("has {} values, expected {n}", hs.len())));
+                    return Err(SimError::invalid(
+                        path,
+                        "storey_heights",
+                        format!("has {} values, expected {n}", hs.len()),
+                    ));
                 }
-                if let Some(i) = hs.iter().position(|h| !(h.0 > 0.0) || !h.0.is_finite()) {
-                    return Err(SimError::invalid(path, format!("storey_heights[{i}]"), format!("must be a positive length, got {}", hs[i].0)));
+                if let Some(i) = hs.iter().position(|h| !is_positive(h.0)) {
+                    return Err(SimError::invalid(
+                        path,
+                        format!("storey_heights[{i}]"),
+                        format!("must be a positive length, got {}", hs[i].0),
+                    ));
                 }
                 Some(hs.iter().map(|h| h.0).collect())
             }
@@ -318,47 +435,100 @@ impl Building {
         for (idx, d) in cfg.dissipators.iter().enumerate() {
             let f = |name: &str| format!("dissipators[{idx}].{name}");
             if d.floor == 0 || d.floor > n {
-                return Err(SimError::invalid(path, f("floor"), format!("must be a floor number from 1 to {n}, got {}", d.floor)));
+                return Err(SimError::invalid(
+                    path,
+                    f("floor"),
+                    format!("must be a floor number from 1 to {n}, got {}", d.floor),
+                ));
             }
             if dissipators[d.floor - 1].is_some() {
-                return Err(SimError::invalid(path, f("floor"), format!("floor {} already has a dissipator (one per floor)", d.floor)));
+                return Err(SimError::invalid(
+                    path,
+                    f("floor"),
+                    format!("floor {} already has a dissipator (one per floor)", d.floor),
+                ));
             }
             let k = d.brace_stiffness.0;
-            if !(k > 0.0) || !k.is_finite() {
-                return Err(SimError::invalid(path, f("brace_stiffness"), format!("must be positive and finite, got {k}")));
+            if !is_positive(k) {
+                return Err(SimError::invalid(
+                    path,
+                    f("brace_stiffness"),
+                    format!("must be positive and finite, got {k}"),
+                ));
             }
             let m = d.mass.map_or(0.0, |m| m.0);
-            if !(m >= 0.0) || !m.is_finite() {
-                return Err(SimError::invalid(path, f("mass"), format!("must be finite and ≥ 0, got {m}")));
+            if !is_non_negative(m) {
+                return Err(SimError::invalid(
+                    path,
+                    f("mass"),
+                    format!("must be finite and ≥ 0, got {m}"),
+                ));
             }
             let c = d.brace_damping.map_or(0.0, |c| c.0);
-            if !(c >= 0.0) || !c.is_finite() {
-                return Err(SimError::invalid(path, f("brace_damping"), format!("must be finite and ≥ 0, got {c}")));
+            if !is_non_negative(c) {
+                return Err(SimError::invalid(
+                    path,
+                    f("brace_damping"),
+                    format!("must be finite and ≥ 0, got {c}"),
+                ));
             }
             let (lower, upper) = match (&d.slip_load, &d.bounds) {
-                (Some(_), Some(_)) => return Err(SimError::invalid(path, f("bounds"), "give either slip_load or bounds, not both")),
-                (None, None) => return Err(SimError::invalid(path, f("slip_load"), "missing: give slip_load (N, or \"locked\") or bounds [F-, F+]")),
+                (Some(_), Some(_)) => {
+                    return Err(SimError::invalid(
+                        path,
+                        f("bounds"),
+                        "give either slip_load or bounds, not both",
+                    ));
+                }
+                (None, None) => {
+                    return Err(SimError::invalid(
+                        path,
+                        f("slip_load"),
+                        "missing: give slip_load (N, or \"locked\") or bounds [F-, F+]",
+                    ));
+                }
                 (Some(SlipLoad::Locked), None) => (f64::NEG_INFINITY, f64::INFINITY),
                 (Some(SlipLoad::Force(s)), None) => {
-                    if !(*s >= 0.0) || !s.is_finite() {
-                        return Err(SimError::invalid(path, f("slip_load"), format!("must be finite and ≥ 0, got {s}")));
+                    if !is_non_negative(*s) {
+                        return Err(SimError::invalid(
+                            path,
+                            f("slip_load"),
+                            format!("must be finite and ≥ 0, got {s}"),
+                        ));
                     }
                     (-*s, *s)
                 }
                 (None, Some([lo, hi])) => {
                     if !lo.0.is_finite() || lo.0 > 0.0 {
-                        return Err(SimError::invalid(path, f("bounds[0]"), format!("F- must be finite and ≤ 0, got {}", lo.0)));
+                        return Err(SimError::invalid(
+                            path,
+                            f("bounds[0]"),
+                            format!("F- must be finite and ≤ 0, got {}", lo.0),
+                        ));
                     }
                     if !hi.0.is_finite() || hi.0 < 0.0 {
-                        return Err(SimError::invalid(path, f("bounds[1]"), format!("F+ must be finite and ≥ 0, got {}", hi.0)));
+                        return Err(SimError::invalid(
+                            path,
+                            f("bounds[1]"),
+                            format!("F+ must be finite and ≥ 0, got {}", hi.0),
+                        ));
                     }
                     (lo.0, hi.0)
                 }
             };
-            dissipators[d.floor - 1] = Some(Dissipator { brace_stiffness: k, mass: m, brace_damping: c, lower, upper });
+            dissipators[d.floor - 1] = Some(Dissipator {
+                brace_stiffness: k,
+                mass: m,
+                brace_damping: c,
+                lower,
+                upper,
+            });
         }
         Ok(Building {
-            name: cfg.name.clone().unwrap_or_else(|| path.file_stem().map_or_else(|| "building".into(), |s| s.to_string_lossy().into_owned())),
+            name: cfg.name.clone().unwrap_or_else(|| {
+                path.file_stem()
+                    .map_or_else(|| "building".into(), |s| s.to_string_lossy().into_owned())
+            }),
             mass,
             stiffness,
             damping,

@@ -30,7 +30,7 @@ impl Modes {
         let mut psi = DMatrix::zeros(n, n);
         for (col, &i) in order.iter().enumerate() {
             let lam = eig.eigenvalues[i];
-            if !(lam > 0.0) {
+            if lam.is_nan() || lam <= 0.0 {
                 return None;
             }
             omega[col] = lam.sqrt();
@@ -42,13 +42,22 @@ impl Modes {
 
     /// Natural periods, s (descending).
     pub fn periods(&self) -> Vec<f64> {
-        self.omega.iter().map(|w| 2.0 * std::f64::consts::PI / w).collect()
+        self.omega
+            .iter()
+            .map(|w| 2.0 * std::f64::consts::PI / w)
+            .collect()
     }
 
     /// Damping matrix with modal ratios ζ_k: C = M Φ diag(2 ζ_k ω_k) Φᵀ M.
     pub fn damping_matrix(&self, m: &DMatrix<f64>, zeta: &[f64]) -> DMatrix<f64> {
         let n = self.omega.len();
-        let d = DMatrix::from_fn(n, n, |i, j| if i == j { 2.0 * zeta[i] * self.omega[i] } else { 0.0 });
+        let d = DMatrix::from_fn(n, n, |i, j| {
+            if i == j {
+                2.0 * zeta[i] * self.omega[i]
+            } else {
+                0.0
+            }
+        });
         let mp = m * &self.shapes;
         let c = &mp * d * mp.transpose();
         (&c + c.transpose()) * 0.5

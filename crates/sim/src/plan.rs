@@ -13,9 +13,9 @@
 //! With `reduce` off every dissipator keeps its DOF and contact (the full 2N model, with
 //! zero masses where m′ = 0): tests compare both.
 
-use crate::building::Building;
+use crate::building::{Building, Dissipator};
 use crate::error::SimError;
-use crate::scene::{Harmonic, MethodSettings, OutputsConfig, Scene};
+use crate::scene::{Harmonic, MethodName, MethodSettings, OutputsConfig, Scene};
 use nalgebra::{DMatrix, DVector};
 use slipload_motion::Record;
 use std::fmt::Write as _;
@@ -120,10 +120,28 @@ impl Plan {
         let n = b.floors();
         let reduce = scene.reduce;
         let mut notes = Vec::new();
+        // `bilinear` ignores dissipator inertia: brace + damper become one EPP spring.
+        let bilinear = scene.method.name == MethodName::Bilinear;
+        let dissipators: Vec<Option<Dissipator>> = b
+            .dissipators
+            .iter()
+            .map(|d| {
+                d.map(|d| {
+                    if bilinear {
+                        Dissipator { mass: 0.0, ..d }
+                    } else {
+                        d
+                    }
+                })
+            })
+            .collect();
+        if bilinear && b.dissipators.iter().flatten().any(|d| d.mass > 0.0) {
+            notes.push("method bilinear: dissipator masses ignored (m' -> 0), each brace + damper is one elastic-perfectly plastic spring".into());
+        }
         // First pass: which floors keep a dissipator DOF.
         let mut dof_of = vec![None; n];
         let mut n_dof = n;
-        for (f, d) in b.dissipators.iter().enumerate() {
+        for (f, d) in dissipators.iter().enumerate() {
             let Some(d) = d else { continue };
             let keep = !reduce || !(d.is_free() || d.is_locked() || d.mass == 0.0);
             if keep {
@@ -145,7 +163,7 @@ impl Plan {
         let mut v0: Vec<f64> = ic.floor_velocity.clone();
         u0.resize(n_dof, 0.0);
         v0.resize(n_dof, 0.0);
-        for (f, d) in b.dissipators.iter().enumerate() {
+        for (f, d) in dissipators.iter().enumerate() {
             let storey = f + 1;
             let below = f.checked_sub(1);
             let Some(d) = d else {
@@ -234,16 +252,35 @@ impl Plan {
             steps as f64 * scene.method.dt
         ));
         match &scene.record {
-            Some(r) => notes.push(format!("ground motion: {} ({} samples at dt = {} s, PGA = {:.4} m/s^2)", r.name(), r.len(), r.dt(), r.pga())),
+            Some(r) => notes.push(format!(
+                "ground motion: {} ({} samples at dt = {} s, PGA = {:.4} m/s^2)",
+                r.name(),
+                r.len(),
+                r.dt(),
+                r.pga()
+            )),
             None => notes.push("ground motion: none".into()),
         }
         if let Some(h) = &scene.harmonic {
-            notes.push(format!("harmonic force on floor {}: {:.6e} N at {} rad/s", h.floor + 1, h.amplitude, h.omega));
+            notes.push(format!(
+                "harmonic force on floor {}: {:.6e} N at {} rad/s",
+                h.floor + 1,
+                h.amplitude,
+                h.omega
+            ));
         }
         notes.push(format!(
             "outputs: peaks{}{}",
-            if scene.outputs.energies { ", energies" } else { " (energies off: not accumulated)" },
-            if scene.outputs.histories { ", histories" } else { " (no histories: memory independent of duration)" }
+            if scene.outputs.energies {
+                ", energies"
+            } else {
+                " (energies off: not accumulated)"
+            },
+            if scene.outputs.histories {
+                ", histories"
+            } else {
+                " (no histories: memory independent of duration)"
+            }
         ));
         Ok(Plan {
             name: scene.name.clone(),

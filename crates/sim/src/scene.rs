@@ -7,9 +7,9 @@
 
 use crate::building::{Building, BuildingConfig};
 use crate::error::SimError;
-use crate::units::{Force, Length, Time};
+use crate::units::{Force, Length, Time, is_positive};
 use serde::{Deserialize, Serialize};
-use slipload_motion::{Record, Units, G};
+use slipload_motion::{G, Record, Units};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -149,6 +149,9 @@ pub enum MethodName {
     Newmark,
     /// HHT-α (default α = −0.05) with exact implicit friction.
     Hht,
+    /// What frame programs (DRAIN-2D, SAP2000, OpenSees) do: each brace + damper as one
+    /// elastic–perfectly plastic spring, dissipator mass ignored, stepped by `newmark`.
+    Bilinear,
 }
 
 impl MethodName {
@@ -157,6 +160,7 @@ impl MethodName {
         match self {
             MethodName::Newmark => "newmark",
             MethodName::Hht => "hht",
+            MethodName::Bilinear => "bilinear",
         }
     }
 }
@@ -167,7 +171,10 @@ impl std::str::FromStr for MethodName {
         match s {
             "newmark" => Ok(MethodName::Newmark),
             "hht" => Ok(MethodName::Hht),
-            other => Err(format!("unknown method {other:?}: expected newmark or hht")),
+            "bilinear" => Ok(MethodName::Bilinear),
+            other => Err(format!(
+                "unknown method {other:?}: expected newmark, hht or bilinear"
+            )),
         }
     }
 }
@@ -201,7 +208,10 @@ pub struct OutputsConfig {
 
 impl Default for OutputsConfig {
     fn default() -> Self {
-        OutputsConfig { energies: true, histories: false }
+        OutputsConfig {
+            energies: true,
+            histories: false,
+        }
     }
 }
 
@@ -274,9 +284,14 @@ impl InitialState {
     }
     /// True when everything is zero.
     pub fn is_rest(&self) -> bool {
-        [&self.floor_displacement, &self.floor_velocity, &self.dissipator_displacement, &self.dissipator_velocity]
-            .iter()
-            .all(|v| v.iter().all(|x| *x == 0.0))
+        [
+            &self.floor_displacement,
+            &self.floor_velocity,
+            &self.dissipator_displacement,
+            &self.dissipator_velocity,
+        ]
+        .iter()
+        .all(|v| v.iter().all(|x| *x == 0.0))
     }
 }
 
@@ -325,12 +340,25 @@ pub fn default_dt(t1: f64, record_dt: Option<f64>) -> f64 {
     }
 }
 
-fn vec_or_zero(path: &Path, field: &str, v: Option<Vec<f64>>, n: usize) -> Result<Vec<f64>, SimError> {
+fn vec_or_zero(
+    path: &Path,
+    field: &str,
+    v: Option<Vec<f64>>,
+    n: usize,
+) -> Result<Vec<f64>, SimError> {
     match v {
         None => Ok(vec![0.0; n]),
-        Some(v) if v.len() != n => Err(SimError::invalid(path, field, format!("has {} values, expected {n} (one per floor)", v.len()))),
+        Some(v) if v.len() != n => Err(SimError::invalid(
+            path,
+            field,
+            format!("has {} values, expected {n} (one per floor)", v.len()),
+        )),
         Some(v) => match v.iter().position(|x| !x.is_finite()) {
-            Some(i) => Err(SimError::invalid(path, format!("{field}[{i}]"), "must be finite")),
+            Some(i) => Err(SimError::invalid(
+                path,
+                format!("{field}[{i}]"),
+                "must be finite",
+            )),
             None => Ok(v),
         },
     }
@@ -339,7 +367,10 @@ fn vec_or_zero(path: &Path, field: &str, v: Option<Vec<f64>>, n: usize) -> Resul
 impl Scene {
     /// Loads a scene file — or a building file, which is a scene with no excitation.
     pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io { path: path.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
         Scene::from_json(&text, path, over)
     }
 
@@ -347,13 +378,24 @@ impl Scene {
     /// relative paths.
     pub fn from_json(text: &str, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
         let value: serde_json::Value =
-            serde_json::from_str(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
-        let is_scene = value.as_object().is_some_and(|o| o.contains_key("building"));
+            serde_json::from_str(text).map_err(|source| SimError::Json {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        let is_scene = value
+            .as_object()
+            .is_some_and(|o| o.contains_key("building"));
         let cfg = if is_scene {
-            serde_json::from_str::<SceneConfig>(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?
+            serde_json::from_str::<SceneConfig>(text).map_err(|source| SimError::Json {
+                path: path.to_path_buf(),
+                source,
+            })?
         } else {
             let b: BuildingConfig =
-                serde_json::from_str(text).map_err(|source| SimError::Json { path: path.to_path_buf(), source })?;
+                serde_json::from_str(text).map_err(|source| SimError::Json {
+                    path: path.to_path_buf(),
+                    source,
+                })?;
             SceneConfig {
                 name: b.name.clone(),
                 description: None,
@@ -369,7 +411,11 @@ impl Scene {
     }
 
     /// Resolves a config: loads the building and the record, applies overrides, validates.
-    pub fn from_config(cfg: SceneConfig, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
+    pub fn from_config(
+        cfg: SceneConfig,
+        path: &Path,
+        over: &SceneOverrides,
+    ) -> Result<Scene, SimError> {
         let base = path.parent().unwrap_or(Path::new("."));
         let building = match &cfg.building {
             BuildingRef::Path(p) => Building::load(&base.join(p))?,
@@ -389,7 +435,9 @@ impl Scene {
         } else if let Some(rc) = &cfg.excitation.record {
             let units = match &rc.units {
                 None => over.units,
-                Some(u) => Some(u.parse::<Units>().map_err(|e| SimError::invalid(path, "excitation.record.units", e.to_string()))?),
+                Some(u) => Some(u.parse::<Units>().map_err(|e| {
+                    SimError::invalid(path, "excitation.record.units", e.to_string())
+                })?),
             };
             let mut r = slipload_motion::read_record(&base.join(&rc.file), units, rc.dt)?;
             if let Some([s, d]) = rc.window {
@@ -399,17 +447,29 @@ impl Scene {
                 r = r.window(s, d)?;
             }
             if rc.scale.is_some() && rc.scale_pga_g.is_some() {
-                return Err(SimError::invalid(path, "excitation.record.scale", "give either scale or scale_pga_g, not both"));
+                return Err(SimError::invalid(
+                    path,
+                    "excitation.record.scale",
+                    "give either scale or scale_pga_g, not both",
+                ));
             }
             if let Some(f) = rc.scale {
                 if !f.is_finite() {
-                    return Err(SimError::invalid(path, "excitation.record.scale", "must be finite"));
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.record.scale",
+                        "must be finite",
+                    ));
                 }
                 r = r.scaled(f);
             }
             match over.scale_pga_g.or(rc.scale_pga_g) {
-                Some(pga) if !(pga > 0.0) || !pga.is_finite() => {
-                    return Err(SimError::invalid(path, "excitation.record.scale_pga_g", format!("must be positive, got {pga}")));
+                Some(pga) if !is_positive(pga) => {
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.record.scale_pga_g",
+                        format!("must be positive, got {pga}"),
+                    ));
                 }
                 Some(pga) => r = r.scaled_to_pga(pga * G)?,
                 None => {}
@@ -418,7 +478,16 @@ impl Scene {
         } else if let Some(s) = &cfg.excitation.synthetic {
             let mut suite = slipload_motion::default_suite();
             if s.index >= suite.len() {
-                return Err(SimError::invalid(path, "excitation.synthetic.index", format!("the embedded suite has {} records (0..{}), got {}", suite.len(), suite.len() - 1, s.index)));
+                return Err(SimError::invalid(
+                    path,
+                    "excitation.synthetic.index",
+                    format!(
+                        "the embedded suite has {} records (0..{}), got {}",
+                        suite.len(),
+                        suite.len() - 1,
+                        s.index
+                    ),
+                ));
             }
             let mut r = suite.swap_remove(s.index);
             if let Some(pga) = over.scale_pga_g {
@@ -432,41 +501,94 @@ impl Scene {
             None => None,
             Some(h) => {
                 if h.floor == 0 || h.floor > n {
-                    return Err(SimError::invalid(path, "excitation.harmonic.floor", format!("must be a floor from 1 to {n}, got {}", h.floor)));
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.harmonic.floor",
+                        format!("must be a floor from 1 to {n}, got {}", h.floor),
+                    ));
                 }
                 if !h.amplitude.0.is_finite() || !h.omega.is_finite() || !h.phase.is_finite() {
-                    return Err(SimError::invalid(path, "excitation.harmonic", "amplitude, omega and phase must be finite"));
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.harmonic",
+                        "amplitude, omega and phase must be finite",
+                    ));
                 }
-                Some(Harmonic { floor: h.floor - 1, amplitude: h.amplitude.0, omega: h.omega, phase: h.phase })
+                Some(Harmonic {
+                    floor: h.floor - 1,
+                    amplitude: h.amplitude.0,
+                    omega: h.omega,
+                    phase: h.phase,
+                })
             }
         };
         let initial = match cfg.excitation.initial.clone() {
             None => InitialState::rest(n),
             Some(ic) => InitialState {
-                floor_displacement: vec_or_zero(path, "excitation.initial.floor_displacement", ic.floor_displacement.map(|v| v.iter().map(|x| x.0).collect()), n)?,
-                floor_velocity: vec_or_zero(path, "excitation.initial.floor_velocity", ic.floor_velocity, n)?,
-                dissipator_displacement: vec_or_zero(path, "excitation.initial.dissipator_displacement", ic.dissipator_displacement.map(|v| v.iter().map(|x| x.0).collect()), n)?,
-                dissipator_velocity: vec_or_zero(path, "excitation.initial.dissipator_velocity", ic.dissipator_velocity, n)?,
+                floor_displacement: vec_or_zero(
+                    path,
+                    "excitation.initial.floor_displacement",
+                    ic.floor_displacement
+                        .map(|v| v.iter().map(|x| x.0).collect()),
+                    n,
+                )?,
+                floor_velocity: vec_or_zero(
+                    path,
+                    "excitation.initial.floor_velocity",
+                    ic.floor_velocity,
+                    n,
+                )?,
+                dissipator_displacement: vec_or_zero(
+                    path,
+                    "excitation.initial.dissipator_displacement",
+                    ic.dissipator_displacement
+                        .map(|v| v.iter().map(|x| x.0).collect()),
+                    n,
+                )?,
+                dissipator_velocity: vec_or_zero(
+                    path,
+                    "excitation.initial.dissipator_velocity",
+                    ic.dissipator_velocity,
+                    n,
+                )?,
             },
         };
         let duration = match over.duration.or(cfg.duration.map(|d| d.0)) {
-            Some(d) if !(d > 0.0) || !d.is_finite() => return Err(SimError::invalid(path, "duration", format!("must be positive, got {d}"))),
+            Some(d) if !is_positive(d) => {
+                return Err(SimError::invalid(
+                    path,
+                    "duration",
+                    format!("must be positive, got {d}"),
+                ));
+            }
             Some(d) => d,
             None => match &record {
                 Some(r) => r.duration(),
-                None => return Err(SimError::Scene(format!("{}: no record and no duration: give a record (--record) or a duration (--duration)", path.display()))),
+                None => {
+                    return Err(SimError::Scene(format!(
+                        "{}: no record and no duration: give a record (--record) or a duration (--duration)",
+                        path.display()
+                    )));
+                }
             },
         };
         let name = over.method.unwrap_or(cfg.method.name);
         let alpha = match name {
-            MethodName::Newmark => 0.0,
+            MethodName::Newmark | MethodName::Bilinear => 0.0,
             MethodName::Hht => cfg.method.alpha.unwrap_or(-0.05),
         };
         if !(-1.0 / 3.0..=0.0).contains(&alpha) {
-            return Err(SimError::invalid(path, "method.alpha", format!("HHT α must be in [-1/3, 0], got {alpha}")));
+            return Err(SimError::invalid(
+                path,
+                "method.alpha",
+                format!("HHT α must be in [-1/3, 0], got {alpha}"),
+            ));
         }
-        let dt = over.dt.or(cfg.method.dt.map(|d| d.0)).unwrap_or_else(|| default_dt(building.t1(), record.as_ref().map(|r| r.dt())));
-        if !(dt > 0.0) || !dt.is_finite() {
+        let dt = over
+            .dt
+            .or(cfg.method.dt.map(|d| d.0))
+            .unwrap_or_else(|| default_dt(building.t1(), record.as_ref().map(|r| r.dt())));
+        if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
         let mut outputs = cfg.outputs;

@@ -9,7 +9,7 @@ use crate::scene::{MethodName, Scene};
 /// The integrator for a method name.
 pub fn integrator(name: MethodName) -> Box<dyn Integrator + Send + Sync> {
     match name {
-        MethodName::Newmark | MethodName::Hht => Box::new(Newmark),
+        MethodName::Newmark | MethodName::Hht | MethodName::Bilinear => Box::new(Newmark),
     }
 }
 

@@ -60,7 +60,9 @@ impl Dimension {
             Dimension::Mass => "a mass in kg, or a string like \"350.11 kg\" or \"478 t\"",
             Dimension::Force => "a force in N, or a string like \"834.095 kN\"",
             Dimension::Stiffness => "a stiffness in N/m, or a string like \"448.12 MN/m\"",
-            Dimension::Damping => "a damping coefficient in N·s/m, or a string like \"13.12 kN·s/m\"",
+            Dimension::Damping => {
+                "a damping coefficient in N·s/m, or a string like \"13.12 kN·s/m\""
+            }
             Dimension::Length => "a length in m, or a string like \"3.96 m\"",
             Dimension::Time => "a time in s, or a string like \"10 s\"",
         }
@@ -89,7 +91,11 @@ pub fn parse_quantity(text: &str, dim: Dimension) -> Result<f64, String> {
             .map(|(_, f)| *f)
             .ok_or_else(|| {
                 let names: Vec<&str> = dim.units().iter().map(|(u, _)| *u).collect();
-                format!("unknown unit {unit:?} in {text:?}: expected {} (units: {})", dim.expected(), names.join(", "))
+                format!(
+                    "unknown unit {unit:?} in {text:?}: expected {} (units: {})",
+                    dim.expected(),
+                    names.join(", ")
+                )
             })?
     };
     let v = value * factor;
@@ -165,18 +171,45 @@ quantity!(
     Dimension::Time
 );
 
+/// True for a finite x > 0 (false for NaN and ±∞).
+#[inline]
+pub fn is_positive(x: f64) -> bool {
+    x > 0.0 && x.is_finite()
+}
+
+/// True for a finite x ≥ 0 (false for NaN and ±∞).
+#[inline]
+pub fn is_non_negative(x: f64) -> bool {
+    x >= 0.0 && x.is_finite()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn parses_engineering_units() {
-        assert_eq!(parse_quantity("448.12 MN/m", Dimension::Stiffness).unwrap(), 448.12e6);
-        assert_eq!(parse_quantity("834.095 kN", Dimension::Force).unwrap(), 834_095.0);
-        assert_eq!(parse_quantity("350.11 kg", Dimension::Mass).unwrap(), 350.11);
-        assert_eq!(parse_quantity("4.78e5 kg", Dimension::Mass).unwrap(), 4.78e5);
+        assert_eq!(
+            parse_quantity("448.12 MN/m", Dimension::Stiffness).unwrap(),
+            448.12e6
+        );
+        assert_eq!(
+            parse_quantity("834.095 kN", Dimension::Force).unwrap(),
+            834_095.0
+        );
+        assert_eq!(
+            parse_quantity("350.11 kg", Dimension::Mass).unwrap(),
+            350.11
+        );
+        assert_eq!(
+            parse_quantity("4.78e5 kg", Dimension::Mass).unwrap(),
+            4.78e5
+        );
         assert_eq!(parse_quantity("3.96", Dimension::Length).unwrap(), 3.96);
-        assert_eq!(parse_quantity("13.12177 kN·s/m", Dimension::Damping).unwrap(), 13121.77);
+        assert_eq!(
+            parse_quantity("13.12177 kN·s/m", Dimension::Damping).unwrap(),
+            13121.77
+        );
     }
 
     #[test]
@@ -191,7 +224,9 @@ mod tests {
     fn deserializes_numbers_and_strings() {
         let v: Vec<Force> = serde_json::from_str(r#"[1000, "2 kN", 3.5]"#).unwrap();
         assert_eq!(v, vec![Force(1000.0), Force(2000.0), Force(3.5)]);
-        let e = serde_json::from_str::<Force>(r#""2 kg""#).unwrap_err().to_string();
+        let e = serde_json::from_str::<Force>(r#""2 kg""#)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("force"), "{e}");
     }
 }

@@ -4,6 +4,7 @@
 //!   oscillator loses 4F/k of amplitude per cycle and stops inside |x| ≤ F/k.
 //! - μN = 0 is the bare frame; a locked damper (μN = ∞) gives the braced frame: both
 //!   against the exact (matrix-exponential) solution, with Newmark's observed order ≈ 2.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
 use common::*;
@@ -55,17 +56,30 @@ fn coulomb_free_vibration_loses_4f_over_k_per_cycle_and_stops_in_band() {
     // Tolerance: sampled extrema and switching instants are off by O((ωΔt)²)·x0 = 1e-7 m;
     // the brace adds F/k′ = 5e-9 m. 2e-6 m is 20× that budget.
     let tol = 2e-6;
-    assert_eq!(extrema.len(), expected.len(), "extrema {extrema:?} vs closed form {expected:?}");
+    assert_eq!(
+        extrema.len(),
+        expected.len(),
+        "extrema {extrema:?} vs closed form {expected:?}"
+    );
     for (j, (got, want)) in extrema.iter().zip(&expected).enumerate() {
-        assert!((got - want).abs() < tol, "extremum {j}: {got} vs closed form {want}");
+        assert!(
+            (got - want).abs() < tol,
+            "extremum {j}: {got} vs closed form {want}"
+        );
     }
     // Per full cycle the amplitude falls 4F/k.
     for w in extrema.windows(3) {
         assert!(((w[0].abs() - w[2].abs()) - 4.0 * f / k).abs() < 2.0 * tol);
     }
     let x_end = *x.last().unwrap();
-    assert!(x_end.abs() <= f / k + tol, "stops inside the band |x| <= F/k: {x_end}");
-    assert!((x_end - last).abs() < tol, "rest position {x_end} vs closed form {last}");
+    assert!(
+        x_end.abs() <= f / k + tol,
+        "stops inside the band |x| <= F/k: {x_end}"
+    );
+    assert!(
+        (x_end - last).abs() < tol,
+        "rest position {x_end} vs closed form {last}"
+    );
 }
 
 fn roof_errors(json_building: &str, locked: bool, dts: &[f64]) -> Vec<f64> {
@@ -86,7 +100,18 @@ fn roof_errors(json_building: &str, locked: bool, dts: &[f64]) -> Vec<f64> {
         let h = dts[0];
         let stride = (h / dt).round() as usize;
         let steps = (2.125 / h).round() as usize;
-        let exact = exact_linear(&plan.mass, &plan.damping, &plan.stiffness, Load::Harmonic { floor: 2, amplitude: 1e6, omega: 9.0 }, h, steps);
+        let exact = exact_linear(
+            &plan.mass,
+            &plan.damping,
+            &plan.stiffness,
+            Load::Harmonic {
+                floor: 2,
+                amplitude: 1e6,
+                omega: 9.0,
+            },
+            h,
+            steps,
+        );
         errs.push(max_error(&roof, &exact, 2, stride));
     }
     errs
@@ -104,7 +129,10 @@ fn assert_second_order(errs: &[f64]) {
     eprintln!("errors {errs:?}, observed orders {orders:?}");
     // Newmark average acceleration is second order (its period error ∝ Δt²); the band
     // allows the pre-asymptotic drift of the first halvings, not a different order.
-    assert!(orders.iter().all(|p| (p - 2.0).abs() < 0.15), "orders {orders:?}, errors {errs:?}");
+    assert!(
+        orders.iter().all(|p| (p - 2.0).abs() < 0.15),
+        "orders {orders:?}, errors {errs:?}"
+    );
 }
 
 #[test]
@@ -113,7 +141,13 @@ fn zero_slip_load_is_the_bare_frame_second_order() {
     let errs = roof_errors(BUILDING, false, &dts);
     assert_second_order(&errs);
     // And the plan really is the bare frame: 3 DOFs, no contacts.
-    let scene = scene_json(&format!(r#"{{"building": {}, "duration": 1}}"#, BUILDING.replace("SLIP", "0")), &SceneOverrides::default());
+    let scene = scene_json(
+        &format!(
+            r#"{{"building": {}, "duration": 1}}"#,
+            BUILDING.replace("SLIP", "0")
+        ),
+        &SceneOverrides::default(),
+    );
     let plan = Plan::compile(&scene).unwrap();
     assert_eq!((plan.dofs(), plan.contacts.len()), (3, 0));
 }
@@ -135,14 +169,21 @@ fn huge_slip_load_matches_the_braced_frame() {
                  "duration": 5, "method": {{ "dt": 0.005 }}, "reduce": {reduce} }}"#,
             BUILDING.replace("SLIP", slip)
         );
-        simulate(&scene_json(&json, &SceneOverrides::default())).unwrap().response
+        simulate(&scene_json(&json, &SceneOverrides::default()))
+            .unwrap()
+            .response
     };
     let full = run("1e15", false);
     let locked = run(r#""locked""#, true);
     for i in 0..3 {
         let rel = (full.peak_drift[i] - locked.peak_drift[i]).abs() / locked.peak_drift[i];
         // Round-off: the stuck contacts satisfy w = 0 to ~1e-16 relative per step.
-        assert!(rel < 1e-9, "storey {i}: {} vs {}", full.peak_drift[i], locked.peak_drift[i]);
+        assert!(
+            rel < 1e-9,
+            "storey {i}: {} vs {}",
+            full.peak_drift[i],
+            locked.peak_drift[i]
+        );
         assert_eq!(full.transitions[i], 0);
     }
 }

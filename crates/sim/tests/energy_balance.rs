@@ -8,6 +8,7 @@
 //!
 //! Friction forces must lie within their bounds exactly (the QP clamps them) and a stuck
 //! damper (force strictly inside its bounds) must have zero slip rate to round-off.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
 use common::*;
@@ -28,20 +29,36 @@ fn check_friction_invariants(scene: &Scene, out: &Outcome) {
     let mut stuck_steps = 0;
     for (f, d) in scene.building.dissipators.iter().enumerate() {
         let Some(d) = d else { continue };
-        let (Some(force), Some(w)) = (h.column(&format!("F{}_N", f + 1)), h.column(&format!("w{}_m_s", f + 1))) else {
+        let (Some(force), Some(w)) = (
+            h.column(&format!("F{}_N", f + 1)),
+            h.column(&format!("w{}_m_s", f + 1)),
+        ) else {
             continue;
         };
         let vmax = w.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-12);
         for (k, (fk, wk)) in force.iter().zip(&w).enumerate() {
-            assert!(*fk >= d.lower && *fk <= d.upper, "floor {}: F = {fk} outside [{}, {}] at row {k}", f + 1, d.lower, d.upper);
+            assert!(
+                *fk >= d.lower && *fk <= d.upper,
+                "floor {}: F = {fk} outside [{}, {}] at row {k}",
+                f + 1,
+                d.lower,
+                d.upper
+            );
             if *fk > d.lower && *fk < d.upper && k > 0 {
                 stuck_steps += 1;
                 // Round-off of w = w_free − WF relative to the slip-rate scale.
-                assert!(wk.abs() <= 1e-9 * vmax, "floor {}: stuck with slip rate {wk} (scale {vmax}) at row {k}", f + 1);
+                assert!(
+                    wk.abs() <= 1e-9 * vmax,
+                    "floor {}: stuck with slip rate {wk} (scale {vmax}) at row {k}",
+                    f + 1
+                );
             }
         }
     }
-    assert!(stuck_steps > 0, "the scene must have stuck phases for the check to bite");
+    assert!(
+        stuck_steps > 0,
+        "the scene must have stuck phases for the check to bite"
+    );
 }
 
 fn balance(out: &Outcome) -> f64 {
@@ -63,7 +80,14 @@ fn benchmark_on_sylmar_balances_to_round_off() {
 #[test]
 fn ten_story_on_el_centro_balances_to_round_off() {
     let mut scene = shipped("ten-story.json", Some("I-ELC180.AT2"), 15.0);
-    scene.record = Some(std::sync::Arc::new(scene.record.as_ref().unwrap().scaled_to_pga(0.4 * slipload_motion::G).unwrap()));
+    scene.record = Some(std::sync::Arc::new(
+        scene
+            .record
+            .as_ref()
+            .unwrap()
+            .scaled_to_pga(0.4 * slipload_motion::G)
+            .unwrap(),
+    ));
     let out = simulate(&scene).unwrap();
     assert!(balance(&out).abs() < 1e-10, "balance {}", balance(&out));
     check_friction_invariants(&scene, &out);
@@ -72,9 +96,19 @@ fn ten_story_on_el_centro_balances_to_round_off() {
 #[test]
 fn one_storey_free_and_harmonic_balance_to_round_off() {
     for name in ["paper-1story-free.json", "paper-1story-harmonic.json"] {
-        let scene = scene_file(name, &SceneOverrides { histories: Some(true), ..Default::default() });
+        let scene = scene_file(
+            name,
+            &SceneOverrides {
+                histories: Some(true),
+                ..Default::default()
+            },
+        );
         let out = simulate(&scene).unwrap();
-        assert!(balance(&out).abs() < 1e-10, "{name}: balance {}", balance(&out));
+        assert!(
+            balance(&out).abs() < 1e-10,
+            "{name}: balance {}",
+            balance(&out)
+        );
         check_friction_invariants(&scene, &out);
     }
 }

@@ -41,11 +41,21 @@ pub struct SceneArgs {
 }
 
 fn parse_window(s: &str) -> Result<(f64, f64), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected START,DURATION in seconds, got {s:?}"))?;
-    let a: f64 = a.trim().parse().map_err(|_| format!("window start {a:?} is not a number"))?;
-    let b: f64 = b.trim().parse().map_err(|_| format!("window duration {b:?} is not a number"))?;
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected START,DURATION in seconds, got {s:?}"))?;
+    let a: f64 = a
+        .trim()
+        .parse()
+        .map_err(|_| format!("window start {a:?} is not a number"))?;
+    let b: f64 = b
+        .trim()
+        .parse()
+        .map_err(|_| format!("window duration {b:?} is not a number"))?;
     if !(a >= 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-        return Err(format!("window needs START >= 0 and DURATION > 0, got {a},{b}"));
+        return Err(format!(
+            "window needs START >= 0 and DURATION > 0, got {a},{b}"
+        ));
     }
     Ok((a, b))
 }
@@ -65,15 +75,20 @@ impl SceneArgs {
             energies: None,
         };
         match &self.scene {
-            Some(path) => Scene::load(path, &over).with_context(|| format!("loading scene {}", path.display())),
+            Some(path) => Scene::load(path, &over)
+                .with_context(|| format!("loading scene {}", path.display())),
             None => {
                 let origin = Path::new("configs/benchmark-3story.json (embedded)");
-                let building: BuildingConfig = serde_json::from_str(BENCHMARK_BUILDING).context("embedded benchmark building")?;
+                let building: BuildingConfig = serde_json::from_str(BENCHMARK_BUILDING)
+                    .context("embedded benchmark building")?;
                 let cfg = SceneConfig {
                     name: Some("benchmark-3story, synthetic record 0".into()),
                     description: None,
                     building: BuildingRef::Inline(Box::new(building)),
-                    excitation: ExcitationConfig { synthetic: Some(SyntheticConfig { index: 0 }), ..Default::default() },
+                    excitation: ExcitationConfig {
+                        synthetic: Some(SyntheticConfig { index: 0 }),
+                        ..Default::default()
+                    },
                     duration: None,
                     method: Default::default(),
                     outputs: Default::default(),

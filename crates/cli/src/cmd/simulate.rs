@@ -49,15 +49,29 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
 pub fn table(name: &str, out: &Outcome) -> String {
     let r = &out.response;
     let mut s = String::new();
-    let _ = writeln!(s, "{name}: method {}, dt = {:.6e} s, {} steps, {:.4} s of CPU", r.method, r.dt, r.steps, r.cpu_seconds);
+    let _ = writeln!(
+        s,
+        "{name}: method {}, dt = {:.6e} s, {} steps, {:.4} s of CPU",
+        r.method, r.dt, r.steps, r.cpu_seconds
+    );
     let _ = writeln!(s, "peaks sampled at the integration steps");
     let _ = writeln!(
         s,
         "{:>6} {:>12} {:>10} {:>12} {:>14} {:>12} {:>12} {:>11}",
-        "storey", "drift (m)", "ratio (%)", "displ. (m)", "abs acc (m/s2)", "residual (m)", "slip (m)", "transitions"
+        "storey",
+        "drift (m)",
+        "ratio (%)",
+        "displ. (m)",
+        "abs acc (m/s2)",
+        "residual (m)",
+        "slip (m)",
+        "transitions"
     );
     for i in 0..r.peak_drift.len() {
-        let ratio = r.peak_drift_ratio.as_ref().map_or("-".to_string(), |v| format!("{:.4}", 100.0 * v[i]));
+        let ratio = r
+            .peak_drift_ratio
+            .as_ref()
+            .map_or("-".to_string(), |v| format!("{:.4}", 100.0 * v[i]));
         let _ = writeln!(
             s,
             "{:>6} {:>12.5e} {:>10} {:>12.5e} {:>14.4} {:>12.3e} {:>12.4e} {:>11}",
@@ -86,6 +100,10 @@ pub fn table(name: &str, out: &Outcome) -> String {
             e.balance_error.abs() / scale
         );
     }
-    let _ = writeln!(s, "friction QP iterations per step: mean {:.3}, max {}", out.diagnostics.qp_iterations_mean, out.diagnostics.qp_iterations_max);
+    let _ = writeln!(
+        s,
+        "friction QP iterations per step: mean {:.3}, max {}",
+        out.diagnostics.qp_iterations_mean, out.diagnostics.qp_iterations_max
+    );
     s
 }

@@ -17,11 +17,12 @@
 //! round-off (Δt·v̄ᵀ(equation averaged over the step) is an exact identity of the method).
 
 use crate::error::SimError;
-use crate::friction::box_qp::Bound;
 use crate::friction::BoxQp;
+use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
+use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
 
 /// Newmark/HHT-α with exact implicit friction.
@@ -65,7 +66,8 @@ impl Operators {
         })?;
         let pu = -chol.solve(k);
         let pv = -chol.solve(&(c + k * ((1.0 + alpha) * dt)));
-        let pa = -chol.solve(&(k * ((0.5 - beta) * dt * dt) + c * ((1.0 - gamma) * dt))) * (1.0 + alpha);
+        let pa =
+            -chol.solve(&(k * ((0.5 - beta) * dt * dt) + c * ((1.0 - gamma) * dt))) * (1.0 + alpha);
         let mut p = DMatrix::zeros(n, 3 * n);
         p.view_mut((0, 0), (n, n)).copy_from(&pu);
         p.view_mut((0, n), (n, n)).copy_from(&pv);
@@ -94,7 +96,19 @@ impl Operators {
             }
         }
         let w = (&w + w.transpose()) * 0.5;
-        Ok(Operators { n, alpha, beta, gamma, p, h, hp, g, w, kappa, mr })
+        Ok(Operators {
+            n,
+            alpha,
+            beta,
+            gamma,
+            p,
+            h,
+            hp,
+            g,
+            w,
+            kappa,
+            mr,
+        })
     }
 }
 
@@ -200,7 +214,11 @@ fn initial_state(plan: &Plan) -> Result<Start, SimError> {
             f[c] = force.clamp(ct.lower, ct.upper);
             stuck[c] = f[c] > ct.lower && f[c] < ct.upper;
             if ct.kind == ContactKind::Epp {
-                epp[c] = EppState { u: xd, v: vd, a: 0.0 };
+                epp[c] = EppState {
+                    u: xd,
+                    v: vd,
+                    a: 0.0,
+                };
             }
         } else if let ContactKind::Dof { dof } = ct.kind {
             let w0 = v[ct.floor] - v[dof];
@@ -239,18 +257,21 @@ fn initial_state(plan: &Plan) -> Result<Start, SimError> {
     let massive: Vec<usize> = (0..n).filter(|&d| plan.mass[(d, d)] > 0.0).collect();
     let ns = massive.len();
     let ms = DMatrix::from_fn(ns, ns, |i, j| plan.mass[(massive[i], massive[j])]);
-    let chol = ms.cholesky().ok_or_else(|| SimError::NotPositiveDefinite { what: "mass matrix".into(), hint: String::new() })?;
+    let chol = ms.cholesky().ok_or_else(|| SimError::NotPositiveDefinite {
+        what: "mass matrix".into(),
+        hint: String::new(),
+    })?;
     let pos = |d: usize| massive.iter().position(|&x| x == d);
     let unknown: Vec<usize> = (0..nc).filter(|&c| !known[c]).collect();
     if !unknown.is_empty() {
         let mut bu = DMatrix::zeros(ns, unknown.len());
         for (k, &c) in unknown.iter().enumerate() {
             let ct = &plan.contacts[c];
-            if let ContactKind::Dof { dof } = ct.kind {
-                if let (Some(i), Some(j)) = (pos(ct.floor), pos(dof)) {
-                    bu[(i, k)] = 1.0;
-                    bu[(j, k)] = -1.0;
-                }
+            if let ContactKind::Dof { dof } = ct.kind
+                && let (Some(i), Some(j)) = (pos(ct.floor), pos(dof))
+            {
+                bu[(i, k)] = 1.0;
+                bu[(j, k)] = -1.0;
             }
         }
         let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
@@ -261,8 +282,10 @@ fn initial_state(plan: &Plan) -> Result<Start, SimError> {
         let lo: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].lower).collect();
         let hi: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].upper).collect();
         let mut fu = vec![0.0; unknown.len()];
-        let mut qp = BoxQp::new(wa.as_slice(), unknown.len()).map_err(|source| SimError::Friction { t: 0.0, source })?;
-        qp.solve(ba.as_slice(), &lo, &hi, &mut fu).map_err(|source| SimError::Friction { t: 0.0, source })?;
+        let mut qp = BoxQp::new(wa.as_slice(), unknown.len())
+            .map_err(|source| SimError::Friction { t: 0.0, source })?;
+        qp.solve(ba.as_slice(), &lo, &hi, &mut fu)
+            .map_err(|source| SimError::Friction { t: 0.0, source })?;
         for (k, &c) in unknown.iter().enumerate() {
             f[c] = fu[k];
             stuck[c] = qp.status(k) == Bound::Free;
@@ -282,7 +305,14 @@ fn initial_state(plan: &Plan) -> Result<Start, SimError> {
             _ => {}
         }
     }
-    Ok(Start { u, v, a, f, epp, stuck })
+    Ok(Start {
+        u,
+        v,
+        a,
+        f,
+        epp,
+        stuck,
+    })
 }
 
 impl Integrator for Newmark {
@@ -292,7 +322,7 @@ impl Integrator for Newmark {
 
     fn run(&self, plan: &Plan) -> Result<Outcome, SimError> {
         let dt = plan.method.dt;
-        if !(dt > 0.0) || !dt.is_finite() {
+        if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
         let ops = Operators::build(plan)?;
@@ -319,7 +349,10 @@ impl Integrator for Newmark {
         let mut epp = start.epp;
         let mut stuck = start.stuck;
         let mut qp = if nc > 0 {
-            Some(BoxQp::new(ops.w.as_slice(), nc).map_err(|source| SimError::Friction { t: 0.0, source })?)
+            Some(
+                BoxQp::new(ops.w.as_slice(), nc)
+                    .map_err(|source| SimError::Friction { t: 0.0, source })?,
+            )
         } else {
             None
         };
@@ -327,7 +360,9 @@ impl Integrator for Newmark {
         let mut ut = vec![0.0; n];
         let mut vt = vec![0.0; n];
         let mut wfree = vec![0.0; nc];
-        let mut w_old: Vec<f64> = (0..nc).map(|c| slip_rate(plan, c, &start.v, &epp)).collect();
+        let mut w_old: Vec<f64> = (0..nc)
+            .map(|c| slip_rate(plan, c, &start.v, &epp))
+            .collect();
         let mut w_new = vec![0.0; nc];
         let mut v_old = vec![0.0; n];
         let mut epp_pred = vec![(0.0, 0.0); nc];
@@ -364,15 +399,38 @@ impl Integrator for Newmark {
             cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
             cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
             cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
-            cols.extend(plan.contacts.iter().map(|c| format!("w{}_m_s", c.floor + 1)));
+            cols.extend(
+                plan.contacts
+                    .iter()
+                    .map(|c| format!("w{}_m_s", c.floor + 1)),
+            );
             if energies {
-                cols.extend(["E_input_J", "E_kinetic_J", "E_strain_J", "E_viscous_J", "E_friction_J"].map(String::from));
+                cols.extend(
+                    [
+                        "E_input_J",
+                        "E_kinetic_J",
+                        "E_strain_J",
+                        "E_viscous_J",
+                        "E_friction_J",
+                    ]
+                    .map(String::from),
+                );
             }
-            let mut h = History { columns: cols, rows: Vec::new() };
+            let mut h = History {
+                columns: cols,
+                rows: Vec::new(),
+            };
             h.rows.reserve((plan.steps + 1) * h.columns.len());
             h
         });
-        let record_row = |h: &mut History, t: f64, ag: f64, u: &[f64], f: &[f64], w: &[f64], epp: &[EppState], e: Option<[f64; 5]>| {
+        let record_row = |h: &mut History,
+                          t: f64,
+                          ag: f64,
+                          u: &[f64],
+                          f: &[f64],
+                          w: &[f64],
+                          epp: &[EppState],
+                          e: Option<[f64; 5]>| {
             h.rows.push(t);
             h.rows.push(ag);
             h.rows.extend_from_slice(&u[..nf]);
@@ -428,7 +486,9 @@ impl Integrator for Newmark {
                             let up = e.u + dt * e.v + c_u * e.a;
                             let vp = e.v + c_v * e.a;
                             epp_pred[c] = (up, vp);
-                            let (uj, vj, vj_end) = ct.below.map_or((0.0, 0.0, 0.0), |j| (ut[j], vt[j], vt[j] + gdt * af[j]));
+                            let (uj, vj, vj_end) = ct
+                                .below
+                                .map_or((0.0, 0.0, 0.0), |j| (ut[j], vt[j], vt[j] + gdt * af[j]));
                             let q = (up - uj) - bg * (vp - vj);
                             vf - vj_end + ct.brace_stiffness / ops.kappa[c] * q
                         }
@@ -473,7 +533,11 @@ impl Integrator for Newmark {
                         let (up, vp) = epp_pred[c];
                         let vd = v_now[ct.floor] - w_new[c];
                         let ad = (vd - vp) / gdt;
-                        epp[c] = EppState { u: up + bdt2 * ad, v: vd, a: ad };
+                        epp[c] = EppState {
+                            u: up + bdt2 * ad,
+                            v: vd,
+                            a: ad,
+                        };
                     }
                     let now_stuck = qp.status(c) == Bound::Free;
                     if now_stuck != stuck[c] {
@@ -551,12 +615,21 @@ impl Integrator for Newmark {
                 balance_error: e_input + initial_energy - (ek + es + e_viscous + e_friction),
             }
         });
-        let name = if alpha == 0.0 { "newmark" } else { "hht" };
-        let response = peaks.into_response(name, dt, plan.steps, plan.storey_heights.as_deref(), energy);
+        let response = peaks.into_response(
+            plan.method.name.as_str(),
+            dt,
+            plan.steps,
+            plan.storey_heights.as_deref(),
+            energy,
+        );
         Ok(Outcome {
             response,
             diagnostics: Diagnostics {
-                qp_iterations_mean: if plan.steps > 0 { qp_iter_total as f64 / plan.steps as f64 } else { 0.0 },
+                qp_iterations_mean: if plan.steps > 0 {
+                    qp_iter_total as f64 / plan.steps as f64
+                } else {
+                    0.0
+                },
                 qp_iterations_max: qp_iter_max,
                 balance_error_max_relative: balance_max_rel,
                 initial_energy,

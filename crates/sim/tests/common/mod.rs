@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests: paths, scenes from JSON, and the exact
 //! solution of linear structures (matrix exponential of the augmented state-space system).
-#![allow(dead_code)]
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+#![allow(dead_code)] // each test binary uses its own subset of these helpers
 
 use nalgebra::{DMatrix, DVector};
 use slipload_motion::Record;
@@ -32,7 +33,11 @@ pub enum Load<'a> {
     /// Ground acceleration, linear between samples.
     Ground(&'a Record),
     /// amplitude · sin(ω t) on floor `floor` (from 0).
-    Harmonic { floor: usize, amplitude: f64, omega: f64 },
+    Harmonic {
+        floor: usize,
+        amplitude: f64,
+        omega: f64,
+    },
 }
 
 /// Exact displacements of M ü + C u̇ + K u = load at t = k·h, k = 0..=steps, from rest.
@@ -40,7 +45,14 @@ pub enum Load<'a> {
 /// The state is augmented with the load's generator (ground: value and slope, constant
 /// within a sample interval; harmonic: sin and cos) so one matrix exponential per step
 /// length propagates it exactly (Van Loan 1978); h must divide the record's dt.
-pub fn exact_linear(m: &DMatrix<f64>, c: &DMatrix<f64>, k: &DMatrix<f64>, load: Load, h: f64, steps: usize) -> Vec<DVector<f64>> {
+pub fn exact_linear(
+    m: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    k: &DMatrix<f64>,
+    load: Load,
+    h: f64,
+    steps: usize,
+) -> Vec<DVector<f64>> {
     let n = m.nrows();
     let minv = m.clone().try_inverse().expect("M invertible");
     let mut a = DMatrix::zeros(2 * n + 2, 2 * n + 2);
@@ -51,11 +63,15 @@ pub fn exact_linear(m: &DMatrix<f64>, c: &DMatrix<f64>, k: &DMatrix<f64>, load: 
     match load {
         Load::Ground(rec) => {
             let r = DVector::from_element(n, 1.0);
-            a.view_mut((n, 2 * n), (n, 1)).copy_from(&(-&minv * &m.clone() * &r));
+            a.view_mut((n, 2 * n), (n, 1))
+                .copy_from(&(-&minv * &m.clone() * &r));
             a[(2 * n, 2 * n + 1)] = 1.0;
             let e = (a * h).exp();
             let per = (rec.dt() / h).round() as usize;
-            assert!((per as f64 * h - rec.dt()).abs() < 1e-12 * rec.dt(), "h must divide the record dt");
+            assert!(
+                (per as f64 * h - rec.dt()).abs() < 1e-12 * rec.dt(),
+                "h must divide the record dt"
+            );
             let mut out = vec![y.rows(0, n).into_owned()];
             for s in 0..steps {
                 let t0 = s as f64 * h;
@@ -75,7 +91,11 @@ pub fn exact_linear(m: &DMatrix<f64>, c: &DMatrix<f64>, k: &DMatrix<f64>, load: 
             }
             out
         }
-        Load::Harmonic { floor, amplitude, omega } => {
+        Load::Harmonic {
+            floor,
+            amplitude,
+            omega,
+        } => {
             let mut f = DVector::zeros(n);
             f[floor] = amplitude;
             a.view_mut((n, 2 * n), (n, 1)).copy_from(&(&minv * f));
@@ -96,5 +116,9 @@ pub fn exact_linear(m: &DMatrix<f64>, c: &DMatrix<f64>, k: &DMatrix<f64>, load: 
 /// Max over the trajectory of |x_num − x_exact| for floor `floor`, with the numerical
 /// history sampled every `stride` rows onto the exact grid.
 pub fn max_error(hist: &[f64], exact: &[DVector<f64>], floor: usize, stride: usize) -> f64 {
-    exact.iter().enumerate().map(|(k, x)| (hist[k * stride] - x[floor]).abs()).fold(0.0, f64::max)
+    exact
+        .iter()
+        .enumerate()
+        .map(|(k, x)| (hist[k * stride] - x[floor]).abs())
+        .fold(0.0, f64::max)
 }
