@@ -74,7 +74,15 @@ pub enum SimError {
 
 impl SimError {
     /// An [`SimError::Invalid`] for `path`/`field`.
-    pub(crate) fn invalid(path: &std::path::Path, field: impl Into<String>, message: impl Into<String>) -> Self {
-        SimError::Invalid { path: path.to_path_buf(), field: field.into(), message: message.into() }
+    pub(crate) fn invalid(
+        path: &std::path::Path,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        SimError::Invalid {
+            path: path.to_path_buf(),
+            field: field.into(),
+            message: message.into(),
+        }
     }
 }

@@ -157,7 +157,14 @@ impl Peaks {
     }
 
     /// Builds the contract's response.
-    pub fn into_response(self, method: &str, dt: f64, steps: usize, heights: Option<&[f64]>, energy: Option<Energy>) -> Response {
+    pub fn into_response(
+        self,
+        method: &str,
+        dt: f64,
+        steps: usize,
+        heights: Option<&[f64]>,
+        energy: Option<Energy>,
+    ) -> Response {
         let ratio = heights.map(|h| self.drift.iter().zip(h).map(|(d, h)| d / h).collect());
         Response {
             method: method.to_string(),
