@@ -330,13 +330,15 @@ pub struct Scene {
 }
 
 /// Default time step: T₁/200 of the bare frame, rounded down so that it divides the
-/// record's sample interval (the record is then sampled at steps, not between them),
-/// and never larger than that interval.
-pub fn default_dt(t1: f64, record_dt: Option<f64>) -> f64 {
+/// record's sample interval (the record is then sampled at steps, not between them,
+/// and never more coarsely than it was recorded) — or, without a record, so that it
+/// divides the duration (the run ends exactly at the duration).
+pub fn default_dt(t1: f64, record_dt: Option<f64>, duration: f64) -> f64 {
     let target = t1 / 200.0;
+    let divide = |span: f64| span / (span / target).ceil().max(1.0);
     match record_dt {
-        Some(rdt) => rdt / (rdt / target).ceil().max(1.0),
-        None => target,
+        Some(rdt) => divide(rdt),
+        None => divide(duration),
     }
 }
 
@@ -584,10 +586,9 @@ impl Scene {
                 format!("HHT α must be in [-1/3, 0], got {alpha}"),
             ));
         }
-        let dt = over
-            .dt
-            .or(cfg.method.dt.map(|d| d.0))
-            .unwrap_or_else(|| default_dt(building.t1(), record.as_ref().map(|r| r.dt())));
+        let dt = over.dt.or(cfg.method.dt.map(|d| d.0)).unwrap_or_else(|| {
+            default_dt(building.t1(), record.as_ref().map(|r| r.dt()), duration)
+        });
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
@@ -617,9 +618,9 @@ impl Scene {
         self.record.as_ref().map_or(0.0, |r| r.accel_at(t))
     }
 
-    /// Number of steps: the duration divided by dt, rounded to the nearest whole step
-    /// (at least one).
+    /// Number of steps: enough to reach the duration (the last step ends at or just after
+    /// it; a relative slack of 1e-9 absorbs the round-off of duration/dt), at least one.
     pub fn steps(&self) -> usize {
-        ((self.duration / self.method.dt).round() as usize).max(1)
+        ((self.duration / self.method.dt * (1.0 - 1e-9)).ceil() as usize).max(1)
     }
 }
