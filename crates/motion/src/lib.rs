@@ -6,15 +6,25 @@
 
 mod at2;
 mod error;
+mod intensity;
 mod number;
+mod propagator;
 mod reader;
 mod record;
+mod spectrum;
 mod text;
 mod units;
 
 pub use at2::{parse_at2, parse_at2_in};
 pub use error::MotionError;
+pub use intensity::{
+    Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
+};
 pub use reader::{RecordFormat, read_record};
 pub use record::{G, Record};
+pub use spectrum::{
+    DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
+    spectral_acceleration,
+};
 pub use text::parse_text;
 pub use units::Units;
