@@ -5,17 +5,21 @@
 //! integrator uses). Errors are the typed [`MotionError`].
 
 mod at2;
+mod envelope;
 mod error;
 mod intensity;
 mod number;
 mod propagator;
 mod reader;
 mod record;
+mod rng;
 mod spectrum;
+mod synthetic;
 mod text;
 mod units;
 
 pub use at2::{parse_at2, parse_at2_in};
+pub use envelope::Envelope;
 pub use error::MotionError;
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
@@ -25,6 +29,10 @@ pub use record::{G, Record};
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
     spectral_acceleration,
+};
+pub use synthetic::{
+    DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DEFAULT_SUITE_SIZE, SuiteTarget, Synthetic,
+    default_suite, derive_seed, synthetic_suite,
 };
 pub use text::parse_text;
 pub use units::Units;
