@@ -5,6 +5,7 @@
 //! integrator uses). Errors are the typed [`MotionError`].
 
 mod at2;
+mod design_spectrum;
 mod envelope;
 mod error;
 mod intensity;
@@ -13,12 +14,14 @@ mod propagator;
 mod reader;
 mod record;
 mod rng;
+mod scaling;
 mod spectrum;
 mod synthetic;
 mod text;
 mod units;
 
 pub use at2::{parse_at2, parse_at2_in};
+pub use design_spectrum::DesignSpectrum;
 pub use envelope::Envelope;
 pub use error::MotionError;
 pub use intensity::{
@@ -26,6 +29,10 @@ pub use intensity::{
 };
 pub use reader::{RecordFormat, read_record};
 pub use record::{G, Record};
+pub use scaling::{
+    ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
+    scale_to_spectral_acceleration,
+};
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
     spectral_acceleration,
