@@ -11,7 +11,7 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum MotionError {
     /// The file could not be read.
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}")]
     Io {
         /// The file.
         path: PathBuf,
@@ -127,14 +127,14 @@ pub enum MotionError {
         /// The file or record name.
         file: String,
     },
-    /// A given time step disagrees with the file's time column.
-    #[error("{file}: given dt = {given_s} s disagrees with the time column's step {found_s} s")]
+    /// A given time step disagrees with the file's (AT2 header or time column).
+    #[error("{file}: given dt = {given_s} s disagrees with the file's time step {found_s} s")]
     DtMismatch {
         /// The file or record name.
         file: String,
         /// The time step given by the caller, seconds.
         given_s: f64,
-        /// The step of the time column, seconds.
+        /// The file's time step, seconds.
         found_s: f64,
     },
     /// A text record's line has the wrong number of columns.

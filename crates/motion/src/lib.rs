@@ -41,5 +41,5 @@ pub use synthetic::{
     DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DEFAULT_SUITE_SIZE, SuiteTarget, Synthetic,
     default_suite, derive_seed, synthetic_suite,
 };
-pub use text::parse_text;
+pub use text::{format_csv, parse_text};
 pub use units::Units;

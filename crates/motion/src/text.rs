@@ -1,4 +1,4 @@
-//! The text/CSV record reader.
+//! The text/CSV record reader, and the CSV writer it round-trips with.
 //!
 //! Contract ([`parse_text`]): one record per file, one sample per line, either two
 //! columns (time s, acceleration) or one column (acceleration, with the time step given).
@@ -10,7 +10,7 @@
 //! which a [`Record`] cannot represent). The record starts at its first sample: a time
 //! column that starts at t₀ ≠ 0 is shifted to 0 (noted in the provenance). Values are
 //! converted from `units` to m/s². Malformed input gives a [`MotionError`]; the reader
-//! never panics.
+//! never panics. [`format_csv`] writes `time_s,accel_m_s2` that reads back bit for bit.
 
 use crate::error::snippet;
 use crate::number::{parse_number, within};
@@ -130,6 +130,19 @@ pub fn parse_text(
     Ok(Record::new(name, dt, accel)?.with_provenance(notes.join("; ")))
 }
 
+/// The record as CSV text: a `time_s,accel_m_s2` header, then one line per sample with
+/// t = k·dt (s) and the acceleration (m/s²), both in Rust's shortest round-trip form, so
+/// [`parse_text`] reads the samples back bit for bit.
+pub fn format_csv(record: &Record) -> String {
+    let mut out = String::with_capacity(24 * record.len() + 20);
+    out.push_str("time_s,accel_m_s2\n");
+    for (k, a) in record.samples().iter().enumerate() {
+        let t = k as f64 * record.dt();
+        out.push_str(&format!("{t},{a}\n"));
+    }
+    out
+}
+
 /// Fields of a data line: comma-, semicolon- or blank-separated; one trailing empty field
 /// (`1.0,2.0,`) is dropped.
 fn split_fields(line: &str) -> Vec<&str> {
@@ -203,6 +216,14 @@ mod tests {
         .unwrap();
         assert_eq!(r.samples(), &[0.1, 0.2, -0.3]);
         assert_eq!(r.dt(), 0.01);
+    }
+
+    #[test]
+    fn csv_round_trip_is_bit_exact() {
+        let r = Record::new("r", 0.01, vec![0.1, -1.0 / 3.0, 2.5e-7, 0.0]).unwrap();
+        let back = parse_text(&format_csv(&r), "r", Units::MPerS2, None).unwrap();
+        assert_eq!(back.samples(), r.samples());
+        assert!((back.dt() - 0.01).abs() < 1e-15);
     }
 
     #[test]
