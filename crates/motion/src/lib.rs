@@ -3,6 +3,22 @@
 //! All accelerations are m/s², times seconds, lengths metres. A [`Record`] is a uniformly
 //! sampled ground acceleration, linear between samples (the convention every slipload
 //! integrator uses). Errors are the typed [`MotionError`].
+//!
+//! ```
+//! use slipload_motion::{G, Intensity, Record, Spectrum, default_suite};
+//!
+//! // a record from samples (m/s²) at dt = 0.01 s
+//! let r = Record::new("pulse", 0.01, vec![0.0, 1.0, 2.0, 1.0, 0.0])?;
+//! assert_eq!(r.accel_at(0.015), 1.5); // linear between samples
+//! assert_eq!(Intensity::of(&r).pga_m_s2, 2.0);
+//!
+//! // the embedded default suite: 10 synthetic records scaled to PGA = 0.4 g exactly
+//! let suite = default_suite();
+//! assert!(suite.iter().all(|r| r.pga() == 0.4 * G));
+//! let s = Spectrum::compute(&suite[0], 0.05, &[0.2, 0.4, 1.0])?;
+//! assert!(s.psa_m_s2.iter().all(|&sa| sa > 0.0));
+//! # Ok::<(), slipload_motion::MotionError>(())
+//! ```
 
 mod at2;
 mod design_spectrum;

@@ -222,8 +222,10 @@ impl Record {
         // A few ulps of slack so that a span that is a whole number of steps keeps its
         // last sample.
         let m = (span / self.dt_s * (1.0 + 4.0 * f64::EPSILON)).floor() as usize;
+        // clamp: start + m·dt may round past the end, where accel_at is 0
+        let end = self.duration();
         let samples = (0..=m)
-            .map(|k| self.accel_at(start_s + k as f64 * self.dt_s))
+            .map(|k| self.accel_at((start_s + k as f64 * self.dt_s).min(end)))
             .collect();
         let r = Record::new(self.name.clone(), self.dt_s, samples)?;
         Ok(r.with_provenance(self.note(&format!("window {start_s} s + {duration_s} s"))))
@@ -291,6 +293,12 @@ mod tests {
         assert_eq!(w.samples(), &[1.0, -2.0, 4.0]);
         let w = r.window(0.01, 10.0).unwrap();
         assert_eq!(w.len(), 3);
+        // off-grid start: interpolated, and the last sample is not lost to rounding
+        let long = Record::new("l", 0.1, (0..=30).map(f64::from).collect()).unwrap();
+        let w = long.window(0.7, 100.0).unwrap();
+        assert_eq!(w.len(), 24);
+        assert_eq!(w.samples()[23], 30.0);
+        assert!((w.samples()[0] - 7.0).abs() < 1e-12);
         assert!(r.window(-0.1, 1.0).is_err());
         assert!(r.window(0.0, f64::NAN).is_err());
     }

@@ -6,8 +6,7 @@
 //! * [`scale_suite_asce7`]: one common factor for the whole suite, the smallest for which
 //!   the suite's mean spectrum is at least 90 % of the target spectrum at every period of
 //!   a grid of [`ASCE7_PERIOD_POINTS`] log-spaced periods over [0.2·T₁, 2.0·T₁] — the
-//!   amplitude-scaling rule of ASCE 7-16 §16.2.3 with the period range of §16.2.1,
-//!   applied to single-component records (ASCE 7-16 itself uses the maximum-direction
+//!   period range and amplitude-scaling rule of ASCE 7-16 §16.2.3, applied to single-component records (ASCE 7-16 itself uses the maximum-direction
 //!   spectra of horizontal pairs, and an MCE_R target). The factor is
 //!   max over the grid of 0.9·target/mean, rounded up by a few ulps so that the inequality
 //!   also holds in floating point. Means are summed in record order (deterministic).

@@ -4,7 +4,7 @@
 //! and Box–Muller, see `rng.rs`), multiplies them by a time [`Envelope`], and passes them
 //! through the Clough–Penzien filter: a Kanai–Tajimi soil oscillator (Kanai 1957, Tajimi
 //! 1960; ẍ_g + 2ζ_gω_gẋ_g + ω_g²x_g = −w) followed by the Clough & Penzien (1993, Dynamics
-//! of Structures, 2nd ed., §23) high-pass oscillator (ẍ_f + 2ζ_fω_fẋ_f + ω_f²x_f =
+//! of Structures, 2nd ed.) high-pass oscillator (ẍ_f + 2ζ_fω_fẋ_f + ω_f²x_f =
 //! ω_g²x_g + 2ζ_gω_gẋ_g). The ground acceleration is a_g = ẍ_f, whose power spectrum is
 //! the Clough–Penzien one, S(ω) = S₀ · KT(ω) · ω⁴/((ω_f² − ω²)² + 4ζ_f²ω_f²ω²). Because
 //! a_g = ẍ_f, the ground velocity and displacement are ẋ_f and x_f: they stay bounded, with
