@@ -1,1 +1,61 @@
 //! Ground motions for slipload: record readers, synthetic generators, scaling, spectra.
+//!
+//! All accelerations are m/s², times seconds, lengths metres. A [`Record`] is a uniformly
+//! sampled ground acceleration, linear between samples (the convention every slipload
+//! integrator uses). Errors are the typed [`MotionError`].
+//!
+//! ```
+//! use slipload_motion::{G, Intensity, Record, Spectrum, default_suite};
+//!
+//! // a record from samples (m/s²) at dt = 0.01 s
+//! let r = Record::new("pulse", 0.01, vec![0.0, 1.0, 2.0, 1.0, 0.0])?;
+//! assert_eq!(r.accel_at(0.015), 1.5); // linear between samples
+//! assert_eq!(Intensity::of(&r).pga_m_s2, 2.0);
+//!
+//! // the embedded default suite: 10 synthetic records scaled to PGA = 0.4 g exactly
+//! let suite = default_suite();
+//! assert!(suite.iter().all(|r| r.pga() == 0.4 * G));
+//! let s = Spectrum::compute(&suite[0], 0.05, &[0.2, 0.4, 1.0])?;
+//! assert!(s.psa_m_s2.iter().all(|&sa| sa > 0.0));
+//! # Ok::<(), slipload_motion::MotionError>(())
+//! ```
+
+mod at2;
+mod design_spectrum;
+mod envelope;
+mod error;
+mod intensity;
+mod number;
+mod propagator;
+mod reader;
+mod record;
+mod rng;
+mod scaling;
+mod spectrum;
+mod synthetic;
+mod text;
+mod units;
+
+pub use at2::{parse_at2, parse_at2_in};
+pub use design_spectrum::DesignSpectrum;
+pub use envelope::Envelope;
+pub use error::MotionError;
+pub use intensity::{
+    Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
+};
+pub use reader::{RecordFormat, read_record};
+pub use record::{G, Record};
+pub use scaling::{
+    ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
+    scale_to_spectral_acceleration,
+};
+pub use spectrum::{
+    DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
+    spectral_acceleration,
+};
+pub use synthetic::{
+    DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DEFAULT_SUITE_SIZE, SuiteTarget, Synthetic,
+    default_suite, derive_seed, synthetic_suite,
+};
+pub use text::{format_csv, parse_text};
+pub use units::Units;

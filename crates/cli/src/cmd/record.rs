@@ -1,10 +1,371 @@
 //! `slipload record …`: read, measure and synthesise ground-motion records.
+//!
+//! * `info FILE…` — samples, time step, duration and intensity measures of each record;
+//! * `spectrum FILE` — its elastic response spectrum (pseudo-acceleration, pseudo-velocity,
+//!   displacement);
+//! * `synth` — Clough–Penzien synthetic records as `time_s,accel_m_s2` CSV.
+//!
+//! Results go to stdout (or the `--out` files, written atomically), messages to stderr.
+
+use anyhow::{Context, bail};
+use slipload_motion::{
+    DEFAULT_DAMPING, DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, G, Intensity, Record, Spectrum,
+    SuiteTarget, Synthetic, Units, default_periods, format_csv, read_record, synthetic_suite,
+};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `slipload record`.
 #[derive(Debug, clap::Args)]
-pub struct RecordArgs {}
+pub struct RecordArgs {
+    #[command(subcommand)]
+    command: RecordCommand,
+}
+
+#[derive(Debug, clap::Subcommand)]
+enum RecordCommand {
+    /// Print NPTS, dt, duration, PGA, PGV, PGD, Arias intensity and D5–95 of records
+    Info(InfoArgs),
+    /// Print the elastic response spectrum of one record
+    Spectrum(SpectrumArgs),
+    /// Write Clough–Penzien synthetic records as CSV (time_s,accel_m_s2)
+    Synth(SynthArgs),
+}
+
+/// How a record file is read.
+#[derive(Debug, clap::Args)]
+struct ReadOptions {
+    /// Units of the acceleration values: g, m/s2, cm/s2 (gal) [default: g for .AT2, m/s2 otherwise]
+    #[arg(long)]
+    units: Option<Units>,
+    /// Time step, s (needed for one-column text files; checked against the file otherwise)
+    #[arg(long, allow_negative_numbers = true)]
+    dt: Option<f64>,
+}
+
+impl ReadOptions {
+    fn read(&self, path: &Path) -> anyhow::Result<Record> {
+        read_record(path, self.units, self.dt)
+            .with_context(|| format!("reading record {}", path.display()))
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum InfoFormat {
+    Table,
+    Json,
+}
+
+#[derive(Debug, clap::Args)]
+struct InfoArgs {
+    /// Record files (.AT2, any case, or CSV/text)
+    #[arg(required = true)]
+    files: Vec<PathBuf>,
+    #[command(flatten)]
+    read: ReadOptions,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = InfoFormat::Table)]
+    format: InfoFormat,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum SpectrumFormat {
+    Csv,
+    Json,
+}
+
+#[derive(Debug, clap::Args)]
+struct SpectrumArgs {
+    /// Record file (.AT2, any case, or CSV/text)
+    file: PathBuf,
+    #[command(flatten)]
+    read: ReadOptions,
+    /// Damping ratio (fraction of critical)
+    #[arg(long, default_value_t = DEFAULT_DAMPING, allow_negative_numbers = true)]
+    damping: f64,
+    /// Periods, s, comma-separated [default: 60 log-spaced from 0.02 to 5 s]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    periods: Option<Vec<f64>>,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = SpectrumFormat::Csv)]
+    format: SpectrumFormat,
+}
+
+#[derive(Debug, clap::Args)]
+struct SynthArgs {
+    /// Seed; record i of a suite uses a seed derived from it (a single record is record 0)
+    #[arg(long, default_value_t = DEFAULT_SUITE_SEED)]
+    seed: u64,
+    /// Peak ground acceleration of every record, g
+    #[arg(long, default_value_t = DEFAULT_SUITE_PGA_G, allow_negative_numbers = true)]
+    pga_g: f64,
+    /// Duration, s
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
+    duration: f64,
+    /// Time step, s
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    dt: f64,
+    /// Number of records; with it, --out is a folder that receives one CSV per record
+    #[arg(long)]
+    count: Option<usize>,
+    /// Output CSV file (or folder with --count)
+    #[arg(long)]
+    out: PathBuf,
+}
 
 /// Runs `slipload record`.
-pub fn run(_args: RecordArgs) -> anyhow::Result<()> {
-    anyhow::bail!("not implemented yet")
+pub fn run(args: RecordArgs) -> anyhow::Result<()> {
+    match args.command {
+        RecordCommand::Info(a) => info(&a),
+        RecordCommand::Spectrum(a) => spectrum(&a),
+        RecordCommand::Synth(a) => synth(&a),
+    }
+}
+
+/// One row of `record info`.
+#[derive(Debug, serde::Serialize)]
+struct InfoRow {
+    file: String,
+    npts: usize,
+    dt_s: f64,
+    duration_s: f64,
+    pga_m_s2: f64,
+    pga_g: f64,
+    pgv_m_s: f64,
+    pgd_m: f64,
+    arias_m_s: f64,
+    d5_95_s: f64,
+}
+
+fn info(args: &InfoArgs) -> anyhow::Result<()> {
+    let mut rows = Vec::with_capacity(args.files.len());
+    for path in &args.files {
+        let r = args.read.read(path)?;
+        let m = Intensity::of(&r);
+        rows.push(InfoRow {
+            file: path.display().to_string(),
+            npts: r.len(),
+            dt_s: r.dt(),
+            duration_s: r.duration(),
+            pga_m_s2: m.pga_m_s2,
+            pga_g: m.pga_m_s2 / G,
+            pgv_m_s: m.pgv_m_s,
+            pgd_m: m.pgd_m,
+            arias_m_s: m.arias_m_s,
+            d5_95_s: m.d5_95_s,
+        });
+    }
+    let text = match args.format {
+        InfoFormat::Json => serde_json::to_string_pretty(&rows).context("formatting JSON")? + "\n",
+        InfoFormat::Table => info_table(&rows),
+    };
+    print!("{text}");
+    Ok(())
+}
+
+fn info_table(rows: &[InfoRow]) -> String {
+    let width = rows.iter().map(|r| r.file.len()).max().unwrap_or(4).max(4);
+    let mut s = format!(
+        "{:<width$}  {:>6}  {:>7}  {:>8}  {:>9}  {:>7}  {:>8}  {:>8}  {:>9}  {:>7}\n",
+        "file",
+        "npts",
+        "dt_s",
+        "dur_s",
+        "pga_m_s2",
+        "pga_g",
+        "pgv_m_s",
+        "pgd_m",
+        "arias_m_s",
+        "d5_95_s"
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{:<width$}  {:>6}  {:>7.4}  {:>8.3}  {:>9.4}  {:>7.4}  {:>8.4}  {:>8.4}  {:>9.4}  {:>7.3}",
+            r.file,
+            r.npts,
+            r.dt_s,
+            r.duration_s,
+            r.pga_m_s2,
+            r.pga_g,
+            r.pgv_m_s,
+            r.pgd_m,
+            r.arias_m_s,
+            r.d5_95_s
+        );
+    }
+    s
+}
+
+fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
+    let r = args.read.read(&args.file)?;
+    let periods = args.periods.clone().unwrap_or_else(default_periods);
+    if periods.is_empty() {
+        bail!("--periods needs at least one period");
+    }
+    let s = Spectrum::compute(&r, args.damping, &periods)
+        .with_context(|| format!("computing the spectrum of {}", args.file.display()))?;
+    let text = match args.format {
+        SpectrumFormat::Json => {
+            #[derive(serde::Serialize)]
+            struct Out<'a> {
+                file: String,
+                #[serde(flatten)]
+                spectrum: &'a Spectrum,
+            }
+            let out = Out {
+                file: args.file.display().to_string(),
+                spectrum: &s,
+            };
+            serde_json::to_string_pretty(&out).context("formatting JSON")? + "\n"
+        }
+        SpectrumFormat::Csv => {
+            let mut t = String::from("period_s,sd_m,psv_m_s,psa_m_s2,psa_g\n");
+            for k in 0..s.periods_s.len() {
+                let _ = writeln!(
+                    t,
+                    "{},{},{},{},{}",
+                    s.periods_s[k],
+                    s.sd_m[k],
+                    s.psv_m_s[k],
+                    s.psa_m_s2[k],
+                    s.psa_m_s2[k] / G
+                );
+            }
+            t
+        }
+    };
+    print!("{text}");
+    Ok(())
+}
+
+fn synth(args: &SynthArgs) -> anyhow::Result<()> {
+    let params = Synthetic {
+        dt_s: args.dt,
+        duration_s: args.duration,
+        ..Synthetic::default()
+    };
+    let count = args.count.unwrap_or(1);
+    if count == 0 {
+        bail!("--count must be at least 1");
+    }
+    let target = SuiteTarget::Pga {
+        pga_m_s2: args.pga_g * G,
+    };
+    let records = synthetic_suite(&params, count, args.seed, target)
+        .context("generating synthetic records")?;
+    match args.count {
+        None => {
+            let r = &records[0];
+            crate::output::write_atomic(&args.out, format_csv(r).as_bytes())?;
+            eprintln!(
+                "wrote {} ({} samples, PGA {} g)",
+                args.out.display(),
+                r.len(),
+                args.pga_g
+            );
+        }
+        Some(_) => {
+            for r in &records {
+                let path = args.out.join(format!("{}.csv", r.name()));
+                crate::output::write_atomic(&path, format_csv(r).as_bytes())?;
+            }
+            eprintln!(
+                "wrote {} records to {} ({} samples each, PGA {} g)",
+                records.len(),
+                args.out.display(),
+                records[0].len(),
+                args.pga_g
+            );
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, clap::Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: RecordArgs,
+    }
+
+    fn parse(args: &[&str]) -> Result<RecordArgs, clap::Error> {
+        Cli::try_parse_from(std::iter::once("record").chain(args.iter().copied())).map(|c| c.args)
+    }
+
+    #[test]
+    fn info_parses() {
+        let a = parse(&[
+            "info", "a.AT2", "b.csv", "--units", "gal", "--dt", "0.01", "--format", "json",
+        ])
+        .unwrap();
+        let RecordCommand::Info(i) = a.command else {
+            panic!("not info")
+        };
+        assert_eq!(i.files.len(), 2);
+        assert_eq!(i.read.units, Some(Units::CmPerS2));
+        assert_eq!(i.format, InfoFormat::Json);
+        assert!(parse(&["info"]).is_err(), "a file is required");
+        assert!(parse(&["info", "a.AT2", "--units", "furlong"]).is_err());
+    }
+
+    #[test]
+    fn spectrum_parses() {
+        let a = parse(&[
+            "spectrum",
+            "a.AT2",
+            "--damping",
+            "0.02",
+            "--periods",
+            "0.1,0.5,1",
+        ])
+        .unwrap();
+        let RecordCommand::Spectrum(s) = a.command else {
+            panic!("not spectrum")
+        };
+        assert_eq!(s.periods, Some(vec![0.1, 0.5, 1.0]));
+        assert_eq!(s.format, SpectrumFormat::Csv);
+        assert!(parse(&["spectrum", "a.AT2", "--periods", "0.1,x"]).is_err());
+    }
+
+    #[test]
+    fn synth_parses() {
+        let a = parse(&[
+            "synth", "--seed", "3", "--pga-g", "0.3", "--count", "4", "--out", "d",
+        ])
+        .unwrap();
+        let RecordCommand::Synth(s) = a.command else {
+            panic!("not synth")
+        };
+        assert_eq!((s.seed, s.pga_g, s.count), (3, 0.3, Some(4)));
+        assert!(parse(&["synth"]).is_err(), "--out is required");
+    }
+
+    #[test]
+    fn synth_writes_readable_csv() {
+        let dir = std::env::temp_dir().join(format!("slipload-synth-{}", std::process::id()));
+        let args = SynthArgs {
+            seed: 5,
+            pga_g: 0.25,
+            duration: 2.0,
+            dt: 0.01,
+            count: Some(2),
+            out: dir.clone(),
+        };
+        synth(&args).unwrap();
+        let mut names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        names.sort();
+        assert_eq!(names.len(), 2);
+        let r = read_record(&dir.join(&names[0]), None, None).unwrap();
+        assert_eq!(r.len(), 201);
+        assert_eq!(r.pga(), 0.25 * G);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

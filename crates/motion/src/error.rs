@@ -1,0 +1,181 @@
+//! The typed error of the motion crate.
+//!
+//! Every variant carries what is needed to fix the input: the file (or record) name, the
+//! 1-based line number where it applies, and what was expected. Parsers never panic; every
+//! malformed input ends here.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong while reading, building or processing a ground motion.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MotionError {
+    /// The file could not be read.
+    #[error("cannot read {path}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// No line of an AT2 file holds the NPTS/DT header.
+    #[error(
+        "{file}: no header line with NPTS and DT (expected `NPTS= n, DT= dt SEC` or `n dt NPTS, DT`)"
+    )]
+    MissingHeader {
+        /// The file or record name.
+        file: String,
+    },
+    /// A line mentions NPTS but NPTS and DT could not be read from it.
+    #[error("{file}:{line}: cannot read NPTS and DT from header `{text}` ({expected})")]
+    MalformedHeader {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The header line as found (trimmed).
+        text: String,
+        /// What the reader expected.
+        expected: &'static str,
+    },
+    /// The file holds fewer values than its header announces.
+    #[error("{file}: truncated: header announces NPTS = {expected} values, found {found}")]
+    Truncated {
+        /// The file or record name.
+        file: String,
+        /// NPTS from the header.
+        expected: usize,
+        /// Values actually present.
+        found: usize,
+    },
+    /// A token that should be a number is not one.
+    #[error("{file}:{line}: `{token}` is not a number (expected {expected})")]
+    NotANumber {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The offending text (at most 40 characters).
+        token: String,
+        /// What was expected there.
+        expected: &'static str,
+    },
+    /// A number is NaN or infinite (or overflows once converted to m/s²).
+    #[error("{file}:{line}: value `{token}` is not finite")]
+    NonFinite {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number (0 when the value did not come from a file).
+        line: usize,
+        /// The offending text (at most 40 characters).
+        token: String,
+    },
+    /// A sample given to [`crate::Record::new`] is NaN or infinite.
+    #[error("{file}: sample {index} is not finite ({value})")]
+    NonFiniteSample {
+        /// The record name.
+        file: String,
+        /// 0-based sample index.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// The time step is zero, negative or not finite.
+    #[error("{file}: time step {dt_s} s must be positive and finite")]
+    BadTimeStep {
+        /// The file or record name.
+        file: String,
+        /// The time step, seconds.
+        dt_s: f64,
+    },
+    /// The time column does not increase.
+    #[error("{file}:{line}: time {time_s} s does not increase (previous {previous_s} s)")]
+    TimeNotIncreasing {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// Time on this line, seconds.
+        time_s: f64,
+        /// Time on the previous data line, seconds.
+        previous_s: f64,
+    },
+    /// The time column is not uniformly spaced.
+    #[error("{file}:{line}: time step {found_s} s differs from the uniform step {expected_s} s")]
+    NonUniformTime {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The uniform step, (last − first)/(n − 1), seconds.
+        expected_s: f64,
+        /// The step ending on this line, seconds.
+        found_s: f64,
+    },
+    /// The record holds no samples.
+    #[error("{file}: empty record (no acceleration values)")]
+    Empty {
+        /// The file or record name.
+        file: String,
+    },
+    /// A one-column text record (or a one-row two-column one) needs a time step.
+    #[error(
+        "{file}: the time step is unknown: give dt (one acceleration column) or a time column with at least two rows"
+    )]
+    MissingDt {
+        /// The file or record name.
+        file: String,
+    },
+    /// A given time step disagrees with the file's (AT2 header or time column).
+    #[error("{file}: given dt = {given_s} s disagrees with the file's time step {found_s} s")]
+    DtMismatch {
+        /// The file or record name.
+        file: String,
+        /// The time step given by the caller, seconds.
+        given_s: f64,
+        /// The file's time step, seconds.
+        found_s: f64,
+    },
+    /// A text record's line has the wrong number of columns.
+    #[error("{file}:{line}: {found} columns, expected {expected}")]
+    ColumnCount {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// Columns of the first data line (1 or 2).
+        expected: usize,
+        /// Columns on this line.
+        found: usize,
+    },
+    /// An acceleration unit that is not known.
+    #[error("unknown acceleration unit `{given}` (expected g, m/s2, m/s^2, cm/s2 or gal)")]
+    UnknownUnits {
+        /// The text given.
+        given: String,
+    },
+    /// An argument is outside its valid range.
+    #[error("{what} = {value} is invalid: {expected}")]
+    InvalidArgument {
+        /// Which argument.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The valid range.
+        expected: &'static str,
+    },
+    /// A record cannot be scaled to a target because its measure is zero.
+    #[error("{file}: cannot scale to a target {measure}: the record's {measure} is zero")]
+    ZeroMeasure {
+        /// The record name.
+        file: String,
+        /// The measure (e.g. "PGA").
+        measure: &'static str,
+    },
+}
+
+/// Shortens user text quoted in an error to at most 40 characters.
+pub(crate) fn snippet(text: &str) -> String {
+    text.chars().take(40).collect()
+}

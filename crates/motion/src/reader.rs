@@ -1,0 +1,62 @@
+//! Reading a record file, choosing the reader by extension.
+//!
+//! Contract ([`read_record`]): a file whose extension is `at2` in any case is read by
+//! [`crate::parse_at2_in`] (units default g), anything else by [`crate::parse_text`]
+//! (units default m/s²). The record is named by the path as given. Bytes that are not
+//! UTF-8 (e.g. Latin-1 station names in a header) are replaced, not rejected.
+
+use crate::{MotionError, Record, Units};
+use std::path::Path;
+
+/// The formats [`read_record`] knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RecordFormat {
+    /// PEER NGA `.AT2` (values in g).
+    At2,
+    /// Text/CSV, one or two columns.
+    Text,
+}
+
+impl RecordFormat {
+    /// The format of `path`, by its extension (`.at2`, any case → AT2; else text).
+    pub fn of_path(path: &Path) -> RecordFormat {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("at2") => RecordFormat::At2,
+            _ => RecordFormat::Text,
+        }
+    }
+}
+
+/// Reads the record in `path`. `units` overrides the format's default (AT2: g; text:
+/// m/s²). `dt_s` (s) is the time step of a one-column text file; for an AT2 file or a
+/// time column it must agree with the file's step (to 0.1 %) or
+/// [`MotionError::DtMismatch`] results.
+pub fn read_record(
+    path: &Path,
+    units: Option<Units>,
+    dt_s: Option<f64>,
+) -> Result<Record, MotionError> {
+    let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let name = path.display().to_string();
+    match RecordFormat::of_path(path) {
+        RecordFormat::At2 => {
+            let record = crate::parse_at2_in(&text, &name, units.unwrap_or(Units::G))?;
+            if let Some(given) = dt_s {
+                let found = record.dt();
+                if !crate::number::within(given, found, 1e-3) {
+                    return Err(MotionError::DtMismatch {
+                        file: name,
+                        given_s: given,
+                        found_s: found,
+                    });
+                }
+            }
+            Ok(record)
+        }
+        RecordFormat::Text => crate::parse_text(&text, &name, units.unwrap_or(Units::MPerS2), dt_s),
+    }
+}

@@ -1,0 +1,320 @@
+//! A ground-acceleration record on a uniform time grid.
+//!
+//! Contract: a [`Record`] holds at least one sample, every sample finite (m/s²), and a
+//! finite time step dt > 0 (s). Sample k is the ground acceleration at t = k·dt; between
+//! samples the acceleration is linear (the convention of every integrator in slipload),
+//! and outside [0, duration] it is zero. Constructors validate; no method produces a
+//! record that breaks the contract.
+
+use crate::MotionError;
+
+/// Standard gravity, m/s² per g (the value used by PEER and by ASCE 7).
+pub const G: f64 = 9.80665;
+
+/// A uniformly sampled ground-acceleration history.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Record {
+    name: String,
+    provenance: String,
+    dt_s: f64,
+    accel_m_s2: Vec<f64>,
+}
+
+impl Record {
+    /// Builds a record from its time step `dt_s` (s) and samples `accel_m_s2` (m/s²).
+    ///
+    /// Errors: [`MotionError::Empty`] when there are no samples,
+    /// [`MotionError::BadTimeStep`] unless dt is finite and > 0,
+    /// [`MotionError::NonFiniteSample`] for a NaN or infinite sample.
+    pub fn new(
+        name: impl Into<String>,
+        dt_s: f64,
+        accel_m_s2: Vec<f64>,
+    ) -> Result<Record, MotionError> {
+        let name = name.into();
+        if accel_m_s2.is_empty() {
+            return Err(MotionError::Empty { file: name });
+        }
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(MotionError::BadTimeStep { file: name, dt_s });
+        }
+        if let Some((index, &value)) = accel_m_s2.iter().enumerate().find(|(_, a)| !a.is_finite()) {
+            return Err(MotionError::NonFiniteSample {
+                file: name,
+                index,
+                value,
+            });
+        }
+        Ok(Record {
+            name,
+            provenance: String::new(),
+            dt_s,
+            accel_m_s2,
+        })
+    }
+
+    /// Returns the record with its provenance (where it came from, how it was processed)
+    /// replaced by `provenance`.
+    pub fn with_provenance(mut self, provenance: impl Into<String>) -> Record {
+        self.provenance = provenance.into();
+        self
+    }
+
+    /// Returns the record renamed.
+    pub fn with_name(mut self, name: impl Into<String>) -> Record {
+        self.name = name.into();
+        self
+    }
+
+    /// The record's name (a file path, or a generated name).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Where the record came from and what was done to it (free text; empty if unknown).
+    pub fn provenance(&self) -> &str {
+        &self.provenance
+    }
+
+    /// Time step, seconds.
+    pub fn dt(&self) -> f64 {
+        self.dt_s
+    }
+
+    /// Samples, m/s²; sample k is the acceleration at t = k·dt.
+    pub fn samples(&self) -> &[f64] {
+        &self.accel_m_s2
+    }
+
+    /// Number of samples (at least 1).
+    pub fn len(&self) -> usize {
+        self.accel_m_s2.len()
+    }
+
+    /// Always `false`: a record holds at least one sample. Present for API symmetry with `len`.
+    pub fn is_empty(&self) -> bool {
+        self.accel_m_s2.is_empty()
+    }
+
+    /// Duration (len − 1)·dt, seconds: the time of the last sample.
+    pub fn duration(&self) -> f64 {
+        (self.len() - 1) as f64 * self.dt_s
+    }
+
+    /// Ground acceleration at time `t` (s), m/s²: linear between samples, 0 for t < 0,
+    /// t > duration and NaN t. O(1). When t/dt is within a few ulps of an integer k the
+    /// sample k is returned exactly (so `accel_at(k as f64 * dt)` is `samples()[k]`).
+    pub fn accel_at(&self, t: f64) -> f64 {
+        if t.is_nan() || t < 0.0 || t > self.duration() {
+            return 0.0;
+        }
+        let x = t / self.dt_s;
+        let last = self.len() - 1;
+        let k = x.round();
+        // t = k·dt computed in floating point gives x within 2 ulps of k.
+        if (x - k).abs() <= 4.0 * f64::EPSILON * k.max(1.0) {
+            return self.accel_m_s2[(k as usize).min(last)];
+        }
+        let i = x.floor() as usize;
+        if i >= last {
+            return self.accel_m_s2[last];
+        }
+        let frac = x - i as f64;
+        let a0 = self.accel_m_s2[i];
+        a0 + frac * (self.accel_m_s2[i + 1] - a0)
+    }
+
+    /// Peak ground acceleration max |a| over the samples, m/s² (for a piecewise-linear
+    /// record the peak over all t is at a sample).
+    pub fn pga(&self) -> f64 {
+        self.accel_m_s2.iter().fold(0.0, |m, a| m.max(a.abs()))
+    }
+
+    /// The record with every sample multiplied by `factor` (name and provenance kept,
+    /// provenance notes the factor).
+    ///
+    /// # Panics
+    /// If `factor` is not finite or the product overflows (a scaled record must stay
+    /// finite); use [`Record::try_scaled`] for a `Result`.
+    pub fn scaled(&self, factor: f64) -> Record {
+        match self.try_scaled(factor) {
+            Ok(r) => r,
+            Err(e) => panic!("Record::scaled: {e}"),
+        }
+    }
+
+    /// Like [`Record::scaled`], but returns [`MotionError::InvalidArgument`] for a
+    /// non-finite factor and [`MotionError::NonFiniteSample`] on overflow.
+    pub fn try_scaled(&self, factor: f64) -> Result<Record, MotionError> {
+        if !factor.is_finite() {
+            return Err(MotionError::InvalidArgument {
+                what: "scale factor",
+                value: factor,
+                expected: "a finite number",
+            });
+        }
+        let samples = self.accel_m_s2.iter().map(|a| a * factor).collect();
+        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        Ok(r.with_provenance(self.note(&format!("scaled by {factor}"))))
+    }
+
+    /// The record scaled so that its PGA is exactly `pga_m_s2` (m/s², finite, ≥ 0):
+    /// bit for bit, `scaled_to_pga(x)?.pga() == x`. Samples are multiplied by
+    /// x / PGA; rounding can leave the largest products one ulp off x, so samples at the
+    /// old peak are set to ±x and others clamped to [−x, x] (a change of at most one ulp).
+    ///
+    /// Errors: [`MotionError::InvalidArgument`] for a negative or non-finite target,
+    /// [`MotionError::ZeroMeasure`] for an all-zero record.
+    pub fn scaled_to_pga(&self, pga_m_s2: f64) -> Result<Record, MotionError> {
+        if !(pga_m_s2.is_finite() && pga_m_s2 >= 0.0) {
+            return Err(MotionError::InvalidArgument {
+                what: "target PGA (m/s2)",
+                value: pga_m_s2,
+                expected: "finite and >= 0",
+            });
+        }
+        let pga = self.pga();
+        if pga == 0.0 {
+            return Err(MotionError::ZeroMeasure {
+                file: self.name.clone(),
+                measure: "PGA",
+            });
+        }
+        let factor = pga_m_s2 / pga;
+        let samples = self
+            .accel_m_s2
+            .iter()
+            .map(|&a| {
+                if a.abs() == pga {
+                    pga_m_s2.copysign(a)
+                } else {
+                    (a * factor).clamp(-pga_m_s2, pga_m_s2)
+                }
+            })
+            .collect();
+        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        Ok(r.with_provenance(self.note(&format!("scaled by {factor} to PGA {pga_m_s2} m/s2"))))
+    }
+
+    /// The part of the record in [start_s, start_s + duration_s] (seconds), resampled at
+    /// the same dt from t = start_s: sample k is `accel_at(start_s + k·dt)`, k = 0..=m with
+    /// m = floor(duration/dt) (exact samples when start_s is a multiple of dt). The window
+    /// is cut at the record's end.
+    ///
+    /// Errors: [`MotionError::InvalidArgument`] when start_s is not in [0, duration] or
+    /// duration_s is negative or not finite.
+    pub fn window(&self, start_s: f64, duration_s: f64) -> Result<Record, MotionError> {
+        if !(start_s.is_finite() && start_s >= 0.0 && start_s <= self.duration()) {
+            return Err(MotionError::InvalidArgument {
+                what: "window start (s)",
+                value: start_s,
+                expected: "within [0, record duration]",
+            });
+        }
+        if !(duration_s.is_finite() && duration_s >= 0.0) {
+            return Err(MotionError::InvalidArgument {
+                what: "window duration (s)",
+                value: duration_s,
+                expected: "finite and >= 0",
+            });
+        }
+        let span = duration_s.min(self.duration() - start_s);
+        // A few ulps of slack so that a span that is a whole number of steps keeps its
+        // last sample.
+        let m = (span / self.dt_s * (1.0 + 4.0 * f64::EPSILON)).floor() as usize;
+        // clamp: start + m·dt may round past the end, where accel_at is 0
+        let end = self.duration();
+        let samples = (0..=m)
+            .map(|k| self.accel_at((start_s + k as f64 * self.dt_s).min(end)))
+            .collect();
+        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        Ok(r.with_provenance(self.note(&format!("window {start_s} s + {duration_s} s"))))
+    }
+
+    /// Provenance with one more processing note appended.
+    fn note(&self, what: &str) -> String {
+        if self.provenance.is_empty() {
+            what.to_string()
+        } else {
+            format!("{}; {what}", self.provenance)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ramp() -> Record {
+        Record::new("ramp", 0.01, vec![0.0, 1.0, -2.0, 4.0]).unwrap()
+    }
+
+    #[test]
+    fn validates() {
+        assert!(matches!(
+            Record::new("x", 0.01, vec![]),
+            Err(MotionError::Empty { .. })
+        ));
+        assert!(matches!(
+            Record::new("x", 0.0, vec![1.0]),
+            Err(MotionError::BadTimeStep { .. })
+        ));
+        assert!(matches!(
+            Record::new("x", f64::NAN, vec![1.0]),
+            Err(MotionError::BadTimeStep { .. })
+        ));
+        assert!(matches!(
+            Record::new("x", 0.01, vec![1.0, f64::INFINITY]),
+            Err(MotionError::NonFiniteSample { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn interpolates_and_is_zero_outside() {
+        let r = ramp();
+        assert_eq!(r.duration(), 3.0 * 0.01);
+        assert_eq!(r.accel_at(-1e-12), 0.0);
+        assert_eq!(r.accel_at(f64::NAN), 0.0);
+        assert_eq!(r.accel_at(r.duration() * (1.0 + 1e-12)), 0.0);
+        assert_eq!(r.accel_at(r.duration()), 4.0);
+        assert!((r.accel_at(0.005) - 0.5).abs() < 1e-14);
+        assert!((r.accel_at(0.015) + 0.5).abs() < 1e-14);
+        for k in 0..r.len() {
+            assert_eq!(r.accel_at(k as f64 * 0.01), r.samples()[k]);
+        }
+        // 0.1 + 0.2 style rounding: t a few ulps off a sample still returns it exactly
+        assert_eq!(r.accel_at(0.01 + 0.02), 4.0);
+    }
+
+    #[test]
+    fn window_on_grid_keeps_samples() {
+        let r = ramp();
+        let w = r.window(0.01, 0.02).unwrap();
+        assert_eq!(w.samples(), &[1.0, -2.0, 4.0]);
+        let w = r.window(0.01, 10.0).unwrap();
+        assert_eq!(w.len(), 3);
+        // off-grid start: interpolated, and the last sample is not lost to rounding
+        let long = Record::new("l", 0.1, (0..=30).map(f64::from).collect()).unwrap();
+        let w = long.window(0.7, 100.0).unwrap();
+        assert_eq!(w.len(), 24);
+        assert_eq!(w.samples()[23], 30.0);
+        assert!((w.samples()[0] - 7.0).abs() < 1e-12);
+        assert!(r.window(-0.1, 1.0).is_err());
+        assert!(r.window(0.0, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn pga_scaling() {
+        let r = ramp();
+        assert_eq!(r.pga(), 4.0);
+        let s = r.scaled_to_pga(0.3 * G).unwrap();
+        assert_eq!(s.pga(), 0.3 * G);
+        assert_eq!(r.scaled(-2.0).pga(), 8.0);
+        assert!(r.try_scaled(f64::INFINITY).is_err());
+        let zero = Record::new("z", 0.01, vec![0.0; 3]).unwrap();
+        assert!(matches!(
+            zero.scaled_to_pga(1.0),
+            Err(MotionError::ZeroMeasure { .. })
+        ));
+    }
+}
