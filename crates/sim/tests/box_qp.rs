@@ -793,3 +793,28 @@ fn kkt_residual_detects_violations() {
         f64::INFINITY
     );
 }
+
+#[test]
+fn solver_can_be_cloned_per_worker_thread() {
+    fn assert_worker_state<T: Send + Sync + Clone>() {}
+    assert_worker_state::<BoxQp>();
+    // A clone carries the warm start: the repeated solve is one iteration.
+    let m = 5;
+    let p = problem_from(
+        test_w(m),
+        vec![3.0, -2.5, 0.1, 0.2, -4.0],
+        vec![-0.5; m],
+        vec![0.5; m],
+    );
+    let (f, _, qp) = solve_cold(&p);
+    let mut copy = qp.clone();
+    let mut g = f.clone();
+    let stats = copy.solve(&p.b, &p.lo, &p.hi, &mut g).expect("valid");
+    assert_eq!(
+        stats,
+        BoxQpStats {
+            iterations: 1,
+            factorizations: 0
+        }
+    );
+}

@@ -385,9 +385,12 @@ impl BoxQp {
     ///
     /// # Errors
     /// On [`BoxQpError::DimensionMismatch`], [`BoxQpError::NonFinite`] (in `b`) and
-    /// [`BoxQpError::BadBounds`], `f` and the warm start are untouched. On
-    /// [`BoxQpError::IterationLimit`] and a non-finite solution (overflow), `f` holds a
-    /// feasible point and the warm start is reset.
+    /// [`BoxQpError::BadBounds`], `f` and the warm start are untouched. The errors below
+    /// reset the warm start: [`BoxQpError::IterationLimit`] (`f` holds the last iterate,
+    /// which is feasible); [`BoxQpError::NonFinite`] with `what = "solution"` (overflow, e.g.
+    /// `W` near the smallest normal numbers; `f` is meaningless);
+    /// [`BoxQpError::NotPositiveDefinite`] if round-off makes a principal submatrix of a
+    /// nearly singular `W` lose definiteness (not reachable for the conditioning tested, 1e8).
     pub fn solve(
         &mut self,
         b: &[f64],
