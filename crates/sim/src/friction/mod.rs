@@ -2,4 +2,4 @@
 
 pub mod box_qp;
 
-pub use box_qp::{BoxQp, BoxQpError, BoxQpStats};
+pub use box_qp::{Bound, BoxQp, BoxQpError, BoxQpStats, kkt_residual};
