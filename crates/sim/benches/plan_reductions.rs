@@ -24,8 +24,11 @@ fn scene(building_file: &str, edit: impl Fn(String) -> String, reduce: bool) -> 
     .expect("bench scene")
 }
 
+/// (group name, building file, edit of the building JSON)
+type Case = (&'static str, &'static str, fn(String) -> String);
+
 fn bench(c: &mut Criterion) {
-    let cases: [(&str, &str, fn(String) -> String); 2] = [
+    let cases: [Case; 2] = [
         (
             "ten-story m'=0 (EPP elements vs zero-mass DOFs)",
             "ten-story.json",
