@@ -221,6 +221,43 @@ fn square(
     Ok((&m + m.transpose()) * 0.5)
 }
 
+/// Validates a per-floor list: `n` entries (any non-zero count when `n` is `None`), each
+/// accepted by `ok`; `what` says what an entry must be ("a positive finite mass").
+fn per_floor(
+    path: &Path,
+    field: &str,
+    values: &[f64],
+    n: Option<usize>,
+    ok: fn(f64) -> bool,
+    what: &str,
+) -> Result<Vec<f64>, SimError> {
+    match n {
+        None if values.is_empty() => {
+            return Err(SimError::invalid(
+                path,
+                field,
+                "must list at least one floor",
+            ));
+        }
+        Some(n) if values.len() != n => {
+            return Err(SimError::invalid(
+                path,
+                field,
+                format!("has {} values, expected {n} (one per floor)", values.len()),
+            ));
+        }
+        _ => {}
+    }
+    match values.iter().position(|v| !ok(*v)) {
+        Some(i) => Err(SimError::invalid(
+            path,
+            format!("{field}[{i}]"),
+            format!("must be {what}, got {}", values[i]),
+        )),
+        None => Ok(values.to_vec()),
+    }
+}
+
 fn chain(values: &[f64]) -> DMatrix<f64> {
     let n = values.len();
     let mut k = DMatrix::zeros(n, n);
@@ -267,23 +304,16 @@ impl Building {
                 ));
             }
             (Some(ms), None) => {
-                if ms.is_empty() {
-                    return Err(SimError::invalid(
-                        path,
-                        "floor_masses",
-                        "must list at least one floor",
-                    ));
-                }
-                for (i, m) in ms.iter().enumerate() {
-                    if !is_positive(m.0) {
-                        return Err(SimError::invalid(
-                            path,
-                            format!("floor_masses[{i}]"),
-                            format!("must be a positive finite mass, got {}", m.0),
-                        ));
-                    }
-                }
-                DMatrix::from_diagonal(&DVector::from_iterator(ms.len(), ms.iter().map(|m| m.0)))
+                let ms: Vec<f64> = ms.iter().map(|m| m.0).collect();
+                let ms = per_floor(
+                    path,
+                    "floor_masses",
+                    &ms,
+                    None,
+                    is_positive,
+                    "a positive finite mass",
+                )?;
+                DMatrix::from_diagonal(&DVector::from_vec(ms))
             }
             (None, Some(rows)) => square(path, "mass_matrix", rows, None)?,
         };
@@ -311,23 +341,15 @@ impl Building {
                 ));
             }
             (Some(ks), None) => {
-                if ks.len() != n {
-                    return Err(SimError::invalid(
-                        path,
-                        "storey_stiffness",
-                        format!("has {} values, expected {n} (one per floor)", ks.len()),
-                    ));
-                }
-                for (i, k) in ks.iter().enumerate() {
-                    if !is_positive(k.0) {
-                        return Err(SimError::invalid(
-                            path,
-                            format!("storey_stiffness[{i}]"),
-                            format!("must be a positive finite stiffness, got {}", k.0),
-                        ));
-                    }
-                }
-                chain(&ks.iter().map(|k| k.0).collect::<Vec<_>>())
+                let ks: Vec<f64> = ks.iter().map(|k| k.0).collect();
+                chain(&per_floor(
+                    path,
+                    "storey_stiffness",
+                    &ks,
+                    Some(n),
+                    is_positive,
+                    "a positive finite stiffness",
+                )?)
             }
             (None, Some(rows)) => square(path, "stiffness_matrix", rows, Some(n))?,
         };
@@ -380,21 +402,15 @@ impl Building {
                 modes.damping_matrix(&mass, &zeta)
             }
             Some(DampingConfig::Storey(cs)) => {
-                if cs.len() != n {
-                    return Err(SimError::invalid(
-                        path,
-                        "damping.storey",
-                        format!("has {} values, expected {n}", cs.len()),
-                    ));
-                }
-                if let Some(i) = cs.iter().position(|c| !is_non_negative(c.0)) {
-                    return Err(SimError::invalid(
-                        path,
-                        format!("damping.storey[{i}]"),
-                        format!("must be finite and ≥ 0, got {}", cs[i].0),
-                    ));
-                }
-                chain(&cs.iter().map(|c| c.0).collect::<Vec<_>>())
+                let cs: Vec<f64> = cs.iter().map(|c| c.0).collect();
+                chain(&per_floor(
+                    path,
+                    "damping.storey",
+                    &cs,
+                    Some(n),
+                    is_non_negative,
+                    "finite and ≥ 0",
+                )?)
             }
             Some(DampingConfig::Matrix(rows)) => {
                 let c = square(path, "damping.matrix", rows, Some(n))?;
@@ -414,21 +430,15 @@ impl Building {
         let storey_heights = match &cfg.storey_heights {
             None => None,
             Some(hs) => {
-                if hs.len() != n {
-                    return Err(SimError::invalid(
-                        path,
-                        "storey_heights",
-                        format!("has {} values, expected {n}", hs.len()),
-                    ));
-                }
-                if let Some(i) = hs.iter().position(|h| !is_positive(h.0)) {
-                    return Err(SimError::invalid(
-                        path,
-                        format!("storey_heights[{i}]"),
-                        format!("must be a positive length, got {}", hs[i].0),
-                    ));
-                }
-                Some(hs.iter().map(|h| h.0).collect())
+                let hs: Vec<f64> = hs.iter().map(|h| h.0).collect();
+                Some(per_floor(
+                    path,
+                    "storey_heights",
+                    &hs,
+                    Some(n),
+                    is_positive,
+                    "a positive length",
+                )?)
             }
         };
         let mut dissipators = vec![None; n];
