@@ -98,13 +98,26 @@ pub struct RecordConfig {
     pub window: Option<[f64; 2]>,
 }
 
-/// A member of the embedded synthetic suite.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// A synthetic ground motion: a member of the embedded suite (`index`), or a fresh
+/// Clough–Penzien record drawn from `seed` with the suite's filter and envelope.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SyntheticConfig {
-    /// Index in the suite, from 0.
+    /// Index in the embedded suite, from 0 (default 0; not with `seed`).
     #[serde(default)]
-    pub index: usize,
+    pub index: Option<usize>,
+    /// Draw a new record from this seed instead.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Peak ground acceleration, g (default: the suite's 0.4 g).
+    #[serde(default)]
+    pub pga_g: Option<f64>,
+    /// Duration of a seeded record, s (default 20).
+    #[serde(default)]
+    pub duration: Option<Time>,
+    /// Sample interval of a seeded record, s (default 0.01).
+    #[serde(default)]
+    pub dt: Option<Time>,
 }
 
 /// P(t) = amplitude · sin(ω t + phase) on one floor.
@@ -342,6 +355,72 @@ pub fn default_dt(t1: f64, record_dt: Option<f64>, duration: f64) -> f64 {
     }
 }
 
+/// The record a [`SyntheticConfig`] names, scaled to its PGA (the override's first).
+fn synthetic_record(
+    syn: &SyntheticConfig,
+    path: &Path,
+    over: &SceneOverrides,
+) -> Result<Record, SimError> {
+    let field = "excitation.synthetic";
+    let pga_g = over
+        .scale_pga_g
+        .or(syn.pga_g)
+        .unwrap_or(slipload_motion::DEFAULT_SUITE_PGA_G);
+    if !is_positive(pga_g) {
+        return Err(SimError::invalid(
+            path,
+            format!("{field}.pga_g"),
+            format!("must be positive, got {pga_g}"),
+        ));
+    }
+    let record = match (syn.index, syn.seed) {
+        (Some(_), Some(_)) => {
+            return Err(SimError::invalid(
+                path,
+                field,
+                "give either index (a member of the embedded suite) or seed, not both",
+            ));
+        }
+        (_, Some(seed)) => {
+            let mut params = slipload_motion::Synthetic::default();
+            if let Some(d) = syn.duration {
+                params.duration_s = d.0;
+            }
+            if let Some(dt) = syn.dt {
+                params.dt_s = dt.0;
+            }
+            params
+                .validate()
+                .map_err(|e| SimError::invalid(path, field, e.to_string()))?;
+            params.generate(seed, &format!("synthetic seed {seed}"))?
+        }
+        (index, None) => {
+            if syn.duration.is_some() || syn.dt.is_some() {
+                return Err(SimError::invalid(
+                    path,
+                    field,
+                    "duration and dt apply to a seeded record: give seed too",
+                ));
+            }
+            let index = index.unwrap_or(0);
+            let mut suite = slipload_motion::default_suite();
+            if index >= suite.len() {
+                return Err(SimError::invalid(
+                    path,
+                    format!("{field}.index"),
+                    format!(
+                        "the embedded suite has {} records (0..{}), got {index}",
+                        suite.len(),
+                        suite.len() - 1
+                    ),
+                ));
+            }
+            suite.swap_remove(index)
+        }
+    };
+    Ok(record.scaled_to_pga(pga_g * G)?)
+}
+
 fn vec_or_zero(
     path: &Path,
     field: &str,
@@ -477,25 +556,8 @@ impl Scene {
                 None => {}
             }
             Some(Arc::new(r))
-        } else if let Some(s) = &cfg.excitation.synthetic {
-            let mut suite = slipload_motion::default_suite();
-            if s.index >= suite.len() {
-                return Err(SimError::invalid(
-                    path,
-                    "excitation.synthetic.index",
-                    format!(
-                        "the embedded suite has {} records (0..{}), got {}",
-                        suite.len(),
-                        suite.len() - 1,
-                        s.index
-                    ),
-                ));
-            }
-            let mut r = suite.swap_remove(s.index);
-            if let Some(pga) = over.scale_pga_g {
-                r = r.scaled_to_pga(pga * G)?;
-            }
-            Some(Arc::new(r))
+        } else if let Some(syn) = &cfg.excitation.synthetic {
+            Some(Arc::new(synthetic_record(syn, path, over)?))
         } else {
             None
         };

@@ -86,7 +86,7 @@ impl SceneArgs {
                     description: None,
                     building: BuildingRef::Inline(Box::new(building)),
                     excitation: ExcitationConfig {
-                        synthetic: Some(SyntheticConfig { index: 0 }),
+                        synthetic: Some(SyntheticConfig::default()),
                         ..Default::default()
                     },
                     duration: None,
