@@ -187,26 +187,42 @@ fn inconsistent_initial_state_of_a_massless_dissipator_is_refused() {
 fn synthetic_excitations_by_index_or_seed() {
     let load = |syn: &str| {
         Scene::from_json(
-            &format!(r#"{{ "building": {{ {OK_FLOOR} }}, "excitation": {{ "synthetic": {syn} }} }}"#),
+            &format!(
+                r#"{{ "building": {{ {OK_FLOOR} }}, "excitation": {{ "synthetic": {syn} }} }}"#
+            ),
             &configs().join("s.json"),
             &SceneOverrides::default(),
         )
     };
     let suite = slipload_motion::default_suite();
     let by_index = load(r#"{ "index": 3 }"#).unwrap();
-    assert_eq!(by_index.record.as_ref().unwrap().samples(), suite[3].samples());
+    assert_eq!(
+        by_index.record.as_ref().unwrap().samples(),
+        suite[3].samples()
+    );
     let seeded = load(r#"{ "seed": 11, "pga_g": 0.3, "duration": 5, "dt": 0.005 }"#).unwrap();
     let r = seeded.record.as_ref().unwrap();
     assert_eq!(r.dt(), 0.005);
     assert!((r.duration() - 5.0).abs() < 1e-12);
-    assert_eq!(r.pga(), 0.3 * slipload_motion::G, "scaled exactly to the PGA");
+    assert_eq!(
+        r.pga(),
+        0.3 * slipload_motion::G,
+        "scaled exactly to the PGA"
+    );
     let again = load(r#"{ "seed": 11, "pga_g": 0.3, "duration": 5, "dt": 0.005 }"#).unwrap();
-    assert_eq!(again.record.as_ref().unwrap().samples(), r.samples(), "same seed, same record");
+    assert_eq!(
+        again.record.as_ref().unwrap().samples(),
+        r.samples(),
+        "same seed, same record"
+    );
     for (bad, needle) in [
         (r#"{ "index": 99 }"#, "excitation.synthetic.index"),
         (r#"{ "index": 1, "seed": 2 }"#, "not both"),
         (r#"{ "dt": 0.01 }"#, "give seed too"),
-        (r#"{ "seed": 1, "pga_g": -1 }"#, "excitation.synthetic.pga_g"),
+        (
+            r#"{ "seed": 1, "pga_g": -1 }"#,
+            "excitation.synthetic.pga_g",
+        ),
     ] {
         let e = load(bad).unwrap_err().to_string();
         assert!(e.contains(needle), "{bad}: {e}");

@@ -141,13 +141,25 @@ fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
     }
 }
 
+/// xᵀ A y for a column-major square matrix, without allocating.
+#[inline]
+fn quad(a: &DMatrix<f64>, x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len();
+    let mut total = 0.0;
+    for (j, col) in a.as_slice().chunks_exact(n).enumerate() {
+        let mut s = 0.0;
+        for (aij, xi) in col.iter().zip(x) {
+            s += aij * xi;
+        }
+        total += s * y[j];
+    }
+    total
+}
+
 /// Kinetic + strain energy (frame, braces with DOF, and EPP braces), J.
 fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f64) {
-    let n = u.len();
-    let uu = DVector::from_column_slice(u);
-    let vv = DVector::from_column_slice(v);
-    let kinetic = 0.5 * vv.dot(&(&plan.mass * &vv));
-    let mut strain = 0.5 * uu.dot(&(&plan.stiffness * &uu));
+    let kinetic = 0.5 * quad(&plan.mass, v, v);
+    let mut strain = 0.5 * quad(&plan.stiffness, u, u);
     for (c, ct) in plan.contacts.iter().enumerate() {
         if ct.kind == ContactKind::Epp {
             let uj = ct.below.map_or(0.0, |j| u[j]);
@@ -155,7 +167,6 @@ fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f
             strain += 0.5 * ct.brace_stiffness * e * e;
         }
     }
-    debug_assert_eq!(n, plan.dofs());
     (kinetic, strain)
 }
 
@@ -365,6 +376,7 @@ impl Integrator for Newmark {
             .collect();
         let mut w_new = vec![0.0; nc];
         let mut v_old = vec![0.0; n];
+        let mut v_avg = vec![0.0; n];
         let mut epp_pred = vec![(0.0, 0.0); nc];
 
         let energies = plan.outputs.energies;
@@ -559,16 +571,11 @@ impl Integrator for Newmark {
             if energies {
                 let ag_avg = 0.5 * (ag0 + ag1);
                 let mut mrv = 0.0;
-                let mut cvv = 0.0;
                 for i in 0..n {
-                    let va = 0.5 * (v_old[i] + v_now[i]);
-                    mrv += ops.mr[i] * va;
-                    let mut cv = 0.0;
-                    for j in 0..n {
-                        cv += plan.damping[(i, j)] * 0.5 * (v_old[j] + v_now[j]);
-                    }
-                    cvv += va * cv;
+                    v_avg[i] = 0.5 * (v_old[i] + v_now[i]);
+                    mrv += ops.mr[i] * v_avg[i];
                 }
+                let cvv = quad(&plan.damping, &v_avg, &v_avg);
                 let mut d_input = -ag_avg * mrv;
                 if let Some(f) = hf {
                     d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
