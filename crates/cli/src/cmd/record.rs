@@ -45,8 +45,8 @@ struct ReadOptions {
 
 impl ReadOptions {
     fn read(&self, path: &Path) -> anyhow::Result<Record> {
-        read_record(path, self.units, self.dt)
-            .with_context(|| format!("reading record {}", path.display()))
+        // MotionError already names the file and line.
+        read_record(path, self.units, self.dt).context("reading a ground-motion record")
     }
 }
 
