@@ -87,6 +87,10 @@ pub struct LoopIterations {
     pub outer_max: u32,
     /// Solves repeated because a stuck damper's force left its bounds (rule 1).
     pub resolves: u64,
+    /// Kinetic energy removed by the rule-2 projections (a sliding dissipator whose slip
+    /// rate reversed is given its floor's velocity), J: ½m′(v′² − v_floor²) summed. It is
+    /// part of the balance error.
+    pub projection_energy: f64,
 }
 
 /// Time histories, one column per quantity, one row per step.

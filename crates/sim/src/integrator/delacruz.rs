@@ -59,8 +59,11 @@
 //! (trapezoidal rule on step-averaged forces and velocities). Linear acceleration does
 //! not make that bookkeeping an identity: per step the strain term is off by
 //! (β − ¼)Δt²(a_{k+1} − aₖ)ᵀK ū = −Δt²/12 Δaᵀ K ū, an oscillating (non-accumulating)
-//! error of relative size ~(ω Δt)²/12 of the stored energy; each rule-2 projection also
-//! removes at most ½m′w² with |w| ≤ the step's change of slip rate.
+//! error within (ω_max Δt)²/12 of the energy in play. Each rule-2 projection changes the
+//! dissipator's kinetic energy by ½m′(v′² − v_floor²), O(m′·w·v) with |w| no larger than
+//! the step's change of slip rate; their sum is reported as
+//! [`LoopIterations::projection_energy`]. So
+//! |balance error − projection energy| ≤ (ω_max Δt)²/12 · (|input| + initial energy).
 
 use crate::error::SimError;
 use crate::integrator::Integrator;
@@ -590,6 +593,7 @@ impl Integrator for DelaCruz {
             outer: LoopCount::default(),
         };
         let mut resolves: u64 = 0;
+        let mut projection_energy = 0.0;
 
         let energies = plan.outputs.energies;
         let (k0, s0) = stored_energy(plan, &u, &v, &epp);
@@ -713,6 +717,9 @@ impl Integrator for DelaCruz {
                 if mode[c] != 0 && now == mode[c] && f64::from(now) * w_new[c] <= 0.0 {
                     match ct.kind {
                         ContactKind::Dof { dof } => {
+                            projection_energy += 0.5
+                                * plan.mass[(dof, dof)]
+                                * (v[dof] * v[dof] - v[ct.floor] * v[ct.floor]);
                             v[dof] = v[ct.floor];
                             a[dof] = a[ct.floor];
                             let mut force = -st.q[dof];
@@ -806,6 +813,7 @@ impl Integrator for DelaCruz {
                     outer_mean: cnt.outer.mean(),
                     outer_max: cnt.outer.max,
                     resolves,
+                    projection_energy,
                 }),
             },
             history,
