@@ -34,8 +34,8 @@
 //!
 //! Defaults, as the paper states: Δt = T₁/200 (the scene default), ε_a = |a_g|max/10⁵,
 //! ε_f = μN/10⁵ (per damper; max(|F⁻|, F⁺) when asymmetric). Without a record ε_a takes
-//! the largest of (harmonic amplitude / smallest floor mass) and the initial floor
-//! accelerations as its scale. Iteration cap: 100 per loop invocation. All settable
+//! the largest of (harmonic amplitude / smallest floor mass), the initial floor
+//! accelerations, ω₁²|x₀| and ω₁|ẋ₀| (ω₁ = 2π/T₁) as its scale, over 10⁵. Iteration cap: 100 per loop invocation. All settable
 //! (`method.eps_a`, `method.eps_f`, `method.max_iterations`).
 //!
 //! **Conditional stability.** The loops are contractions only for small enough Δt: a
@@ -273,10 +273,18 @@ impl Setup {
         let scale = match &plan.record {
             Some(r) if r.pga() > 0.0 => r.pga(),
             _ => {
+                // No record: the accelerations the loads and the initial state call for
+                // (harmonic amplitude over the lightest floor; initial accelerations; and
+                // ω₁²|u₀|, ω₁|v₀| with ω₁ = 2π/T₁).
+                let w1 = 2.0 * std::f64::consts::PI / plan.t1;
                 let p = plan
                     .harmonic
                     .map_or(0.0, |h| h.amplitude.abs() / min_floor_mass);
-                a0[..nf].iter().fold(p, |m, a| m.max(a.abs()))
+                (0..nf).fold(p, |m, i| {
+                    m.max(a0[i].abs())
+                        .max(w1 * w1 * plan.u0[i].abs())
+                        .max(w1 * plan.v0[i].abs())
+                })
             }
         };
         let eps_a = plan.method.eps_a.unwrap_or(if scale > 0.0 {
