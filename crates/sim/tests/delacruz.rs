@@ -478,7 +478,10 @@ fn a_reverse_slide_passes_through_one_stuck_instant() {
         assert_eq!(direct, 0, "{name}: direct reversals");
     }
     // The free vibration's dissipator, ringing on its brace, reverses this way.
-    assert!(through_stick > 0, "the cases must reverse through one stuck row");
+    assert!(
+        through_stick > 0,
+        "the cases must reverse through one stuck row"
+    );
 }
 
 #[test]
