@@ -67,6 +67,24 @@ pub enum SimError {
         /// The solver's error.
         source: crate::friction::BoxQpError,
     },
+    /// `delacruz`: a fixed-point loop did not converge within its iteration cap (or
+    /// diverged), or the response blew up — the method is only conditionally stable.
+    #[error(
+        "delacruz: the {loop_name} loop did not converge at step {step} (t = {t:.6} s) after {iterations} iterations; the method is only conditionally stable: try dt <= {suggested_dt:.3e} s"
+    )]
+    DelaCruzNotConverged {
+        /// Step index (1 = the first step).
+        step: usize,
+        /// Time at the end of the step, s.
+        t: f64,
+        /// `inner` (structural accelerations), `middle` (stuck friction forces), `outer`
+        /// (sliding dissipator accelerations) or `response` (the state blew up).
+        loop_name: &'static str,
+        /// Iterations done when it gave up.
+        iterations: u32,
+        /// A time step for which the loops contract, s.
+        suggested_dt: f64,
+    },
     /// A ground-motion error (reading or scaling a record).
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),

@@ -18,8 +18,8 @@ pub mod units;
 
 pub use building::{Building, BuildingConfig, Dissipator};
 pub use error::SimError;
-pub use integrator::{Integrator, Newmark};
+pub use integrator::{DelaCruz, Integrator, Newmark};
 pub use plan::Plan;
-pub use response::{Energy, History, Outcome, Response};
+pub use response::{Energy, History, LoopIterations, Outcome, Response};
 pub use scene::{MethodName, Scene, SceneOverrides};
 pub use simulate::{run_plan, simulate};

@@ -65,6 +65,32 @@ pub struct Diagnostics {
     pub balance_error_max_relative: f64,
     /// Initial kinetic + strain energy, J.
     pub initial_energy: f64,
+    /// `delacruz`: iterations of its three fixed-point loops (`None` for other methods).
+    #[serde(default)]
+    pub loop_iterations: Option<LoopIterations>,
+}
+
+/// Iterations of `delacruz`'s three nested fixed-point loops, per invocation of each loop.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct LoopIterations {
+    /// Inner loop (structural accelerations): mean iterations per invocation.
+    pub inner_mean: f64,
+    /// Inner loop: most iterations in one invocation.
+    pub inner_max: u32,
+    /// Middle loop (friction forces of stuck dampers): mean per invocation.
+    pub middle_mean: f64,
+    /// Middle loop: most in one invocation.
+    pub middle_max: u32,
+    /// Outer loop (accelerations of sliding dissipators): mean per invocation.
+    pub outer_mean: f64,
+    /// Outer loop: most in one invocation.
+    pub outer_max: u32,
+    /// Solves repeated because a stuck damper's force left its bounds (rule 1).
+    pub resolves: u64,
+    /// Kinetic energy removed by the rule-2 projections (a sliding dissipator whose slip
+    /// rate reversed is given its floor's velocity), J: ½m′(v′² − v_floor²) summed. It is
+    /// part of the balance error.
+    pub projection_energy: f64,
 }
 
 /// Time histories, one column per quantity, one row per step.

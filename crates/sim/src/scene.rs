@@ -165,6 +165,10 @@ pub enum MethodName {
     /// What frame programs (DRAIN-2D, SAP2000, OpenSees) do: each brace + damper as one
     /// elastic–perfectly plastic spring, dissipator mass ignored, stepped by `newmark`.
     Bilinear,
+    /// The paper's method (De la Cruz, López-Almansa & Oller 2007, §4): linear
+    /// acceleration, stick/slip decided per floor at every step, three nested fixed-point
+    /// loops. Conditionally stable.
+    Delacruz,
 }
 
 impl MethodName {
@@ -174,6 +178,7 @@ impl MethodName {
             MethodName::Newmark => "newmark",
             MethodName::Hht => "hht",
             MethodName::Bilinear => "bilinear",
+            MethodName::Delacruz => "delacruz",
         }
     }
 }
@@ -185,8 +190,9 @@ impl std::str::FromStr for MethodName {
             "newmark" => Ok(MethodName::Newmark),
             "hht" => Ok(MethodName::Hht),
             "bilinear" => Ok(MethodName::Bilinear),
+            "delacruz" => Ok(MethodName::Delacruz),
             other => Err(format!(
-                "unknown method {other:?}: expected newmark, hht or bilinear"
+                "unknown method {other:?}: expected newmark, hht, bilinear or delacruz"
             )),
         }
     }
@@ -205,6 +211,15 @@ pub struct MethodConfig {
     /// HHT α in [−1/3, 0] (default −0.05 for hht, 0 for newmark).
     #[serde(default)]
     pub alpha: Option<f64>,
+    /// `delacruz`: tolerance on accelerations, m/s² (default |a_g|max/10⁵).
+    #[serde(default)]
+    pub eps_a: Option<f64>,
+    /// `delacruz`: tolerance on friction forces, N (default μN/10⁵ per damper).
+    #[serde(default)]
+    pub eps_f: Option<f64>,
+    /// `delacruz`: iteration cap of each fixed-point loop (default 100).
+    #[serde(default)]
+    pub max_iterations: Option<u32>,
 }
 
 /// What to compute beyond peaks.
@@ -317,6 +332,12 @@ pub struct MethodSettings {
     pub dt: f64,
     /// HHT α (0 for Newmark).
     pub alpha: f64,
+    /// `delacruz` acceleration tolerance, m/s² (`None`: |a_g|max/10⁵).
+    pub eps_a: Option<f64>,
+    /// `delacruz` friction-force tolerance, N (`None`: μN/10⁵ per damper).
+    pub eps_f: Option<f64>,
+    /// `delacruz` iteration cap per loop (`None`: 100).
+    pub max_iterations: Option<u32>,
 }
 
 /// A resolved scene, ready to compile into a plan.
@@ -638,7 +659,7 @@ impl Scene {
         };
         let name = over.method.unwrap_or(cfg.method.name);
         let alpha = match name {
-            MethodName::Newmark | MethodName::Bilinear => 0.0,
+            MethodName::Newmark | MethodName::Bilinear | MethodName::Delacruz => 0.0,
             MethodName::Hht => cfg.method.alpha.unwrap_or(-0.05),
         };
         if !(-1.0 / 3.0..=0.0).contains(&alpha) {
@@ -654,6 +675,27 @@ impl Scene {
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
+        for (field, v) in [
+            ("method.eps_a", cfg.method.eps_a),
+            ("method.eps_f", cfg.method.eps_f),
+        ] {
+            if let Some(v) = v
+                && !is_positive(v)
+            {
+                return Err(SimError::invalid(
+                    path,
+                    field,
+                    format!("tolerance must be positive and finite, got {v}"),
+                ));
+            }
+        }
+        if cfg.method.max_iterations == Some(0) {
+            return Err(SimError::invalid(
+                path,
+                "method.max_iterations",
+                "must be at least 1, got 0",
+            ));
+        }
         let mut outputs = cfg.outputs;
         if let Some(h) = over.histories {
             outputs.histories = h;
@@ -668,7 +710,14 @@ impl Scene {
             harmonic,
             initial,
             duration,
-            method: MethodSettings { name, dt, alpha },
+            method: MethodSettings {
+                name,
+                dt,
+                alpha,
+                eps_a: cfg.method.eps_a,
+                eps_f: cfg.method.eps_f,
+                max_iterations: cfg.method.max_iterations,
+            },
             outputs,
             reduce: cfg.reduce,
         })

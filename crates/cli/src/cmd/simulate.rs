@@ -100,10 +100,28 @@ pub fn table(name: &str, out: &Outcome) -> String {
             e.balance_error.abs() / scale
         );
     }
-    let _ = writeln!(
-        s,
-        "friction QP iterations per step: mean {:.3}, max {}",
-        out.diagnostics.qp_iterations_mean, out.diagnostics.qp_iterations_max
-    );
+    match &out.diagnostics.loop_iterations {
+        Some(l) => {
+            let _ = writeln!(
+                s,
+                "fixed-point iterations per loop invocation (mean / max): inner {:.3} / {}, middle {:.3} / {}, outer {:.3} / {}; {} re-solves (rule 1); {:.3e} kJ removed by rule-2 projections",
+                l.inner_mean,
+                l.inner_max,
+                l.middle_mean,
+                l.middle_max,
+                l.outer_mean,
+                l.outer_max,
+                l.resolves,
+                l.projection_energy / 1e3
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "friction QP iterations per step: mean {:.3}, max {}",
+                out.diagnostics.qp_iterations_mean, out.diagnostics.qp_iterations_max
+            );
+        }
+    }
     s
 }

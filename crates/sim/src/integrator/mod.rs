@@ -1,7 +1,10 @@
 //! Integrators: one trait, several methods (DESIGN.md § Integrators).
 
+pub mod delacruz;
 pub mod newmark;
+pub(crate) mod state;
 
+pub use delacruz::DelaCruz;
 pub use newmark::Newmark;
 
 use crate::error::SimError;

@@ -20,8 +20,12 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
+use crate::integrator::state::{
+    EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row, slip,
+    slip_rate, stored_energy,
+};
 use crate::plan::{ContactKind, Plan};
-use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
+use crate::response::{Diagnostics, Energy, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
 
@@ -112,220 +116,6 @@ impl Operators {
     }
 }
 
-/// Per-contact state of elastic–perfectly plastic elements: dissipator displacement,
-/// velocity, acceleration (Newmark state of the condensed massless DOF).
-#[derive(Debug, Clone, Copy, Default)]
-struct EppState {
-    u: f64,
-    v: f64,
-    a: f64,
-}
-
-/// Slip rate w = Bᵀv for contact `c` given plan velocities and EPP state.
-#[inline]
-fn slip_rate(plan: &Plan, c: usize, v: &[f64], epp: &[EppState]) -> f64 {
-    let ct = &plan.contacts[c];
-    match ct.kind {
-        ContactKind::Dof { dof } => v[ct.floor] - v[dof],
-        ContactKind::Epp => v[ct.floor] - epp[c].v,
-    }
-}
-
-/// Slip (floor minus dissipator displacement) of contact `c`.
-#[inline]
-fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
-    let ct = &plan.contacts[c];
-    match ct.kind {
-        ContactKind::Dof { dof } => u[ct.floor] - u[dof],
-        ContactKind::Epp => u[ct.floor] - epp[c].u,
-    }
-}
-
-/// xᵀ A y for a column-major square matrix, without allocating.
-#[inline]
-fn quad(a: &DMatrix<f64>, x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len();
-    let mut total = 0.0;
-    for (j, col) in a.as_slice().chunks_exact(n).enumerate() {
-        let mut s = 0.0;
-        for (aij, xi) in col.iter().zip(x) {
-            s += aij * xi;
-        }
-        total += s * y[j];
-    }
-    total
-}
-
-/// Kinetic + strain energy (frame, braces with DOF, and EPP braces), J.
-fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f64) {
-    let kinetic = 0.5 * quad(&plan.mass, v, v);
-    let mut strain = 0.5 * quad(&plan.stiffness, u, u);
-    for (c, ct) in plan.contacts.iter().enumerate() {
-        if ct.kind == ContactKind::Epp {
-            let uj = ct.below.map_or(0.0, |j| u[j]);
-            let e = epp[c].u - uj;
-            strain += 0.5 * ct.brace_stiffness * e * e;
-        }
-    }
-    (kinetic, strain)
-}
-
-struct Start {
-    u: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    f: Vec<f64>,
-    epp: Vec<EppState>,
-    stuck: Vec<bool>,
-}
-
-/// Consistent initial accelerations and friction forces.
-///
-/// Contacts whose dissipator has mass and whose initial slip rate is non-zero start
-/// sliding at a bound; those with zero slip rate get their forces from the same box QP
-/// at the acceleration level (Delassus BᵀM⁻¹B). A massless dissipator's force is its
-/// brace force, which must lie within the bounds; its initial acceleration is taken
-/// equal to its floor's (it enters only the first predictor, identically in reduced
-/// and full plans).
-fn initial_state(plan: &Plan) -> Result<Start, SimError> {
-    let n = plan.dofs();
-    let nc = plan.contacts.len();
-    let u = plan.u0.clone();
-    let v = plan.v0.clone();
-    let ag0 = plan.ground_accel(0.0);
-    let uu = DVector::from_column_slice(&u);
-    let vv = DVector::from_column_slice(&v);
-    let mut g = -(plan.mass_influence() * ag0) - &plan.damping * &vv - &plan.stiffness * &uu;
-    if let Some(h) = &plan.harmonic {
-        g[h.floor] += h.force(0.0);
-    }
-    let mut f = vec![0.0; nc];
-    let mut known = vec![true; nc];
-    let mut stuck = vec![false; nc];
-    let mut epp = vec![EppState::default(); nc];
-    for (c, ct) in plan.contacts.iter().enumerate() {
-        let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (u[j], v[j]));
-        let massless = match ct.kind {
-            ContactKind::Epp => Some(plan.contact_x0[c]),
-            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => Some((u[dof], v[dof])),
-            ContactKind::Dof { .. } => None,
-        };
-        if let Some((xd, vd)) = massless {
-            let force = ct.brace_stiffness * (xd - uj) + ct.brace_damping * (vd - vj);
-            let tol = 1e-12 * (ct.upper.abs().min(1e300) + ct.lower.abs().min(1e300) + force.abs());
-            if force > ct.upper + tol || force < ct.lower - tol {
-                let consistent = uj + force.clamp(ct.lower, ct.upper) / ct.brace_stiffness;
-                return Err(SimError::Scene(format!(
-                    "initial state: the massless dissipator of floor {} carries a brace force of {force:.6e} N, outside its friction bounds [{:.6e}, {:.6e}] N; a consistent initial dissipator displacement is {consistent:.9e} m",
-                    ct.floor + 1,
-                    ct.lower,
-                    ct.upper
-                )));
-            }
-            f[c] = force.clamp(ct.lower, ct.upper);
-            stuck[c] = f[c] > ct.lower && f[c] < ct.upper;
-            if ct.kind == ContactKind::Epp {
-                epp[c] = EppState {
-                    u: xd,
-                    v: vd,
-                    a: 0.0,
-                };
-            }
-        } else if let ContactKind::Dof { dof } = ct.kind {
-            let w0 = v[ct.floor] - v[dof];
-            let tol = 1e-12 * (v[ct.floor].abs() + v[dof].abs());
-            if w0.abs() > tol {
-                let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
-                if !bound.is_finite() {
-                    return Err(SimError::Scene(format!(
-                        "initial state: the locked dissipator of floor {} cannot slip, but its initial slip rate is {w0:.6e} m/s",
-                        ct.floor + 1
-                    )));
-                }
-                f[c] = bound;
-            } else {
-                known[c] = false;
-                stuck[c] = true;
-            }
-        }
-    }
-    // −B F for the known forces.
-    let apply = |g: &mut DVector<f64>, c: usize, force: f64| {
-        let ct = &plan.contacts[c];
-        g[ct.floor] -= force;
-        match ct.kind {
-            ContactKind::Dof { dof } => g[dof] += force,
-            ContactKind::Epp => {
-                if let Some(j) = ct.below {
-                    g[j] += force;
-                }
-            }
-        }
-    };
-    for c in (0..nc).filter(|&c| known[c]) {
-        apply(&mut g, c, f[c]);
-    }
-    let massive: Vec<usize> = (0..n).filter(|&d| plan.mass[(d, d)] > 0.0).collect();
-    let ns = massive.len();
-    let ms = DMatrix::from_fn(ns, ns, |i, j| plan.mass[(massive[i], massive[j])]);
-    let chol = ms.cholesky().ok_or_else(|| SimError::NotPositiveDefinite {
-        what: "mass matrix".into(),
-        hint: String::new(),
-    })?;
-    let pos = |d: usize| massive.iter().position(|&x| x == d);
-    let unknown: Vec<usize> = (0..nc).filter(|&c| !known[c]).collect();
-    if !unknown.is_empty() {
-        let mut bu = DMatrix::zeros(ns, unknown.len());
-        for (k, &c) in unknown.iter().enumerate() {
-            let ct = &plan.contacts[c];
-            if let ContactKind::Dof { dof } = ct.kind
-                && let (Some(i), Some(j)) = (pos(ct.floor), pos(dof))
-            {
-                bu[(i, k)] = 1.0;
-                bu[(j, k)] = -1.0;
-            }
-        }
-        let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
-        let y = chol.solve(&bu);
-        let wa = bu.transpose() * &y;
-        let wa = (&wa + wa.transpose()) * 0.5;
-        let ba = bu.transpose() * chol.solve(&gs);
-        let lo: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].lower).collect();
-        let hi: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].upper).collect();
-        let mut fu = vec![0.0; unknown.len()];
-        let mut qp = BoxQp::new(wa.as_slice(), unknown.len())
-            .map_err(|source| SimError::Friction { t: 0.0, source })?;
-        qp.solve(ba.as_slice(), &lo, &hi, &mut fu)
-            .map_err(|source| SimError::Friction { t: 0.0, source })?;
-        for (k, &c) in unknown.iter().enumerate() {
-            f[c] = fu[k];
-            stuck[c] = qp.status(k) == Bound::Free;
-            apply(&mut g, c, fu[k]);
-        }
-    }
-    let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
-    let a_s = chol.solve(&gs);
-    let mut a = vec![0.0; n];
-    for (i, &d) in massive.iter().enumerate() {
-        a[d] = a_s[i];
-    }
-    for (c, ct) in plan.contacts.iter().enumerate() {
-        match ct.kind {
-            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => a[dof] = a[ct.floor],
-            ContactKind::Epp => epp[c].a = a[ct.floor],
-            _ => {}
-        }
-    }
-    Ok(Start {
-        u,
-        v,
-        a,
-        f,
-        epp,
-        stuck,
-    })
-}
-
 impl Integrator for Newmark {
     fn name(&self) -> &'static str {
         "newmark"
@@ -376,16 +166,12 @@ impl Integrator for Newmark {
             .collect();
         let mut w_new = vec![0.0; nc];
         let mut v_old = vec![0.0; n];
-        let mut v_avg = vec![0.0; n];
         let mut epp_pred = vec![(0.0, 0.0); nc];
 
         let energies = plan.outputs.energies;
         let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
         let initial_energy = k0 + s0;
-        let mut e_input = 0.0;
-        let mut e_viscous = 0.0;
-        let mut e_friction = 0.0;
-        let mut balance_max_rel: f64 = 0.0;
+        let mut acc = EnergyAccumulator::default();
 
         let mut peaks = Peaks::new(nf);
         let mut ag0 = plan.ground_accel(0.0);
@@ -405,67 +191,23 @@ impl Integrator for Newmark {
             peaks.slip[fl] = peaks.slip[fl].max(slip(plan, c, &start.u, &epp).abs());
         }
 
-        let mut history = plan.outputs.histories.then(|| {
-            let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
-            cols.extend((1..=nf).map(|i| format!("x{i}_m")));
-            cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
-            cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
-            cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
-            cols.extend(
-                plan.contacts
-                    .iter()
-                    .map(|c| format!("w{}_m_s", c.floor + 1)),
-            );
-            if energies {
-                cols.extend(
-                    [
-                        "E_input_J",
-                        "E_kinetic_J",
-                        "E_strain_J",
-                        "E_viscous_J",
-                        "E_friction_J",
-                    ]
-                    .map(String::from),
-                );
-            }
-            let mut h = History {
-                columns: cols,
-                rows: Vec::new(),
-            };
-            h.rows.reserve((plan.steps + 1) * h.columns.len());
-            h
-        });
-        let record_row = |h: &mut History,
-                          t: f64,
-                          ag: f64,
-                          u: &[f64],
-                          f: &[f64],
-                          w: &[f64],
-                          epp: &[EppState],
-                          e: Option<[f64; 5]>| {
-            h.rows.push(t);
-            h.rows.push(ag);
-            h.rows.extend_from_slice(&u[..nf]);
-            for (c, ct) in plan.contacts.iter().enumerate() {
-                h.rows.push(match ct.kind {
-                    ContactKind::Dof { dof } => u[dof],
-                    ContactKind::Epp => epp[c].u,
-                });
-            }
-            let mut below = 0.0;
-            for &x in &u[..nf] {
-                h.rows.push(x - below);
-                below = x;
-            }
-            h.rows.extend_from_slice(f);
-            h.rows.extend_from_slice(w);
-            if let Some(e) = e {
-                h.rows.extend_from_slice(&e);
-            }
-        };
+        let mut history = plan
+            .outputs
+            .histories
+            .then(|| history_columns(plan, energies));
         if let Some(h) = history.as_mut() {
             let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
-            record_row(h, 0.0, ag0, &start.u, f_old.as_slice(), &w_old, &epp, e);
+            record_row(
+                plan,
+                h,
+                0.0,
+                ag0,
+                &start.u,
+                f_old.as_slice(),
+                &w_old,
+                &epp,
+                e,
+            );
         }
 
         let mut qp_iter_total: u64 = 0;
@@ -569,40 +311,30 @@ impl Integrator for Newmark {
             }
             let mut e_row = None;
             if energies {
-                let ag_avg = 0.5 * (ag0 + ag1);
-                let mut mrv = 0.0;
-                for i in 0..n {
-                    v_avg[i] = 0.5 * (v_old[i] + v_now[i]);
-                    mrv += ops.mr[i] * v_avg[i];
-                }
-                let cvv = quad(&plan.damping, &v_avg, &v_avg);
-                let mut d_input = -ag_avg * mrv;
-                if let Some(f) = hf {
-                    d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
-                }
-                e_input += dt * d_input;
-                e_viscous += dt * cvv;
-                for c in 0..nc {
-                    e_friction += dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
-                    let ct = &plan.contacts[c];
-                    if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
-                        // Brace dashpot of a condensed dissipator: ė = v′ − v_below.
-                        let vj_old = ct.below.map_or(0.0, |j| v_old[j]);
-                        let vj_new = ct.below.map_or(0.0, |j| v_now[j]);
-                        let ed_old = (v_old[ct.floor] - w_old[c]) - vj_old;
-                        let ed_new = epp[c].v - vj_new;
-                        let ed = 0.5 * (ed_old + ed_new);
-                        e_viscous += dt * ct.brace_damping * ed * ed;
-                    }
-                }
-                let (ek, es) = stored_energy(plan, u_now, v_now, &epp);
-                let bal = e_input + initial_energy - (ek + es + e_viscous + e_friction);
-                let scale = (e_input.abs() + initial_energy).max(f64::MIN_POSITIVE);
-                balance_max_rel = balance_max_rel.max(bal.abs() / scale);
-                e_row = Some([e_input, ek, es, e_viscous, e_friction]);
+                let data = StepEnergyData {
+                    dt,
+                    mr: ops.mr.as_slice(),
+                    ag: (ag0, ag1),
+                    p: (p0, p1),
+                    force_floor: hf,
+                    v: (&v_old, v_now),
+                    f: (f_old.as_slice(), f_new.as_slice()),
+                    w: (&w_old, &w_new),
+                };
+                e_row = Some(acc.step(plan, &data, u_now, &epp, initial_energy));
             }
             if let Some(h) = history.as_mut() {
-                record_row(h, t1, ag1, u_now, f_new.as_slice(), &w_new, &epp, e_row);
+                record_row(
+                    plan,
+                    h,
+                    t1,
+                    ag1,
+                    u_now,
+                    f_new.as_slice(),
+                    &w_new,
+                    &epp,
+                    e_row,
+                );
             }
             std::mem::swap(&mut f_old, &mut f_new);
             std::mem::swap(&mut w_old, &mut w_new);
@@ -614,12 +346,12 @@ impl Integrator for Newmark {
         let energy = energies.then(|| {
             let (ek, es) = stored_energy(plan, u_end, v_end, &epp);
             Energy {
-                input: e_input,
+                input: acc.input,
                 kinetic: ek,
                 strain: es,
-                viscous: e_viscous,
-                friction: e_friction,
-                balance_error: e_input + initial_energy - (ek + es + e_viscous + e_friction),
+                viscous: acc.viscous,
+                friction: acc.friction,
+                balance_error: acc.input + initial_energy - (ek + es + acc.viscous + acc.friction),
             }
         });
         let response = peaks.into_response(
@@ -638,8 +370,9 @@ impl Integrator for Newmark {
                     0.0
                 },
                 qp_iterations_max: qp_iter_max,
-                balance_error_max_relative: balance_max_rel,
+                balance_error_max_relative: acc.balance_max_rel,
                 initial_energy,
+                loop_iterations: None,
             },
             history,
         })

@@ -1,0 +1,389 @@
+//! State shared by the integrators: the initial state, elastic–perfectly plastic element
+//! state, slips, stored energies, and the recorders of histories and energies (so every
+//! method reports the same quantities under the same names and definitions).
+
+use crate::error::SimError;
+use crate::friction::BoxQp;
+use crate::friction::box_qp::Bound;
+use crate::plan::{ContactKind, Plan};
+use crate::response::History;
+use nalgebra::{DMatrix, DVector};
+
+/// Per-contact state of elastic–perfectly plastic elements: dissipator displacement,
+/// velocity, acceleration (Newmark state of the condensed massless DOF).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct EppState {
+    /// Dissipator displacement, m.
+    pub(crate) u: f64,
+    /// Dissipator velocity, m/s.
+    pub(crate) v: f64,
+    /// Dissipator acceleration, m/s².
+    pub(crate) a: f64,
+}
+
+/// Slip rate w = Bᵀv for contact `c` given plan velocities and EPP state.
+#[inline]
+pub(crate) fn slip_rate(plan: &Plan, c: usize, v: &[f64], epp: &[EppState]) -> f64 {
+    let ct = &plan.contacts[c];
+    match ct.kind {
+        ContactKind::Dof { dof } => v[ct.floor] - v[dof],
+        ContactKind::Epp => v[ct.floor] - epp[c].v,
+    }
+}
+
+/// Slip (floor minus dissipator displacement) of contact `c`.
+#[inline]
+pub(crate) fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
+    let ct = &plan.contacts[c];
+    match ct.kind {
+        ContactKind::Dof { dof } => u[ct.floor] - u[dof],
+        ContactKind::Epp => u[ct.floor] - epp[c].u,
+    }
+}
+
+/// x̄ᵀ A x̄ with x̄ = (x0 + x1)/2, for a column-major square matrix, without allocating.
+#[inline]
+fn quad_avg(a: &DMatrix<f64>, x0: &[f64], x1: &[f64]) -> f64 {
+    let n = x0.len();
+    let mut total = 0.0;
+    for (j, col) in a.as_slice().chunks_exact(n).enumerate() {
+        let mut s = 0.0;
+        for ((aij, p), q) in col.iter().zip(x0).zip(x1) {
+            s += aij * 0.5 * (p + q);
+        }
+        total += s * 0.5 * (x0[j] + x1[j]);
+    }
+    total
+}
+
+/// Kinetic + strain energy (frame, braces with DOF, and EPP braces), J. No allocation.
+pub(crate) fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f64) {
+    debug_assert_eq!(u.len(), plan.dofs());
+    let kinetic = 0.5 * quad_avg(&plan.mass, v, v);
+    let mut strain = 0.5 * quad_avg(&plan.stiffness, u, u);
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        if ct.kind == ContactKind::Epp {
+            let uj = ct.below.map_or(0.0, |j| u[j]);
+            let e = epp[c].u - uj;
+            strain += 0.5 * ct.brace_stiffness * e * e;
+        }
+    }
+    (kinetic, strain)
+}
+
+/// A consistent initial state on the plan's DOFs.
+pub(crate) struct Start {
+    /// Displacements, m.
+    pub(crate) u: Vec<f64>,
+    /// Velocities, m/s.
+    pub(crate) v: Vec<f64>,
+    /// Accelerations, m/s².
+    pub(crate) a: Vec<f64>,
+    /// Friction forces, N.
+    pub(crate) f: Vec<f64>,
+    /// State of the elastic–perfectly plastic elements.
+    pub(crate) epp: Vec<EppState>,
+    /// Stuck (force strictly inside its bounds) per contact.
+    pub(crate) stuck: Vec<bool>,
+}
+
+/// Consistent initial accelerations and friction forces.
+///
+/// Contacts whose dissipator has mass and whose initial slip rate is non-zero start
+/// sliding at a bound; those with zero slip rate get their forces from the same box QP
+/// at the acceleration level (Delassus BᵀM⁻¹B). A massless dissipator's force is its
+/// brace force, which must lie within the bounds; its initial acceleration is taken
+/// equal to its floor's (it enters only the first predictor, identically in reduced
+/// and full plans).
+pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
+    let n = plan.dofs();
+    let nc = plan.contacts.len();
+    let u = plan.u0.clone();
+    let v = plan.v0.clone();
+    let ag0 = plan.ground_accel(0.0);
+    let uu = DVector::from_column_slice(&u);
+    let vv = DVector::from_column_slice(&v);
+    let mut g = -(plan.mass_influence() * ag0) - &plan.damping * &vv - &plan.stiffness * &uu;
+    if let Some(h) = &plan.harmonic {
+        g[h.floor] += h.force(0.0);
+    }
+    let mut f = vec![0.0; nc];
+    let mut known = vec![true; nc];
+    let mut stuck = vec![false; nc];
+    let mut epp = vec![EppState::default(); nc];
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (u[j], v[j]));
+        let massless = match ct.kind {
+            ContactKind::Epp => Some(plan.contact_x0[c]),
+            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => Some((u[dof], v[dof])),
+            ContactKind::Dof { .. } => None,
+        };
+        if let Some((xd, vd)) = massless {
+            let force = ct.brace_stiffness * (xd - uj) + ct.brace_damping * (vd - vj);
+            let tol = 1e-12 * (ct.upper.abs().min(1e300) + ct.lower.abs().min(1e300) + force.abs());
+            if force > ct.upper + tol || force < ct.lower - tol {
+                let consistent = uj + force.clamp(ct.lower, ct.upper) / ct.brace_stiffness;
+                return Err(SimError::Scene(format!(
+                    "initial state: the massless dissipator of floor {} carries a brace force of {force:.6e} N, outside its friction bounds [{:.6e}, {:.6e}] N; a consistent initial dissipator displacement is {consistent:.9e} m",
+                    ct.floor + 1,
+                    ct.lower,
+                    ct.upper
+                )));
+            }
+            f[c] = force.clamp(ct.lower, ct.upper);
+            stuck[c] = f[c] > ct.lower && f[c] < ct.upper;
+            if ct.kind == ContactKind::Epp {
+                epp[c] = EppState {
+                    u: xd,
+                    v: vd,
+                    a: 0.0,
+                };
+            }
+        } else if let ContactKind::Dof { dof } = ct.kind {
+            let w0 = v[ct.floor] - v[dof];
+            let tol = 1e-12 * (v[ct.floor].abs() + v[dof].abs());
+            if w0.abs() > tol {
+                let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
+                if !bound.is_finite() {
+                    return Err(SimError::Scene(format!(
+                        "initial state: the locked dissipator of floor {} cannot slip, but its initial slip rate is {w0:.6e} m/s",
+                        ct.floor + 1
+                    )));
+                }
+                f[c] = bound;
+            } else {
+                known[c] = false;
+                stuck[c] = true;
+            }
+        }
+    }
+    // −B F for the known forces.
+    let apply = |g: &mut DVector<f64>, c: usize, force: f64| {
+        let ct = &plan.contacts[c];
+        g[ct.floor] -= force;
+        match ct.kind {
+            ContactKind::Dof { dof } => g[dof] += force,
+            ContactKind::Epp => {
+                if let Some(j) = ct.below {
+                    g[j] += force;
+                }
+            }
+        }
+    };
+    for c in (0..nc).filter(|&c| known[c]) {
+        apply(&mut g, c, f[c]);
+    }
+    let massive: Vec<usize> = (0..n).filter(|&d| plan.mass[(d, d)] > 0.0).collect();
+    let ns = massive.len();
+    let ms = DMatrix::from_fn(ns, ns, |i, j| plan.mass[(massive[i], massive[j])]);
+    let chol = ms.cholesky().ok_or_else(|| SimError::NotPositiveDefinite {
+        what: "mass matrix".into(),
+        hint: String::new(),
+    })?;
+    let pos = |d: usize| massive.iter().position(|&x| x == d);
+    let unknown: Vec<usize> = (0..nc).filter(|&c| !known[c]).collect();
+    if !unknown.is_empty() {
+        let mut bu = DMatrix::zeros(ns, unknown.len());
+        for (k, &c) in unknown.iter().enumerate() {
+            let ct = &plan.contacts[c];
+            if let ContactKind::Dof { dof } = ct.kind
+                && let (Some(i), Some(j)) = (pos(ct.floor), pos(dof))
+            {
+                bu[(i, k)] = 1.0;
+                bu[(j, k)] = -1.0;
+            }
+        }
+        let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
+        let y = chol.solve(&bu);
+        let wa = bu.transpose() * &y;
+        let wa = (&wa + wa.transpose()) * 0.5;
+        let ba = bu.transpose() * chol.solve(&gs);
+        let lo: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].lower).collect();
+        let hi: Vec<f64> = unknown.iter().map(|&c| plan.contacts[c].upper).collect();
+        let mut fu = vec![0.0; unknown.len()];
+        let mut qp = BoxQp::new(wa.as_slice(), unknown.len())
+            .map_err(|source| SimError::Friction { t: 0.0, source })?;
+        qp.solve(ba.as_slice(), &lo, &hi, &mut fu)
+            .map_err(|source| SimError::Friction { t: 0.0, source })?;
+        for (k, &c) in unknown.iter().enumerate() {
+            f[c] = fu[k];
+            stuck[c] = qp.status(k) == Bound::Free;
+            apply(&mut g, c, fu[k]);
+        }
+    }
+    let gs = DVector::from_iterator(ns, massive.iter().map(|&d| g[d]));
+    let a_s = chol.solve(&gs);
+    let mut a = vec![0.0; n];
+    for (i, &d) in massive.iter().enumerate() {
+        a[d] = a_s[i];
+    }
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        match ct.kind {
+            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => a[dof] = a[ct.floor],
+            ContactKind::Epp => epp[c].a = a[ct.floor],
+            _ => {}
+        }
+    }
+    Ok(Start {
+        u,
+        v,
+        a,
+        f,
+        epp,
+        stuck,
+    })
+}
+
+/// Column names of the histories (the same for every method).
+pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
+    let nf = plan.floors;
+    let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
+    cols.extend((1..=nf).map(|i| format!("x{i}_m")));
+    cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
+    cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
+    cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
+    cols.extend(
+        plan.contacts
+            .iter()
+            .map(|c| format!("w{}_m_s", c.floor + 1)),
+    );
+    if energies {
+        cols.extend(
+            [
+                "E_input_J",
+                "E_kinetic_J",
+                "E_strain_J",
+                "E_viscous_J",
+                "E_friction_J",
+            ]
+            .map(String::from),
+        );
+    }
+    let mut h = History {
+        columns: cols,
+        rows: Vec::new(),
+    };
+    h.rows.reserve((plan.steps + 1) * h.columns.len());
+    h
+}
+
+/// Appends one history row (columns of [`history_columns`]).
+#[allow(clippy::too_many_arguments)] // one row of named quantities
+pub(crate) fn record_row(
+    plan: &Plan,
+    h: &mut History,
+    t: f64,
+    ag: f64,
+    u: &[f64],
+    f: &[f64],
+    w: &[f64],
+    epp: &[EppState],
+    e: Option<[f64; 5]>,
+) {
+    let nf = plan.floors;
+    h.rows.push(t);
+    h.rows.push(ag);
+    h.rows.extend_from_slice(&u[..nf]);
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        h.rows.push(match ct.kind {
+            ContactKind::Dof { dof } => u[dof],
+            ContactKind::Epp => epp[c].u,
+        });
+    }
+    let mut below = 0.0;
+    for &x in &u[..nf] {
+        h.rows.push(x - below);
+        below = x;
+    }
+    h.rows.extend_from_slice(f);
+    h.rows.extend_from_slice(w);
+    if let Some(e) = e {
+        h.rows.extend_from_slice(&e);
+    }
+}
+
+/// Energies accumulated step by step with step-averaged forces and velocities
+/// (trapezoidal rule): input ∫(−a_g rᵀM + Pᵀ)u̇ dt, viscous ∫u̇ᵀCu̇ dt (plus the brace
+/// dashpots of condensed dissipators), friction ∫Fᵀw dt.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct EnergyAccumulator {
+    /// Input energy so far, J.
+    pub(crate) input: f64,
+    /// Viscous dissipation so far, J.
+    pub(crate) viscous: f64,
+    /// Friction dissipation so far, J.
+    pub(crate) friction: f64,
+    /// Largest |balance error| / (|input| + initial) seen.
+    pub(crate) balance_max_rel: f64,
+}
+
+/// One step's data for [`EnergyAccumulator::step`].
+pub(crate) struct StepEnergyData<'a> {
+    /// Time step, s.
+    pub(crate) dt: f64,
+    /// M r.
+    pub(crate) mr: &'a [f64],
+    /// Ground acceleration at the start and end of the step, m/s².
+    pub(crate) ag: (f64, f64),
+    /// Harmonic force at the start and end, N, and its floor.
+    pub(crate) p: (f64, f64),
+    /// Floor of the harmonic force.
+    pub(crate) force_floor: Option<usize>,
+    /// Velocities at the start and end.
+    pub(crate) v: (&'a [f64], &'a [f64]),
+    /// Friction forces at the start and end.
+    pub(crate) f: (&'a [f64], &'a [f64]),
+    /// Slip rates at the start and end.
+    pub(crate) w: (&'a [f64], &'a [f64]),
+}
+
+impl EnergyAccumulator {
+    /// Adds one step's increments; returns the history row (input, kinetic, strain,
+    /// viscous, friction) at the end of the step. `epp` is the elements' state at the end.
+    pub(crate) fn step(
+        &mut self,
+        plan: &Plan,
+        d: &StepEnergyData<'_>,
+        u_now: &[f64],
+        epp: &[EppState],
+        initial_energy: f64,
+    ) -> [f64; 5] {
+        let n = u_now.len();
+        let dt = d.dt;
+        let (ag0, ag1) = d.ag;
+        let (p0, p1) = d.p;
+        let (v_old, v_now) = d.v;
+        let (f_old, f_new) = d.f;
+        let (w_old, w_new) = d.w;
+        let ag_avg = 0.5 * (ag0 + ag1);
+        let mut mrv = 0.0;
+        for i in 0..n {
+            mrv += d.mr[i] * 0.5 * (v_old[i] + v_now[i]);
+        }
+        let cvv = quad_avg(&plan.damping, v_old, v_now);
+        let mut d_input = -ag_avg * mrv;
+        if let Some(f) = d.force_floor {
+            d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
+        }
+        self.input += dt * d_input;
+        self.viscous += dt * cvv;
+        for c in 0..f_old.len() {
+            self.friction += dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
+            let ct = &plan.contacts[c];
+            if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
+                // Brace dashpot of a condensed dissipator: ė = v′ − v_below.
+                let vj_old = ct.below.map_or(0.0, |j| v_old[j]);
+                let vj_new = ct.below.map_or(0.0, |j| v_now[j]);
+                let ed_old = (v_old[ct.floor] - w_old[c]) - vj_old;
+                let ed_new = epp[c].v - vj_new;
+                let ed = 0.5 * (ed_old + ed_new);
+                self.viscous += dt * ct.brace_damping * ed * ed;
+            }
+        }
+        let (ek, es) = stored_energy(plan, u_now, v_now, epp);
+        let bal = self.input + initial_energy - (ek + es + self.viscous + self.friction);
+        let scale = (self.input.abs() + initial_energy).max(f64::MIN_POSITIVE);
+        self.balance_max_rel = self.balance_max_rel.max(bal.abs() / scale);
+        [self.input, ek, es, self.viscous, self.friction]
+    }
+}
