@@ -212,7 +212,23 @@ impl Plan {
                 }
             };
             links[f] = FloorLink::Contact(contacts.len());
-            contact_x0.push((ic.dissipator_displacement[f], ic.dissipator_velocity[f]));
+            let (mut xd0, vd0) = (ic.dissipator_displacement[f], ic.dissipator_velocity[f]);
+            let had_mass = b.dissipators[f].is_some_and(|orig| orig.mass > 0.0);
+            if bilinear && had_mass && kind == ContactKind::Epp {
+                // Ignoring m′ is the limit m′ → 0, in which a dissipator displaced beyond
+                // its slip load slides instantly until its brace force is on the bound.
+                let (xj, vj) = below.map_or((0.0, 0.0), |j| (u0[j], v0[j]));
+                let viscous = d.brace_damping * (vd0 - vj);
+                let force = d.brace_stiffness * (xd0 - xj) + viscous;
+                let clamped = force.clamp(d.lower, d.upper);
+                if clamped != force {
+                    xd0 = xj + (clamped - viscous) / d.brace_stiffness;
+                    notes.push(format!(
+                        "floor {storey}: bilinear (m' -> 0): initial dissipator displacement moved to {xd0:.9e} m so the brace force {force:.6e} N sits on the slip load {clamped:.6e} N (instant slide)"
+                    ));
+                }
+            }
+            contact_x0.push((xd0, vd0));
             contacts.push(Contact {
                 floor: f,
                 below,

@@ -146,3 +146,32 @@ fn bilinear_equals_the_full_model_with_massless_dissipators() {
             .any(|(a, b)| a != b)
     );
 }
+
+#[test]
+fn bilinear_puts_an_overstressed_initial_brace_on_its_slip_load() {
+    // paper-1story-free: x′₀ = 0.10 m on k′ = 2597.01 kN/m is 259.7 kN, far above
+    // μN = 39.325 kN. With m′ ignored the dissipator slides at once until k′x′ = μN.
+    let over = SceneOverrides {
+        method: Some(slipload_sim::MethodName::Bilinear),
+        ..Default::default()
+    };
+    let scene = scene_file("paper-1story-free.json", &over);
+    let plan = Plan::compile(&scene).unwrap();
+    let (k, slip) = (2597.01e3, 39.325e3);
+    assert!(
+        (plan.contact_x0[0].0 - slip / k).abs() < 1e-15,
+        "x'0 = {}",
+        plan.contact_x0[0].0
+    );
+    assert!(plan.explain().contains("instant slide"));
+    let out = run_plan(&plan).unwrap();
+    let e = out.response.energy.unwrap();
+    assert!(e.balance_error.abs() < 1e-10 * out.diagnostics.initial_energy);
+    // The full model starts with the same floor but a charged brace: more energy to dissipate.
+    let full = slipload_sim::simulate(&scene_file(
+        "paper-1story-free.json",
+        &SceneOverrides::default(),
+    ))
+    .unwrap();
+    assert!(full.diagnostics.initial_energy > out.diagnostics.initial_energy);
+}
