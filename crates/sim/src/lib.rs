@@ -18,7 +18,7 @@ pub mod units;
 
 pub use building::{Building, BuildingConfig, Dissipator};
 pub use error::SimError;
-pub use integrator::{Integrator, Newmark};
+pub use integrator::{Exact, Integrator, Newmark};
 pub use plan::Plan;
 pub use response::{Energy, History, Outcome, Response};
 pub use scene::{MethodName, Scene, SceneOverrides};

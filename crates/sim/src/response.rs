@@ -65,6 +65,11 @@ pub struct Diagnostics {
     pub balance_error_max_relative: f64,
     /// Initial kinetic + strain energy, J.
     pub initial_energy: f64,
+    /// Peak |drift| per storey taken at the output steps only, m (`exact`, whose
+    /// `Response::peak_drift` is the continuous peak located between steps).
+    pub sampled_peak_drift: Option<Vec<f64>>,
+    /// Mode changes (stick↔slip and slip reversals) located by `exact` (0 for others).
+    pub events: u64,
 }
 
 /// Time histories, one column per quantity, one row per step.

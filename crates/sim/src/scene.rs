@@ -152,6 +152,9 @@ pub enum MethodName {
     /// What frame programs (DRAIN-2D, SAP2000, OpenSees) do: each brace + damper as one
     /// elastic–perfectly plastic spring, dissipator mass ignored, stepped by `newmark`.
     Bilinear,
+    /// Event-driven reference: each stick/slip mode integrated exactly (matrix
+    /// exponential series), every stick↔slip event located by root finding.
+    Exact,
 }
 
 impl MethodName {
@@ -161,6 +164,7 @@ impl MethodName {
             MethodName::Newmark => "newmark",
             MethodName::Hht => "hht",
             MethodName::Bilinear => "bilinear",
+            MethodName::Exact => "exact",
         }
     }
 }
@@ -172,8 +176,9 @@ impl std::str::FromStr for MethodName {
             "newmark" => Ok(MethodName::Newmark),
             "hht" => Ok(MethodName::Hht),
             "bilinear" => Ok(MethodName::Bilinear),
+            "exact" => Ok(MethodName::Exact),
             other => Err(format!(
-                "unknown method {other:?}: expected newmark, hht or bilinear"
+                "unknown method {other:?}: expected newmark, hht, bilinear or exact"
             )),
         }
     }
@@ -576,7 +581,7 @@ impl Scene {
         };
         let name = over.method.unwrap_or(cfg.method.name);
         let alpha = match name {
-            MethodName::Newmark | MethodName::Bilinear => 0.0,
+            MethodName::Newmark | MethodName::Bilinear | MethodName::Exact => 0.0,
             MethodName::Hht => cfg.method.alpha.unwrap_or(-0.05),
         };
         if !(-1.0 / 3.0..=0.0).contains(&alpha) {

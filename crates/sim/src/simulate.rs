@@ -1,7 +1,7 @@
 //! Running a scene: compile, integrate with the scene's method, time it.
 
 use crate::error::SimError;
-use crate::integrator::{Integrator, Newmark};
+use crate::integrator::{Exact, Integrator, Newmark};
 use crate::plan::Plan;
 use crate::response::Outcome;
 use crate::scene::{MethodName, Scene};
@@ -10,6 +10,7 @@ use crate::scene::{MethodName, Scene};
 pub fn integrator(name: MethodName) -> Box<dyn Integrator + Send + Sync> {
     match name {
         MethodName::Newmark | MethodName::Hht | MethodName::Bilinear => Box::new(Newmark),
+        MethodName::Exact => Box::new(Exact),
     }
 }
 

@@ -1,7 +1,9 @@
 //! Integrators: one trait, several methods (DESIGN.md § Integrators).
 
+pub mod exact;
 pub mod newmark;
 
+pub use exact::Exact;
 pub use newmark::Newmark;
 
 use crate::error::SimError;

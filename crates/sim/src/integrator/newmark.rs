@@ -633,6 +633,7 @@ impl Integrator for Newmark {
                 qp_iterations_max: qp_iter_max,
                 balance_error_max_relative: balance_max_rel,
                 initial_energy,
+                ..Default::default()
             },
             history,
         })
