@@ -386,6 +386,11 @@ impl<'a> Model<'a> {
         a[(lay.i_cos, lay.i_sin)] = -self.omega_h;
         let mut events = Vec::new();
         for (c, ct) in plan.contacts.iter().enumerate() {
+            if ct.lower == ct.upper {
+                // Zero-width bounds (μN = 0 kept in an unreduced plan): the force is that
+                // value whatever the contact does; no events.
+                continue;
+            }
             let bound_scale = Scale::Force(
                 [ct.upper, ct.lower]
                     .iter()
@@ -815,6 +820,7 @@ impl Integrator for Exact {
                         Mode::Stuck
                     };
                 }
+                ContactKind::Dof { .. } if ct.lower == ct.upper => modes[c] = Mode::Upper,
                 ContactKind::Dof { dof } => {
                     let w0 = y[n + ct.floor] - y[n + dof];
                     let tol = 1e-12 * (y[n + ct.floor].abs() + y[n + dof].abs());
@@ -885,9 +891,7 @@ impl Integrator for Exact {
                 }
             };
         observe(&mut peaks, &ops, &y, &mut acc);
-        for i in 0..nf {
-            cont_drift[i] = peaks.drift[i];
-        }
+        cont_drift.copy_from_slice(&peaks.drift);
 
         let mut history = plan.outputs.histories.then(|| {
             let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
@@ -1161,8 +1165,8 @@ impl Integrator for Exact {
                 history_row(&model, &ops, h, t_step_end, &y, e_row);
             }
         }
-        for i in 0..nf {
-            cont_drift[i] = cont_drift[i].max(peaks.drift[i]);
+        for (c, s) in cont_drift.iter_mut().zip(&peaks.drift) {
+            *c = c.max(*s);
         }
         let energy = energies.then(|| {
             let (ek, es) = model.stored(&y);
