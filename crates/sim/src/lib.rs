@@ -5,6 +5,7 @@
 //! [`Plan`] that carries only the effects the scene calls for, then run by an
 //! [`Integrator`] into an [`Outcome`] whose [`Response`] is the output contract.
 
+pub mod accuracy;
 pub mod building;
 pub mod error;
 pub mod friction;
