@@ -16,7 +16,9 @@ fn newmark_converges_to_exact_and_exact_is_its_own_reference() {
     let scene = scene_file("paper-1story-harmonic.json", &over);
     let settings = StudySettings {
         methods: vec![MethodName::Newmark, MethodName::Exact],
-        dts: [200.0, 400.0, 800.0, 1600.0].map(DtSpec::PeriodOver).to_vec(),
+        dts: [200.0, 400.0, 800.0, 1600.0]
+            .map(DtSpec::PeriodOver)
+            .to_vec(),
         repeats: 1,
     };
     let r = run_study(&scene, &settings).unwrap();
@@ -36,7 +38,10 @@ fn newmark_converges_to_exact_and_exact_is_its_own_reference() {
     // exact against exact: identical runs (deterministic), zero error, and events counted.
     for e in &r.entries[4..] {
         let x = e.errors.unwrap();
-        assert_eq!((x.peak_drift, x.friction_energy, x.roof_history), (0.0, 0.0, 0.0));
+        assert_eq!(
+            (x.peak_drift, x.friction_energy, x.roof_history),
+            (0.0, 0.0, 0.0)
+        );
         assert!(e.events > 0);
     }
     assert!(r.to_markdown().contains("| newmark | T1/200 |"));
@@ -57,7 +62,13 @@ fn a_failing_method_is_recorded_not_fatal() {
     let r = run_study(&scene, &settings).unwrap();
     let b = &r.entries[0];
     assert!(b.errors.is_none() && b.cpu_seconds.is_none());
-    assert!(b.failure.as_deref().unwrap().contains("outside its friction bounds"), "{b:?}");
+    assert!(
+        b.failure
+            .as_deref()
+            .unwrap()
+            .contains("outside its friction bounds"),
+        "{b:?}"
+    );
     assert!(r.entries[1].errors.is_some());
     assert!(r.to_markdown().contains("failed:"));
 }
