@@ -475,3 +475,39 @@ fn exact_does_not_depend_on_its_output_step() {
     let _ = MethodName::Exact;
     let _ = run_plan;
 }
+
+#[test]
+fn damped_massless_brace_is_a_maxwell_element_that_newmark_converges_to() {
+    // m′ = 0 with c′ > 0: sliding, the brace obeys k′e + c′ė = F± (first-order state x′).
+    // Newmark condenses the same element exactly per step (κ = k′βΔt/γ + c′): its error
+    // against exact must fall as Δt shrinks, and exact's balance close to round-off.
+    let json = |method: &str, dt: f64| {
+        format!(
+            r#"{{ "building": {{ "floor_masses": [5740.39], "storey_stiffness": [2999.471e3], "damping": {{ "storey": [13121.77] }},
+                  "dissipators": [ {{ "floor": 1, "brace_stiffness": 2597.01e3, "mass": 0, "brace_damping": 2e4, "slip_load": 39325 }} ] }},
+                 "excitation": {{ "harmonic": {{ "floor": 1, "amplitude": 127491, "omega": 15.9781 }} }},
+                 "duration": 3.0, "method": {{ "name": "{method}", "dt": {dt} }}, "outputs": {{ "energies": true }} }}"#
+        )
+    };
+    let run =
+        |m: &str, dt: f64| simulate(&scene_json(&json(m, dt), &SceneOverrides::default())).unwrap();
+    let ex = run("exact", 0.01);
+    let e = ex.response.energy.unwrap();
+    assert!(e.balance_error.abs() < 1e-9 * e.input, "{e:?}");
+    assert!(
+        ex.diagnostics.events > 4,
+        "stick-slip: {}",
+        ex.diagnostics.events
+    );
+    let errs: Vec<f64> = [1e-3, 2.5e-4, 6.25e-5]
+        .iter()
+        .map(|&dt| {
+            let o = run("newmark", dt);
+            (o.response.energy.unwrap().friction - e.friction).abs() / e.friction
+        })
+        .collect();
+    assert!(
+        errs[1] < errs[0] && errs[2] < errs[1] && errs[2] < 1e-4,
+        "{errs:?}"
+    );
+}

@@ -451,6 +451,16 @@ fn add_link(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
     }
 }
 
+/// Row `r` of `m` times `y`, without allocating.
+#[inline]
+fn row_dot(m: &DMatrix<f64>, r: usize, y: &DVector<f64>) -> f64 {
+    let mut s = 0.0;
+    for (j, yj) in y.iter().enumerate() {
+        s += m[(r, j)] * yj;
+    }
+    s
+}
+
 /// Scalar polynomial Σ c_k τᵏ and its derivative.
 #[inline]
 fn poly(c: &[f64], t: f64) -> (f64, f64) {
@@ -566,21 +576,27 @@ impl Model<'_> {
         let lay = &self.lay;
         let n = lay.n;
         let plan = self.plan;
-        let v = y.rows(n, n);
-        let mut input = -y[lay.i_ag] * self.mr.dot(&v);
+        let v = &y.as_slice()[n..2 * n];
+        let mut mrv = 0.0;
+        let mut viscous = 0.0;
+        for i in 0..n {
+            mrv += self.mr[i] * v[i];
+            let mut cv = 0.0;
+            for (j, vj) in v.iter().enumerate() {
+                cv += plan.damping[(i, j)] * vj;
+            }
+            viscous += v[i] * cv;
+        }
+        let mut input = -y[lay.i_ag] * mrv;
         if let Some(h) = &plan.harmonic {
             input += h.amplitude * y[lay.i_sin] * v[h.floor];
         }
-        let viscous_frame = v.dot(&(&plan.damping * v));
-        let mut viscous = viscous_frame;
         let mut friction = 0.0;
         for (c, ct) in plan.contacts.iter().enumerate() {
-            let fc = ops.force.row(c).dot(&y.transpose());
-            let wc = ops.slip_rate.row(c).dot(&y.transpose());
-            friction += fc * wc;
+            friction += row_dot(&ops.force, c, y) * row_dot(&ops.slip_rate, c, y);
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 let vb = ct.below.map_or(0.0, |j| v[j]);
-                let ed = ops.xdot.row(c).dot(&y.transpose()) - vb;
+                let ed = row_dot(&ops.xdot, c, y) - vb;
                 viscous += ct.brace_damping * ed * ed;
             }
         }
@@ -629,7 +645,7 @@ impl Model<'_> {
             if decide.contains(&c) {
                 continue;
             }
-            let fc = ops.force.row(c).dot(&y.transpose());
+            let fc = row_dot(&ops.force, c, y);
             g.axpy(-fc, &self.bcols[c], 1.0);
         }
         let m = decide.len();
@@ -686,10 +702,10 @@ fn history_row(
         below = y[i];
     }
     for c in 0..plan.contacts.len() {
-        h.rows.push(ops.force.row(c).dot(&y.transpose()));
+        h.rows.push(row_dot(&ops.force, c, y));
     }
     for c in 0..plan.contacts.len() {
-        h.rows.push(ops.slip_rate.row(c).dot(&y.transpose()));
+        h.rows.push(row_dot(&ops.slip_rate, c, y));
     }
     if let Some(e) = e {
         h.rows.extend_from_slice(&e);
@@ -1093,7 +1109,7 @@ impl Integrator for Exact {
                         match old[c] {
                             Mode::Stuck => {
                                 // Which bound: the force row sign tells.
-                                let fc = ops.force.row(c).dot(&y.transpose());
+                                let fc = row_dot(&ops.force, c, &y);
                                 modes[c] = if (fc - ct.upper).abs() <= (fc - ct.lower).abs() {
                                     Mode::Upper
                                 } else {
