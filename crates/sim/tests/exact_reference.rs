@@ -511,3 +511,20 @@ fn damped_massless_brace_is_a_maxwell_element_that_newmark_converges_to() {
         "{errs:?}"
     );
 }
+
+#[test]
+fn light_stiff_dissipators_are_refused_with_a_typed_budget_error() {
+    // m′ = 3.5e-4 kg on k′ = 448 MN/m rings at 1.1e6 rad/s: 10 s would need ~2e7 substeps,
+    // over the documented cap; the error says so before any work is done.
+    let json = r#"{ "building": "benchmark-3story.json", "duration": 10,
+        "excitation": { "synthetic": { "index": 0 } }, "method": { "name": "exact", "dt": 0.01 } }"#;
+    let mut sc = scene_json(json, &SceneOverrides::default());
+    for d in sc.building.dissipators.iter_mut().flatten() {
+        d.mass *= 1e-6;
+    }
+    let err = simulate(&sc).unwrap_err();
+    match err {
+        slipload_sim::SimError::ExactBudget { needed, limit, .. } => assert!(needed > limit),
+        other => panic!("expected a budget error, got {other}"),
+    }
+}
