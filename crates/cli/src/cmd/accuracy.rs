@@ -170,13 +170,14 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         md.push('\n');
     }
     let json = serde_json::json!({ "median": median, "records": reports });
-    let base = args.out.join(&name);
-    write_atomic(&base.with_extension("csv"), csv.as_bytes())?;
+    // Appended, not `with_extension`: a name like `x-0.40g` keeps its dot.
+    let file = |ext: &str| args.out.join(format!("{name}.{ext}"));
+    write_atomic(&file("csv"), csv.as_bytes())?;
     write_atomic(
-        &base.with_extension("json"),
+        &file("json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
-    write_atomic(&base.with_extension("md"), md.as_bytes())?;
+    write_atomic(&file("md"), md.as_bytes())?;
     print!("{md}");
     Ok(())
 }
