@@ -522,6 +522,7 @@ fn record_of_zeros() {
         );
         assert_eq!(out.response.energy.unwrap().input, 0.0);
         assert_eq!(out.diagnostics.events, 0);
+        eprintln!("| zeros | {} | pass | 0 | - | 0 | - |", m.as_str());
     }
 }
 
