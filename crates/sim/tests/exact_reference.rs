@@ -301,7 +301,7 @@ fn check_against_analytic(s: &Sdof, x0: f64) {
     for (what, got, want) in checks {
         eprintln!("{what}: exact vs analytic rel {:.2e}", rel(got, want));
         assert!(
-            rel(got, want) < 1e-8,
+            rel(got, want) < 1e-10,
             "{what}: exact {got:.15e} vs analytic {want:.15e} (rel {:.2e})",
             rel(got, want)
         );
