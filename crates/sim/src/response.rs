@@ -2,7 +2,9 @@
 //! that accumulates them in place while stepping.
 //!
 //! Peaks are taken at the integration steps ("sampled peaks"); between steps the
-//! continuous solution may exceed them slightly.
+//! continuous solution may exceed them slightly. `exact` reports the continuous drift
+//! peaks in `Response::peak_drift` and the sampled ones in
+//! `Diagnostics::sampled_peak_drift`.
 
 use serde::{Deserialize, Serialize};
 

@@ -530,3 +530,17 @@ fn light_stiff_dissipators_are_refused_with_a_typed_budget_error() {
         other => panic!("expected a budget error, got {other}"),
     }
 }
+
+#[test]
+fn exact_is_deterministic_to_the_bit() {
+    let a = simulate(&scene(&PAPER, 0.0, 2.0, 0.01, false)).unwrap();
+    let b = simulate(&scene(&PAPER, 0.0, 2.0, 0.01, false)).unwrap();
+    let bits = |o: &slipload_sim::Outcome| {
+        let e = o.response.energy.unwrap();
+        let mut v: Vec<u64> = o.response.peak_drift.iter().map(|x| x.to_bits()).collect();
+        v.extend([e.input, e.friction, e.viscous, e.kinetic, e.strain].map(f64::to_bits));
+        v
+    };
+    assert_eq!(bits(&a), bits(&b));
+    assert_eq!(a.diagnostics.events, b.diagnostics.events);
+}
