@@ -85,6 +85,33 @@ pub enum SimError {
         /// A time step for which the loops contract, s.
         suggested_dt: f64,
     },
+    /// The `exact` integrator would exceed a documented work cap (very stiff or very
+    /// light dissipators ringing faster than the run can resolve, or chattering).
+    #[error("exact: {what} at t = {t:.6} s: {needed} exceeds the cap of {limit}; {hint}")]
+    ExactBudget {
+        /// What was counted (substeps, events).
+        what: String,
+        /// Time, seconds.
+        t: f64,
+        /// The count needed (or reached).
+        needed: u64,
+        /// The cap.
+        limit: u64,
+        /// Advice.
+        hint: String,
+    },
+    /// Stick↔slip events repeat at one instant without time advancing (Zeno behaviour).
+    #[error(
+        "exact: {events} stick-slip events at t = {t:.12} s without time advancing (Zeno), last on floor {floor}"
+    )]
+    ExactZeno {
+        /// Time, seconds.
+        t: f64,
+        /// Events at that instant.
+        events: u32,
+        /// Floor number (from 1) of the last event.
+        floor: usize,
+    },
     /// A ground-motion error (reading or scaling a record).
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),

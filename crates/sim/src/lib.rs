@@ -5,6 +5,7 @@
 //! [`Plan`] that carries only the effects the scene calls for, then run by an
 //! [`Integrator`] into an [`Outcome`] whose [`Response`] is the output contract.
 
+pub mod accuracy;
 pub mod building;
 pub mod error;
 pub mod friction;
@@ -18,7 +19,7 @@ pub mod units;
 
 pub use building::{Building, BuildingConfig, Dissipator};
 pub use error::SimError;
-pub use integrator::{DelaCruz, Integrator, Newmark};
+pub use integrator::{DelaCruz, Exact, Integrator, Newmark};
 pub use plan::Plan;
 pub use response::{Energy, History, LoopIterations, Outcome, Response};
 pub use scene::{MethodName, Scene, SceneOverrides};

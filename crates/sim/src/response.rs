@@ -2,7 +2,9 @@
 //! that accumulates them in place while stepping.
 //!
 //! Peaks are taken at the integration steps ("sampled peaks"); between steps the
-//! continuous solution may exceed them slightly.
+//! continuous solution may exceed them slightly. `exact` reports the continuous drift
+//! peaks in `Response::peak_drift` and the sampled ones in
+//! `Diagnostics::sampled_peak_drift`.
 
 use serde::{Deserialize, Serialize};
 
@@ -68,6 +70,11 @@ pub struct Diagnostics {
     /// `delacruz`: iterations of its three fixed-point loops (`None` for other methods).
     #[serde(default)]
     pub loop_iterations: Option<LoopIterations>,
+    /// Peak |drift| per storey taken at the output steps only, m (`exact`, whose
+    /// `Response::peak_drift` is the continuous peak located between steps).
+    pub sampled_peak_drift: Option<Vec<f64>>,
+    /// Mode changes (stick↔slip and slip reversals) located by `exact` (0 for others).
+    pub events: u64,
 }
 
 /// Iterations of `delacruz`'s three nested fixed-point loops, per invocation of each loop.

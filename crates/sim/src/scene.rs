@@ -169,6 +169,9 @@ pub enum MethodName {
     /// acceleration, stick/slip decided per floor at every step, three nested fixed-point
     /// loops. Conditionally stable.
     Delacruz,
+    /// Event-driven reference: each stick/slip mode integrated exactly (matrix
+    /// exponential series), every stick↔slip event located by root finding.
+    Exact,
 }
 
 impl MethodName {
@@ -179,6 +182,7 @@ impl MethodName {
             MethodName::Hht => "hht",
             MethodName::Bilinear => "bilinear",
             MethodName::Delacruz => "delacruz",
+            MethodName::Exact => "exact",
         }
     }
 }
@@ -191,8 +195,9 @@ impl std::str::FromStr for MethodName {
             "hht" => Ok(MethodName::Hht),
             "bilinear" => Ok(MethodName::Bilinear),
             "delacruz" => Ok(MethodName::Delacruz),
+            "exact" => Ok(MethodName::Exact),
             other => Err(format!(
-                "unknown method {other:?}: expected newmark, hht, bilinear or delacruz"
+                "unknown method {other:?}: expected newmark, hht, bilinear, delacruz or exact"
             )),
         }
     }
@@ -659,7 +664,10 @@ impl Scene {
         };
         let name = over.method.unwrap_or(cfg.method.name);
         let alpha = match name {
-            MethodName::Newmark | MethodName::Bilinear | MethodName::Delacruz => 0.0,
+            MethodName::Newmark
+            | MethodName::Bilinear
+            | MethodName::Delacruz
+            | MethodName::Exact => 0.0,
             MethodName::Hht => cfg.method.alpha.unwrap_or(-0.05),
         };
         if !(-1.0 / 3.0..=0.0).contains(&alpha) {

@@ -1,7 +1,7 @@
 //! Running a scene: compile, integrate with the scene's method, time it.
 
 use crate::error::SimError;
-use crate::integrator::{DelaCruz, Integrator, Newmark};
+use crate::integrator::{DelaCruz, Exact, Integrator, Newmark};
 use crate::plan::Plan;
 use crate::response::Outcome;
 use crate::scene::{MethodName, Scene};
@@ -11,6 +11,7 @@ pub fn integrator(name: MethodName) -> Box<dyn Integrator + Send + Sync> {
     match name {
         MethodName::Newmark | MethodName::Hht | MethodName::Bilinear => Box::new(Newmark),
         MethodName::Delacruz => Box::new(DelaCruz),
+        MethodName::Exact => Box::new(Exact),
     }
 }
 

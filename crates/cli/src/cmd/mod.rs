@@ -1,5 +1,6 @@
 //! Subcommands of `slipload`.
 
+pub mod accuracy;
 pub mod explain;
 pub mod record;
 pub mod scene_args;
@@ -14,6 +15,8 @@ pub enum Command {
     Explain(explain::ExplainArgs),
     /// Ground-motion records: read, measure, synthesise
     Record(record::RecordArgs),
+    /// What accuracy costs: every method x time step against the exact integrator
+    Accuracy(accuracy::AccuracyArgs),
 }
 
 /// Runs one subcommand.
@@ -22,5 +25,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(args),
         Command::Explain(args) => explain::run(args),
         Command::Record(args) => record::run(args),
+        Command::Accuracy(args) => accuracy::run(args),
     }
 }

@@ -54,7 +54,15 @@ pub fn table(name: &str, out: &Outcome) -> String {
         "{name}: method {}, dt = {:.6e} s, {} steps, {:.4} s of CPU",
         r.method, r.dt, r.steps, r.cpu_seconds
     );
-    let _ = writeln!(s, "peaks sampled at the integration steps");
+    let _ = writeln!(
+        s,
+        "{}",
+        if out.diagnostics.sampled_peak_drift.is_some() {
+            "drift peaks of the continuous solution (located between steps); other peaks at the output steps"
+        } else {
+            "peaks sampled at the integration steps"
+        }
+    );
     let _ = writeln!(
         s,
         "{:>6} {:>12} {:>10} {:>12} {:>14} {:>12} {:>12} {:>11}",

@@ -823,6 +823,7 @@ impl Integrator for DelaCruz {
                     resolves,
                     projection_energy,
                 }),
+                ..Default::default()
             },
             history,
         })

@@ -1,10 +1,12 @@
 //! Integrators: one trait, several methods (DESIGN.md § Integrators).
 
 pub mod delacruz;
+pub mod exact;
 pub mod newmark;
 pub(crate) mod state;
 
 pub use delacruz::DelaCruz;
+pub use exact::Exact;
 pub use newmark::Newmark;
 
 use crate::error::SimError;

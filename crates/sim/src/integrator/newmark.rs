@@ -372,7 +372,7 @@ impl Integrator for Newmark {
                 qp_iterations_max: qp_iter_max,
                 balance_error_max_relative: acc.balance_max_rel,
                 initial_energy,
-                loop_iterations: None,
+                ..Default::default()
             },
             history,
         })

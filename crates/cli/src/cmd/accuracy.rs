@@ -1,0 +1,186 @@
+//! `slipload accuracy`: what accuracy costs — every method × time step against the
+//! `exact` integrator, per record and the median over records, written as CSV, JSON and a
+//! Markdown summary (each file atomically).
+
+use crate::output::write_atomic;
+use anyhow::Context;
+use slipload_motion::Units;
+use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
+use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
+use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `slipload accuracy`.
+#[derive(Debug, clap::Args)]
+pub struct AccuracyArgs {
+    /// Scene or building JSON file
+    pub scene: PathBuf,
+    /// Ground-motion record file(s); several give a study per record and their median
+    #[arg(long, num_args = 1..)]
+    pub record: Vec<PathBuf>,
+    /// Use the first N members of the embedded synthetic suite as the records
+    #[arg(long, conflicts_with = "record")]
+    pub synthetic: Option<usize>,
+    /// Units of the record values: g, m/s2, cm/s2 (AT2 files are in g)
+    #[arg(long)]
+    pub units: Option<Units>,
+    /// Scale every record to this peak ground acceleration, in g
+    #[arg(long)]
+    pub scale_pga_g: Option<f64>,
+    /// Simulated time, s (default: the record's duration)
+    #[arg(long)]
+    pub duration: Option<f64>,
+    /// Methods to compare, comma-separated
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "newmark,hht,bilinear,exact"
+    )]
+    pub methods: Vec<MethodName>,
+    /// Time steps, comma-separated: seconds or T1/k
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "T1/25,T1/50,T1/100,T1/200,T1/400,T1/800,T1/1600,T1/3200"
+    )]
+    pub dts: Vec<DtSpec>,
+    /// Timed repeats per entry (the median is reported, after one warm-up run)
+    #[arg(long, default_value_t = 5)]
+    pub repeats: usize,
+    /// Output folder
+    #[arg(long, default_value = "results/accuracy")]
+    pub out: PathBuf,
+    /// Base name of the output files (default: the scene file's stem)
+    #[arg(long)]
+    pub name: Option<String>,
+}
+
+fn overrides(args: &AccuracyArgs, record: Option<PathBuf>) -> SceneOverrides {
+    SceneOverrides {
+        record,
+        units: args.units,
+        scale_pga_g: args.scale_pga_g,
+        duration: args.duration,
+        ..Default::default()
+    }
+}
+
+/// The scene with member `index` of the embedded synthetic suite as its excitation.
+fn synthetic_scene(args: &AccuracyArgs, index: usize) -> anyhow::Result<Scene> {
+    let path = &args.scene;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("reading scene {}", path.display()))?;
+    let value: serde_json::Value =
+        serde_json::from_str(&text).with_context(|| format!("parsing scene {}", path.display()))?;
+    let mut cfg: SceneConfig = if value.get("building").is_some() {
+        serde_json::from_value(value).with_context(|| format!("scene {}", path.display()))?
+    } else {
+        let b: BuildingConfig = serde_json::from_value(value)
+            .with_context(|| format!("building {}", path.display()))?;
+        SceneConfig {
+            name: b.name.clone(),
+            description: None,
+            building: BuildingRef::Inline(Box::new(b)),
+            excitation: ExcitationConfig::default(),
+            duration: None,
+            method: Default::default(),
+            outputs: Default::default(),
+            reduce: true,
+        }
+    };
+    cfg.excitation.record = None;
+    cfg.excitation.synthetic = Some(SyntheticConfig {
+        index: Some(index),
+        ..Default::default()
+    });
+    cfg.name = Some(format!(
+        "{}, synthetic {index}",
+        cfg.name.clone().unwrap_or_else(|| stem(path))
+    ));
+    Scene::from_config(cfg, path, &overrides(args, None))
+        .with_context(|| format!("scene {} with synthetic record {index}", path.display()))
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// Runs `slipload accuracy`.
+pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
+    if args.methods.is_empty() || args.dts.is_empty() {
+        anyhow::bail!("--methods and --dts need at least one value each");
+    }
+    let mut scenes = Vec::new();
+    if let Some(count) = args.synthetic {
+        for i in 0..count {
+            scenes.push(synthetic_scene(&args, i)?);
+        }
+    } else if args.record.is_empty() {
+        scenes.push(
+            Scene::load(&args.scene, &overrides(&args, None))
+                .with_context(|| format!("loading scene {}", args.scene.display()))?,
+        );
+    } else {
+        for r in &args.record {
+            let mut s = Scene::load(&args.scene, &overrides(&args, Some(r.clone()))).with_context(
+                || {
+                    format!(
+                        "loading scene {} with record {}",
+                        args.scene.display(),
+                        r.display()
+                    )
+                },
+            )?;
+            s.name = format!("{} / {}", s.name, stem(r));
+            scenes.push(s);
+        }
+    }
+    let settings = StudySettings {
+        methods: args.methods.clone(),
+        dts: args.dts.clone(),
+        repeats: args.repeats.max(1),
+    };
+    let mut reports: Vec<StudyReport> = Vec::new();
+    for s in &scenes {
+        eprintln!("accuracy: {} ...", s.name);
+        reports.push(
+            run_study(s, &settings).with_context(|| format!("accuracy study of {}", s.name))?,
+        );
+    }
+    let name = args.name.clone().unwrap_or_else(|| stem(&args.scene));
+    let median = (reports.len() > 1).then(|| {
+        median_report(
+            &format!("{name}: median over {} records", reports.len()),
+            &reports,
+            &settings.methods,
+        )
+    });
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let mut csv = String::new();
+    let mut md = format!(
+        "# Accuracy vs cost: {name}\n\nGenerated by `slipload accuracy`; errors are relative to the `exact` integrator.\n\n"
+    );
+    for (i, r) in median.iter().chain(&reports).enumerate() {
+        let c = r.to_csv();
+        csv.push_str(if i == 0 {
+            &c
+        } else {
+            c.split_once('\n').map_or("", |(_, rest)| rest)
+        });
+        md.push_str(&r.to_markdown());
+        md.push('\n');
+    }
+    let json = serde_json::json!({ "median": median, "records": reports });
+    // Appended, not `with_extension`: a name like `x-0.40g` keeps its dot.
+    let file = |ext: &str| args.out.join(format!("{name}.{ext}"));
+    write_atomic(&file("csv"), csv.as_bytes())?;
+    write_atomic(
+        &file("json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )?;
+    write_atomic(&file("md"), md.as_bytes())?;
+    print!("{md}");
+    Ok(())
+}
