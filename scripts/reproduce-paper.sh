@@ -6,7 +6,7 @@
 # (standard library only).
 set -euo pipefail
 
-METHODS="delacruz newmark hht bilinear"
+METHODS="delacruz newmark hht bilinear exact"
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
