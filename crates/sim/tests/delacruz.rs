@@ -520,3 +520,37 @@ fn initial_velocity_alone_sets_the_tolerance_scale() {
         n.response.peak_displacement[0]
     );
 }
+
+#[test]
+fn a_huge_slip_load_equals_a_locked_damper() {
+    // Regression: with μN = 10¹⁵ N the paper's ε_f = μN/10⁵ = 10¹⁰ N let the stuck-force
+    // loop stop on forces of order 10⁵ N, silently 30 % off in drift. The tolerance's
+    // scale is now capped at Σm·|a_g|max, so the answer is the locked frame's to the
+    // loops' tolerance (ε = 1e-5 relative).
+    let bench = std::fs::read_to_string(configs().join("benchmark-3story.json")).unwrap();
+    let run_with = |slip: &str| {
+        let b = bench
+            .replace("\"834.095 kN\"", slip)
+            .replace("\"740.831 kN\"", slip)
+            .replace("\"437.510 kN\"", slip);
+        let json = format!(
+            r#"{{ "building": {b}, "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2" }} }},
+                 "duration": 10, "method": {{ "name": "delacruz", "dt": 0.001 }} }}"#
+        );
+        simulate(&scene_json(&json, &SceneOverrides::default()))
+            .unwrap()
+            .response
+    };
+    let huge = run_with("1e15");
+    let locked = run_with("\"locked\"");
+    for (a, b) in huge.peak_drift.iter().zip(&locked.peak_drift) {
+        assert!(rel(*a, *b) < 1e-4, "drift {a} vs locked {b}");
+    }
+    let e = huge.energy.unwrap();
+    assert!(
+        e.balance_error.abs() < 1e-3 * e.input,
+        "balance {} of input {}",
+        e.balance_error,
+        e.input
+    );
+}

@@ -250,7 +250,74 @@ fn check(case: &str, scene: &Scene, opts: Opts) -> Vec<(MethodName, f64)> {
         );
         errs.push((m, err));
     }
+    check_delacruz(case, scene, &opts, &reference);
     errs
+}
+
+/// `delacruz` is conditionally stable: on each case it either returns its typed error
+/// (with a usable suggested Δt) or passes the invariants, with the energy bound its module
+/// derives: |balance − projection energy| ≤ (ω_max Δt)²/12 of the energy in play, ω_max
+/// the plan's highest natural frequency.
+fn check_delacruz(case: &str, scene: &Scene, opts: &Opts, reference: &Outcome) {
+    let m = MethodName::Delacruz;
+    let (plan, out, secs) = run(scene, m, opts.dt);
+    match out {
+        Err(SimError::DelaCruzNotConverged {
+            loop_name,
+            suggested_dt,
+            step,
+            ..
+        }) => {
+            assert!(
+                suggested_dt > 0.0 && suggested_dt.is_finite(),
+                "{case}/delacruz: suggested dt {suggested_dt}"
+            );
+            eprintln!(
+                "| {case} | delacruz | typed error ({loop_name} loop, step {step}; suggests dt <= {suggested_dt:.2e} s) | - | - | - | {:.2} ms |",
+                secs * 1e3
+            );
+        }
+        Err(e) => panic!("{case}/delacruz: untyped failure {e}"),
+        Ok(out) => {
+            let r = &out.response;
+            let finite = r
+                .peak_drift
+                .iter()
+                .chain(&r.peak_abs_acceleration)
+                .chain(&r.peak_slip)
+                .all(|v| v.is_finite());
+            assert!(finite, "{case}/delacruz: non-finite response");
+            let h = out.history.as_ref().unwrap();
+            for ct in &plan.contacts {
+                let f = h.column(&format!("F{}_N", ct.floor + 1)).unwrap();
+                let tol = 1e-9 * ct.upper.abs().max(ct.lower.abs());
+                assert!(
+                    f.iter()
+                        .all(|fk| *fk <= ct.upper + tol && *fk >= ct.lower - tol),
+                    "{case}/delacruz: force outside its bounds"
+                );
+            }
+            let e = r.energy.unwrap();
+            let scale = (e.input.abs() + out.diagnostics.initial_energy).max(f64::MIN_POSITIVE);
+            let projection = out
+                .diagnostics
+                .loop_iterations
+                .map_or(0.0, |l| l.projection_energy);
+            let omega_max = slipload_sim::modes::Modes::compute(&plan.mass, &plan.stiffness)
+                .map_or(0.0, |md| md.omega.iter().fold(0.0f64, |a, w| a.max(*w)));
+            let bound = (omega_max * opts.dt).powi(2) / 12.0 + 1e-9;
+            let rel = (e.balance_error - projection) / scale;
+            assert!(
+                rel.abs() <= bound,
+                "{case}/delacruz: balance {rel:.3e} beyond its bound {bound:.3e}"
+            );
+            let err = drift_error(&out, reference);
+            eprintln!(
+                "| {case} | delacruz | pass | {err:.2e} | - | {rel:.1e} | {:.2} ms |",
+                secs * 1e3
+            );
+        }
+    }
 }
 
 const DT: f64 = 0.005; // T1/200 of the benchmark frame, divides SYL090's 0.02 s

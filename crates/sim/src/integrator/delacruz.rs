@@ -33,7 +33,9 @@
 //!   each followed by a middle loop; until max |Δa′| ≤ ε_a.
 //!
 //! Defaults, as the paper states: Δt = T₁/200 (the scene default), ε_a = |a_g|max/10⁵,
-//! ε_f = μN/10⁵ (per damper; max(|F⁻|, F⁺) when asymmetric). Without a record ε_a takes
+//! ε_f = μN/10⁵ (per damper; max(|F⁻|, F⁺) when asymmetric), with μN capped at the
+//! building's inertial force Σm·|a_g|max (a huge slip load would otherwise make ε_f far
+//! larger than the stuck forces it controls). Without a record ε_a takes
 //! the largest of (harmonic amplitude / smallest floor mass), the initial floor
 //! accelerations, ω₁²|x₀| and ω₁|ẋ₀| (ω₁ = 2π/T₁) as its scale, over 10⁵. Iteration cap: 100 per loop invocation. All settable
 //! (`method.eps_a`, `method.eps_f`, `method.max_iterations`).
@@ -292,15 +294,24 @@ impl Setup {
         } else {
             f64::MIN_POSITIVE
         });
+        // The paper's ε_f = μN/10⁵ assumes μN is of the order of the forces in play. A slip
+        // load far above them (μN → ∞, a damper that never slips) would make the stuck-force
+        // loop "converge" on forces 10⁵ times smaller than its tolerance, so the scale is
+        // capped at the building's inertial force at the scale acceleration (Σm·a): the
+        // paper's value whenever μN is below that force.
+        let force_scale = mr.iter().sum::<f64>() * scale;
         let eps_f = plan
             .contacts
             .iter()
             .map(|ct| {
                 plan.method.eps_f.unwrap_or_else(|| {
-                    let b = [ct.lower.abs(), ct.upper.abs()]
+                    let mut b = [ct.lower.abs(), ct.upper.abs()]
                         .into_iter()
                         .filter(|x| x.is_finite())
                         .fold(0.0, f64::max);
+                    if force_scale > 0.0 {
+                        b = b.min(force_scale);
+                    }
                     if b > 0.0 {
                         b * 1e-5
                     } else {
