@@ -34,7 +34,7 @@ pub struct AccuracyArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "newmark,hht,bilinear,exact"
+        default_value = "delacruz,newmark,hht,bilinear,exact"
     )]
     pub methods: Vec<MethodName>,
     /// Time steps, comma-separated: seconds or T1/k
