@@ -65,6 +65,11 @@ pub struct Diagnostics {
     pub balance_error_max_relative: f64,
     /// Initial kinetic + strain energy, J.
     pub initial_energy: f64,
+    /// Area under the strain-energy history ∫ E_strain dt, J·s (trapezoidal at the steps;
+    /// 0 unless energies are on). Filiatrault & Cherry (1988) compare it with the bare
+    /// frame's in their relative performance index.
+    #[serde(default)]
+    pub strain_energy_area: f64,
 }
 
 /// Time histories, one column per quantity, one row per step.

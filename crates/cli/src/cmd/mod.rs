@@ -1,9 +1,12 @@
 //! Subcommands of `slipload`.
 
 pub mod explain;
+pub mod merge;
 pub mod record;
 pub mod scene_args;
 pub mod simulate;
+pub mod study_args;
+pub mod sweep;
 
 /// The subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -14,6 +17,10 @@ pub enum Command {
     Explain(explain::ExplainArgs),
     /// Ground-motion records: read, measure, synthesise
     Record(record::RecordArgs),
+    /// Sweep a sample of slip-load designs over every record of a study
+    Sweep(sweep::SweepArgs),
+    /// Join sweep shards into the files one run writes
+    Merge(merge::MergeArgs),
 }
 
 /// Runs one subcommand.
@@ -22,5 +29,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(args),
         Command::Explain(args) => explain::run(args),
         Command::Record(args) => record::run(args),
+        Command::Sweep(args) => sweep::run(args),
+        Command::Merge(args) => merge::run(args),
     }
 }

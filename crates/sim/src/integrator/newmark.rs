@@ -374,6 +374,8 @@ impl Integrator for Newmark {
         let mut e_viscous = 0.0;
         let mut e_friction = 0.0;
         let mut balance_max_rel: f64 = 0.0;
+        let mut strain_area = 0.0;
+        let mut strain_prev = s0;
 
         let mut peaks = Peaks::new(nf);
         let mut ag0 = plan.ground_accel(0.0);
@@ -589,6 +591,8 @@ impl Integrator for Newmark {
                     }
                 }
                 let (ek, es) = stored_energy(plan, u_now, v_now, &epp);
+                strain_area += 0.5 * dt * (strain_prev + es);
+                strain_prev = es;
                 let bal = e_input + initial_energy - (ek + es + e_viscous + e_friction);
                 let scale = (e_input.abs() + initial_energy).max(f64::MIN_POSITIVE);
                 balance_max_rel = balance_max_rel.max(bal.abs() / scale);
@@ -633,6 +637,7 @@ impl Integrator for Newmark {
                 qp_iterations_max: qp_iter_max,
                 balance_error_max_relative: balance_max_rel,
                 initial_energy,
+                strain_energy_area: strain_area,
             },
             history,
         })
