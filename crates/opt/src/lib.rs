@@ -12,6 +12,7 @@ pub mod evaluate;
 pub mod journal;
 pub mod metrics;
 pub mod objective;
+pub mod optimize;
 pub mod qp;
 pub mod rank;
 pub mod refine;

@@ -2,6 +2,7 @@
 
 pub mod explain;
 pub mod merge;
+pub mod optimize;
 pub mod record;
 pub mod scene_args;
 pub mod simulate;
@@ -21,6 +22,8 @@ pub enum Command {
     Sweep(sweep::SweepArgs),
     /// Join sweep shards into the files one run writes
     Merge(merge::MergeArgs),
+    /// Sweep, refine and verify the slip loads of a study (default: the embedded benchmark)
+    Optimize(optimize::OptimizeArgs),
 }
 
 /// Runs one subcommand.
@@ -31,5 +34,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Record(args) => record::run(args),
         Command::Sweep(args) => sweep::run(args),
         Command::Merge(args) => merge::run(args),
+        Command::Optimize(args) => optimize::run(args),
     }
 }
