@@ -44,7 +44,11 @@ fn trust_region_matches_a_fine_grid_with_a_tenth_of_its_simulations() {
     let m = Manifest::of(&st);
     let rows = rows_of(&st, &m);
     let mut lines = Vec::new();
-    for method in [RefineMethod::TrustRegion, RefineMethod::NelderMead, RefineMethod::Random] {
+    for method in [
+        RefineMethod::TrustRegion,
+        RefineMethod::NelderMead,
+        RefineMethod::Random,
+    ] {
         let r = optimize(&st, &m, &rows, method, &|| {}).unwrap();
         assert!(st.space.is_feasible(&r.optimum.z));
         // evaluations (sweep designs + refinement designs) until within 1 % of the grid's best
@@ -52,7 +56,10 @@ fn trust_region_matches_a_fine_grid_with_a_tenth_of_its_simulations() {
         let within = if r.best_sweep.f <= target {
             Some(r.sweep_designs)
         } else {
-            r.log.iter().position(|p| p.f <= target).map(|i| r.sweep_designs + i + 1)
+            r.log
+                .iter()
+                .position(|p| p.f <= target)
+                .map(|i| r.sweep_designs + i + 1)
         };
         lines.push(format!(
             "{:>13}: optimum {:.6} ({:+.3} % vs grid {:.6}), designs to within 1 %: {}, refine designs {}",

@@ -3,6 +3,7 @@
 pub mod explain;
 pub mod merge;
 pub mod optimize;
+pub mod rank;
 pub mod record;
 pub mod scene_args;
 pub mod simulate;
@@ -24,6 +25,8 @@ pub enum Command {
     Merge(merge::MergeArgs),
     /// Sweep, refine and verify the slip loads of a study (default: the embedded benchmark)
     Optimize(optimize::OptimizeArgs),
+    /// Rank candidate designs over every suite of a study, with bootstrap stability
+    Rank(rank::RankArgs),
 }
 
 /// Runs one subcommand.
@@ -35,5 +38,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Sweep(args) => sweep::run(args),
         Command::Merge(args) => merge::run(args),
         Command::Optimize(args) => optimize::run(args),
+        Command::Rank(args) => rank::run(args),
     }
 }

@@ -79,8 +79,12 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     pb.set_length(u64::MAX);
     let r = optimize(&study, &report.manifest, &rows, method, &|| pb.inc(1)).context("refining")?;
     pb.finish_and_clear();
-    let pb = progress(((5 * 3 + 1) * nr) as u64, args.quiet, "design table");
     let designs = standard_designs(&study, &r.optimum_loads);
+    let pb = progress(
+        ((designs.len() * 3 + 1) * nr) as u64,
+        args.quiet,
+        "design table",
+    );
     let table = DesignTable::build(&study, &designs, &|| pb.inc(1)).context("design table")?;
     pb.finish_and_clear();
     write_atomic(
@@ -109,6 +113,16 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     text.push('\n');
     write_atomic(&args.out.join("optimum.json"), text.as_bytes())?;
     write_table(&args.out, &table)?;
+    let candidates: Vec<slipload_opt::rank::NamedDesign> = designs
+        .iter()
+        .map(|(name, loads)| slipload_opt::rank::NamedDesign {
+            name: name.clone(),
+            slip_loads_kn: loads.iter().map(|v| v / 1e3).collect(),
+        })
+        .collect();
+    let mut text = serde_json::to_string_pretty(&candidates)?;
+    text.push('\n');
+    write_atomic(&args.out.join("candidates.json"), text.as_bytes())?;
 
     let floors: Vec<String> = study
         .space
@@ -160,7 +174,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         );
     }
     println!(
-        "wrote {}/{{designs.csv,responses.csv,refine.csv,optimum.json,design-table.csv,design-table.md,design-table.json}}",
+        "wrote {}/{{designs.csv,responses.csv,refine.csv,optimum.json,candidates.json,design-table.csv,design-table.md,design-table.json}}",
         args.out.display()
     );
     Ok(())
