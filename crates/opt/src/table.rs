@@ -307,7 +307,7 @@ pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>
         let sum: f64 = sh.iter().sum();
         sh.iter().map(|v| v / sum * total).collect::<Vec<f64>>()
     };
-    vec![
+    let all = vec![
         ("optimum".to_string(), optimum.to_vec()),
         ("uniform".to_string(), shaped(crate::space::Shape::Uniform)),
         (
@@ -316,5 +316,18 @@ pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>
         ),
         ("file".to_string(), study.file_slip_loads()),
         ("bare".to_string(), vec![0.0; m]),
-    ]
+    ];
+    // a profile optimum already is its profile at that total: keep the first of equals
+    let same = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+    };
+    let mut out: Vec<(String, Vec<f64>)> = Vec::new();
+    for (name, loads) in all {
+        if !out.iter().any(|(_, l)| same(l, &loads)) {
+            out.push((name, loads));
+        }
+    }
+    out
 }

@@ -75,8 +75,10 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     pb.finish_and_clear();
     let rows = report.rows.context("the sweep is incomplete")?;
     let nr = study.records.len();
-    let pb = progress(0, args.quiet, "refine");
-    pb.set_length(u64::MAX);
+    let rc = study.config.refine;
+    // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
+    let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
+    let pb = progress(est as u64, args.quiet, "refine");
     let r = optimize(&study, &report.manifest, &rows, method, &|| pb.inc(1)).context("refining")?;
     pb.finish_and_clear();
     let designs = standard_designs(&study, &r.optimum_loads);
