@@ -55,18 +55,24 @@ pub enum OptError {
         design: String,
         /// Record name.
         record: String,
-        /// The cause.
-        source: slipload_sim::SimError,
+        /// The cause (boxed: a simulation error is large).
+        source: Box<slipload_sim::SimError>,
     },
     /// A record could not be read or scaled.
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),
     /// The building could not be loaded.
     #[error(transparent)]
-    Sim(#[from] slipload_sim::SimError),
+    Sim(Box<slipload_sim::SimError>),
     /// A response the objective needs is missing (e.g. drift ratios without storey heights).
     #[error("{0}")]
     Missing(String),
+}
+
+impl From<slipload_sim::SimError> for OptError {
+    fn from(e: slipload_sim::SimError) -> Self {
+        OptError::Sim(Box::new(e))
+    }
 }
 
 impl OptError {

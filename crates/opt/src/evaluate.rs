@@ -89,7 +89,7 @@ pub fn run_one(
     let wrap = |source| OptError::Simulation {
         design: label.to_string(),
         record: rec.name().to_string(),
-        source,
+        source: Box::new(source),
     };
     let plan = Plan::compile(&scene).map_err(wrap)?;
     let out = run_plan(&plan).map_err(wrap)?;

@@ -86,13 +86,13 @@ pub fn nelder_mead(
                 simplex[d] = xc;
             } else {
                 let best = simplex[0].z.clone();
-                for k in 1..=d {
+                for vertex in simplex.iter_mut().skip(1) {
                     let z: Vec<f64> = best
                         .iter()
-                        .zip(&simplex[k].z)
+                        .zip(&vertex.z)
                         .map(|(b, v)| b + 0.5 * (v - b))
                         .collect();
-                    simplex[k] = value(space, ev, z)?;
+                    *vertex = value(space, ev, z)?;
                 }
             }
         }
