@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates results/benchmark-3story/ and results/ten-story/: the design tables
 # (design-table.{csv,md,json}), the sweep (designs.csv, responses.csv, manifest.json),
-# the refinement (refine.csv, optimum.json, candidates.json) and the ranking of the
-# candidates (rank.{csv,md,json}). Usage: scripts/design-tables.sh (from the repo root).
+# the refinement (refine.csv, optimum.json, candidates.json), the ranking of the
+# candidates (rank.{csv,md,json}) and, for the benchmark, the family table
+# (family.{csv,md}: optimum by period scale x intensity scale). Usage: scripts/design-tables.sh (from the repo root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
@@ -18,3 +19,5 @@ for pair in "benchmark-3story:configs/study-benchmark.json" "ten-story:configs/s
     # the journal is the sweep's working state, not a result
     rm -f "$out/journal.jsonl"
 done
+# the benchmark optimum over a family: periods × 0.8/1/1.25, records × 0.5/1/1.5
+"$bin" table configs/study-benchmark.json --out results/benchmark-3story --quiet > /dev/null

@@ -63,6 +63,7 @@ mod tests {
                 "4",
             ],
             vec!["slipload", "merge", "a", "b", "--out", "m"],
+            vec!["slipload", "table", "--period-scales", "0.9,1.1"],
             vec!["slipload", "optimize"],
             vec![
                 "slipload",

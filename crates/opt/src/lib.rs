@@ -9,6 +9,7 @@
 
 pub mod error;
 pub mod evaluate;
+pub mod family;
 pub mod journal;
 pub mod metrics;
 pub mod objective;

@@ -104,3 +104,19 @@ fn profile_space_scales_one_shape() {
         assert!((l[i] - 500e3 * sh[i]).abs() < 1e-6);
     }
 }
+
+#[test]
+fn family_scaling_scales_periods_and_records() {
+    let s = benchmark(|_| {});
+    let t = slipload_opt::family::scaled_study(&s, 1.25, 2.0).unwrap();
+    // K/p² with M fixed: every period × p (eigen-solver round-off, 1e-9 relative)
+    let (p0, p1) = (s.building.modes.periods(), t.building.modes.periods());
+    for (a, b) in p0.iter().zip(&p1) {
+        assert!((b / a - 1.25).abs() < 1e-9, "{a} → {b}");
+    }
+    // C/p keeps cᵢⱼ/(kᵢⱼ ωᵢ)-type ratios: C·p = C₀ exactly up to one rounding
+    let c = &t.building.damping * 1.25;
+    assert!((c - &s.building.damping).abs().max() <= 1e-12 * s.building.damping.abs().max());
+    assert_eq!(t.records[0].pga(), 2.0 * s.records[0].pga());
+    assert!(slipload_opt::family::scaled_study(&s, 0.0, 1.0).is_err());
+}

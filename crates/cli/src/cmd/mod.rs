@@ -9,6 +9,7 @@ pub mod scene_args;
 pub mod simulate;
 pub mod study_args;
 pub mod sweep;
+pub mod table;
 
 /// The subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -27,6 +28,8 @@ pub enum Command {
     Optimize(optimize::OptimizeArgs),
     /// Rank candidate designs over every suite of a study, with bootstrap stability
     Rank(rank::RankArgs),
+    /// Tabulate a study's optimum over period scale × intensity scale
+    Table(table::TableArgs),
 }
 
 /// Runs one subcommand.
@@ -39,5 +42,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Merge(args) => merge::run(args),
         Command::Optimize(args) => optimize::run(args),
         Command::Rank(args) => rank::run(args),
+        Command::Table(args) => table::run(args),
     }
 }
