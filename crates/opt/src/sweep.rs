@@ -111,10 +111,11 @@ impl Manifest {
     }
 
     /// Checks a journal entry against this manifest.
-    pub fn check(&self, e: &Entry, path: &Path) -> Result<(), OptError> {
+    /// `line` is the entry's line in the journal (from 1), for the error message.
+    pub fn check(&self, e: &Entry, path: &Path, line: usize) -> Result<(), OptError> {
         let bad = |message: String| OptError::Journal {
             path: path.to_path_buf(),
-            line: 0,
+            line,
             message,
         };
         let d = self.designs.get(e.design).ok_or_else(|| {
@@ -291,8 +292,9 @@ fn place(
     path: &Path,
     rows: &mut [Option<RecordMetrics>],
 ) -> Result<(), OptError> {
-    for e in entries {
-        manifest.check(&e, path)?;
+    for (i, e) in entries.into_iter().enumerate() {
+        // read() keeps every complete line, so entry i is line i + 1
+        manifest.check(&e, path, i + 1)?;
         let k = e.design * manifest.records.len() + e.record;
         if rows[k].is_none() {
             rows[k] = Some(e.metrics);
