@@ -8,7 +8,8 @@
 //! study's linear constraints — is a convex QP, solved by clarabel. The step is accepted
 //! when it lowers the objective; the radius grows after a good prediction
 //! (ρ ≥ 0.75 at the region's edge) and halves after a poor one (ρ < 0.25) or when the
-//! model predicts no decrease. Stops when Δ < tolerance or the budget is spent.
+//! model predicts no decrease (or the QP is not solved). Stops when Δ < tolerance or the
+//! budget is spent.
 
 use super::{Evaluations, Point, clamp01};
 use crate::error::OptError;
@@ -146,7 +147,12 @@ pub fn trust_region(
         let b: Vec<f64> = (0..space.a.nrows())
             .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c.z[j]).sum::<f64>())
             .collect();
-        let s = qp::solve(&h, &g, &lo, &hi, &a, &b)?;
+        // a subproblem clarabel cannot solve (numerically hard model) is treated like a
+        // model that predicts no decrease: shrink and refit
+        let Ok(s) = qp::solve(&h, &g, &lo, &hi, &a, &b) else {
+            delta *= 0.5;
+            continue;
+        };
         let sv = DVector::from_column_slice(&s);
         let pred = -(DVector::from_column_slice(&g).dot(&sv) + 0.5 * sv.dot(&(&h * &sv)));
         let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + delta * s).collect();
