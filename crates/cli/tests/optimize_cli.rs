@@ -1,5 +1,5 @@
 //! Contract: `slipload optimize` with no study runs the embedded benchmark study from any
-//! folder and writes its files; `rank` ranks the candidates it writes; a bad study fails
+//! folder and writes its files, the same bytes for 1 and 2 threads; `rank` ranks the candidates it writes; a bad study fails
 //! with the field named, a non-zero exit and no output folder — before any simulation.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
@@ -97,6 +97,8 @@ fn rank_reads_the_candidates_of_optimize() {
     let o = run_in(
         &dir,
         &[
+            "--threads",
+            "2",
             "optimize",
             s,
             "--out",
@@ -107,6 +109,37 @@ fn rank_reads_the_candidates_of_optimize() {
         ],
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // refinement and tables are as deterministic as the sweep: 1 and 2 threads agree
+    let o1 = run_in(
+        &dir,
+        &[
+            "--threads",
+            "1",
+            "optimize",
+            s,
+            "--out",
+            "opt1",
+            "--refine",
+            "nelder-mead",
+            "--quiet",
+        ],
+    );
+    assert!(
+        o1.status.success(),
+        "{}",
+        String::from_utf8_lossy(&o1.stderr)
+    );
+    for f in [
+        "designs.csv",
+        "refine.csv",
+        "optimum.json",
+        "candidates.json",
+        "design-table.csv",
+    ] {
+        let a = std::fs::read(dir.join("opt").join(f)).unwrap();
+        let b = std::fs::read(dir.join("opt1").join(f)).unwrap();
+        assert!(a == b, "{f} differs between thread counts");
+    }
     let r = run_in(
         &dir,
         &[
