@@ -6,7 +6,7 @@ use crate::space::DesignSpace;
 use crate::study::{SamplerKind, SweepConfig};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a small, well-mixed, seedable generator.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SplitMix(u64);
 
 impl SplitMix {

@@ -1,7 +1,8 @@
 //! Contract: on a convex quadratic in scaled variables with its minimum on a bound and a
 //! linear constraint active, the trust-region refiner (whose quadratic model is then
 //! exact) reaches the analytic constrained minimum, and every refiner returns a feasible
-//! point no worse than its start within its evaluation budget.
+//! point no worse than its start within its evaluation budget. A refiner's state saved as
+//! JSON mid-way and restored continues to the same answer.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use nalgebra::DMatrix;
@@ -82,4 +83,38 @@ fn every_refiner_improves_within_its_budget() {
         assert!(best.f < start.f, "{m:?}");
         assert!(evals <= 60 + 3 * 3, "{m:?} used {evals}");
     }
+}
+
+#[test]
+fn a_saved_refiner_state_continues_to_the_same_answer() {
+    use slipload_opt::refine::{Refiner, TrustRegion};
+    let sp = space();
+    let cfg = RefineConfig::default();
+    let start = Point {
+        z: vec![0.5, 0.1, 0.1],
+        f: f(&[0.5, 0.1, 0.1]),
+    };
+    let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| f(z)).collect());
+    // uninterrupted
+    let mut ev = Evaluations::new(Box::new(oracle), vec![start.clone()]);
+    let mut a = TrustRegion::new(&cfg, 60);
+    a.init(&sp, &start, &mut ev).unwrap();
+    let mut states = Vec::new();
+    while ev.count() < 60 && !a.terminate() {
+        a.next_iter(&sp, &mut ev).unwrap();
+        states.push(serde_json::to_string(&a).unwrap());
+    }
+    // stopped after 3 iterations, saved as JSON, restored and continued with the same cache
+    let mut ev2 = Evaluations::new(Box::new(oracle), vec![start.clone()]);
+    let mut b = TrustRegion::new(&cfg, 60);
+    b.init(&sp, &start, &mut ev2).unwrap();
+    for _ in 0..3 {
+        b.next_iter(&sp, &mut ev2).unwrap();
+    }
+    let mut c: TrustRegion = serde_json::from_str(&serde_json::to_string(&b).unwrap()).unwrap();
+    assert_eq!(serde_json::to_string(&c).unwrap(), states[2]);
+    while ev2.count() < 60 && !c.terminate() {
+        c.next_iter(&sp, &mut ev2).unwrap();
+    }
+    assert_eq!(c, a);
 }

@@ -12,17 +12,53 @@ mod nelder_mead;
 mod random;
 mod trust_region;
 
-pub use nelder_mead::nelder_mead;
-pub use random::random_search;
-pub use trust_region::trust_region;
+pub use nelder_mead::NelderMead;
+pub use random::RandomSearch;
+pub use trust_region::TrustRegion;
 
 use crate::error::OptError;
 use crate::space::DesignSpace;
 use crate::study::{RefineConfig, RefineMethod};
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
+/// An argmin-style refiner: a state machine (`init`, then `next_iter` until `terminate`)
+/// driven by [`run`]. Its state is plain data (the implementations serialise), so a
+/// refinement can be inspected, saved between iterations and continued.
+pub trait Refiner {
+    /// Sets the state up from the start point (may evaluate points).
+    fn init(
+        &mut self,
+        space: &DesignSpace,
+        start: &Point,
+        ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError>;
+    /// One iteration.
+    fn next_iter(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError>;
+    /// The refiner's own stopping test (the executor also stops at the budget).
+    fn terminate(&self) -> bool;
+    /// The best point of the state.
+    fn best(&self) -> &Point;
+}
+
+/// Drives a refiner: `init`, then `next_iter` while the budget of new evaluations
+/// (counted over the whole [`Evaluations`]) lasts and `terminate` is false.
+pub fn run(
+    refiner: &mut dyn Refiner,
+    space: &DesignSpace,
+    start: &Point,
+    ev: &mut Evaluations<'_>,
+    budget: usize,
+) -> Result<Point, OptError> {
+    refiner.init(space, start, ev)?;
+    while ev.count() < budget && !refiner.terminate() {
+        refiner.next_iter(space, ev)?;
+    }
+    Ok(refiner.best().clone())
+}
+
 /// One evaluated design.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Point {
     /// Scaled variables.
     pub z: Vec<f64>,
@@ -117,11 +153,12 @@ pub fn refine(
     cfg: &RefineConfig,
     budget: usize,
 ) -> Result<Point, OptError> {
-    match method {
-        RefineMethod::TrustRegion => trust_region(space, start, ev, cfg, budget),
-        RefineMethod::NelderMead => nelder_mead(space, start, ev, cfg, budget),
-        RefineMethod::Random => random_search(space, start, ev, cfg, budget),
-    }
+    let mut r: Box<dyn Refiner> = match method {
+        RefineMethod::TrustRegion => Box::new(TrustRegion::new(cfg, budget)),
+        RefineMethod::NelderMead => Box::new(NelderMead::new(cfg)),
+        RefineMethod::Random => Box::new(RandomSearch::new(cfg)),
+    };
+    run(r.as_mut(), space, start, ev, budget)
 }
 
 /// z clamped into [0, 1]^d.

@@ -4,10 +4,11 @@
 //! smaller than the tolerance (max vertex distance to the best, ∞-norm) or the budget
 //! is spent.
 
-use super::{Evaluations, Point, clamp01};
+use super::{Evaluations, Point, Refiner, clamp01};
 use crate::error::OptError;
 use crate::space::DesignSpace;
 use crate::study::RefineConfig;
+use serde::{Deserialize, Serialize};
 
 fn value(
     space: &DesignSpace,
@@ -29,36 +30,61 @@ fn sort(s: &mut [Point]) {
     s.sort_by(|a, b| a.f.total_cmp(&b.f));
 }
 
-/// The Nelder–Mead refiner (see the module doc).
-pub fn nelder_mead(
-    space: &DesignSpace,
-    start: &Point,
-    ev: &mut Evaluations<'_>,
-    cfg: &RefineConfig,
-    budget: usize,
-) -> Result<Point, OptError> {
-    let d = space.dim();
-    let r = cfg.initial_radius;
-    let mut simplex = vec![start.clone()];
-    for i in 0..d {
-        let mut z = start.z.clone();
-        z[i] += if z[i] + r <= 1.0 { r } else { -r };
-        simplex.push(value(space, ev, z)?);
+/// The Nelder–Mead refiner's state: the simplex, best vertex first.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NelderMead {
+    /// Vertices, sorted by objective.
+    pub simplex: Vec<Point>,
+    /// Initial edge length, scaled variables.
+    pub radius: f64,
+    /// Stop when the simplex is smaller than this.
+    pub tolerance: f64,
+}
+
+impl NelderMead {
+    /// A refiner with the study's settings.
+    pub fn new(cfg: &RefineConfig) -> Self {
+        NelderMead {
+            simplex: Vec::new(),
+            radius: cfg.initial_radius,
+            tolerance: cfg.tolerance,
+        }
     }
-    sort(&mut simplex);
-    while ev.count() < budget {
-        let size = simplex[1..]
+
+    fn size(&self) -> f64 {
+        self.simplex[1..]
             .iter()
             .map(|p| {
                 p.z.iter()
-                    .zip(&simplex[0].z)
+                    .zip(&self.simplex[0].z)
                     .map(|(a, b)| (a - b).abs())
                     .fold(0.0, f64::max)
             })
-            .fold(0.0, f64::max);
-        if size < cfg.tolerance {
-            break;
+            .fold(0.0, f64::max)
+    }
+}
+
+impl Refiner for NelderMead {
+    fn init(
+        &mut self,
+        space: &DesignSpace,
+        start: &Point,
+        ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError> {
+        let r = self.radius;
+        self.simplex = vec![start.clone()];
+        for i in 0..space.dim() {
+            let mut z = start.z.clone();
+            z[i] += if z[i] + r <= 1.0 { r } else { -r };
+            self.simplex.push(value(space, ev, z)?);
         }
+        sort(&mut self.simplex);
+        Ok(())
+    }
+
+    fn next_iter(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
+        let d = space.dim();
+        let simplex = &mut self.simplex;
         let worst = simplex[d].clone();
         let centroid: Vec<f64> = (0..d)
             .map(|j| simplex[..d].iter().map(|p| p.z[j]).sum::<f64>() / d as f64)
@@ -96,7 +122,15 @@ pub fn nelder_mead(
                 }
             }
         }
-        sort(&mut simplex);
+        sort(simplex);
+        Ok(())
     }
-    Ok(simplex[0].clone())
+
+    fn terminate(&self) -> bool {
+        self.size() < self.tolerance
+    }
+
+    fn best(&self) -> &Point {
+        &self.simplex[0]
+    }
 }

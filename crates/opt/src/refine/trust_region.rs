@@ -11,12 +11,13 @@
 //! model predicts no decrease (or the QP is not solved). Stops when Δ < tolerance or the
 //! budget is spent.
 
-use super::{Evaluations, Point, clamp01};
+use super::{Evaluations, Point, Refiner, clamp01};
 use crate::error::OptError;
 use crate::qp;
 use crate::space::DesignSpace;
 use crate::study::RefineConfig;
 use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
 
 fn features(s: &[f64]) -> Vec<f64> {
     let d = s.len();
@@ -68,19 +69,79 @@ fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The trust-region refiner (see the module doc).
-pub fn trust_region(
-    space: &DesignSpace,
-    start: &Point,
-    ev: &mut Evaluations<'_>,
-    cfg: &RefineConfig,
-    budget: usize,
-) -> Result<Point, OptError> {
-    let d = space.dim();
-    let p = 1 + d + d * (d + 1) / 2;
-    let mut c = start.clone();
-    let mut delta = cfg.initial_radius;
-    while ev.count() < budget && delta >= cfg.tolerance {
+/// The trust-region refiner's state (see the module doc); serialisable, so a refinement
+/// can be saved between iterations and continued.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrustRegion {
+    /// Centre: the best point so far.
+    pub centre: Point,
+    /// Trust radius Δ, scaled variables (∞-norm).
+    pub radius: f64,
+    /// Stop when Δ falls below this.
+    pub tolerance: f64,
+    /// Most new evaluations in total (stencil points are cut to fit).
+    pub budget: usize,
+    /// No model can be fitted (too few feasible points near the centre).
+    pub stalled: bool,
+}
+
+impl TrustRegion {
+    /// A refiner with the study's settings and `budget`.
+    pub fn new(cfg: &RefineConfig, budget: usize) -> Self {
+        TrustRegion {
+            centre: Point {
+                z: Vec::new(),
+                f: f64::INFINITY,
+            },
+            radius: cfg.initial_radius,
+            tolerance: cfg.tolerance,
+            budget,
+            stalled: false,
+        }
+    }
+}
+
+impl Refiner for TrustRegion {
+    fn init(
+        &mut self,
+        _space: &DesignSpace,
+        start: &Point,
+        _ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError> {
+        self.centre = start.clone();
+        Ok(())
+    }
+
+    fn next_iter(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
+        let d = space.dim();
+        let p = 1 + d + d * (d + 1) / 2;
+        let c = self.centre.clone();
+        let mut delta = self.radius;
+        self.step(space, ev, d, p, &c, &mut delta)?;
+        self.radius = delta;
+        Ok(())
+    }
+
+    fn terminate(&self) -> bool {
+        self.stalled || self.radius < self.tolerance
+    }
+
+    fn best(&self) -> &Point {
+        &self.centre
+    }
+}
+
+impl TrustRegion {
+    /// One model fit, subproblem and trial point; updates the centre and `delta`.
+    fn step(
+        &mut self,
+        space: &DesignSpace,
+        ev: &mut Evaluations<'_>,
+        d: usize,
+        p: usize,
+        c: &Point,
+        delta: &mut f64,
+    ) -> Result<(), OptError> {
         let near = |ev: &Evaluations<'_>, c: &Point, delta: f64| -> Vec<Point> {
             let mut v: Vec<Point> = ev
                 .all()
@@ -91,11 +152,11 @@ pub fn trust_region(
             v.dedup_by(|a, b| a.z == b.z);
             v
         };
-        let mut pts = near(ev, &c, delta);
+        let mut pts = near(ev, c, *delta);
         if pts.len() < p + 1 {
             let want = p + 1 - pts.len();
             let mut add: Vec<Vec<f64>> = Vec::new();
-            for z in stencil(&c.z, delta) {
+            for z in stencil(&c.z, *delta) {
                 if add.len() == want {
                     break;
                 }
@@ -103,13 +164,14 @@ pub fn trust_region(
                     add.push(z);
                 }
             }
-            let room = budget.saturating_sub(ev.count());
+            let room = self.budget.saturating_sub(ev.count());
             add.truncate(room);
             if add.is_empty() && pts.len() < d + 2 {
-                break;
+                self.stalled = true;
+                return Ok(());
             }
             ev.eval(&add)?;
-            pts = near(ev, &c, delta);
+            pts = near(ev, c, *delta);
         }
         // least squares fit in s = (z − c)/Δ; SVD gives the minimum-norm fit when the
         // points do not determine every coefficient
@@ -119,7 +181,7 @@ pub fn trust_region(
                 features(
                     &q.z.iter()
                         .zip(&c.z)
-                        .map(|(z, c)| (z - c) / delta)
+                        .map(|(z, c)| (z - c) / *delta)
                         .collect::<Vec<_>>(),
                 )
             })
@@ -141,37 +203,37 @@ pub fn trust_region(
             }
         }
         let h = qp::clip_to_psd(&h, 0.0);
-        let lo: Vec<f64> = c.z.iter().map(|z| (-1.0f64).max(-z / delta)).collect();
-        let hi: Vec<f64> = c.z.iter().map(|z| 1.0f64.min((1.0 - z) / delta)).collect();
-        let a = &space.a * delta;
+        let lo: Vec<f64> = c.z.iter().map(|z| (-1.0f64).max(-z / *delta)).collect();
+        let hi: Vec<f64> = c.z.iter().map(|z| 1.0f64.min((1.0 - z) / *delta)).collect();
+        let a = &space.a * *delta;
         let b: Vec<f64> = (0..space.a.nrows())
             .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c.z[j]).sum::<f64>())
             .collect();
         // a subproblem clarabel cannot solve (numerically hard model) is treated like a
         // model that predicts no decrease: shrink and refit
         let Ok(s) = qp::solve(&h, &g, &lo, &hi, &a, &b) else {
-            delta *= 0.5;
-            continue;
+            *delta *= 0.5;
+            return Ok(());
         };
         let sv = DVector::from_column_slice(&s);
         let pred = -(DVector::from_column_slice(&g).dot(&sv) + 0.5 * sv.dot(&(&h * &sv)));
-        let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + delta * s).collect();
+        let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + *delta * s).collect();
         clamp01(&mut z);
         let step = dist_inf(&z, &c.z);
-        if pred <= 1e-12 * c.f.abs() || step < 1e-3 * delta || !space.is_feasible(&z) {
-            delta *= 0.5;
-            continue;
+        if pred <= 1e-12 * c.f.abs() || step < 1e-3 * *delta || !space.is_feasible(&z) {
+            *delta *= 0.5;
+            return Ok(());
         }
         let f = ev.eval_one(&z)?;
         let rho = (c.f - f) / pred;
         if f < c.f {
-            c = Point { z, f };
+            self.centre = Point { z, f };
         }
-        if rho >= 0.75 && step >= 0.9 * delta {
-            delta = (2.0 * delta).min(0.5);
+        if rho >= 0.75 && step >= 0.9 * *delta {
+            *delta = (2.0 * *delta).min(0.5);
         } else if rho < 0.25 {
-            delta *= 0.5;
+            *delta *= 0.5;
         }
+        Ok(())
     }
-    Ok(c)
 }
