@@ -23,8 +23,9 @@ pub enum Metric {
     /// E_friction / E_input (to maximise: the objective uses 1 − ratio).
     EnergyRatio,
     /// Filiatrault & Cherry (1988) relative performance index against the bare frame:
-    /// RPI = ½ (SEA/SEA₀ + u_max/u_max,0), SEA = ∫ E_strain dt, u_max the peak floor
-    /// displacement (max over floors), index 0 = bare frame under the same record.
+    /// RPI = ½ (SEA/SEA₀ + u_max/u_max,0), SEA = ∫ E_strain dt (strain energy of the
+    /// frame and of the braces, as sim accumulates it), u_max the peak floor displacement
+    /// (max over floors), index 0 = bare frame under the same record.
     Rpi,
 }
 
