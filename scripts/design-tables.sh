@@ -16,8 +16,8 @@ for pair in "benchmark-3story:configs/study-benchmark.json" "ten-story:configs/s
     "$bin" optimize "$study" --out "$out" --quiet | tee "$out.summary.txt"
     "$bin" rank "$study" --designs "$out/candidates.json" --out "$out" --quiet > /dev/null
     mv "$out.summary.txt" "$out/summary.txt"
-    # the journal is the sweep's working state, not a result
-    rm -f "$out/journal.jsonl"
+    # the journals are working state (resume), not results
+    rm -f "$out/journal.jsonl" "$out"/refine-*.jsonl
 done
 # the benchmark optimum over a family: periods × 0.8/1/1.25, records × 0.5/1/1.5
 "$bin" table configs/study-benchmark.json --out results/benchmark-3story --quiet > /dev/null

@@ -50,6 +50,7 @@ fn default_optimize_runs_the_embedded_benchmark() {
         "design-table.csv",
         "design-table.md",
         "design-table.json",
+        "refine-trust-region.jsonl",
     ] {
         assert!(res.join(f).is_file(), "{f} written");
     }
@@ -66,9 +67,32 @@ fn default_optimize_runs_the_embedded_benchmark() {
             .iter()
             .all(|x| (0.0..=2000.0).contains(&x.as_f64().unwrap()))
     );
-    // a second run reuses the finished sweep and gives the same optimum
+    // interrupted refinement: keep 30 journalled points and a torn line; the second run
+    // reuses the finished sweep, replays those 30 points and gives the same files
+    let rj = res.join("refine-trust-region.jsonl");
+    let text = std::fs::read_to_string(&rj).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(
+        lines.len() > 30,
+        "{} refinement points journalled",
+        lines.len()
+    );
+    std::fs::write(&rj, lines[..30].join("\n") + "\n{\"z\":[0.1,").unwrap();
+    let refine_csv = std::fs::read(res.join("refine.csv")).unwrap();
+    let table = std::fs::read(res.join("design-table.csv")).unwrap();
     let again = run_in(&dir, &["optimize", "--quiet"]);
     assert!(again.status.success());
+    let msg = String::from_utf8_lossy(&again.stdout);
+    assert!(
+        msg.contains("(30 replayed from the refine journal)"),
+        "{msg}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&rj).unwrap().lines().count(),
+        lines.len()
+    );
+    assert!(refine_csv == std::fs::read(res.join("refine.csv")).unwrap());
+    assert!(table == std::fs::read(res.join("design-table.csv")).unwrap());
     let v2: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(res.join("optimum.json")).unwrap()).unwrap();
     assert_eq!(v, v2);

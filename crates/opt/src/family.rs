@@ -89,7 +89,7 @@ pub fn family(
                 .into_iter()
                 .flatten()
                 .collect();
-            let r = optimize(&s, &m, &rows, method, tick)?;
+            let r = optimize(&s, &m, &rows, method, None, tick)?;
             out.push(FamilyCell {
                 period_scale: p,
                 intensity_scale: a,

@@ -40,6 +40,12 @@ pub struct Journal {
 /// Reads a journal; a last line that does not parse (torn write) is dropped. Returns the
 /// entries and the byte length of the intact part.
 pub fn read(path: &Path) -> Result<(Vec<Entry>, u64), OptError> {
+    read_lines(path)
+}
+
+/// Reads a file of one JSON `T` per line; a last line that does not parse (torn write)
+/// is dropped. Returns the values and the byte length of the intact part.
+pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>, u64), OptError> {
     let text = match std::fs::read(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
@@ -66,7 +72,7 @@ pub fn read(path: &Path) -> Result<(Vec<Entry>, u64), OptError> {
         };
         let parsed = std::str::from_utf8(line)
             .ok()
-            .and_then(|l| serde_json::from_str::<Entry>(l).ok());
+            .and_then(|l| serde_json::from_str::<T>(l).ok());
         match parsed {
             Some(e) if complete => {
                 entries.push(e);

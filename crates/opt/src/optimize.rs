@@ -8,6 +8,8 @@ use crate::metrics::RecordMetrics;
 use crate::refine::{Evaluations, Point, refine};
 use crate::study::{RefineMethod, Study};
 use crate::sweep::Manifest;
+use std::io::{LineWriter, Write};
+use std::path::Path;
 
 /// Finalists differ by at least this much in some scaled variable (5 % of its range), so
 /// that the check compares designs, not round-off around one design.
@@ -49,8 +51,11 @@ pub struct OptimizeReport {
     pub bare_objective: f64,
     /// Objective of the building file's slip loads.
     pub file_objective: f64,
-    /// Simulations run by refinement and check (the sweep's not included).
+    /// Simulations run by refinement and check (the sweep's not included; replayed
+    /// refinement points included).
     pub simulations: usize,
+    /// Refinement evaluations replayed from the journal of an earlier run.
+    pub replayed: usize,
 }
 
 /// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same fidelity.
@@ -68,12 +73,16 @@ pub fn objectives(
         .collect()
 }
 
-/// Refines from the sweep (`manifest`, its complete `rows`) with `method`.
+/// Refines from the sweep (`manifest`, its complete `rows`) with `method`. With a
+/// `journal` path every refinement evaluation is appended there (one JSON point per
+/// line), and the points of an earlier, interrupted run found there are replayed instead
+/// of simulated again — the refiners then take the same path, so the answer is the same.
 pub fn optimize(
     study: &Study,
     manifest: &Manifest,
     rows: &[RecordMetrics],
     method: RefineMethod,
+    journal: Option<&Path>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<OptimizeReport, OptError> {
     let cfg = study.config.refine;
@@ -106,6 +115,37 @@ pub fn optimize(
         }
     };
     let mut ev = Evaluations::new(Box::new(oracle), known.clone());
+    if let Some(path) = journal {
+        let io = |source| OptError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let (replay, good) = crate::journal::read_lines::<Point>(path)?;
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(path)
+            .map_err(io)?;
+        file.set_len(good).map_err(io)?; // cut a torn last line
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map_err(io)?;
+        let mut w = LineWriter::new(file);
+        let owned = path.to_path_buf();
+        ev = ev.with_journal(
+            replay,
+            Box::new(move |p: &Point| {
+                let mut line = serde_json::to_string(p).expect("a point serialises");
+                line.push('\n');
+                w.write_all(line.as_bytes()).map_err(|source| OptError::Io {
+                    path: owned.clone(),
+                    source,
+                })
+            }),
+        );
+    }
     let mut budget = 0;
     for &s in order.iter().take(cfg.starts) {
         budget += cfg.max_evaluations;
@@ -113,6 +153,7 @@ pub fn optimize(
     }
     let optimum = ev.best().expect("the sweep gave points");
     let log = ev.log.clone();
+    let replayed = ev.replayed;
     drop(ev);
     // finalists: the best distinct points of everything evaluated
     let mut all: Vec<Point> = known.iter().chain(log.iter()).cloned().collect();
@@ -165,5 +206,6 @@ pub fn optimize(
         bare_objective: obj[0].0,
         file_objective: obj[1].0,
         simulations,
+        replayed,
     })
 }

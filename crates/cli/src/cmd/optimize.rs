@@ -18,7 +18,7 @@ pub struct OptimizeArgs {
     /// Study file (default: the embedded benchmark study)
     pub study: Option<PathBuf>,
     /// Output folder (the sweep's files, refine.csv, optimum.json, design-table.*); a
-    /// finished sweep in it is reused
+    /// finished sweep in it is reused, journalled refinement points are replayed
     #[arg(long, default_value = "out/optimize")]
     pub out: PathBuf,
     /// Refiner: trust-region, nelder-mead or random (default: the study's)
@@ -79,7 +79,15 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
     let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
     let pb = progress(est as u64, args.quiet, "refine");
-    let r = optimize(&study, &report.manifest, &rows, method, &|| pb.inc(1)).context("refining")?;
+    let r = optimize(
+        &study,
+        &report.manifest,
+        &rows,
+        method,
+        Some(&args.out.join(format!("refine-{}.jsonl", method.as_str()))),
+        &|| pb.inc(1),
+    )
+    .context("refining")?;
     pb.finish_and_clear();
     let designs = standard_designs(&study, &r.optimum_loads);
     let pb = progress(
@@ -139,10 +147,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         nr
     );
     println!(
-        "sweep: {} designs; refine ({}): {} designs; {} simulations in {:.1} s",
+        "sweep: {} designs; refine ({}): {} designs ({} replayed from the refine journal); {} simulations in {:.1} s",
         r.sweep_designs,
         method.as_str(),
         r.log.len(),
+        r.replayed,
         report.manifest.tasks() + r.simulations,
         started.elapsed().as_secs_f64()
     );

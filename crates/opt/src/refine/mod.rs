@@ -69,10 +69,20 @@ pub struct Point {
 /// The batch objective: objective values of several scaled points.
 pub type Oracle<'a> = dyn FnMut(&[Vec<f64>]) -> Result<Vec<f64>, OptError> + 'a;
 
+/// Called with each newly computed point.
+pub type Hook<'a> = dyn FnMut(&Point) -> Result<(), OptError> + 'a;
+
 /// Every evaluation so far, with a cache keyed by the exact bits of z.
 pub struct Evaluations<'a> {
     oracle: Box<Oracle<'a>>,
     cache: HashMap<Vec<u64>, f64>,
+    /// Values from an earlier, interrupted run: counted as new evaluations when asked
+    /// for (so the refiners take the same path) but not computed again.
+    replay: HashMap<Vec<u64>, f64>,
+    /// Called with every point the oracle computed (journal append).
+    hook: Option<Box<Hook<'a>>>,
+    /// Evaluations taken from the replay.
+    pub replayed: usize,
     /// Points known before refining (not counted).
     pub known: Vec<Point>,
     /// New evaluations, in order.
@@ -90,9 +100,20 @@ impl<'a> Evaluations<'a> {
         Evaluations {
             oracle,
             cache,
+            replay: HashMap::new(),
+            hook: None,
+            replayed: 0,
             known,
             log: Vec::new(),
         }
+    }
+
+    /// Points evaluated by an earlier run of the same refinement (its journal), and a
+    /// hook called with every point computed from now on.
+    pub fn with_journal(mut self, replay: Vec<Point>, hook: Box<Hook<'a>>) -> Self {
+        self.replay = replay.into_iter().map(|p| (key(&p.z), p.f)).collect();
+        self.hook = Some(hook);
+        self
     }
 
     /// Objective at each point; only points never seen are evaluated (in one batch).
@@ -104,8 +125,31 @@ impl<'a> Evaluations<'a> {
             }
         }
         if !fresh.is_empty() {
-            let fs = (self.oracle)(&fresh)?;
-            for (z, f) in fresh.into_iter().zip(fs) {
+            let compute: Vec<Vec<f64>> = fresh
+                .iter()
+                .filter(|z| !self.replay.contains_key(&key(z)))
+                .cloned()
+                .collect();
+            let mut computed = if compute.is_empty() {
+                Vec::new()
+            } else {
+                (self.oracle)(&compute)?
+            }
+            .into_iter();
+            for z in fresh {
+                let f = match self.replay.get(&key(&z)) {
+                    Some(&f) => {
+                        self.replayed += 1;
+                        f
+                    }
+                    None => {
+                        let f = computed.next().expect("one value per computed point");
+                        if let Some(h) = self.hook.as_mut() {
+                            h(&Point { z: z.clone(), f })?;
+                        }
+                        f
+                    }
+                };
                 self.cache.insert(key(&z), f);
                 self.log.push(Point { z, f });
             }
