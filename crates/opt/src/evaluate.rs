@@ -131,6 +131,8 @@ pub fn run_tasks(
     tasks
         .par_iter()
         .enumerate()
+        // map_init is where per-worker scratch goes; a task needs none beyond its own
+        // plan today, so the worker state is empty
         .map_init(
             || (),
             |_, (k, t)| {
