@@ -44,4 +44,49 @@ mod tests {
     fn cli_is_well_formed() {
         Cli::command().debug_assert();
     }
+
+    #[test]
+    fn study_commands_parse() {
+        for args in [
+            vec![
+                "slipload", "sweep", "s.json", "--shard", "1/3", "--resume", "--quiet",
+            ],
+            vec![
+                "slipload",
+                "--threads",
+                "2",
+                "sweep",
+                "s.json",
+                "--shard",
+                "auto",
+                "--shards",
+                "4",
+            ],
+            vec!["slipload", "merge", "a", "b", "--out", "m"],
+            vec!["slipload", "table", "--period-scales", "0.9,1.1"],
+            vec!["slipload", "optimize"],
+            vec![
+                "slipload",
+                "optimize",
+                "s.json",
+                "--refine",
+                "nelder-mead",
+                "--out",
+                "o",
+            ],
+            vec![
+                "slipload",
+                "rank",
+                "s.json",
+                "--designs",
+                "d.json",
+                "--bootstrap",
+                "50",
+            ],
+        ] {
+            assert!(Cli::try_parse_from(&args).is_ok(), "{args:?}");
+        }
+        assert!(Cli::try_parse_from(["slipload", "optimize", "--refine", "gradient"]).is_err());
+        assert!(Cli::try_parse_from(["slipload", "merge", "--out", "m"]).is_err());
+    }
 }

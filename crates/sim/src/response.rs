@@ -75,6 +75,11 @@ pub struct Diagnostics {
     pub sampled_peak_drift: Option<Vec<f64>>,
     /// Mode changes (stick↔slip and slip reversals) located by `exact` (0 for others).
     pub events: u64,
+    /// Area under the strain-energy history ∫ E_strain dt, J·s (trapezoidal at the steps;
+    /// 0 unless energies are on). Filiatrault & Cherry (1988) compare it with the bare
+    /// frame's in their relative performance index.
+    #[serde(default)]
+    pub strain_energy_area: f64,
 }
 
 /// Iterations of `delacruz`'s three nested fixed-point loops, per invocation of each loop.

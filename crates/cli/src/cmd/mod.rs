@@ -2,9 +2,15 @@
 
 pub mod accuracy;
 pub mod explain;
+pub mod merge;
+pub mod optimize;
+pub mod rank;
 pub mod record;
 pub mod scene_args;
 pub mod simulate;
+pub mod study_args;
+pub mod sweep;
+pub mod table;
 
 /// The subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -17,6 +23,16 @@ pub enum Command {
     Record(record::RecordArgs),
     /// What accuracy costs: every method x time step against the exact integrator
     Accuracy(accuracy::AccuracyArgs),
+    /// Sweep a sample of slip-load designs over every record of a study
+    Sweep(sweep::SweepArgs),
+    /// Join sweep shards into the files one run writes
+    Merge(merge::MergeArgs),
+    /// Sweep, refine and verify the slip loads of a study (default: the embedded benchmark)
+    Optimize(optimize::OptimizeArgs),
+    /// Rank candidate designs over every suite of a study, with bootstrap stability
+    Rank(rank::RankArgs),
+    /// Tabulate a study's optimum over period scale × intensity scale
+    Table(table::TableArgs),
 }
 
 /// Runs one subcommand.
@@ -26,5 +42,10 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Explain(args) => explain::run(args),
         Command::Record(args) => record::run(args),
         Command::Accuracy(args) => accuracy::run(args),
+        Command::Sweep(args) => sweep::run(args),
+        Command::Merge(args) => merge::run(args),
+        Command::Optimize(args) => optimize::run(args),
+        Command::Rank(args) => rank::run(args),
+        Command::Table(args) => table::run(args),
     }
 }

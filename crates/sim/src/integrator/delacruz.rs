@@ -617,7 +617,7 @@ impl Integrator for DelaCruz {
         let energies = plan.outputs.energies;
         let (k0, s0) = stored_energy(plan, &u, &v, &epp);
         let initial_energy = k0 + s0;
-        let mut acc = EnergyAccumulator::default();
+        let mut acc = EnergyAccumulator::new(s0);
         let msum: f64 = s.mr.iter().sum();
         let hf = plan.harmonic.map(|h| h.floor);
         let base_shear = |a: &[f64], ag: f64, p: f64| -> f64 {
@@ -834,6 +834,7 @@ impl Integrator for DelaCruz {
                     resolves,
                     projection_energy,
                 }),
+                strain_energy_area: acc.strain_area,
                 ..Default::default()
             },
             history,

@@ -171,7 +171,7 @@ impl Integrator for Newmark {
         let energies = plan.outputs.energies;
         let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
         let initial_energy = k0 + s0;
-        let mut acc = EnergyAccumulator::default();
+        let mut acc = EnergyAccumulator::new(s0);
 
         let mut peaks = Peaks::new(nf);
         let mut ag0 = plan.ground_accel(0.0);
@@ -372,6 +372,7 @@ impl Integrator for Newmark {
                 qp_iterations_max: qp_iter_max,
                 balance_error_max_relative: acc.balance_max_rel,
                 initial_energy,
+                strain_energy_area: acc.strain_area,
                 ..Default::default()
             },
             history,

@@ -315,6 +315,10 @@ pub(crate) struct EnergyAccumulator {
     pub(crate) friction: f64,
     /// Largest |balance error| / (|input| + initial) seen.
     pub(crate) balance_max_rel: f64,
+    /// Area under the strain-energy history ∫ E_strain dt so far, J·s (trapezoidal).
+    pub(crate) strain_area: f64,
+    /// Strain energy at the end of the last step, J.
+    strain_prev: f64,
 }
 
 /// One step's data for [`EnergyAccumulator::step`].
@@ -338,6 +342,14 @@ pub(crate) struct StepEnergyData<'a> {
 }
 
 impl EnergyAccumulator {
+    /// Starts from the initial strain energy `strain0`, J.
+    pub(crate) fn new(strain0: f64) -> Self {
+        EnergyAccumulator {
+            strain_prev: strain0,
+            ..Default::default()
+        }
+    }
+
     /// Adds one step's increments; returns the history row (input, kinetic, strain,
     /// viscous, friction) at the end of the step. `epp` is the elements' state at the end.
     pub(crate) fn step(
@@ -381,6 +393,8 @@ impl EnergyAccumulator {
             }
         }
         let (ek, es) = stored_energy(plan, u_now, v_now, epp);
+        self.strain_area += 0.5 * dt * (self.strain_prev + es);
+        self.strain_prev = es;
         let bal = self.input + initial_energy - (ek + es + self.viscous + self.friction);
         let scale = (self.input.abs() + initial_energy).max(f64::MIN_POSITIVE);
         self.balance_max_rel = self.balance_max_rel.max(bal.abs() / scale);

@@ -1,0 +1,192 @@
+//! `slipload optimize`: sweep, refine from the best sweep points, verify the finalists at
+//! reference accuracy, write the design table. With no study it runs the embedded
+//! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
+
+use super::study_args::{load_study, progress};
+use anyhow::Context;
+use slipload_opt::journal::write_atomic;
+use slipload_opt::optimize::{OptimizeReport, optimize};
+use slipload_opt::study::RefineMethod;
+use slipload_opt::table::{DesignTable, standard_designs};
+use slipload_opt::{Shard, Study, sweep};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `slipload optimize`.
+#[derive(Debug, clap::Args)]
+pub struct OptimizeArgs {
+    /// Study file (default: the embedded benchmark study)
+    pub study: Option<PathBuf>,
+    /// Output folder (the sweep's files, refine.csv, optimum.json, design-table.*); a
+    /// finished sweep in it is reused, journalled refinement points are replayed
+    #[arg(long, default_value = "out/optimize")]
+    pub out: PathBuf,
+    /// Refiner: trust-region, nelder-mead or random (default: the study's)
+    #[arg(long)]
+    pub refine: Option<RefineMethod>,
+    /// No progress bar
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+fn kn(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{:.1}", x / 1e3))
+        .collect::<Vec<_>>()
+        .join(" / ")
+}
+
+/// `refine.csv`: every refinement evaluation with the best objective so far.
+fn refine_csv(study: &Study, r: &OptimizeReport) -> String {
+    let mut s = String::from("evaluation,refiner,objective,best_so_far");
+    for f in &study.space.dampers {
+        let _ = write!(s, ",slip_load_kN_{}", f + 1);
+    }
+    s.push('\n');
+    let mut best = r.best_sweep.f;
+    for (i, p) in r.log.iter().enumerate() {
+        best = best.min(p.f);
+        let _ = write!(s, "{},{},{},{}", i + 1, r.method.as_str(), p.f, best);
+        for v in study.space.slip_loads(&p.z) {
+            let _ = write!(s, ",{}", v / 1e3);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Writes the design table files into `out`.
+pub fn write_table(out: &Path, table: &DesignTable) -> anyhow::Result<()> {
+    write_atomic(&out.join("design-table.csv"), table.to_csv().as_bytes())?;
+    write_atomic(&out.join("design-table.md"), table.to_markdown().as_bytes())?;
+    write_atomic(&out.join("design-table.json"), table.to_json().as_bytes())?;
+    Ok(())
+}
+
+/// Runs `slipload optimize`.
+pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
+    let started = std::time::Instant::now();
+    let study = load_study(args.study.as_deref())?;
+    let method = args.refine.unwrap_or(study.config.refine.method);
+    let manifest = sweep::Manifest::of(&study);
+    let pb = progress(manifest.tasks() as u64, args.quiet, "sweep");
+    let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
+        .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
+    pb.finish_and_clear();
+    let rows = report.rows.context("the sweep is incomplete")?;
+    let nr = study.records.len();
+    let rc = study.config.refine;
+    // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
+    let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
+    let pb = progress(est as u64, args.quiet, "refine");
+    let r = optimize(
+        &study,
+        &report.manifest,
+        &rows,
+        method,
+        Some(&args.out.join(format!("refine-{}.jsonl", method.as_str()))),
+        &|| pb.inc(1),
+    )
+    .context("refining")?;
+    pb.finish_and_clear();
+    let designs = standard_designs(&study, &r.optimum_loads);
+    let pb = progress(
+        ((designs.len() * 3 + 1) * nr) as u64,
+        args.quiet,
+        "design table",
+    );
+    let table = DesignTable::build(&study, &designs, &|| pb.inc(1)).context("design table")?;
+    pb.finish_and_clear();
+    write_atomic(
+        &args.out.join("refine.csv"),
+        refine_csv(&study, &r).as_bytes(),
+    )?;
+    let optimum = serde_json::json!({
+        "study": study.name,
+        "objective": study.objective.label(),
+        "refiner": method.as_str(),
+        "damper_floors": study.space.dampers.iter().map(|f| f + 1).collect::<Vec<_>>(),
+        "slip_loads_kN": r.optimum_loads.iter().map(|v| v / 1e3).collect::<Vec<_>>(),
+        "objective_value": r.optimum.f,
+        "bare_objective": r.bare_objective,
+        "file_objective": r.file_objective,
+        "sweep_designs": r.sweep_designs,
+        "refine_evaluations": r.log.len(),
+        "finalists": r.finalists.iter().map(|f| serde_json::json!({
+            "slip_loads_kN": f.slip_loads_n.iter().map(|v| v / 1e3).collect::<Vec<_>>(),
+            "objective_sweep": f.f_sweep,
+            "objective_check": f.f_check,
+        })).collect::<Vec<_>>(),
+        "ranking_held": r.ranking_held,
+    });
+    let mut text = serde_json::to_string_pretty(&optimum)?;
+    text.push('\n');
+    write_atomic(&args.out.join("optimum.json"), text.as_bytes())?;
+    write_table(&args.out, &table)?;
+    let candidates: Vec<slipload_opt::rank::NamedDesign> = designs
+        .iter()
+        .map(|(name, loads)| slipload_opt::rank::NamedDesign {
+            name: name.clone(),
+            slip_loads_kn: loads.iter().map(|v| v / 1e3).collect(),
+        })
+        .collect();
+    let mut text = serde_json::to_string_pretty(&candidates)?;
+    text.push('\n');
+    write_atomic(&args.out.join("candidates.json"), text.as_bytes())?;
+
+    let floors: Vec<String> = study
+        .space
+        .dampers
+        .iter()
+        .map(|f| format!("{}", f + 1))
+        .collect();
+    println!(
+        "{}: {} over {} records",
+        study.name,
+        study.objective.label(),
+        nr
+    );
+    println!(
+        "sweep: {} designs; refine ({}): {} designs ({} replayed from the refine journal); {} simulations in {:.1} s",
+        r.sweep_designs,
+        method.as_str(),
+        r.log.len(),
+        r.replayed,
+        report.manifest.tasks() + r.simulations,
+        started.elapsed().as_secs_f64()
+    );
+    println!(
+        "optimal slip loads, floors {} (kN): {}",
+        floors.join(" / "),
+        kn(&r.optimum_loads)
+    );
+    let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
+    println!(
+        "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",
+        r.optimum.f,
+        r.bare_objective,
+        pct(r.optimum.f, r.bare_objective),
+        kn(&study.file_slip_loads()),
+        r.file_objective,
+        pct(r.optimum.f, r.file_objective)
+    );
+    println!(
+        "check at reference accuracy ({} at {} × dt): finalists' ranking {}",
+        study.config.fidelity.check_method.as_str(),
+        study.config.fidelity.check_dt_factor,
+        if r.ranking_held { "held" } else { "changed" }
+    );
+    for f in &r.finalists {
+        println!(
+            "  {} kN: objective {:.6} (sweep {:.6})",
+            kn(&f.slip_loads_n),
+            f.f_check,
+            f.f_sweep
+        );
+    }
+    println!(
+        "wrote {}/{{designs.csv,responses.csv,refine.csv,optimum.json,candidates.json,design-table.csv,design-table.md,design-table.json}}",
+        args.out.display()
+    );
+    Ok(())
+}

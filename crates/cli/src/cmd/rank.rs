@@ -1,0 +1,70 @@
+//! `slipload rank`: candidate designs over every suite of a study, with their objective,
+//! rank and how stable the ranking is under a bootstrap over the records.
+
+use super::study_args::{load_study, progress};
+use anyhow::Context;
+use slipload_opt::journal::write_atomic;
+use slipload_opt::rank::{NamedDesign, rank};
+use std::path::PathBuf;
+
+/// Arguments of `slipload rank`.
+#[derive(Debug, clap::Args)]
+pub struct RankArgs {
+    /// Study file
+    pub study: PathBuf,
+    /// Candidates: a JSON array of {"name", "slip_loads_kn": [...]} (optimize writes
+    /// candidates.json: optimum, uniform, storey-shear, file, bare)
+    #[arg(long)]
+    pub designs: PathBuf,
+    /// Output folder (rank.csv, rank.md, rank.json)
+    #[arg(long, default_value = "out/rank")]
+    pub out: PathBuf,
+    /// Bootstrap resamples of the records
+    #[arg(long, default_value_t = 200)]
+    pub bootstrap: usize,
+    /// Bootstrap seed
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// No progress bar
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs `slipload rank`.
+pub fn run(args: RankArgs) -> anyhow::Result<()> {
+    let study = load_study(Some(&args.study))?;
+    let text = std::fs::read_to_string(&args.designs)
+        .with_context(|| format!("reading {}", args.designs.display()))?;
+    let designs: Vec<NamedDesign> = serde_json::from_str(&text).with_context(|| {
+        format!(
+            "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
+            args.designs.display()
+        )
+    })?;
+    anyhow::ensure!(
+        !designs.is_empty(),
+        "{}: no designs",
+        args.designs.display()
+    );
+    slipload_opt::rank::to_newtons(&study, &designs)
+        .with_context(|| format!("checking {}", args.designs.display()))?;
+    let pb = progress(
+        ((designs.len() + 1) * study.records.len()) as u64,
+        args.quiet,
+        "rank",
+    );
+    let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
+    pb.finish_and_clear();
+    write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
+    let md = r.to_markdown();
+    write_atomic(&args.out.join("rank.md"), md.as_bytes())?;
+    let mut json = serde_json::to_string_pretty(&r)?;
+    json.push('\n');
+    write_atomic(&args.out.join("rank.json"), json.as_bytes())?;
+    print!("{}: {}\n\n{md}", study.name, study.objective.label());
+    println!(
+        "wrote {}/{{rank.csv,rank.md,rank.json}}",
+        args.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,46 @@
+//! Study selection shared by `sweep`, `optimize`, `rank` and `table`: a study file, or
+//! the embedded benchmark study (`configs/study-benchmark.json` with the benchmark
+//! building inlined), plus the progress bar these commands draw on stderr.
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use slipload_opt::{Study, StudyConfig};
+use slipload_sim::BuildingConfig;
+use slipload_sim::scene::BuildingRef;
+use std::path::{Path, PathBuf};
+
+/// The benchmark study, embedded so `slipload optimize` runs with no files.
+pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchmark.json");
+
+/// Loads `path`, or the embedded benchmark study. Every check runs here, before any
+/// simulation.
+pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
+    match path {
+        Some(p) => Study::load(p).with_context(|| format!("loading study {}", p.display())),
+        None => {
+            let name = PathBuf::from("configs/study-benchmark.json (embedded)");
+            let mut cfg = StudyConfig::from_json(BENCHMARK_STUDY, &name)?;
+            let b: BuildingConfig = serde_json::from_str(super::scene_args::BENCHMARK_BUILDING)
+                .context("the embedded benchmark building")?;
+            cfg.building = BuildingRef::Inline(Box::new(b));
+            Ok(Study::from_config(cfg, &name)?)
+        }
+    }
+}
+
+/// A progress bar of `len` steps on stderr; hidden with `quiet` (and by indicatif when
+/// stderr is not a terminal).
+pub fn progress(len: u64, quiet: bool, what: &str) -> ProgressBar {
+    let pb = ProgressBar::new(len);
+    if quiet {
+        pb.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    pb.set_style(
+        ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} [{elapsed_precise}<{eta_precise}] {msg}",
+        )
+        .expect("template is a literal"),
+    );
+    pb.set_message(what.to_string());
+    pb
+}

@@ -1,0 +1,72 @@
+//! `slipload sweep`: a sample of designs × every record of a study, journalled in the
+//! output folder (`--resume` continues it), optionally one shard of a job array.
+
+use super::study_args::{load_study, progress};
+use anyhow::Context;
+use slipload_opt::Shard;
+use slipload_opt::sweep;
+use std::path::PathBuf;
+
+/// Arguments of `slipload sweep`.
+#[derive(Debug, clap::Args)]
+pub struct SweepArgs {
+    /// Study file (JSON)
+    pub study: PathBuf,
+    /// Output folder: manifest.json, responses.csv, designs.csv, journal.jsonl
+    #[arg(long, default_value = "out/sweep")]
+    pub out: PathBuf,
+    /// No progress bar
+    #[arg(long)]
+    pub quiet: bool,
+    /// Run one slice of the task list: I/N (from 0), or `auto` (job-array environment)
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Number of shards for `--shard auto` when the scheduler does not say
+    #[arg(long)]
+    pub shards: Option<usize>,
+    /// Continue the journal in the output folder: finished tasks are not run again
+    #[arg(long)]
+    pub resume: bool,
+}
+
+/// Runs `slipload sweep`.
+pub fn run(args: SweepArgs) -> anyhow::Result<()> {
+    let study = load_study(Some(&args.study))?;
+    let shard = match &args.shard {
+        None => Shard::ALL,
+        Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
+    };
+    let manifest = sweep::Manifest::of(&study);
+    let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
+    let pb = progress(mine as u64, args.quiet, "sweep");
+    let start = std::time::Instant::now();
+    let report = sweep::run(&study, &args.out, shard, args.resume, &|| pb.inc(1))
+        .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
+    pb.finish_and_clear();
+    let secs = start.elapsed().as_secs_f64();
+    eprintln!(
+        "{}: {} designs × {} records; shard {}/{}: {} tasks ({} from the journal, {} run in {:.2} s, {:.1} tasks/s)",
+        study.name,
+        report.manifest.designs.len(),
+        report.manifest.records.len(),
+        shard.index,
+        shard.count,
+        report.shard_tasks,
+        report.resumed,
+        report.ran,
+        secs,
+        report.ran as f64 / secs.max(1e-9)
+    );
+    if report.rows.is_some() {
+        eprintln!(
+            "wrote {}/{{manifest.json,responses.csv,designs.csv}}",
+            args.out.display()
+        );
+    } else {
+        eprintln!(
+            "shard journal in {}; join the shards with `slipload merge --out DIR SHARD_DIR...`",
+            args.out.display()
+        );
+    }
+    Ok(())
+}

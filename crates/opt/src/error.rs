@@ -1,0 +1,91 @@
+//! Errors of the optimisation crate: typed, carrying the values that explain them.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong while loading a study, sweeping or refining.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum OptError {
+    /// A file could not be read or written.
+    #[error("cannot access {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A study file does not parse or does not fit the schema (unknown field, wrong type).
+    #[error("{path}: {source}")]
+    Json {
+        /// The file.
+        path: PathBuf,
+        /// serde_json's message, with line and column.
+        source: serde_json::Error,
+    },
+    /// A study value is out of range or inconsistent.
+    #[error("{path}: field `{field}`: {message}")]
+    Invalid {
+        /// The study file.
+        path: PathBuf,
+        /// The field, as a JSON path (`space.free.upper_kn[2]`).
+        field: String,
+        /// What was expected and what was found.
+        message: String,
+    },
+    /// The journal in the output folder belongs to another study, or is corrupt.
+    #[error("journal {path}, line {line}: {message}")]
+    Journal {
+        /// The journal file.
+        path: PathBuf,
+        /// Line number, from 1.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Shard selection is invalid.
+    #[error("shard: {0}")]
+    Shard(String),
+    /// A convex subproblem was not solved.
+    #[error("trust-region subproblem not solved: {0}")]
+    Subproblem(String),
+    /// A simulation failed.
+    #[error("design {design}, record {record}: {source}")]
+    Simulation {
+        /// Design label.
+        design: String,
+        /// Record name.
+        record: String,
+        /// The cause (boxed: a simulation error is large).
+        source: Box<slipload_sim::SimError>,
+    },
+    /// A record could not be read or scaled.
+    #[error(transparent)]
+    Motion(#[from] slipload_motion::MotionError),
+    /// The building could not be loaded.
+    #[error(transparent)]
+    Sim(Box<slipload_sim::SimError>),
+    /// A response the objective needs is missing (e.g. drift ratios without storey heights).
+    #[error("{0}")]
+    Missing(String),
+}
+
+impl From<slipload_sim::SimError> for OptError {
+    fn from(e: slipload_sim::SimError) -> Self {
+        OptError::Sim(Box::new(e))
+    }
+}
+
+impl OptError {
+    /// An [`OptError::Invalid`].
+    pub fn invalid(
+        path: impl Into<PathBuf>,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        OptError::Invalid {
+            path: path.into(),
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}

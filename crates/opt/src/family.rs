@@ -1,0 +1,146 @@
+//! Design families: the optimum of a study over a grid of period scales × intensity
+//! scales — a table an engineer reads off for a similar building or another hazard level.
+//!
+//! A period scale p multiplies every period of the building: frame and brace stiffnesses
+//! are divided by p² and the frame and brace damping by p (so every modal damping ratio is
+//! kept), masses and storey heights unchanged. An intensity scale multiplies every record.
+//! The design space (kN) stays the study's.
+
+use crate::error::OptError;
+use crate::evaluate::{Fidelity, run_designs};
+use crate::optimize::optimize;
+use crate::study::{RefineMethod, Study};
+use crate::sweep::Manifest;
+use serde::{Deserialize, Serialize};
+use slipload_sim::modes::Modes;
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+/// The optimum for one (period scale, intensity scale).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FamilyCell {
+    /// Period scale.
+    pub period_scale: f64,
+    /// Intensity scale.
+    pub intensity_scale: f64,
+    /// Fundamental period of the bare frame, s.
+    pub t1_s: f64,
+    /// Optimal slip loads, kN per dissipator.
+    pub slip_loads_kn: Vec<f64>,
+    /// Objective of the optimum (sweep fidelity).
+    pub objective: f64,
+    /// Objective of the bare frame.
+    pub bare_objective: f64,
+    /// Designs evaluated (sweep + refinement).
+    pub designs: usize,
+}
+
+/// The study with its building's periods scaled by `period_scale` and its records by
+/// `intensity_scale`.
+pub fn scaled_study(
+    study: &Study,
+    period_scale: f64,
+    intensity_scale: f64,
+) -> Result<Study, OptError> {
+    for (what, v) in [
+        ("period scale", period_scale),
+        ("intensity scale", intensity_scale),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(OptError::Missing(format!(
+                "{what} must be finite and > 0, got {v}"
+            )));
+        }
+    }
+    let mut s = study.clone();
+    let k = 1.0 / (period_scale * period_scale);
+    let c = 1.0 / period_scale;
+    s.building.stiffness *= k;
+    s.building.damping *= c;
+    for d in s.building.dissipators.iter_mut().flatten() {
+        d.brace_stiffness *= k;
+        d.brace_damping *= c;
+    }
+    s.building.modes = Modes::compute(&s.building.mass, &s.building.stiffness)
+        .ok_or_else(|| OptError::Missing("scaled stiffness is not positive definite".into()))?;
+    s.records = study
+        .records
+        .iter()
+        .map(|r| Arc::new(r.scaled(intensity_scale)))
+        .collect();
+    Ok(s)
+}
+
+/// Sweeps and refines the study at every (period scale, intensity scale).
+pub fn family(
+    study: &Study,
+    period_scales: &[f64],
+    intensity_scales: &[f64],
+    method: RefineMethod,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<FamilyCell>, OptError> {
+    let mut out = Vec::new();
+    for &p in period_scales {
+        for &a in intensity_scales {
+            let s = scaled_study(study, p, a)?;
+            let m = Manifest::of(&s);
+            let designs: Vec<Vec<f64>> = m.designs.iter().map(|d| d.slip_loads_n.clone()).collect();
+            let rows: Vec<_> = run_designs(&s, &designs, &Fidelity::sweep(&s), tick)?
+                .into_iter()
+                .flatten()
+                .collect();
+            let r = optimize(&s, &m, &rows, method, None, tick)?;
+            out.push(FamilyCell {
+                period_scale: p,
+                intensity_scale: a,
+                t1_s: s.building.t1(),
+                slip_loads_kn: r.optimum_loads.iter().map(|v| v / 1e3).collect(),
+                objective: r.optimum.f,
+                bare_objective: r.bare_objective,
+                designs: r.sweep_designs + r.log.len(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// CSV of a family.
+pub fn to_csv(cells: &[FamilyCell], damper_floors: &[usize]) -> String {
+    let mut s = String::from("period_scale,intensity_scale,t1_s");
+    for f in damper_floors {
+        let _ = write!(s, ",slip_load_kN_{f}");
+    }
+    s.push_str(",objective,bare_objective,designs\n");
+    for c in cells {
+        let _ = write!(s, "{},{},{}", c.period_scale, c.intensity_scale, c.t1_s);
+        for v in &c.slip_loads_kn {
+            let _ = write!(s, ",{v}");
+        }
+        let _ = writeln!(s, ",{},{},{}", c.objective, c.bare_objective, c.designs);
+    }
+    s
+}
+
+/// Markdown of a family.
+pub fn to_markdown(cells: &[FamilyCell], damper_floors: &[usize], objective: &str) -> String {
+    let floors: Vec<String> = damper_floors.iter().map(|f| f.to_string()).collect();
+    let mut s = format!(
+        "Optimal slip loads (kN, floors {}) by period scale × intensity scale; objective: {objective}.\n\n| period × | T₁ (s) | intensity × | slip loads (kN) | objective | bare frame | reduction |\n|---:|---:|---:|---|---:|---:|---:|\n",
+        floors.join(" / ")
+    );
+    for c in cells {
+        let loads: Vec<String> = c.slip_loads_kn.iter().map(|v| format!("{v:.0}")).collect();
+        let _ = writeln!(
+            s,
+            "| {} | {:.3} | {} | {} | {:.5} | {:.5} | {:.1} % |",
+            c.period_scale,
+            c.t1_s,
+            c.intensity_scale,
+            loads.join(" / "),
+            c.objective,
+            c.bare_objective,
+            100.0 * (1.0 - c.objective / c.bare_objective)
+        );
+    }
+    s
+}

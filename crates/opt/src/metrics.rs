@@ -1,0 +1,85 @@
+//! Per-record responses of one design: what the sweep journals and the objective reads.
+
+use serde::{Deserialize, Serialize};
+use slipload_sim::Outcome;
+
+/// The responses of one (design, record) simulation that studies use (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordMetrics {
+    /// Peak |drift| / storey height per storey.
+    pub drift_ratio: Vec<f64>,
+    /// |Drift| / storey height at the end, per storey.
+    pub residual_drift_ratio: Vec<f64>,
+    /// Peak |absolute floor acceleration| over all floors, m/s².
+    pub peak_floor_acceleration: f64,
+    /// Peak |base shear|, N.
+    pub peak_base_shear: f64,
+    /// Peak |floor displacement| over all floors (relative to the ground), m.
+    pub peak_displacement: f64,
+    /// Peak |slip| (damper stroke) per storey, m.
+    pub stroke: Vec<f64>,
+    /// Input energy, J (energies on).
+    pub energy_input: Option<f64>,
+    /// Friction dissipation, J (energies on).
+    pub energy_friction: Option<f64>,
+    /// ∫ E_strain dt, J·s (energies on).
+    pub strain_energy_area: Option<f64>,
+}
+
+impl RecordMetrics {
+    /// From a simulation outcome; `heights` are the storey heights, m.
+    pub fn from_outcome(out: &Outcome, heights: &[f64]) -> RecordMetrics {
+        let r = &out.response;
+        let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+        let energy = r.energy;
+        RecordMetrics {
+            drift_ratio: r
+                .peak_drift
+                .iter()
+                .zip(heights)
+                .map(|(d, h)| d / h)
+                .collect(),
+            residual_drift_ratio: r
+                .residual_drift
+                .iter()
+                .zip(heights)
+                .map(|(d, h)| d / h)
+                .collect(),
+            peak_floor_acceleration: max(&r.peak_abs_acceleration),
+            peak_base_shear: r.peak_base_shear,
+            peak_displacement: max(&r.peak_displacement),
+            stroke: r.peak_slip.clone(),
+            energy_input: energy.map(|e| e.input),
+            energy_friction: energy.map(|e| e.friction),
+            strain_energy_area: energy.map(|_| out.diagnostics.strain_energy_area),
+        }
+    }
+
+    /// Largest peak drift ratio over the storeys.
+    pub fn peak_drift_ratio(&self) -> f64 {
+        self.drift_ratio.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// Largest residual drift ratio over the storeys.
+    pub fn residual(&self) -> f64 {
+        self.residual_drift_ratio
+            .iter()
+            .copied()
+            .fold(0.0, f64::max)
+    }
+
+    /// Every value is finite.
+    pub fn is_finite(&self) -> bool {
+        let opt = |o: Option<f64>| o.is_none_or(f64::is_finite);
+        self.drift_ratio.iter().all(|v| v.is_finite())
+            && self.residual_drift_ratio.iter().all(|v| v.is_finite())
+            && self.stroke.iter().all(|v| v.is_finite())
+            && self.peak_floor_acceleration.is_finite()
+            && self.peak_base_shear.is_finite()
+            && self.peak_displacement.is_finite()
+            && opt(self.energy_input)
+            && opt(self.energy_friction)
+            && opt(self.strain_energy_area)
+    }
+}

@@ -1,0 +1,211 @@
+//! Optimisation: after a sweep, refine from its best points, then verify the finalists
+//! at reference accuracy (the study's check method and time step) and report whether
+//! their ranking held.
+
+use crate::error::OptError;
+use crate::evaluate::{Fidelity, run_designs, suite_ranges};
+use crate::metrics::RecordMetrics;
+use crate::refine::{Evaluations, Point, refine};
+use crate::study::{RefineMethod, Study};
+use crate::sweep::Manifest;
+use std::io::{LineWriter, Write};
+use std::path::Path;
+
+/// Finalists differ by at least this much in some scaled variable (5 % of its range), so
+/// that the check compares designs, not round-off around one design.
+pub const FINALIST_SPACING: f64 = 0.05;
+
+/// A design checked at reference accuracy.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Finalist {
+    /// Scaled variables.
+    pub z: Vec<f64>,
+    /// Slip loads, N per dissipator.
+    pub slip_loads_n: Vec<f64>,
+    /// Objective at the sweep's fidelity.
+    pub f_sweep: f64,
+    /// Objective at the check fidelity.
+    pub f_check: f64,
+}
+
+/// What `optimize` found.
+#[derive(Debug, Clone)]
+pub struct OptimizeReport {
+    /// Refiner used.
+    pub method: RefineMethod,
+    /// Sampled sweep designs (bare and file designs excluded).
+    pub sweep_designs: usize,
+    /// Best sweep point.
+    pub best_sweep: Point,
+    /// Refinement evaluations, in order.
+    pub log: Vec<Point>,
+    /// The optimum (sweep fidelity).
+    pub optimum: Point,
+    /// Its slip loads, N.
+    pub optimum_loads: Vec<f64>,
+    /// Finalists, best (by the check) first.
+    pub finalists: Vec<Finalist>,
+    /// Whether the check kept the sweep-fidelity order of the finalists.
+    pub ranking_held: bool,
+    /// Objective of the bare frame and of the building file's design (sweep fidelity).
+    pub bare_objective: f64,
+    /// Objective of the building file's slip loads.
+    pub file_objective: f64,
+    /// Simulations run by refinement and check (the sweep's not included; replayed
+    /// refinement points included).
+    pub simulations: usize,
+    /// Refinement evaluations replayed from the journal of an earlier run.
+    pub replayed: usize,
+}
+
+/// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same fidelity.
+pub fn objectives(
+    study: &Study,
+    designs: &[Vec<f64>],
+    bare: &[RecordMetrics],
+    fid: &Fidelity,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<f64>, OptError> {
+    let ranges = suite_ranges(study);
+    run_designs(study, designs, fid, tick)?
+        .iter()
+        .map(|rows| study.objective.value(rows, Some(bare), &ranges))
+        .collect()
+}
+
+/// Refines from the sweep (`manifest`, its complete `rows`) with `method`. With a
+/// `journal` path every refinement evaluation is appended there (one JSON point per
+/// line), and the points of an earlier, interrupted run found there are replayed instead
+/// of simulated again — the refiners then take the same path, so the answer is the same.
+pub fn optimize(
+    study: &Study,
+    manifest: &Manifest,
+    rows: &[RecordMetrics],
+    method: RefineMethod,
+    journal: Option<&Path>,
+    tick: &(dyn Fn() + Sync),
+) -> Result<OptimizeReport, OptError> {
+    let cfg = study.config.refine;
+    let nr = manifest.records.len();
+    let obj = manifest.objectives(rows)?;
+    let bare = rows[..nr].to_vec();
+    let sweep_fid = Fidelity::sweep(study);
+    let known: Vec<Point> = manifest
+        .designs
+        .iter()
+        .zip(&obj)
+        .filter_map(|(d, (f, _))| d.z.clone().map(|z| Point { z, f: *f }))
+        .collect();
+    let sweep_designs = known.len();
+    let mut order: Vec<usize> = (0..known.len()).collect();
+    order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
+    let best_sweep = known
+        .get(
+            *order
+                .first()
+                .ok_or_else(|| OptError::Missing("the sweep sampled no feasible design".into()))?,
+        )
+        .cloned()
+        .expect("index from the list");
+    let oracle = {
+        let bare = bare.clone();
+        move |zs: &[Vec<f64>]| -> Result<Vec<f64>, OptError> {
+            let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
+            objectives(study, &designs, &bare, &sweep_fid, tick)
+        }
+    };
+    let mut ev = Evaluations::new(Box::new(oracle), known.clone());
+    if let Some(path) = journal {
+        let io = |source| OptError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let (replay, good) = crate::journal::read_lines::<Point>(path)?;
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(path)
+            .map_err(io)?;
+        file.set_len(good).map_err(io)?; // cut a torn last line
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map_err(io)?;
+        let mut w = LineWriter::new(file);
+        let owned = path.to_path_buf();
+        ev = ev.with_journal(
+            replay,
+            Box::new(move |p: &Point| {
+                let mut line = serde_json::to_string(p).expect("a point serialises");
+                line.push('\n');
+                w.write_all(line.as_bytes()).map_err(|source| OptError::Io {
+                    path: owned.clone(),
+                    source,
+                })
+            }),
+        );
+    }
+    let mut budget = 0;
+    for &s in order.iter().take(cfg.starts) {
+        budget += cfg.max_evaluations;
+        refine(method, &study.space, &known[s], &mut ev, &cfg, budget)?;
+    }
+    let optimum = ev.best().expect("the sweep gave points");
+    let log = ev.log.clone();
+    let replayed = ev.replayed;
+    drop(ev);
+    // finalists: the best distinct points of everything evaluated
+    let mut all: Vec<Point> = known.iter().chain(log.iter()).cloned().collect();
+    all.sort_by(|a, b| a.f.total_cmp(&b.f));
+    let mut picked: Vec<Point> = Vec::new();
+    for p in all {
+        // distinct designs: at least 5 % of the range apart in some variable
+        let far = |q: &Point| {
+            p.z.iter()
+                .zip(&q.z)
+                .any(|(a, b)| (a - b).abs() >= FINALIST_SPACING)
+        };
+        if picked.iter().all(far) {
+            picked.push(p);
+        }
+        if picked.len() == cfg.finalists {
+            break;
+        }
+    }
+    let all = picked;
+    let check = Fidelity::check(study);
+    let bare_check =
+        run_designs(study, &[vec![0.0; study.space.dampers.len()]], &check, tick)?.remove(0);
+    let loads: Vec<Vec<f64>> = all.iter().map(|p| study.space.slip_loads(&p.z)).collect();
+    let fc = objectives(study, &loads, &bare_check, &check, tick)?;
+    let mut finalists: Vec<Finalist> = all
+        .iter()
+        .zip(loads)
+        .zip(fc)
+        .map(|((p, l), f)| Finalist {
+            z: p.z.clone(),
+            slip_loads_n: l,
+            f_sweep: p.f,
+            f_check: f,
+        })
+        .collect();
+    let sweep_order: Vec<Vec<f64>> = finalists.iter().map(|f| f.z.clone()).collect();
+    finalists.sort_by(|a, b| a.f_check.total_cmp(&b.f_check));
+    let ranking_held = finalists.iter().map(|f| &f.z).eq(sweep_order.iter());
+    let simulations = (log.len() + 1 + finalists.len()) * nr;
+    Ok(OptimizeReport {
+        method,
+        sweep_designs,
+        best_sweep,
+        optimum_loads: study.space.slip_loads(&optimum.z),
+        optimum,
+        log,
+        finalists,
+        ranking_held,
+        bare_objective: obj[0].0,
+        file_objective: obj[1].0,
+        simulations,
+        replayed,
+    })
+}

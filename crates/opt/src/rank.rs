@@ -1,0 +1,221 @@
+//! Ranking candidate designs over each suite of a study, and how stable the ranking is:
+//! the records of each suite are resampled with replacement (a seeded bootstrap) and the
+//! share of resamples in which each design keeps its rank, and in which the whole order
+//! is unchanged, is reported.
+
+use crate::error::OptError;
+use crate::evaluate::{Fidelity, run_designs};
+use crate::metrics::RecordMetrics;
+use crate::sampler::SplitMix;
+use crate::study::Study;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+
+/// A named candidate (file format of `--designs`: a JSON array of these).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NamedDesign {
+    /// Name.
+    pub name: String,
+    /// Slip load per dissipator, bottom to top, kN.
+    pub slip_loads_kn: Vec<f64>,
+}
+
+/// Ranks of the designs on one suite (or on all suites together).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SuiteRanking {
+    /// Suite name (`all` for the study's objective over every suite).
+    pub suite: String,
+    /// Objective per design.
+    pub objective: Vec<f64>,
+    /// Rank per design, 1 = best.
+    pub rank: Vec<usize>,
+    /// Share of bootstrap resamples in which each design keeps its rank.
+    pub rank_kept: Vec<f64>,
+    /// Share of resamples with the same order of every design.
+    pub order_kept: f64,
+}
+
+/// The ranking of a set of designs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Ranking {
+    /// Design names.
+    pub designs: Vec<String>,
+    /// Bootstrap resamples per suite.
+    pub bootstrap: usize,
+    /// Per suite, then `all`.
+    pub suites: Vec<SuiteRanking>,
+}
+
+fn ranks(obj: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..obj.len()).collect();
+    order.sort_by(|&a, &b| obj[a].total_cmp(&obj[b]).then(a.cmp(&b)));
+    let mut r = vec![0; obj.len()];
+    for (i, &d) in order.iter().enumerate() {
+        r[d] = i + 1;
+    }
+    r
+}
+
+/// Checks candidate designs against the study's space (count, finite, ≥ 0); N out.
+pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<Vec<f64>>, OptError> {
+    let m = study.space.dampers.len();
+    designs
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            if d.slip_loads_kn.len() != m {
+                return Err(OptError::Missing(format!(
+                    "designs[{i}] ({}): {} slip loads, expected {m} (one per dissipator)",
+                    d.name,
+                    d.slip_loads_kn.len()
+                )));
+            }
+            if d.slip_loads_kn
+                .iter()
+                .any(|v| !(v.is_finite() && *v >= 0.0))
+            {
+                return Err(OptError::Missing(format!(
+                    "designs[{i}] ({}): slip loads must be finite and >= 0",
+                    d.name
+                )));
+            }
+            Ok(d.slip_loads_kn.iter().map(|v| v * 1e3).collect())
+        })
+        .collect()
+}
+
+/// Runs every design over every record and ranks them per suite and overall.
+pub fn rank(
+    study: &Study,
+    designs: &[NamedDesign],
+    bootstrap: usize,
+    seed: u64,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Ranking, OptError> {
+    let loads = to_newtons(study, designs)?;
+    let mut all = vec![vec![0.0; study.space.dampers.len()]];
+    all.extend(loads);
+    let runs = run_designs(study, &all, &Fidelity::sweep(study), tick)?;
+    let bare = &runs[0];
+    let runs = &runs[1..];
+    let mut rng = SplitMix::new(seed);
+    let mut out = Vec::new();
+    let value = |idx: &[usize], ranges: &[std::ops::Range<usize>]| -> Result<Vec<f64>, OptError> {
+        let b: Vec<RecordMetrics> = idx.iter().map(|&i| bare[i].clone()).collect();
+        runs.iter()
+            .map(|r| {
+                let rows: Vec<RecordMetrics> = idx.iter().map(|&i| r[i].clone()).collect();
+                study.objective.value(&rows, Some(&b), ranges)
+            })
+            .collect()
+    };
+    let mut groups: Vec<(String, Vec<std::ops::Range<usize>>)> = study
+        .suites
+        .iter()
+        .map(|s| (s.name.clone(), vec![s.range.clone()]))
+        .collect();
+    if study.suites.len() > 1 {
+        groups.push((
+            "all".into(),
+            study.suites.iter().map(|s| s.range.clone()).collect(),
+        ));
+    }
+    for (name, ranges) in groups {
+        // the records of the group, laid out suite after suite
+        let idx: Vec<usize> = ranges.iter().flat_map(|r| r.clone()).collect();
+        let mut local = Vec::new();
+        let mut at = 0;
+        for r in &ranges {
+            local.push(at..at + r.len());
+            at += r.len();
+        }
+        let obj = value(&idx, &local)?;
+        let rk = ranks(&obj);
+        let mut kept = vec![0usize; designs.len()];
+        let mut order_kept = 0usize;
+        for _ in 0..bootstrap {
+            // resample within each suite
+            let sample: Vec<usize> = ranges
+                .iter()
+                .flat_map(|r| {
+                    let n = r.len();
+                    (0..n).map(|_| r.start + rng.below(n)).collect::<Vec<_>>()
+                })
+                .collect();
+            let rb = ranks(&value(&sample, &local)?);
+            for (k, (a, b)) in rb.iter().zip(&rk).enumerate() {
+                if a == b {
+                    kept[k] += 1;
+                }
+            }
+            if rb == rk {
+                order_kept += 1;
+            }
+        }
+        let share = |c: usize| {
+            if bootstrap > 0 {
+                c as f64 / bootstrap as f64
+            } else {
+                f64::NAN
+            }
+        };
+        out.push(SuiteRanking {
+            suite: name,
+            objective: obj,
+            rank: rk,
+            rank_kept: kept.into_iter().map(share).collect(),
+            order_kept: share(order_kept),
+        });
+    }
+    Ok(Ranking {
+        designs: designs.iter().map(|d| d.name.clone()).collect(),
+        bootstrap,
+        suites: out,
+    })
+}
+
+impl Ranking {
+    /// CSV: suite, design, objective, rank, share of resamples keeping that rank.
+    pub fn to_csv(&self) -> String {
+        let mut s = String::from("suite,design,objective,rank,rank_kept,order_kept\n");
+        for su in &self.suites {
+            for (k, d) in self.designs.iter().enumerate() {
+                let _ = writeln!(
+                    s,
+                    "{},{d},{},{},{},{}",
+                    su.suite, su.objective[k], su.rank[k], su.rank_kept[k], su.order_kept
+                );
+            }
+        }
+        s
+    }
+
+    /// Markdown, one table per suite, designs by rank.
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::new();
+        for su in &self.suites {
+            let _ = writeln!(
+                s,
+                "### {}\n\nWhole order kept in {:.0} % of {} bootstrap resamples of the records.\n\n| rank | design | objective | rank kept |\n|---:|---|---:|---:|",
+                su.suite,
+                100.0 * su.order_kept,
+                self.bootstrap
+            );
+            let mut order: Vec<usize> = (0..self.designs.len()).collect();
+            order.sort_by_key(|&k| su.rank[k]);
+            for k in order {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {:.6} | {:.0} % |",
+                    su.rank[k],
+                    self.designs[k],
+                    su.objective[k],
+                    100.0 * su.rank_kept[k]
+                );
+            }
+            s.push('\n');
+        }
+        s
+    }
+}

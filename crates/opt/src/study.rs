@@ -1,0 +1,754 @@
+//! Studies: which building, which ground-motion suites, which design space, which
+//! objective, and how to sweep and refine — read from JSON, validated in full before any
+//! simulation runs (unknown fields, empty suites, reversed bounds, infeasible constraints
+//! are errors that name the field).
+//!
+//! Paths (building, records) are relative to the study file. Record patterns may use `*`
+//! in the file name (not in folder names); matches are sorted by name.
+
+use crate::error::OptError;
+use crate::objective::{Metric, Objective, Term};
+use crate::space::{DesignSpace, Shape};
+use serde::{Deserialize, Serialize};
+use slipload_motion::{G, Record, SuiteTarget, Synthetic, Units};
+use slipload_sim::Building;
+use slipload_sim::scene::{BuildingRef, MethodName};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A study file, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyConfig {
+    /// Short name (default: the file stem).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Free text.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// The building: a path relative to the study file, or inline.
+    pub building: BuildingRef,
+    /// One or more ground-motion suites.
+    pub suites: Vec<SuiteConfig>,
+    /// The design space.
+    pub space: SpaceConfig,
+    /// Optional linear constraints on the slip loads.
+    #[serde(default)]
+    pub constraints: ConstraintsConfig,
+    /// What to minimise.
+    pub objective: ObjectiveConfig,
+    /// Methods and time steps.
+    #[serde(default)]
+    pub fidelity: FidelityConfig,
+    /// The sweep's sample of designs.
+    #[serde(default)]
+    pub sweep: SweepConfig,
+    /// The refinement after the sweep.
+    #[serde(default)]
+    pub refine: RefineConfig,
+}
+
+/// One suite of records.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuiteConfig {
+    /// Name used in tables.
+    pub name: String,
+    /// Record files or `*` patterns, relative to the study file.
+    #[serde(default)]
+    pub records: Vec<String>,
+    /// Units of the record values ("g", "m/s2", "cm/s2"); default: by format (AT2 = g).
+    #[serde(default)]
+    pub units: Option<String>,
+    /// Sample interval (s) of one-column text records.
+    #[serde(default)]
+    pub dt_s: Option<f64>,
+    /// How each record is scaled (default: as recorded).
+    #[serde(default)]
+    pub scale: Option<ScaleConfig>,
+    /// The embedded synthetic suite instead of files.
+    #[serde(default)]
+    pub synthetic: Option<SyntheticSuiteConfig>,
+}
+
+/// Scaling of every record of a suite.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ScaleConfig {
+    /// Multiply by this factor.
+    Factor(f64),
+    /// Scale to this peak ground acceleration, g.
+    PgaG(f64),
+    /// Scale to this 5 %-damped pseudo-spectral acceleration at the bare frame's T₁, g.
+    SaT1G(f64),
+}
+
+/// The embedded synthetic suite (Clough–Penzien, firm soil; slipload_motion).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SyntheticSuiteConfig {
+    /// Number of records (default 10).
+    #[serde(default = "default_count")]
+    pub count: usize,
+    /// Seed (default 2007, the embedded default suite).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// PGA of every record, g (default 0.4).
+    #[serde(default = "default_pga")]
+    pub pga_g: f64,
+    /// Duration of every record, s (default 20).
+    #[serde(default = "default_duration")]
+    pub duration_s: f64,
+}
+
+fn default_count() -> usize {
+    slipload_motion::DEFAULT_SUITE_SIZE
+}
+fn default_seed() -> u64 {
+    slipload_motion::DEFAULT_SUITE_SEED
+}
+fn default_pga() -> f64 {
+    slipload_motion::DEFAULT_SUITE_PGA_G
+}
+fn default_duration() -> f64 {
+    20.0
+}
+
+/// The design space, as written (slip loads in kN).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum SpaceConfig {
+    /// One free slip load per dissipator, bottom to top.
+    Free {
+        /// Lower bounds, kN.
+        lower_kn: Vec<f64>,
+        /// Upper bounds, kN.
+        upper_kn: Vec<f64>,
+    },
+    /// A fixed shape over the floors times one scale (the base storey's slip load).
+    Profile {
+        /// The shape.
+        shape: Shape,
+        /// [lower, upper] of the first dissipator's slip load, kN.
+        scale_kn: [f64; 2],
+    },
+}
+
+/// Linear constraints on the slip loads.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintsConfig {
+    /// Σ slip loads ≤ this, kN.
+    #[serde(default)]
+    pub budget_kn: Option<f64>,
+    /// Slip loads do not increase with height.
+    #[serde(default)]
+    pub non_increasing: bool,
+}
+
+/// The objective: a weighted sum of suite statistics of response metrics.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectiveConfig {
+    /// The terms (at least one).
+    pub terms: Vec<Term>,
+}
+
+/// Methods and time steps.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FidelityConfig {
+    /// Method of the sweep and refinement (default newmark).
+    #[serde(default)]
+    pub method: MethodName,
+    /// Time step, s (default: sim's default, T₁/200 dividing the record's dt).
+    #[serde(default)]
+    pub dt_s: Option<f64>,
+    /// Method of the final check (default `exact`, the event-driven reference).
+    #[serde(default = "default_check_method")]
+    pub check_method: MethodName,
+    /// Time step of the final check as a fraction of the sweep's (default 0.25).
+    #[serde(default = "default_check_factor")]
+    pub check_dt_factor: f64,
+}
+
+fn default_check_method() -> MethodName {
+    MethodName::Exact
+}
+
+fn default_check_factor() -> f64 {
+    0.25
+}
+
+impl Default for FidelityConfig {
+    fn default() -> Self {
+        FidelityConfig {
+            method: MethodName::Newmark,
+            dt_s: None,
+            check_method: default_check_method(),
+            check_dt_factor: default_check_factor(),
+        }
+    }
+}
+
+/// Samplers of the sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SamplerKind {
+    /// Full factorial grid with `levels` levels per variable.
+    Grid,
+    /// Latin hypercube of `points` points (seeded).
+    Lhs,
+    /// Halton sequence (bases 2, 3, 5, …) with a seeded random shift (Cranley–Patterson).
+    Halton,
+}
+
+/// The sweep's sample.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepConfig {
+    /// Sampler (default lhs).
+    #[serde(default = "default_sampler")]
+    pub sampler: SamplerKind,
+    /// Points of lhs/halton (default 32).
+    #[serde(default = "default_points")]
+    pub points: usize,
+    /// Levels per variable of the grid (default 5).
+    #[serde(default = "default_levels")]
+    pub levels: usize,
+    /// Seed (default 1).
+    #[serde(default = "default_sweep_seed")]
+    pub seed: u64,
+}
+
+fn default_sampler() -> SamplerKind {
+    SamplerKind::Lhs
+}
+fn default_points() -> usize {
+    32
+}
+fn default_levels() -> usize {
+    5
+}
+fn default_sweep_seed() -> u64 {
+    1
+}
+
+impl Default for SweepConfig {
+    fn default() -> Self {
+        SweepConfig {
+            sampler: default_sampler(),
+            points: default_points(),
+            levels: default_levels(),
+            seed: default_sweep_seed(),
+        }
+    }
+}
+
+/// Refiners.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RefineMethod {
+    /// Trust region on a fitted quadratic model, subproblem solved by clarabel.
+    TrustRegion,
+    /// Nelder–Mead simplex.
+    NelderMead,
+    /// Adaptive random search.
+    Random,
+}
+
+impl std::str::FromStr for RefineMethod {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "trust-region" => Ok(RefineMethod::TrustRegion),
+            "nelder-mead" => Ok(RefineMethod::NelderMead),
+            "random" => Ok(RefineMethod::Random),
+            o => Err(format!(
+                "unknown refiner {o:?}: expected trust-region, nelder-mead or random"
+            )),
+        }
+    }
+}
+
+impl RefineMethod {
+    /// The name as written.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RefineMethod::TrustRegion => "trust-region",
+            RefineMethod::NelderMead => "nelder-mead",
+            RefineMethod::Random => "random",
+        }
+    }
+}
+
+/// Refinement settings.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineConfig {
+    /// Refiner (default trust-region).
+    #[serde(default = "default_refiner")]
+    pub method: RefineMethod,
+    /// Refine from this many of the best sweep points (default 2).
+    #[serde(default = "default_starts")]
+    pub starts: usize,
+    /// Most design evaluations per start (default 40).
+    #[serde(default = "default_max_evals")]
+    pub max_evaluations: usize,
+    /// Stop when the step (trust radius, simplex size) falls below this, in variables
+    /// scaled to [0, 1] (default 2e-3).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Initial trust radius / simplex size, scaled (default 0.15).
+    #[serde(default = "default_radius")]
+    pub initial_radius: f64,
+    /// Designs verified at reference accuracy (default 3).
+    #[serde(default = "default_finalists")]
+    pub finalists: usize,
+    /// Seed of the random refiner (default 1).
+    #[serde(default = "default_sweep_seed")]
+    pub seed: u64,
+}
+
+fn default_refiner() -> RefineMethod {
+    RefineMethod::TrustRegion
+}
+fn default_starts() -> usize {
+    2
+}
+fn default_max_evals() -> usize {
+    40
+}
+fn default_tolerance() -> f64 {
+    2e-3
+}
+fn default_radius() -> f64 {
+    0.15
+}
+fn default_finalists() -> usize {
+    3
+}
+
+impl Default for RefineConfig {
+    fn default() -> Self {
+        RefineConfig {
+            method: default_refiner(),
+            starts: default_starts(),
+            max_evaluations: default_max_evals(),
+            tolerance: default_tolerance(),
+            initial_radius: default_radius(),
+            finalists: default_finalists(),
+            seed: default_sweep_seed(),
+        }
+    }
+}
+
+/// A suite, resolved: its name and the range of its records in [`Study::records`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SuiteInfo {
+    /// Name.
+    pub name: String,
+    /// Indices into the study's records.
+    pub range: Range<usize>,
+}
+
+/// A validated study with its building and records loaded.
+#[derive(Debug, Clone)]
+pub struct Study {
+    /// Name.
+    pub name: String,
+    /// The file it came from (or `<embedded>`).
+    pub path: PathBuf,
+    /// The config as written.
+    pub config: StudyConfig,
+    /// The building (slip loads of the file kept: the "paper" design).
+    pub building: Building,
+    /// All records of all suites, suite after suite.
+    pub records: Vec<Arc<Record>>,
+    /// The suites.
+    pub suites: Vec<SuiteInfo>,
+    /// The design space.
+    pub space: DesignSpace,
+    /// The objective.
+    pub objective: Objective,
+}
+
+fn read_text(path: &Path) -> Result<String, OptError> {
+    std::fs::read_to_string(path).map_err(|source| OptError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// `*` matching of one file name (no other wildcards).
+fn wildcard(pattern: &str, name: &str) -> bool {
+    let parts: Vec<&str> = pattern.split('*').collect();
+    if parts.len() == 1 {
+        return pattern == name;
+    }
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
+        return false;
+    }
+    let mut rest = &name[first.len()..name.len() - last.len()];
+    for mid in &parts[1..parts.len() - 1] {
+        match rest.find(mid) {
+            Some(i) => rest = &rest[i + mid.len()..],
+            None => return false,
+        }
+    }
+    true
+}
+
+/// Files of one record entry: the file itself, or the sorted matches of a `*` pattern.
+fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<PathBuf>, OptError> {
+    let full = base.join(entry);
+    let name = full
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    if !name.contains('*') {
+        if !full.is_file() {
+            return Err(OptError::invalid(
+                path,
+                field,
+                format!("record file {} does not exist", full.display()),
+            ));
+        }
+        return Ok(vec![full]);
+    }
+    let dir = full.parent().unwrap_or(Path::new("."));
+    if dir.to_string_lossy().contains('*') {
+        return Err(OptError::invalid(
+            path,
+            field,
+            "`*` is allowed in the file name only, not in folder names",
+        ));
+    }
+    let listing = std::fs::read_dir(dir).map_err(|source| OptError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut found: Vec<PathBuf> = listing
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_file() && wildcard(&name, &e.file_name().to_string_lossy()))
+        .map(|e| e.path())
+        .collect();
+    found.sort();
+    if found.is_empty() {
+        return Err(OptError::invalid(
+            path,
+            field,
+            format!("pattern {} matches no file", full.display()),
+        ));
+    }
+    Ok(found)
+}
+
+fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(OptError::invalid(
+            path,
+            field,
+            format!("must be finite and > 0, got {v}"),
+        ))
+    }
+}
+
+impl StudyConfig {
+    /// Parses a study from JSON text; `path` names it in errors.
+    pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
+        serde_json::from_str(text).map_err(|source| OptError::Json {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Checks what can be checked without files: counts, ranges, settings.
+    pub fn validate(&self, path: &Path) -> Result<(), OptError> {
+        if self.suites.is_empty() {
+            return Err(OptError::invalid(
+                path,
+                "suites",
+                "must name at least one suite",
+            ));
+        }
+        for (i, s) in self.suites.iter().enumerate() {
+            let f = |x: &str| format!("suites[{i}].{x}");
+            match (&s.synthetic, s.records.is_empty()) {
+                (Some(_), false) => {
+                    return Err(OptError::invalid(
+                        path,
+                        f("synthetic"),
+                        "give either records or synthetic, not both",
+                    ));
+                }
+                (None, true) => {
+                    return Err(OptError::invalid(
+                        path,
+                        f("records"),
+                        "the suite is empty: name record files (or patterns) or a synthetic suite",
+                    ));
+                }
+                (Some(syn), true) => {
+                    if syn.count == 0 {
+                        return Err(OptError::invalid(
+                            path,
+                            f("synthetic.count"),
+                            "the suite is empty: count must be at least 1",
+                        ));
+                    }
+                    finite_positive(path, &f("synthetic.pga_g"), syn.pga_g)?;
+                    finite_positive(path, &f("synthetic.duration_s"), syn.duration_s)?;
+                    if s.scale.is_some() || s.units.is_some() || s.dt_s.is_some() {
+                        return Err(OptError::invalid(
+                            path,
+                            f("synthetic"),
+                            "a synthetic suite takes no units, dt_s or scale (give pga_g)",
+                        ));
+                    }
+                }
+                (None, false) => {}
+            }
+            if let Some(u) = &s.units {
+                u.parse::<Units>()
+                    .map_err(|e| OptError::invalid(path, f("units"), e.to_string()))?;
+            }
+            if let Some(dt) = s.dt_s {
+                finite_positive(path, &f("dt_s"), dt)?;
+            }
+            match s.scale {
+                Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), v)?,
+                Some(ScaleConfig::PgaG(v)) => finite_positive(path, &f("scale.pga_g"), v)?,
+                Some(ScaleConfig::SaT1G(v)) => finite_positive(path, &f("scale.sa_t1_g"), v)?,
+                None => {}
+            }
+        }
+        if self.objective.terms.is_empty() {
+            return Err(OptError::invalid(
+                path,
+                "objective.terms",
+                "must have at least one term",
+            ));
+        }
+        for (i, t) in self.objective.terms.iter().enumerate() {
+            if !(t.weight.is_finite() && t.weight > 0.0) {
+                return Err(OptError::invalid(
+                    path,
+                    format!("objective.terms[{i}].weight"),
+                    format!("must be finite and > 0, got {}", t.weight),
+                ));
+            }
+        }
+        if let Some(dt) = self.fidelity.dt_s {
+            finite_positive(path, "fidelity.dt_s", dt)?;
+        }
+        let cf = self.fidelity.check_dt_factor;
+        if !(cf.is_finite() && cf > 0.0 && cf <= 1.0) {
+            return Err(OptError::invalid(
+                path,
+                "fidelity.check_dt_factor",
+                format!("must be in (0, 1], got {cf}"),
+            ));
+        }
+        let sw = &self.sweep;
+        match sw.sampler {
+            SamplerKind::Grid if sw.levels < 2 => {
+                return Err(OptError::invalid(
+                    path,
+                    "sweep.levels",
+                    format!("a grid needs at least 2 levels, got {}", sw.levels),
+                ));
+            }
+            SamplerKind::Lhs | SamplerKind::Halton if sw.points == 0 => {
+                return Err(OptError::invalid(
+                    path,
+                    "sweep.points",
+                    "must be at least 1",
+                ));
+            }
+            _ => {}
+        }
+        let r = &self.refine;
+        if r.starts == 0 {
+            return Err(OptError::invalid(
+                path,
+                "refine.starts",
+                "must be at least 1",
+            ));
+        }
+        if r.finalists == 0 {
+            return Err(OptError::invalid(
+                path,
+                "refine.finalists",
+                "must be at least 1",
+            ));
+        }
+        if !(r.tolerance.is_finite() && r.tolerance > 0.0 && r.tolerance < 1.0) {
+            return Err(OptError::invalid(
+                path,
+                "refine.tolerance",
+                format!("must be in (0, 1), got {}", r.tolerance),
+            ));
+        }
+        if !(r.initial_radius.is_finite()
+            && r.initial_radius > r.tolerance
+            && r.initial_radius <= 1.0)
+        {
+            return Err(OptError::invalid(
+                path,
+                "refine.initial_radius",
+                format!(
+                    "must be in (tolerance, 1], got {} (tolerance {})",
+                    r.initial_radius, r.tolerance
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Study {
+    /// Reads, validates and resolves a study file.
+    pub fn load(path: &Path) -> Result<Study, OptError> {
+        let text = read_text(path)?;
+        Study::from_json(&text, path)
+    }
+
+    /// Parses, validates and resolves a study; `path` names it in errors and anchors
+    /// relative paths.
+    pub fn from_json(text: &str, path: &Path) -> Result<Study, OptError> {
+        let cfg = StudyConfig::from_json(text, path)?;
+        Study::from_config(cfg, path)
+    }
+
+    /// Validates and resolves a config: building, space, constraints, then records.
+    pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
+        cfg.validate(path)?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        let building = match &cfg.building {
+            BuildingRef::Path(p) => Building::load(&base.join(p))?,
+            BuildingRef::Inline(b) => Building::from_config(b, path)?,
+        };
+        if building.storey_heights.is_none() {
+            return Err(OptError::invalid(
+                path,
+                "building",
+                "the building needs storey_heights: drift ratios are the responses every study reports",
+            ));
+        }
+        let space = DesignSpace::new(&cfg.space, &cfg.constraints, &building, path)?;
+        let objective = Objective {
+            terms: cfg.objective.terms.clone(),
+        };
+        let t1 = building.t1();
+        let mut records = Vec::new();
+        let mut suites = Vec::new();
+        for (i, s) in cfg.suites.iter().enumerate() {
+            let start = records.len();
+            if let Some(syn) = &s.synthetic {
+                let params = Synthetic {
+                    duration_s: syn.duration_s,
+                    ..Synthetic::default()
+                };
+                let rs = slipload_motion::synthetic_suite(
+                    &params,
+                    syn.count,
+                    syn.seed,
+                    SuiteTarget::Pga {
+                        pga_m_s2: syn.pga_g * G,
+                    },
+                )?;
+                records.extend(rs.into_iter().map(Arc::new));
+            } else {
+                let units = match &s.units {
+                    Some(u) => Some(u.parse::<Units>().map_err(|e| {
+                        OptError::invalid(path, format!("suites[{i}].units"), e.to_string())
+                    })?),
+                    None => None,
+                };
+                for (j, entry) in s.records.iter().enumerate() {
+                    let field = format!("suites[{i}].records[{j}]");
+                    for file in expand(base, entry, path, &field)? {
+                        let r = slipload_motion::read_record(&file, units, s.dt_s)?;
+                        let r = match s.scale {
+                            None => r,
+                            Some(ScaleConfig::Factor(f)) => r.try_scaled(f)?,
+                            Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(p * G)?,
+                            Some(ScaleConfig::SaT1G(sa)) => {
+                                slipload_motion::scale_to_spectral_acceleration(
+                                    std::slice::from_ref(&r),
+                                    t1,
+                                    0.05,
+                                    sa * G,
+                                )?
+                                .records
+                                .remove(0)
+                            }
+                        };
+                        records.push(Arc::new(r));
+                    }
+                }
+            }
+            suites.push(SuiteInfo {
+                name: s.name.clone(),
+                range: start..records.len(),
+            });
+        }
+        let name = cfg.name.clone().unwrap_or_else(|| {
+            path.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "study".into())
+        });
+        Ok(Study {
+            name,
+            path: path.to_path_buf(),
+            config: cfg,
+            building,
+            records,
+            suites,
+            space,
+            objective,
+        })
+    }
+
+    /// Whether any objective term needs the energies.
+    pub fn needs_energies(&self) -> bool {
+        self.objective
+            .terms
+            .iter()
+            .any(|t| matches!(t.metric, Metric::EnergyRatio | Metric::Rpi))
+    }
+
+    /// Slip loads of the building file per dissipator, N (the "paper" design); locked or
+    /// absent bounds count as 0.
+    pub fn file_slip_loads(&self) -> Vec<f64> {
+        self.space
+            .dampers
+            .iter()
+            .map(|&f| {
+                self.building.dissipators[f]
+                    .map(|d| if d.upper.is_finite() { d.upper } else { 0.0 })
+                    .unwrap_or(0.0)
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wildcard;
+
+    #[test]
+    fn wildcard_matches_like_a_shell() {
+        assert!(wildcard("*.AT2", "RSN6.AT2"));
+        assert!(wildcard("RSN*_*.AT2", "RSN6_IMPVALL.AT2"));
+        assert!(!wildcard("RSN*.AT2", "ELC.AT2"));
+        assert!(!wildcard("*.AT2", "x.at2"));
+        assert!(wildcard("a*a", "aa"));
+        assert!(!wildcard("a*a", "a"));
+    }
+}

@@ -1,0 +1,459 @@
+//! The sweep: a sample of designs × every record as independent tasks, journalled,
+//! shardable, and written as `manifest.json`, `responses.csv` and `designs.csv` built
+//! from the journal sorted by (design, record) — so the bytes do not depend on thread
+//! count, shard split or interruptions.
+//!
+//! Design 0 is always the bare frame (every slip load 0: the reference of reductions and
+//! of the relative performance index), design 1 the slip loads of the building file,
+//! then the sample.
+
+use crate::error::OptError;
+use crate::evaluate::{Fidelity, Task, run_tasks};
+use crate::journal::{Entry, Journal, write_atomic};
+use crate::metrics::RecordMetrics;
+use crate::objective::Objective;
+use crate::sampler;
+use crate::shard::Shard;
+use crate::study::{Study, SuiteInfo};
+use serde::{Deserialize, Serialize};
+use slipload_sim::scene::MethodName;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One design of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Design {
+    /// `bare`, `file`, or `s0001`… for sample points.
+    pub label: String,
+    /// Slip loads, N per dissipator.
+    pub slip_loads_n: Vec<f64>,
+    /// Scaled variables (sample points only).
+    pub z: Option<Vec<f64>>,
+}
+
+/// Everything the output files depend on: written by every run and every shard
+/// (identically), read by `merge`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// Study name.
+    pub study: String,
+    /// Objective.
+    pub objective: Objective,
+    /// Sweep method name.
+    pub method: MethodName,
+    /// Sweep time step, s (`null`: sim's default per record).
+    pub dt_s: Option<f64>,
+    /// Energies accumulated.
+    pub energies: bool,
+    /// Floors (from 1) of the dissipators.
+    pub damper_floors: Vec<usize>,
+    /// Number of storeys.
+    pub storeys: usize,
+    /// Suites.
+    pub suites: Vec<SuiteInfo>,
+    /// Record names.
+    pub records: Vec<String>,
+    /// Designs.
+    pub designs: Vec<Design>,
+}
+
+impl Manifest {
+    /// The sweep of a study.
+    pub fn of(study: &Study) -> Manifest {
+        let m = study.space.dampers.len();
+        let mut designs = vec![
+            Design {
+                label: "bare".into(),
+                slip_loads_n: vec![0.0; m],
+                z: None,
+            },
+            Design {
+                label: "file".into(),
+                slip_loads_n: study.file_slip_loads(),
+                z: None,
+            },
+        ];
+        for (i, z) in sampler::sample(&study.space, &study.config.sweep)
+            .into_iter()
+            .enumerate()
+        {
+            designs.push(Design {
+                label: format!("s{:04}", i + 1),
+                slip_loads_n: study.space.slip_loads(&z),
+                z: Some(z),
+            });
+        }
+        let fid = Fidelity::sweep(study);
+        Manifest {
+            study: study.name.clone(),
+            objective: study.objective.clone(),
+            method: fid.method,
+            dt_s: fid.dt_s,
+            energies: fid.energies,
+            damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
+            storeys: study.building.floors(),
+            suites: study.suites.clone(),
+            records: study.records.iter().map(|r| r.name().to_string()).collect(),
+            designs,
+        }
+    }
+
+    /// Number of tasks (designs × records); task k = design · records + record.
+    pub fn tasks(&self) -> usize {
+        self.designs.len() * self.records.len()
+    }
+
+    /// (design, record) of task k.
+    pub fn task(&self, k: usize) -> (usize, usize) {
+        (k / self.records.len(), k % self.records.len())
+    }
+
+    /// Checks a journal entry against this manifest.
+    /// `line` is the entry's line in the journal (from 1), for the error message.
+    pub fn check(&self, e: &Entry, path: &Path, line: usize) -> Result<(), OptError> {
+        let bad = |message: String| OptError::Journal {
+            path: path.to_path_buf(),
+            line,
+            message,
+        };
+        let d = self.designs.get(e.design).ok_or_else(|| {
+            bad(format!(
+                "design {} is not in this study (it has {}): the study changed; use a fresh --out",
+                e.design,
+                self.designs.len()
+            ))
+        })?;
+        let name = self.records.get(e.record).ok_or_else(|| {
+            bad(format!(
+                "record {} is not in this study: the study changed; use a fresh --out",
+                e.record
+            ))
+        })?;
+        if *name != e.record_name {
+            return Err(bad(format!(
+                "record {} is {:?} here but {:?} in the journal: the study changed; use a fresh --out",
+                e.record, name, e.record_name
+            )));
+        }
+        let same = d.slip_loads_n.len() == e.slip_loads_n.len()
+            && d.slip_loads_n
+                .iter()
+                .zip(&e.slip_loads_n)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same {
+            return Err(bad(format!(
+                "design {} ({}) has other slip loads in the journal: the study changed; use a fresh --out",
+                e.design, d.label
+            )));
+        }
+        Ok(())
+    }
+
+    /// `responses.csv`: every (design, record), sorted by key. `None` if a task is missing.
+    pub fn responses_csv(&self, rows: &[Option<RecordMetrics>]) -> String {
+        let n = self.storeys;
+        let mut s = String::from("design,label,record,suite");
+        for f in &self.damper_floors {
+            let _ = write!(s, ",slip_load_kN_{f}");
+        }
+        for i in 1..=n {
+            let _ = write!(s, ",drift_ratio_{i}");
+        }
+        for i in 1..=n {
+            let _ = write!(s, ",residual_drift_ratio_{i}");
+        }
+        s.push_str(",peak_floor_acceleration_m_s2,peak_base_shear_N,peak_displacement_m");
+        for i in 1..=n {
+            let _ = write!(s, ",stroke_m_{i}");
+        }
+        s.push_str(",energy_input_J,energy_friction_J,strain_energy_area_J_s\n");
+        let opt = |o: Option<f64>| o.map(|v| v.to_string()).unwrap_or_default();
+        for (k, row) in rows.iter().enumerate() {
+            let Some(m) = row else { continue };
+            let (d, r) = self.task(k);
+            let design = &self.designs[d];
+            let suite = self
+                .suites
+                .iter()
+                .find(|su| su.range.contains(&r))
+                .map(|su| su.name.as_str())
+                .unwrap_or("");
+            let _ = write!(s, "{d},{},{},{suite}", design.label, self.records[r]);
+            for v in &design.slip_loads_n {
+                let _ = write!(s, ",{}", v / 1e3);
+            }
+            for v in m.drift_ratio.iter().chain(&m.residual_drift_ratio) {
+                let _ = write!(s, ",{v}");
+            }
+            let _ = write!(
+                s,
+                ",{},{},{}",
+                m.peak_floor_acceleration, m.peak_base_shear, m.peak_displacement
+            );
+            for v in &m.stroke {
+                let _ = write!(s, ",{v}");
+            }
+            let _ = writeln!(
+                s,
+                ",{},{},{}",
+                opt(m.energy_input),
+                opt(m.energy_friction),
+                opt(m.strain_energy_area)
+            );
+        }
+        s
+    }
+
+    /// Objective of every design (`rows[d · records + r]` complete), and of its terms.
+    pub fn objectives(&self, rows: &[RecordMetrics]) -> Result<Vec<(f64, Vec<f64>)>, OptError> {
+        let nr = self.records.len();
+        let ranges: Vec<_> = self.suites.iter().map(|s| s.range.clone()).collect();
+        let bare = &rows[0..nr];
+        (0..self.designs.len())
+            .map(|d| {
+                let rec = &rows[d * nr..(d + 1) * nr];
+                let terms = self
+                    .objective
+                    .terms
+                    .iter()
+                    .map(|t| Objective::term_value(t, rec, Some(bare), &ranges))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let f = self.objective.value(rec, Some(bare), &ranges)?;
+                Ok((f, terms))
+            })
+            .collect()
+    }
+
+    /// `designs.csv`: per design its slip loads, objective, terms, reduction against the
+    /// bare frame (1 − f/f_bare) and rank (1 = best; bare and file designs included).
+    pub fn designs_csv(&self, rows: &[RecordMetrics]) -> Result<String, OptError> {
+        let obj = self.objectives(rows)?;
+        let mut order: Vec<usize> = (0..obj.len()).collect();
+        order.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
+        let mut rank = vec![0; obj.len()];
+        for (i, &d) in order.iter().enumerate() {
+            rank[d] = i + 1;
+        }
+        let mut s = String::from("design,label");
+        for f in &self.damper_floors {
+            let _ = write!(s, ",slip_load_kN_{f}");
+        }
+        s.push_str(",objective");
+        for t in &self.objective.terms {
+            let _ = write!(s, ",{}_{}", t.statistic.as_str(), t.metric.as_str());
+        }
+        s.push_str(",reduction_vs_bare,rank\n");
+        let f0 = obj[0].0;
+        for (d, design) in self.designs.iter().enumerate() {
+            let _ = write!(s, "{d},{}", design.label);
+            for v in &design.slip_loads_n {
+                let _ = write!(s, ",{}", v / 1e3);
+            }
+            let _ = write!(s, ",{}", obj[d].0);
+            for v in &obj[d].1 {
+                let _ = write!(s, ",{v}");
+            }
+            let red = if f0 != 0.0 { 1.0 - obj[d].0 / f0 } else { 0.0 };
+            let _ = writeln!(s, ",{red},{}", rank[d]);
+        }
+        Ok(s)
+    }
+
+    /// The manifest as pretty JSON with a final newline.
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(self).expect("a manifest serialises");
+        s.push('\n');
+        s
+    }
+}
+
+/// What a sweep run did.
+#[derive(Debug, Clone)]
+pub struct SweepReport {
+    /// The manifest.
+    pub manifest: Manifest,
+    /// Tasks of this shard.
+    pub shard_tasks: usize,
+    /// Of which taken from the journal.
+    pub resumed: usize,
+    /// Of which run now.
+    pub ran: usize,
+    /// All rows (when this run covers every task), sorted by key.
+    pub rows: Option<Vec<RecordMetrics>>,
+}
+
+/// Places journal entries by task key, checking each against the manifest; later
+/// duplicates of a key must agree (they come from the same deterministic task).
+fn place(
+    manifest: &Manifest,
+    entries: Vec<Entry>,
+    path: &Path,
+    rows: &mut [Option<RecordMetrics>],
+) -> Result<(), OptError> {
+    for (i, e) in entries.into_iter().enumerate() {
+        // read() keeps every complete line, so entry i is line i + 1
+        manifest.check(&e, path, i + 1)?;
+        let k = e.design * manifest.records.len() + e.record;
+        if rows[k].is_none() {
+            rows[k] = Some(e.metrics);
+        }
+    }
+    Ok(())
+}
+
+/// Writes `manifest.json`, and when every task is done `responses.csv` and
+/// `designs.csv`, into `out`.
+pub fn write_outputs(
+    out: &Path,
+    manifest: &Manifest,
+    rows: &[Option<RecordMetrics>],
+) -> Result<Option<Vec<RecordMetrics>>, OptError> {
+    write_atomic(&out.join("manifest.json"), manifest.to_json().as_bytes())?;
+    if rows.iter().any(Option::is_none) {
+        return Ok(None);
+    }
+    let full: Vec<RecordMetrics> = rows.iter().flatten().cloned().collect();
+    write_atomic(
+        &out.join("responses.csv"),
+        manifest.responses_csv(rows).as_bytes(),
+    )?;
+    write_atomic(
+        &out.join("designs.csv"),
+        manifest.designs_csv(&full)?.as_bytes(),
+    )?;
+    Ok(Some(full))
+}
+
+/// Runs (the shard's slice of) a study's sweep into `out`, journalled; `tick` is called
+/// after every task run now.
+pub fn run(
+    study: &Study,
+    out: &Path,
+    shard: Shard,
+    resume: bool,
+    tick: &(dyn Fn() + Sync),
+) -> Result<SweepReport, OptError> {
+    let manifest = Manifest::of(study);
+    let jpath = out.join("journal.jsonl");
+    let (journal, entries) = Journal::open(&jpath, resume)?;
+    let total = manifest.tasks();
+    let mut rows: Vec<Option<RecordMetrics>> = vec![None; total];
+    place(&manifest, entries, &jpath, &mut rows)?;
+    let mine: Vec<usize> = (0..total).filter(|&k| shard.owns(k)).collect();
+    let resumed = mine.iter().filter(|&&k| rows[k].is_some()).count();
+    let todo: Vec<usize> = mine
+        .iter()
+        .copied()
+        .filter(|&k| rows[k].is_none())
+        .collect();
+    let tasks: Vec<Task> = todo
+        .iter()
+        .map(|&k| {
+            let (d, r) = manifest.task(k);
+            Task {
+                label: manifest.designs[d].label.clone(),
+                slip_loads: manifest.designs[d].slip_loads_n.clone(),
+                record: r,
+            }
+        })
+        .collect();
+    let fid = Fidelity::sweep(study);
+    run_tasks(study, &tasks, &fid, &|i, m| {
+        let (d, r) = manifest.task(todo[i]);
+        journal.append(&Entry {
+            design: d,
+            record: r,
+            record_name: manifest.records[r].clone(),
+            slip_loads_n: manifest.designs[d].slip_loads_n.clone(),
+            metrics: m.clone(),
+        })?;
+        tick();
+        Ok(())
+    })?;
+    drop(journal);
+    // Outputs come from the journal as written, never from memory: a resumed run and a
+    // fresh one read the same lines.
+    let (entries, _) = crate::journal::read(&jpath)?;
+    let mut rows: Vec<Option<RecordMetrics>> = vec![None; total];
+    place(&manifest, entries, &jpath, &mut rows)?;
+    let keep: Vec<Option<RecordMetrics>> = if shard.count == 1 {
+        rows
+    } else {
+        // a shard writes only the manifest: merge builds the tables
+        vec![None; total]
+    };
+    let full = write_outputs(out, &manifest, &keep)?;
+    Ok(SweepReport {
+        manifest,
+        shard_tasks: mine.len(),
+        resumed,
+        ran: todo.len(),
+        rows: full,
+    })
+}
+
+/// Joins the journals of shard folders into `out`: the bytes a single run writes.
+/// Every folder must hold the same `manifest.json`; every task must be present.
+pub fn merge(dirs: &[&Path], out: &Path) -> Result<Vec<RecordMetrics>, OptError> {
+    let mut manifest: Option<(Manifest, &Path)> = None;
+    for dir in dirs {
+        let path = dir.join("manifest.json");
+        let text = std::fs::read_to_string(&path).map_err(|source| OptError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        let m: Manifest = serde_json::from_str(&text).map_err(|source| OptError::Json {
+            path: path.clone(),
+            source,
+        })?;
+        match &manifest {
+            None => manifest = Some((m, dir)),
+            Some((first, fd)) if *first != m => {
+                return Err(OptError::Shard(format!(
+                    "{} and {} hold sweeps of different studies",
+                    fd.display(),
+                    dir.display()
+                )));
+            }
+            Some(_) => {}
+        }
+    }
+    let (manifest, _) = manifest.ok_or_else(|| OptError::Shard("no folders to merge".into()))?;
+    let mut rows: Vec<Option<RecordMetrics>> = vec![None; manifest.tasks()];
+    let mut journal_text = String::new();
+    for dir in dirs {
+        let jpath = dir.join("journal.jsonl");
+        let (entries, _) = crate::journal::read(&jpath)?;
+        place(&manifest, entries, &jpath, &mut rows)?;
+    }
+    let missing = rows.iter().filter(|r| r.is_none()).count();
+    if missing > 0 {
+        let first = rows.iter().position(Option::is_none).unwrap_or(0);
+        let (d, r) = manifest.task(first);
+        return Err(OptError::Shard(format!(
+            "{missing} of {} tasks are in no journal (first: design {d}, record {r}); run the missing shards (with --resume) first",
+            manifest.tasks()
+        )));
+    }
+    // the merged journal, sorted by key: `--resume` in `out` finds every task done
+    for (k, m) in rows.iter().enumerate() {
+        let (d, r) = manifest.task(k);
+        let e = Entry {
+            design: d,
+            record: r,
+            record_name: manifest.records[r].clone(),
+            slip_loads_n: manifest.designs[d].slip_loads_n.clone(),
+            metrics: m.clone().expect("checked complete above"),
+        };
+        journal_text.push_str(&serde_json::to_string(&e).expect("an entry serialises"));
+        journal_text.push('\n');
+    }
+    let full = write_outputs(out, &manifest, &rows)?.expect("checked complete above");
+    let jout = out.join("journal.jsonl");
+    if !dirs.iter().any(|d| d.join("journal.jsonl") == jout) {
+        write_atomic(&jout, journal_text.as_bytes())?;
+    }
+    Ok(full)
+}

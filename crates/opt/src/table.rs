@@ -1,0 +1,333 @@
+//! Design tables: for each design (the optimum, uniform and storey-shear-proportional
+//! designs of the same total slip load, the building file's slip loads, the bare frame)
+//! the slip loads per floor and the responses they buy, over every record of the study
+//! at the check fidelity (reference accuracy, energies on). Per-floor and response
+//! statistics pool the records of all suites; the objective keeps its own definition.
+//! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
+
+use crate::error::OptError;
+use crate::evaluate::{Fidelity, run_designs, suite_ranges};
+use crate::metrics::RecordMetrics;
+use crate::objective::{Metric, Statistic};
+use crate::study::Study;
+use serde::{Deserialize, Serialize};
+use slipload_motion::G;
+use std::fmt::Write as _;
+
+/// One row of a design table (SI unless the name says otherwise).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TableRow {
+    /// Design name.
+    pub design: String,
+    /// Slip load per dissipator, kN.
+    pub slip_load_kn: Vec<f64>,
+    /// Slip load / floor weight (m_i g).
+    pub ratio_to_floor_weight: Vec<f64>,
+    /// Slip load / weight above the storey (Σ_{j≥i} m_j g, the storey's gravity shear).
+    pub ratio_to_weight_above: Vec<f64>,
+    /// Peak drift ratio per storey: mean over the records.
+    pub drift_ratio_mean: Vec<f64>,
+    /// Peak drift ratio per storey: 84th percentile.
+    pub drift_ratio_p84: Vec<f64>,
+    /// Peak drift ratio per storey: max.
+    pub drift_ratio_max: Vec<f64>,
+    /// The study's objective.
+    pub objective: f64,
+    /// 1 − objective / objective of the bare frame.
+    pub objective_reduction: f64,
+    /// Mean over records of the peak drift ratio (max over storeys).
+    pub peak_drift_ratio_mean: f64,
+    /// 1 − that / the bare frame's.
+    pub peak_drift_reduction: f64,
+    /// Mean residual drift ratio (max over storeys).
+    pub residual_drift_ratio_mean: f64,
+    /// Mean peak floor acceleration, m/s².
+    pub peak_floor_acceleration_mean: f64,
+    /// Mean peak base shear, N.
+    pub base_shear_mean: f64,
+    /// Damper stroke per storey, max over records, m.
+    pub stroke_max: Vec<f64>,
+    /// Mean E_friction / E_input.
+    pub energy_ratio_mean: f64,
+    /// Mean relative performance index (Filiatrault & Cherry 1988).
+    pub rpi_mean: f64,
+    /// Objective with every slip load × 0.75.
+    pub objective_at_75pct: f64,
+    /// Objective with every slip load × 1.25.
+    pub objective_at_125pct: f64,
+}
+
+/// A design table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DesignTable {
+    /// Study name.
+    pub study: String,
+    /// The objective, as a label.
+    pub objective: String,
+    /// Method and time-step factor of the runs.
+    pub fidelity: String,
+    /// Floors (from 1) of the dissipators.
+    pub damper_floors: Vec<usize>,
+    /// Records per design.
+    pub records: usize,
+    /// The rows.
+    pub rows: Vec<TableRow>,
+}
+
+fn stat_by_storey(
+    rows: &[RecordMetrics],
+    st: Statistic,
+    f: impl Fn(&RecordMetrics) -> &[f64],
+) -> Vec<f64> {
+    let n = f(&rows[0]).len();
+    (0..n)
+        .map(|i| st.of(&rows.iter().map(|m| f(m)[i]).collect::<Vec<_>>()))
+        .collect()
+}
+
+fn mean(v: impl Iterator<Item = f64>) -> f64 {
+    let v: Vec<f64> = v.collect();
+    Statistic::Mean.of(&v)
+}
+
+impl DesignTable {
+    /// Runs every design (slip loads, N) and its ±25 % variants at the check fidelity.
+    /// The bare frame is added as the reference row if it is not among the designs.
+    pub fn build(
+        study: &Study,
+        designs: &[(String, Vec<f64>)],
+        tick: &(dyn Fn() + Sync),
+    ) -> Result<DesignTable, OptError> {
+        let fid = Fidelity::check(study);
+        let m = study.space.dampers.len();
+        let mut all: Vec<Vec<f64>> = vec![vec![0.0; m]];
+        for (_, s) in designs {
+            all.push(s.clone());
+            all.push(s.iter().map(|v| 0.75 * v).collect());
+            all.push(s.iter().map(|v| 1.25 * v).collect());
+        }
+        let runs = run_designs(study, &all, &fid, tick)?;
+        let bare = &runs[0];
+        let ranges = suite_ranges(study);
+        let objective = |rows: &[RecordMetrics]| study.objective.value(rows, Some(bare), &ranges);
+        let f_bare = objective(bare)?;
+        let pdr_bare = mean(bare.iter().map(RecordMetrics::peak_drift_ratio));
+        let masses: Vec<f64> = (0..study.building.floors())
+            .map(|i| study.building.mass.row(i).sum())
+            .collect();
+        let mut rows = Vec::new();
+        for (k, (name, loads)) in designs.iter().enumerate() {
+            let r = &runs[1 + 3 * k];
+            let f = objective(r)?;
+            let pdr = mean(r.iter().map(RecordMetrics::peak_drift_ratio));
+            let rpi = r
+                .iter()
+                .zip(bare)
+                .map(|(x, b)| Metric::Rpi.value(x, Some(b)))
+                .collect::<Result<Vec<_>, _>>()?;
+            let er = r
+                .iter()
+                .map(|x| Metric::EnergyRatio.value(x, None).map(|v| 1.0 - v))
+                .collect::<Result<Vec<_>, _>>()?;
+            rows.push(TableRow {
+                design: name.clone(),
+                slip_load_kn: loads.iter().map(|v| v / 1e3).collect(),
+                ratio_to_floor_weight: study
+                    .space
+                    .dampers
+                    .iter()
+                    .zip(loads)
+                    .map(|(&fl, s)| s / (masses[fl] * G))
+                    .collect(),
+                ratio_to_weight_above: study
+                    .space
+                    .dampers
+                    .iter()
+                    .zip(loads)
+                    .map(|(&fl, s)| s / (masses[fl..].iter().sum::<f64>() * G))
+                    .collect(),
+                drift_ratio_mean: stat_by_storey(r, Statistic::Mean, |m| &m.drift_ratio),
+                drift_ratio_p84: stat_by_storey(r, Statistic::P84, |m| &m.drift_ratio),
+                drift_ratio_max: stat_by_storey(r, Statistic::Max, |m| &m.drift_ratio),
+                objective: f,
+                objective_reduction: if f_bare != 0.0 { 1.0 - f / f_bare } else { 0.0 },
+                peak_drift_ratio_mean: pdr,
+                peak_drift_reduction: if pdr_bare != 0.0 {
+                    1.0 - pdr / pdr_bare
+                } else {
+                    0.0
+                },
+                residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+                peak_floor_acceleration_mean: mean(r.iter().map(|m| m.peak_floor_acceleration)),
+                base_shear_mean: mean(r.iter().map(|m| m.peak_base_shear)),
+                stroke_max: stat_by_storey(r, Statistic::Max, |m| &m.stroke),
+                energy_ratio_mean: Statistic::Mean.of(&er),
+                rpi_mean: Statistic::Mean.of(&rpi),
+                objective_at_75pct: objective(&runs[2 + 3 * k])?,
+                objective_at_125pct: objective(&runs[3 + 3 * k])?,
+            });
+        }
+        Ok(DesignTable {
+            study: study.name.clone(),
+            objective: study.objective.label(),
+            fidelity: format!(
+                "{} at {} x the sweep time step",
+                fid.method.as_str(),
+                fid.dt_factor
+            ),
+            damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
+            records: study.records.len(),
+            rows,
+        })
+    }
+
+    /// CSV, full precision, one line per design.
+    pub fn to_csv(&self) -> String {
+        let fl = &self.damper_floors;
+        let n = self.rows.first().map_or(0, |r| r.drift_ratio_mean.len());
+        let mut s = String::from("design");
+        let per = |s: &mut String, name: &str, idx: &mut dyn Iterator<Item = usize>| {
+            for i in idx {
+                let _ = write!(s, ",{name}_{i}");
+            }
+        };
+        per(&mut s, "slip_load_kN", &mut fl.iter().copied());
+        per(&mut s, "ratio_to_floor_weight", &mut fl.iter().copied());
+        per(&mut s, "ratio_to_weight_above", &mut fl.iter().copied());
+        per(&mut s, "drift_ratio_mean", &mut (1..=n));
+        per(&mut s, "drift_ratio_p84", &mut (1..=n));
+        per(&mut s, "drift_ratio_max", &mut (1..=n));
+        s.push_str(",objective,objective_reduction,peak_drift_ratio_mean,peak_drift_reduction,residual_drift_ratio_mean,peak_floor_acceleration_mean_m_s2,base_shear_mean_N");
+        per(&mut s, "stroke_max_m", &mut (1..=n));
+        s.push_str(",energy_ratio_mean,rpi_mean,objective_at_75pct,objective_at_125pct\n");
+        for r in &self.rows {
+            let _ = write!(s, "{}", r.design);
+            for v in r
+                .slip_load_kn
+                .iter()
+                .chain(&r.ratio_to_floor_weight)
+                .chain(&r.ratio_to_weight_above)
+                .chain(&r.drift_ratio_mean)
+                .chain(&r.drift_ratio_p84)
+                .chain(&r.drift_ratio_max)
+            {
+                let _ = write!(s, ",{v}");
+            }
+            for v in [
+                r.objective,
+                r.objective_reduction,
+                r.peak_drift_ratio_mean,
+                r.peak_drift_reduction,
+                r.residual_drift_ratio_mean,
+                r.peak_floor_acceleration_mean,
+                r.base_shear_mean,
+            ] {
+                let _ = write!(s, ",{v}");
+            }
+            for v in &r.stroke_max {
+                let _ = write!(s, ",{v}");
+            }
+            let _ = writeln!(
+                s,
+                ",{},{},{},{}",
+                r.energy_ratio_mean, r.rpi_mean, r.objective_at_75pct, r.objective_at_125pct
+            );
+        }
+        s
+    }
+
+    /// Pretty JSON with a final newline.
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(self).expect("a table serialises");
+        s.push('\n');
+        s
+    }
+
+    /// Markdown for people: two tables (slip loads and drifts per floor; responses).
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "# Design table: {}\n", self.study);
+        let _ = writeln!(
+            s,
+            "Objective: {} ({} records, {}). Drift ratios in %, slip loads in kN; \"/W\" = slip load over the floor weight, \"/ΣW\" = over the weight above the storey (its gravity shear).\n",
+            self.objective, self.records, self.fidelity
+        );
+        s.push_str("| design | floor | slip load (kN) | /W | /ΣW | drift mean (%) | drift p84 (%) | drift max (%) | stroke max (mm) |\n");
+        s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for r in &self.rows {
+            for (k, f) in self.damper_floors.iter().enumerate() {
+                let i = f - 1;
+                let _ = writeln!(
+                    s,
+                    "| {} | {f} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
+                    if k == 0 { r.design.as_str() } else { "" },
+                    r.slip_load_kn[k],
+                    r.ratio_to_floor_weight[k],
+                    r.ratio_to_weight_above[k],
+                    100.0 * r.drift_ratio_mean[i],
+                    100.0 * r.drift_ratio_p84[i],
+                    100.0 * r.drift_ratio_max[i],
+                    1e3 * r.stroke_max[i],
+                );
+            }
+        }
+        s.push_str("\n| design | objective | reduction vs bare | peak drift mean (%) | drift reduction | residual drift (%) | floor accel. (m/s²) | base shear (MN) | E_friction/E_input | RPI | objective at 0.75× / 1.25× |\n");
+        s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "| {} | {:.5} | {:.1} % | {:.3} | {:.1} % | {:.4} | {:.2} | {:.2} | {:.2} | {:.3} | {:.5} / {:.5} |",
+                r.design,
+                r.objective,
+                100.0 * r.objective_reduction,
+                100.0 * r.peak_drift_ratio_mean,
+                100.0 * r.peak_drift_reduction,
+                100.0 * r.residual_drift_ratio_mean,
+                r.peak_floor_acceleration_mean,
+                r.base_shear_mean / 1e6,
+                r.energy_ratio_mean,
+                r.rpi_mean,
+                r.objective_at_75pct,
+                r.objective_at_125pct
+            );
+        }
+        s
+    }
+}
+
+/// The standard candidates around an optimum (slip loads N): the optimum, the uniform and
+/// storey-shear-proportional designs with the same total, the building file's slip
+/// loads, and the bare frame.
+pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>)> {
+    let total: f64 = optimum.iter().sum();
+    let m = optimum.len();
+    let shaped = |shape: crate::space::Shape| {
+        let all = shape.on_floors(&study.building);
+        let sh: Vec<f64> = study.space.dampers.iter().map(|&f| all[f]).collect();
+        let sum: f64 = sh.iter().sum();
+        sh.iter().map(|v| v / sum * total).collect::<Vec<f64>>()
+    };
+    let all = vec![
+        ("optimum".to_string(), optimum.to_vec()),
+        ("uniform".to_string(), shaped(crate::space::Shape::Uniform)),
+        (
+            "storey-shear".to_string(),
+            shaped(crate::space::Shape::StoreyShear),
+        ),
+        ("file".to_string(), study.file_slip_loads()),
+        ("bare".to_string(), vec![0.0; m]),
+    ];
+    // a profile optimum already is its profile at that total: keep the first of equals
+    let same = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+    };
+    let mut out: Vec<(String, Vec<f64>)> = Vec::new();
+    for (name, loads) in all {
+        if !out.iter().any(|(_, l)| same(l, &loads)) {
+            out.push((name, loads));
+        }
+    }
+    out
+}
