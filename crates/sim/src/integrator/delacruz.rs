@@ -74,7 +74,7 @@ use crate::integrator::state::{
     stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
-use crate::response::{Diagnostics, Energy, LoopIterations, Outcome, Peaks};
+use crate::response::{Diagnostics, LoopIterations, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 
@@ -799,17 +799,7 @@ impl Integrator for DelaCruz {
             ag0 = ag1;
             p0 = p1;
         }
-        let energy = energies.then(|| {
-            let (ek, es) = stored_energy(plan, &u, &v, &epp);
-            Energy {
-                input: acc.input,
-                kinetic: ek,
-                strain: es,
-                viscous: acc.viscous,
-                friction: acc.friction,
-                balance_error: acc.input + initial_energy - (ek + es + acc.viscous + acc.friction),
-            }
-        });
+        let energy = energies.then(|| acc.finish(plan, &u, &v, &epp, initial_energy));
         let response = peaks.into_response(
             plan.method.name.as_str(),
             dt,

@@ -66,6 +66,7 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
+use crate::integrator::state::history_columns;
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
@@ -916,36 +917,10 @@ impl Integrator for Exact {
         observe(&mut peaks, &ops, &y, &mut acc);
         cont_drift.copy_from_slice(&peaks.drift);
 
-        let mut history = plan.outputs.histories.then(|| {
-            let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
-            cols.extend((1..=nf).map(|i| format!("x{i}_m")));
-            cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
-            cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
-            cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
-            cols.extend(
-                plan.contacts
-                    .iter()
-                    .map(|c| format!("w{}_m_s", c.floor + 1)),
-            );
-            if energies {
-                cols.extend(
-                    [
-                        "E_input_J",
-                        "E_kinetic_J",
-                        "E_strain_J",
-                        "E_viscous_J",
-                        "E_friction_J",
-                    ]
-                    .map(String::from),
-                );
-            }
-            let mut h = History {
-                columns: cols,
-                rows: Vec::new(),
-            };
-            h.rows.reserve((plan.steps + 1) * h.columns.len());
-            h
-        });
+        let mut history = plan
+            .outputs
+            .histories
+            .then(|| history_columns(plan, energies));
         if let Some(h) = history.as_mut() {
             let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
             history_row(&model, &ops, h, 0.0, &y, e);

@@ -25,7 +25,7 @@ use crate::integrator::state::{
     slip_rate, stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
-use crate::response::{Diagnostics, Energy, Outcome, Peaks};
+use crate::response::{Diagnostics, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
 
@@ -343,17 +343,7 @@ impl Integrator for Newmark {
         }
         let (u_end, rest) = s.as_slice().split_at(n);
         let v_end = &rest[..n];
-        let energy = energies.then(|| {
-            let (ek, es) = stored_energy(plan, u_end, v_end, &epp);
-            Energy {
-                input: acc.input,
-                kinetic: ek,
-                strain: es,
-                viscous: acc.viscous,
-                friction: acc.friction,
-                balance_error: acc.input + initial_energy - (ek + es + acc.viscous + acc.friction),
-            }
-        });
+        let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp, initial_energy));
         let response = peaks.into_response(
             plan.method.name.as_str(),
             dt,

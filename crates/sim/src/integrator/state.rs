@@ -6,7 +6,7 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::plan::{ContactKind, Plan};
-use crate::response::History;
+use crate::response::{Energy, History};
 use nalgebra::{DMatrix, DVector};
 
 /// Per-contact state of elastic–perfectly plastic elements: dissipator displacement,
@@ -342,6 +342,26 @@ pub(crate) struct StepEnergyData<'a> {
 }
 
 impl EnergyAccumulator {
+    /// The run's energies at its end state (u, v, `epp`).
+    pub(crate) fn finish(
+        &self,
+        plan: &Plan,
+        u: &[f64],
+        v: &[f64],
+        epp: &[EppState],
+        initial_energy: f64,
+    ) -> Energy {
+        let (ek, es) = stored_energy(plan, u, v, epp);
+        Energy {
+            input: self.input,
+            kinetic: ek,
+            strain: es,
+            viscous: self.viscous,
+            friction: self.friction,
+            balance_error: self.input + initial_energy - (ek + es + self.viscous + self.friction),
+        }
+    }
+
     /// Starts from the initial strain energy `strain0`, J.
     pub(crate) fn new(strain0: f64) -> Self {
         EnergyAccumulator {
