@@ -70,8 +70,8 @@
 use crate::error::SimError;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
-    EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row, slip,
-    stored_energy,
+    self, EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row,
+    slip, stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, LoopIterations, Outcome, Peaks};
@@ -620,13 +620,8 @@ impl Integrator for DelaCruz {
         let mut acc = EnergyAccumulator::new(s0);
         let msum: f64 = s.mr.iter().sum();
         let hf = plan.harmonic.map(|h| h.floor);
-        let base_shear = |a: &[f64], ag: f64, p: f64| -> f64 {
-            let mut vb = msum * ag - p;
-            for (mi, ai) in s.mr.iter().zip(a) {
-                vb += mi * ai;
-            }
-            vb.abs()
-        };
+        let base_shear =
+            |a: &[f64], ag: f64, p: f64| state::base_shear(s.mr.as_slice(), msum, a, ag, p);
         let mut peaks = Peaks::new(nf);
         let mut ag0 = plan.ground_accel(0.0);
         let mut p0 = plan.force(0.0);

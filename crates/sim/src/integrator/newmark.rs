@@ -21,8 +21,8 @@ use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
-    EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row, slip,
-    slip_rate, stored_energy,
+    self, EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row,
+    slip, slip_rate, stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Outcome, Peaks};
@@ -178,13 +178,8 @@ impl Integrator for Newmark {
         let mut p0 = plan.force(0.0);
         peaks.observe_floors(&start.u, &start.a, ag0);
         let hf = ops.hp.as_ref().map(|(f, _)| *f);
-        let base_shear = |a: &[f64], ag: f64, p: f64| -> f64 {
-            let mut vb = msum * ag - p;
-            for (mi, ai) in ops.mr.iter().zip(a) {
-                vb += mi * ai;
-            }
-            vb.abs()
-        };
+        let base_shear =
+            |a: &[f64], ag: f64, p: f64| state::base_shear(ops.mr.as_slice(), msum, a, ag, p);
         peaks.base_shear = base_shear(&start.a, ag0, p0);
         for c in 0..nc {
             let fl = plan.contacts[c].floor;

@@ -41,6 +41,17 @@ pub(crate) fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
     }
 }
 
+/// |Base shear| = |Σ mᵢ(aᵢ + a_g) − P|, N, from M·r (`mr`, summing to `msum`), the
+/// relative accelerations `a`, the ground acceleration and the harmonic force.
+#[inline]
+pub(crate) fn base_shear(mr: &[f64], msum: f64, a: &[f64], ag: f64, p: f64) -> f64 {
+    let mut vb = msum * ag - p;
+    for (mi, ai) in mr.iter().zip(a) {
+        vb += mi * ai;
+    }
+    vb.abs()
+}
+
 /// x̄ᵀ A x̄ with x̄ = (x0 + x1)/2, for a column-major square matrix, without allocating.
 #[inline]
 fn quad_avg(a: &DMatrix<f64>, x0: &[f64], x1: &[f64]) -> f64 {
