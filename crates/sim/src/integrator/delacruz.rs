@@ -37,8 +37,9 @@
 //! building's inertial force Σm·|a_g|max (a huge slip load would otherwise make ε_f far
 //! larger than the stuck forces it controls). Without a record ε_a takes
 //! the largest of (harmonic amplitude / smallest floor mass), the initial floor
-//! accelerations, ω₁²|x₀| and ω₁|ẋ₀| (ω₁ = 2π/T₁) as its scale, over 10⁵. Iteration cap: 100 per loop invocation. All settable
-//! (`method.eps_a`, `method.eps_f`, `method.max_iterations`).
+//! accelerations, ω₁²|x₀| and ω₁|ẋ₀| (ω₁ = 2π/T₁) as its scale, over 10⁵. Iteration
+//! cap: 100 per loop invocation (the paper gives none). All settable (`method.eps_a`,
+//! `method.eps_f`, `method.max_iterations`).
 //!
 //! **Conditional stability.** The loops are contractions only for small enough Δt: a
 //! sliding dissipator's update has gain k′Δt²/(6m′) (so Δt < √(6m′/k′)), the structural
