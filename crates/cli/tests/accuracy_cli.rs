@@ -2,20 +2,9 @@
 //! CSV + JSON + Markdown written, and a clear error without partial files for bad input.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn slipload(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_slipload"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
+mod common;
+use common::slipload;
+use std::path::PathBuf;
 
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("slipload-acc-{}-{name}", std::process::id()));

@@ -5,20 +5,8 @@
 //! table shows the loops' iteration counts.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn slipload(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_slipload"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
+mod common;
+use common::slipload;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = slipload(args);

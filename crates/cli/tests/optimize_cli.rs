@@ -3,26 +3,12 @@
 //! with the field named, a non-zero exit and no output folder — before any simulation.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use std::path::PathBuf;
+mod common;
+use common::{root, slipload_in as run_in};
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("slipload-opt-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_slipload"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
+    common::scratch("opt", name)
 }
 
 #[test]

@@ -2,20 +2,8 @@
 //! the embedded default scene, history files, and clear errors with a non-zero exit.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn slipload(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_slipload"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
+mod common;
+use common::slipload;
 
 #[test]
 fn json_output_has_exactly_the_contract_keys() {

@@ -7,18 +7,14 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-const FILES: [&str; 3] = ["manifest.json", "responses.csv", "designs.csv"];
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod common;
+use common::root;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("slipload-sweep-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch("sweep", name)
 }
+
+const FILES: [&str; 3] = ["manifest.json", "responses.csv", "designs.csv"];
 
 /// A study of the benchmark building over `count` synthetic records of `secs` seconds
 /// with `points` Halton designs.
