@@ -194,6 +194,30 @@ impl Peaks {
         }
     }
 
+    /// Keeps the larger |base shear| (N).
+    #[inline]
+    pub fn observe_base_shear(&mut self, v: f64) {
+        self.base_shear = self.base_shear.max(v.abs());
+    }
+
+    /// Keeps the larger |slip| (m) of the damper on `floor` (from 0).
+    #[inline]
+    pub fn observe_slip(&mut self, floor: usize, s: f64) {
+        self.slip[floor] = self.slip[floor].max(s.abs());
+    }
+
+    /// Builds the contract's response of a run of `plan` (method, step, step count and
+    /// storey heights come from the plan).
+    pub fn into_plan_response(self, plan: &crate::plan::Plan, energy: Option<Energy>) -> Response {
+        self.into_response(
+            plan.method.name.as_str(),
+            plan.method.dt,
+            plan.steps,
+            plan.storey_heights.as_deref(),
+            energy,
+        )
+    }
+
     /// Builds the contract's response.
     pub fn into_response(
         self,

@@ -627,10 +627,10 @@ impl Integrator for DelaCruz {
         let mut ag0 = plan.ground_accel(0.0);
         let mut p0 = plan.force(0.0);
         peaks.observe_floors(&u, &a, ag0);
-        peaks.base_shear = base_shear(&a, ag0, p0);
+        peaks.observe_base_shear(base_shear(&a, ag0, p0));
         for c in 0..nc {
             let fl = plan.contacts[c].floor;
-            peaks.slip[fl] = peaks.slip[fl].max(slip(plan, c, &u, &epp).abs());
+            peaks.observe_slip(fl, slip(plan, c, &u, &epp));
         }
         let mut history = plan
             .outputs
@@ -761,16 +761,10 @@ impl Integrator for DelaCruz {
                 if mode_step[c] != mode[c] {
                     peaks.transitions[ct.floor] += 1;
                 }
-                let sl = slip(plan, c, &u, &epp).abs();
-                if sl > peaks.slip[ct.floor] {
-                    peaks.slip[ct.floor] = sl;
-                }
+                peaks.observe_slip(ct.floor, slip(plan, c, &u, &epp));
             }
             peaks.observe_floors(&u, &a, ag1);
-            let vb = base_shear(&a, ag1, p1);
-            if vb > peaks.base_shear {
-                peaks.base_shear = vb;
-            }
+            peaks.observe_base_shear(base_shear(&a, ag1, p1));
             let mut e_row = None;
             if energies {
                 let data = StepEnergyData {
@@ -796,13 +790,7 @@ impl Integrator for DelaCruz {
             p0 = p1;
         }
         let energy = energies.then(|| acc.finish(plan, &u, &v, &epp, initial_energy));
-        let response = peaks.into_response(
-            plan.method.name.as_str(),
-            dt,
-            plan.steps,
-            plan.storey_heights.as_deref(),
-            energy,
-        );
+        let response = peaks.into_plan_response(plan, energy);
         Ok(Outcome {
             response,
             diagnostics: Diagnostics {

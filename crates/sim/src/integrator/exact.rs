@@ -66,7 +66,7 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
-use crate::integrator::state::history_columns;
+use crate::integrator::state::{base_shear, history_columns};
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
@@ -899,19 +899,20 @@ impl Integrator for Exact {
                     .as_ref()
                     .map_or(0.0, |h| h.amplitude * y[lay.i_sin]);
                 peaks.observe_floors(y.as_slice(), &acc.as_slice()[n..2 * n], ag);
-                let mut vb = msum * ag - p;
-                for i in 0..n {
-                    vb += model.mr[i] * acc[n + i];
-                }
-                peaks.base_shear = peaks.base_shear.max(vb.abs());
+                peaks.observe_base_shear(base_shear(
+                    model.mr.as_slice(),
+                    msum,
+                    &acc.as_slice()[n..2 * n],
+                    ag,
+                    p,
+                ));
                 for (c, ct) in plan.contacts.iter().enumerate() {
                     let other = match (ct.kind, lay.epp_slot[c]) {
                         (ContactKind::Dof { dof }, _) => y[dof],
                         (_, Some(s)) => y[s],
                         (ContactKind::Epp, None) => 0.0,
                     };
-                    let sl = (y[ct.floor] - other).abs();
-                    peaks.slip[ct.floor] = peaks.slip[ct.floor].max(sl);
+                    peaks.observe_slip(ct.floor, y[ct.floor] - other);
                 }
             };
         observe(&mut peaks, &ops, &y, &mut acc);
@@ -1190,13 +1191,7 @@ impl Integrator for Exact {
         });
         let sampled = peaks.drift.clone();
         peaks.drift = cont_drift;
-        let response = peaks.into_response(
-            plan.method.name.as_str(),
-            dt,
-            plan.steps,
-            plan.storey_heights.as_deref(),
-            energy,
-        );
+        let response = peaks.into_plan_response(plan, energy);
         Ok(Outcome {
             response,
             diagnostics: Diagnostics {

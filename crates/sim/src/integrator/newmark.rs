@@ -180,10 +180,10 @@ impl Integrator for Newmark {
         let hf = ops.hp.as_ref().map(|(f, _)| *f);
         let base_shear =
             |a: &[f64], ag: f64, p: f64| state::base_shear(ops.mr.as_slice(), msum, a, ag, p);
-        peaks.base_shear = base_shear(&start.a, ag0, p0);
+        peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
         for c in 0..nc {
             let fl = plan.contacts[c].floor;
-            peaks.slip[fl] = peaks.slip[fl].max(slip(plan, c, &start.u, &epp).abs());
+            peaks.observe_slip(fl, slip(plan, c, &start.u, &epp));
         }
 
         let mut history = plan
@@ -293,17 +293,11 @@ impl Integrator for Newmark {
                         peaks.transitions[ct.floor] += 1;
                         stuck[c] = now_stuck;
                     }
-                    let sl = slip(plan, c, u_now, &epp).abs();
-                    if sl > peaks.slip[ct.floor] {
-                        peaks.slip[ct.floor] = sl;
-                    }
+                    peaks.observe_slip(ct.floor, slip(plan, c, u_now, &epp));
                 }
             }
             peaks.observe_floors(u_now, a_now, ag1);
-            let vb = base_shear(a_now, ag1, p1);
-            if vb > peaks.base_shear {
-                peaks.base_shear = vb;
-            }
+            peaks.observe_base_shear(base_shear(a_now, ag1, p1));
             let mut e_row = None;
             if energies {
                 let data = StepEnergyData {
@@ -339,13 +333,7 @@ impl Integrator for Newmark {
         let (u_end, rest) = s.as_slice().split_at(n);
         let v_end = &rest[..n];
         let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp, initial_energy));
-        let response = peaks.into_response(
-            plan.method.name.as_str(),
-            dt,
-            plan.steps,
-            plan.storey_heights.as_deref(),
-            energy,
-        );
+        let response = peaks.into_plan_response(plan, energy);
         Ok(Outcome {
             response,
             diagnostics: Diagnostics {
