@@ -69,6 +69,15 @@ const BLAND_AFTER: u32 = 3;
 /// Incremental factor updates after which the next change of the free set refactorises.
 const UPDATE_LIMIT: u32 = 64;
 
+/// Largest problem for which explicit inverses of free blocks are cached (the fast path).
+const FAST_MAX: usize = 16;
+
+/// Slots of the direct-mapped cache of free-block inverses.
+const INV_SLOTS: usize = 16;
+
+/// Marks an empty cache slot (no free set has all 64 bits).
+const EMPTY: u64 = u64::MAX;
+
 /// Where a variable sits after a solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Bound {
@@ -91,6 +100,9 @@ pub struct BoxQpStats {
     /// Changes to the free-set Cholesky factor: full factorisations plus incremental
     /// insertions and deletions of one variable (each O(k²)). 0 when the pattern is unchanged.
     pub factorizations: u32,
+    /// The answer came from the fast path: the previous working set was still optimal and its
+    /// free block's inverse was cached (one product with `W_FF⁻¹`, one with `W`).
+    pub fast: bool,
 }
 
 /// Errors of [`BoxQp`].
@@ -191,6 +203,15 @@ pub struct BoxQp {
     slip: Vec<f64>,
     /// Scratch: variables not to be released again in this call.
     frozen: Vec<bool>,
+    /// Fast path: free set (bit i = variable i free) of each cached inverse, or [`EMPTY`].
+    inv_key: Vec<u64>,
+    /// Fast path: the cached `W_FF⁻¹`, `k×k` row-major at the start of each `m²` slot.
+    inv: Vec<f64>,
+    /// Fast path: the free set tried by the previous call (an inverse is built for a free set
+    /// the second time in a row it is tried, so a pattern seen once costs nothing extra).
+    last_mask: u64,
+    /// Fast path scratch: free variables in increasing order.
+    idx: Vec<usize>,
 }
 
 /// `aᵀb` over the shorter length, with four partial sums so that it vectorises.
@@ -339,6 +360,18 @@ impl BoxQp {
             rhs: vec![0.0; m],
             slip: vec![0.0; m],
             frozen: vec![false; m],
+            inv_key: if m <= FAST_MAX {
+                vec![EMPTY; INV_SLOTS]
+            } else {
+                Vec::new()
+            },
+            inv: if m <= FAST_MAX {
+                vec![0.0; INV_SLOTS * expected]
+            } else {
+                Vec::new()
+            },
+            last_mask: EMPTY,
+            idx: vec![0; m],
         };
         qp.reset();
         Ok(qp)
@@ -432,11 +465,142 @@ impl BoxQp {
                 });
             }
         }
+        if let Some(stats) = self.try_fast(b, b_norm, lo, hi, f) {
+            return Ok(stats);
+        }
         let result = self.run(b, b_norm, lo, hi, f);
         if result.is_err() {
             self.status.fill(Bound::Free);
         }
         result
+    }
+
+    /// The fast path on validated input: when the previous call's working set is still
+    /// optimal — the usual case from one time step to the next — its minimiser is
+    /// `F_F = W_FF⁻¹ (b_F − W_FB F_B)` with a cached inverse, and the optimality test is the
+    /// same as the active-set iteration's (free values inside the box, held multipliers of the
+    /// right sign beyond the same round-off threshold). Returns `None` (leaving the warm start
+    /// as it was, `f` as a hint) when the working set changed or no inverse is cached yet; the
+    /// active-set iteration then runs.
+    fn try_fast(
+        &mut self,
+        b: &[f64],
+        b_norm: f64,
+        lo: &[f64],
+        hi: &[f64],
+        f: &mut [f64],
+    ) -> Option<BoxQpStats> {
+        let m = self.m;
+        if m > FAST_MAX || m == 0 {
+            return None;
+        }
+        let mut mask = 0u64;
+        let mut k = 0;
+        for i in 0..m {
+            let (l, h) = (lo[i], hi[i]);
+            match self.status[i] {
+                Bound::Lower if l.is_finite() => f[i] = l,
+                Bound::Upper if h.is_finite() && l != h => f[i] = h,
+                Bound::Free if l != h => {
+                    mask |= 1 << i;
+                    self.idx[k] = i;
+                    k += 1;
+                }
+                _ => return None,
+            }
+        }
+        let slot = if m <= 4 {
+            mask as usize
+        } else {
+            (mask.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 60) as usize
+        };
+        let base = slot * m * m;
+        if k > 0 && self.inv_key[slot] != mask {
+            if mask != self.last_mask {
+                self.last_mask = mask;
+                return None;
+            }
+            if !self.build_inverse(k, base) {
+                return None;
+            }
+            self.inv_key[slot] = mask;
+        }
+        self.last_mask = mask;
+        // rhs_F = b_F − W_FB F_B, then F_F = W_FF⁻¹ rhs_F.
+        for q in 0..k {
+            let i = self.idx[q];
+            let mut r = b[i];
+            for j in 0..m {
+                if mask & (1 << j) == 0 {
+                    r -= self.w[i + j * m] * f[j];
+                }
+            }
+            self.rhs[q] = r;
+        }
+        for q in 0..k {
+            let i = self.idx[q];
+            let x = dot(&self.inv[base + q * k..base + (q + 1) * k], &self.rhs[..k]);
+            if !(x >= lo[i] && x <= hi[i]) {
+                return None;
+            }
+            f[i] = x;
+        }
+        let f_norm = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let tol = 8.0 * (m as f64 + 1.0) * f64::EPSILON * (self.w_norm * f_norm + b_norm);
+        for i in 0..m {
+            let slip = b[i] - dot(&self.w[i * m..(i + 1) * m], f);
+            let wrong = match self.status[i] {
+                // An explicit inverse is not backward stable: on an ill-conditioned block the
+                // free rows' residual can exceed round-off; the factor-based iteration decides.
+                Bound::Free => slip.abs(),
+                _ if lo[i] == hi[i] => continue,
+                Bound::Lower => slip,
+                Bound::Upper => -slip,
+            };
+            if wrong > tol {
+                return None;
+            }
+        }
+        Some(BoxQpStats {
+            iterations: 1,
+            factorizations: 0,
+            fast: true,
+        })
+    }
+
+    /// Writes `W_FF⁻¹` for the free variables `idx[..k]` at `inv[base..]` (k×k, row-major).
+    /// `false` if the block is numerically singular (the active-set iteration then decides).
+    fn build_inverse(&mut self, k: usize, base: usize) -> bool {
+        let m = self.m;
+        // Factor W_FF in the scratch `l`-shaped block of the slot, then solve for each column.
+        let mut a = [0.0f64; FAST_MAX * FAST_MAX];
+        for p in 0..k {
+            for q in 0..k {
+                a[p * k + q] = self.w[self.idx[p] + self.idx[q] * m];
+            }
+        }
+        let (w, idx) = (&self.w, &self.idx);
+        if cholesky_in_place(&mut a, k, k, |q| pivot_floor(m, w[idx[q] * (m + 1)])).is_err() {
+            return false;
+        }
+        let mut col = [0.0f64; FAST_MAX];
+        for q in 0..k {
+            col[..k].fill(0.0);
+            col[q] = 1.0;
+            cholesky_solve(&a, k, k, &mut col[..k]);
+            for p in 0..k {
+                self.inv[base + p * k + q] = col[p];
+            }
+        }
+        // Symmetrise: the inverse of a symmetric matrix is symmetric; round-off is not.
+        for p in 0..k {
+            for q in 0..p {
+                let mean = 0.5 * (self.inv[base + p * k + q] + self.inv[base + q * k + p]);
+                self.inv[base + p * k + q] = mean;
+                self.inv[base + q * k + p] = mean;
+            }
+        }
+        true
     }
 
     /// The active-set iteration on validated input.
