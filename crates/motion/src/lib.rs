@@ -44,7 +44,7 @@ pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
 pub use reader::{RecordFormat, read_record};
-pub use record::{G, Record};
+pub use record::{G, Record, StepSampler};
 pub use scaling::{
     ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
     scale_to_spectral_acceleration,

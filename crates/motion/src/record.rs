@@ -124,6 +124,28 @@ impl Record {
         a0 + frac * (self.accel_m_s2[i + 1] - a0)
     }
 
+    /// The acceleration at `t = dt, 2dt, 3dt, …` one value per call, as [`Record::accel_at`]
+    /// gives it, without a division per call when `dt` divides the record's step (the usual
+    /// case: default integrator steps are chosen so).
+    pub fn steps(&self, dt: f64) -> StepSampler<'_> {
+        let ratio = self.dt_s / dt;
+        let k = ratio.round();
+        let k = if k >= 1.0 && (ratio - k).abs() <= 1e-9 * k && k < 1e9 {
+            k as usize
+        } else {
+            0
+        };
+        StepSampler {
+            record: self,
+            dt,
+            k,
+            inv_k: if k > 0 { 1.0 / k as f64 } else { 0.0 },
+            i: 0,
+            r: 0,
+            j: 0,
+        }
+    }
+
     /// Peak ground acceleration max |a| over the samples, m/s² (for a piecewise-linear
     /// record the peak over all t is at a sample).
     pub fn pga(&self) -> f64 {
@@ -241,6 +263,45 @@ impl Record {
     }
 }
 
+/// Successive ground accelerations at the steps of an integrator ([`Record::steps`]).
+#[derive(Debug, Clone)]
+pub struct StepSampler<'a> {
+    record: &'a Record,
+    dt: f64,
+    /// Integrator steps per record step, or 0 when `dt` does not divide the record's step.
+    k: usize,
+    inv_k: f64,
+    /// Record interval and step within it of the last value given.
+    i: usize,
+    r: usize,
+    /// Steps given.
+    j: usize,
+}
+
+impl StepSampler<'_> {
+    /// The acceleration at the next step, m/s² (0 after the record's end, as `accel_at`).
+    #[inline]
+    pub fn next_accel(&mut self) -> f64 {
+        self.j += 1;
+        if self.k == 0 {
+            return self.record.accel_at(self.j as f64 * self.dt);
+        }
+        self.r += 1;
+        if self.r == self.k {
+            self.r = 0;
+            self.i += 1;
+        }
+        let a = &self.record.accel_m_s2;
+        if self.r == 0 {
+            return a.get(self.i).copied().unwrap_or(0.0);
+        }
+        match (a.get(self.i), a.get(self.i + 1)) {
+            (Some(a0), Some(a1)) => a0 + (self.r as f64 * self.inv_k) * (a1 - a0),
+            _ => 0.0,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -316,5 +377,20 @@ mod tests {
             zero.scaled_to_pga(1.0),
             Err(MotionError::ZeroMeasure { .. })
         ));
+    }
+
+    #[test]
+    fn step_sampler_matches_accel_at() {
+        let rec = Record::new("t", 0.01, vec![0.0, 1.0, -2.0, 0.5]).expect("valid");
+        // dt divides the record step (4 per interval) and does not (0.003).
+        for dt in [0.0025, 0.003] {
+            let mut s = rec.steps(dt);
+            for j in 1..=20 {
+                let t = j as f64 * dt;
+                let (a, b) = (s.next_accel(), rec.accel_at(t));
+                // Interpolation weights r/k vs t/dt − i differ by a few ulps.
+                assert!((a - b).abs() <= 1e-14, "dt {dt}, t {t}: {a} vs {b}");
+            }
+        }
     }
 }

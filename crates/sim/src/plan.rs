@@ -104,6 +104,18 @@ pub struct Plan {
     pub notes: Vec<String>,
 }
 
+/// Ground accelerations at successive steps ([`Plan::ground_steps`]).
+#[derive(Debug, Clone)]
+pub struct GroundSteps<'a>(Option<slipload_motion::StepSampler<'a>>);
+
+impl GroundSteps<'_> {
+    /// The ground acceleration at the next step, m/s² (0 without a record).
+    #[inline]
+    pub fn next_accel(&mut self) -> f64 {
+        self.0.as_mut().map_or(0.0, |s| s.next_accel())
+    }
+}
+
 fn add_spring(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
     m[(i, i)] += k;
     if let Some(j) = j {
@@ -329,6 +341,13 @@ impl Plan {
     #[inline]
     pub fn ground_accel(&self, t: f64) -> f64 {
         self.record.as_ref().map_or(0.0, |r| r.accel_at(t))
+    }
+
+    /// Ground accelerations at the steps `t = dt, 2dt, …` of the plan's method, one per
+    /// [`GroundSteps::next_accel`] call: the values of [`Plan::ground_accel`] without a
+    /// division per step.
+    pub fn ground_steps(&self) -> GroundSteps<'_> {
+        GroundSteps(self.record.as_ref().map(|r| r.steps(self.method.dt)))
     }
 
     /// Harmonic force at `t`, N (0 without one).

@@ -9,7 +9,10 @@
 //! F = argmin_{F⁻≤F≤F⁺} ½FᵀWF − Fᵀw_free, solved exactly by [`BoxQp`].
 //!
 //! The linear part of a step is one precomputed n×3n operator applied to (u, v, a).
-//! Nothing is allocated inside the step loop unless histories are asked for.
+//! Nothing is allocated inside the step loop unless histories are asked for. The loop is
+//! compiled once per small DOF count (1–8, 10, 12, 20) with the count a constant, so its
+//! small products unroll, and once for any other count; the ground acceleration of each
+//! step is interpolated incrementally ([`Plan::ground_steps`]).
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
@@ -28,6 +31,9 @@ use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
+
+/// Marks "the ground" as the other end of an elastic–perfectly plastic contact.
+const GROUND: usize = usize::MAX;
 
 /// Newmark/HHT-α with exact implicit friction.
 #[derive(Debug, Clone, Copy, Default)]
@@ -116,6 +122,19 @@ impl Operators {
     }
 }
 
+/// What the step loop reads of one contact, flattened from the plan.
+#[derive(Debug, Clone, Copy)]
+struct Link {
+    /// Floor DOF the friction acts on.
+    floor: usize,
+    /// The dissipator DOF (contact with DOF), or the floor below / [`GROUND`] (EPP).
+    other: usize,
+    /// Elastic–perfectly plastic element (m′ = 0 condensed).
+    epp: bool,
+    /// k′/κ of an EPP contact.
+    k_over_kappa: f64,
+}
+
 impl Integrator for Newmark {
     fn name(&self) -> &'static str {
         "newmark"
@@ -127,228 +146,282 @@ impl Integrator for Newmark {
             return Err(SimError::BadTimeStep { dt });
         }
         let ops = Operators::build(plan)?;
-        let n = ops.n;
-        let nf = plan.floors;
-        let nc = plan.contacts.len();
-        let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
-        let c_u = (0.5 - beta) * dt * dt;
-        let c_v = (1.0 - gamma) * dt;
-        let gdt = gamma * dt;
-        let bdt2 = beta * dt * dt;
-        let bg = beta * dt / gamma;
-        let msum: f64 = ops.mr.iter().sum();
-        let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
-        let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
-
-        let start = initial_state(plan)?;
-        let mut s = DVector::zeros(3 * n);
-        s.rows_mut(0, n).copy_from_slice(&start.u);
-        s.rows_mut(n, n).copy_from_slice(&start.v);
-        s.rows_mut(2 * n, n).copy_from_slice(&start.a);
-        let mut f_old = DVector::from_column_slice(&start.f);
-        let mut f_new = DVector::zeros(nc);
-        let mut epp = start.epp;
-        let mut stuck = start.stuck;
-        let mut qp = if nc > 0 {
-            Some(
-                BoxQp::new(ops.w.as_slice(), nc)
-                    .map_err(|source| SimError::Friction { t: 0.0, source })?,
-            )
-        } else {
-            None
-        };
-        let mut af = DVector::zeros(n);
-        let mut ut = vec![0.0; n];
-        let mut vt = vec![0.0; n];
-        let mut wfree = vec![0.0; nc];
-        let mut w_old: Vec<f64> = (0..nc)
-            .map(|c| slip_rate(plan, c, &start.v, &epp))
-            .collect();
-        let mut w_new = vec![0.0; nc];
-        let mut v_old = vec![0.0; n];
-        let mut epp_pred = vec![(0.0, 0.0); nc];
-
-        let energies = plan.outputs.energies;
-        let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
-        let initial_energy = k0 + s0;
-        let mut acc = EnergyAccumulator::new(s0);
-
-        let mut peaks = Peaks::new(nf);
-        let mut ag0 = plan.ground_accel(0.0);
-        let mut p0 = plan.force(0.0);
-        peaks.observe_floors(&start.u, &start.a, ag0);
-        let hf = ops.hp.as_ref().map(|(f, _)| *f);
-        let base_shear =
-            |a: &[f64], ag: f64, p: f64| state::base_shear(ops.mr.as_slice(), msum, a, ag, p);
-        peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
-        for c in 0..nc {
-            let fl = plan.contacts[c].floor;
-            peaks.observe_slip(fl, slip(plan, c, &start.u, &epp));
+        match ops.n {
+            1 => run_loop::<1>(plan, &ops),
+            2 => run_loop::<2>(plan, &ops),
+            3 => run_loop::<3>(plan, &ops),
+            4 => run_loop::<4>(plan, &ops),
+            5 => run_loop::<5>(plan, &ops),
+            6 => run_loop::<6>(plan, &ops),
+            7 => run_loop::<7>(plan, &ops),
+            8 => run_loop::<8>(plan, &ops),
+            10 => run_loop::<10>(plan, &ops),
+            12 => run_loop::<12>(plan, &ops),
+            20 => run_loop::<20>(plan, &ops),
+            _ => run_loop::<0>(plan, &ops),
         }
-
-        let mut history = plan
-            .outputs
-            .histories
-            .then(|| history_columns(plan, energies));
-        if let Some(h) = history.as_mut() {
-            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
-            record_row(
-                plan,
-                h,
-                0.0,
-                ag0,
-                &start.u,
-                f_old.as_slice(),
-                &w_old,
-                &epp,
-                e,
-            );
-        }
-
-        let mut qp_iter_total: u64 = 0;
-        let mut qp_iter_max: u32 = 0;
-        for step in 0..plan.steps {
-            let t1 = (step + 1) as f64 * dt;
-            let ag1 = plan.ground_accel(t1);
-            let p1 = plan.force(t1);
-            // Linear part: a_free = P (u, v, a) + loads (+ HHT friction memory).
-            af.gemv(1.0, &ops.p, &s, 0.0);
-            af.axpy(-((1.0 + alpha) * ag1 - alpha * ag0), &ops.h, 1.0);
-            if let Some((_, hp)) = &ops.hp {
-                af.axpy((1.0 + alpha) * p1 - alpha * p0, hp, 1.0);
-            }
-            if alpha != 0.0 && nc > 0 {
-                af.gemv(alpha / (1.0 + alpha), &ops.g, &f_old, 1.0);
-            }
-            for i in 0..n {
-                let (u, v, a) = (s[i], s[n + i], s[2 * n + i]);
-                ut[i] = u + dt * v + c_u * a;
-                vt[i] = v + c_v * a;
-            }
-            if let Some(qp) = qp.as_mut() {
-                for (c, ct) in plan.contacts.iter().enumerate() {
-                    let vf = vt[ct.floor] + gdt * af[ct.floor];
-                    wfree[c] = match ct.kind {
-                        ContactKind::Dof { dof } => vf - (vt[dof] + gdt * af[dof]),
-                        ContactKind::Epp => {
-                            let e = epp[c];
-                            let up = e.u + dt * e.v + c_u * e.a;
-                            let vp = e.v + c_v * e.a;
-                            epp_pred[c] = (up, vp);
-                            let (uj, vj, vj_end) = ct
-                                .below
-                                .map_or((0.0, 0.0, 0.0), |j| (ut[j], vt[j], vt[j] + gdt * af[j]));
-                            let q = (up - uj) - bg * (vp - vj);
-                            vf - vj_end + ct.brace_stiffness / ops.kappa[c] * q
-                        }
-                    };
-                }
-                let stats = qp
-                    .solve(&wfree, &lo, &hi, f_new.as_mut_slice())
-                    .map_err(|source| SimError::Friction { t: t1, source })?;
-                qp_iter_total += u64::from(stats.iterations);
-                qp_iter_max = qp_iter_max.max(stats.iterations);
-                af.gemv(-1.0, &ops.g, &f_new, 1.0);
-            }
-            if energies {
-                v_old.copy_from_slice(s.rows(n, n).as_slice());
-            }
-            let mut finite = 0.0;
-            for i in 0..n {
-                let a = af[i];
-                s[2 * n + i] = a;
-                s[i] = ut[i] + bdt2 * a;
-                s[n + i] = vt[i] + gdt * a;
-                finite += s[i];
-            }
-            if !finite.is_finite() {
-                return Err(SimError::NonFinite {
-                    step: step + 1,
-                    t: t1,
-                    hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
-                });
-            }
-            let (u_now, rest) = s.as_slice().split_at(n);
-            let (v_now, a_now) = rest.split_at(n);
-            if let Some(qp) = qp.as_ref() {
-                for c in 0..nc {
-                    let mut wf = 0.0;
-                    for j in 0..nc {
-                        wf += ops.w[(c, j)] * f_new[j];
-                    }
-                    w_new[c] = wfree[c] - wf;
-                    let ct = &plan.contacts[c];
-                    if ct.kind == ContactKind::Epp {
-                        let (up, vp) = epp_pred[c];
-                        let vd = v_now[ct.floor] - w_new[c];
-                        let ad = (vd - vp) / gdt;
-                        epp[c] = EppState {
-                            u: up + bdt2 * ad,
-                            v: vd,
-                            a: ad,
-                        };
-                    }
-                    let now_stuck = qp.status(c) == Bound::Free;
-                    if now_stuck != stuck[c] {
-                        peaks.transitions[ct.floor] += 1;
-                        stuck[c] = now_stuck;
-                    }
-                    peaks.observe_slip(ct.floor, slip(plan, c, u_now, &epp));
-                }
-            }
-            peaks.observe_floors(u_now, a_now, ag1);
-            peaks.observe_base_shear(base_shear(a_now, ag1, p1));
-            let mut e_row = None;
-            if energies {
-                let data = StepEnergyData {
-                    dt,
-                    mr: ops.mr.as_slice(),
-                    ag: (ag0, ag1),
-                    p: (p0, p1),
-                    force_floor: hf,
-                    v: (&v_old, v_now),
-                    f: (f_old.as_slice(), f_new.as_slice()),
-                    w: (&w_old, &w_new),
-                };
-                e_row = Some(acc.step(plan, &data, u_now, &epp, initial_energy));
-            }
-            if let Some(h) = history.as_mut() {
-                record_row(
-                    plan,
-                    h,
-                    t1,
-                    ag1,
-                    u_now,
-                    f_new.as_slice(),
-                    &w_new,
-                    &epp,
-                    e_row,
-                );
-            }
-            std::mem::swap(&mut f_old, &mut f_new);
-            std::mem::swap(&mut w_old, &mut w_new);
-            ag0 = ag1;
-            p0 = p1;
-        }
-        let (u_end, rest) = s.as_slice().split_at(n);
-        let v_end = &rest[..n];
-        let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp, initial_energy));
-        let response = peaks.into_plan_response(plan, energy);
-        Ok(Outcome {
-            response,
-            diagnostics: Diagnostics {
-                qp_iterations_mean: if plan.steps > 0 {
-                    qp_iter_total as f64 / plan.steps as f64
-                } else {
-                    0.0
-                },
-                qp_iterations_max: qp_iter_max,
-                balance_error_max_relative: acc.balance_max_rel,
-                initial_energy,
-                strain_energy_area: acc.strain_area,
-                ..Default::default()
-            },
-            history,
-        })
     }
+}
+
+/// The step loop for `N` DOFs (`N = 0`: any count, read from the operators).
+fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, SimError> {
+    let n = if N > 0 { N } else { ops.n };
+    debug_assert_eq!(n, ops.n);
+    let dt = plan.method.dt;
+    let nf = plan.floors;
+    let nc = plan.contacts.len();
+    let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
+    let c_u = (0.5 - beta) * dt * dt;
+    let c_v = (1.0 - gamma) * dt;
+    let gdt = gamma * dt;
+    let bdt2 = beta * dt * dt;
+    let bg = beta * dt / gamma;
+    let msum: f64 = ops.mr.iter().sum();
+    let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
+    let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
+    let links: Vec<Link> = plan
+        .contacts
+        .iter()
+        .enumerate()
+        .map(|(c, ct)| match ct.kind {
+            ContactKind::Dof { dof } => Link {
+                floor: ct.floor,
+                other: dof,
+                epp: false,
+                k_over_kappa: 0.0,
+            },
+            ContactKind::Epp => Link {
+                floor: ct.floor,
+                other: ct.below.unwrap_or(GROUND),
+                epp: true,
+                k_over_kappa: ct.brace_stiffness / ops.kappa[c],
+            },
+        })
+        .collect();
+    // Flat operators: P column-major n×3n, G column-major n×nc, W symmetric nc×nc.
+    let p = &ops.p.as_slice()[..3 * n * n];
+    let h = &ops.h.as_slice()[..n];
+    let g = &ops.g.as_slice()[..n * nc];
+    let w = ops.w.as_slice();
+    let mr = &ops.mr.as_slice()[..n];
+    let hhht = alpha != 0.0 && nc > 0;
+
+    let start = initial_state(plan)?;
+    // State (u, v, a), 3n.
+    let mut s = vec![0.0; 3 * n];
+    s[..n].copy_from_slice(&start.u);
+    s[n..2 * n].copy_from_slice(&start.v);
+    s[2 * n..].copy_from_slice(&start.a);
+    let mut f_old = start.f.clone();
+    let mut f_new = vec![0.0; nc];
+    let mut epp = start.epp;
+    let mut stuck = start.stuck;
+    let mut qp = if nc > 0 {
+        Some(BoxQp::new(w, nc).map_err(|source| SimError::Friction { t: 0.0, source })?)
+    } else {
+        None
+    };
+    let mut af = vec![0.0; n];
+    let mut ut = vec![0.0; n];
+    let mut vt = vec![0.0; n];
+    let mut wfree = vec![0.0; nc];
+    let mut w_old: Vec<f64> = (0..nc)
+        .map(|c| slip_rate(plan, c, &start.v, &epp))
+        .collect();
+    let mut w_new = vec![0.0; nc];
+    let mut v_old = vec![0.0; n];
+    let mut epp_pred = vec![(0.0, 0.0); nc];
+
+    let energies = plan.outputs.energies;
+    let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
+    let initial_energy = k0 + s0;
+    let mut acc = EnergyAccumulator::new(s0);
+
+    let mut peaks = Peaks::new(nf);
+    let mut ag0 = plan.ground_accel(0.0);
+    let mut ground = plan.ground_steps();
+    let mut p0 = plan.force(0.0);
+    peaks.observe_floors(&start.u, &start.a, ag0);
+    let hf = ops.hp.as_ref().map(|(f, _)| *f);
+    let base_shear = |a: &[f64], ag: f64, p: f64| state::base_shear(mr, msum, a, ag, p);
+    peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
+    for c in 0..nc {
+        let fl = plan.contacts[c].floor;
+        peaks.observe_slip(fl, slip(plan, c, &start.u, &epp));
+    }
+
+    let mut history = plan
+        .outputs
+        .histories
+        .then(|| history_columns(plan, energies));
+    if let Some(hist) = history.as_mut() {
+        let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+        record_row(plan, hist, 0.0, ag0, &start.u, &f_old, &w_old, &epp, e);
+    }
+
+    let mut qp_iter_total: u64 = 0;
+    let mut qp_iter_max: u32 = 0;
+    for step in 0..plan.steps {
+        let t1 = (step + 1) as f64 * dt;
+        let ag1 = ground.next_accel();
+        let p1 = if hf.is_some() { plan.force(t1) } else { 0.0 };
+        // Linear part: a_free = P (u, v, a) + loads (+ HHT friction memory).
+        let load = -((1.0 + alpha) * ag1 - alpha * ag0);
+        for i in 0..n {
+            af[i] = load * h[i];
+        }
+        for (j, &sj) in s.iter().enumerate() {
+            let col = &p[j * n..(j + 1) * n];
+            for i in 0..n {
+                af[i] += col[i] * sj;
+            }
+        }
+        if let Some((_, hp)) = &ops.hp {
+            let c = (1.0 + alpha) * p1 - alpha * p0;
+            for i in 0..n {
+                af[i] += c * hp[i];
+            }
+        }
+        if hhht {
+            let c = alpha / (1.0 + alpha);
+            for (j, &fj) in f_old.iter().enumerate() {
+                let col = &g[j * n..(j + 1) * n];
+                for i in 0..n {
+                    af[i] += c * fj * col[i];
+                }
+            }
+        }
+        for i in 0..n {
+            let (u, v, a) = (s[i], s[n + i], s[2 * n + i]);
+            ut[i] = u + dt * v + c_u * a;
+            vt[i] = v + c_v * a;
+        }
+        if let Some(qp) = qp.as_mut() {
+            for (c, l) in links.iter().enumerate() {
+                let vf = vt[l.floor] + gdt * af[l.floor];
+                wfree[c] = if !l.epp {
+                    vf - (vt[l.other] + gdt * af[l.other])
+                } else {
+                    let e = epp[c];
+                    let up = e.u + dt * e.v + c_u * e.a;
+                    let vp = e.v + c_v * e.a;
+                    epp_pred[c] = (up, vp);
+                    let (uj, vj, vj_end) = if l.other == GROUND {
+                        (0.0, 0.0, 0.0)
+                    } else {
+                        let j = l.other;
+                        (ut[j], vt[j], vt[j] + gdt * af[j])
+                    };
+                    let q = (up - uj) - bg * (vp - vj);
+                    vf - vj_end + l.k_over_kappa * q
+                };
+            }
+            let stats = qp
+                .solve(&wfree, &lo, &hi, &mut f_new)
+                .map_err(|source| SimError::Friction { t: t1, source })?;
+            qp_iter_total += u64::from(stats.iterations);
+            qp_iter_max = qp_iter_max.max(stats.iterations);
+            for (j, &fj) in f_new.iter().enumerate() {
+                if fj != 0.0 {
+                    let col = &g[j * n..(j + 1) * n];
+                    for i in 0..n {
+                        af[i] -= fj * col[i];
+                    }
+                }
+            }
+        }
+        if energies {
+            v_old.copy_from_slice(&s[n..2 * n]);
+        }
+        let mut finite = 0.0;
+        for i in 0..n {
+            let a = af[i];
+            s[2 * n + i] = a;
+            s[i] = ut[i] + bdt2 * a;
+            s[n + i] = vt[i] + gdt * a;
+            finite += s[i];
+        }
+        if !finite.is_finite() {
+            return Err(SimError::NonFinite {
+                step: step + 1,
+                t: t1,
+                hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
+            });
+        }
+        let (u_now, rest) = s.split_at(n);
+        let (v_now, a_now) = rest.split_at(n);
+        if let Some(qp) = qp.as_ref() {
+            for (c, l) in links.iter().enumerate() {
+                let wc = &w[c * nc..(c + 1) * nc];
+                let mut wf = 0.0;
+                for (wcj, fj) in wc.iter().zip(&f_new) {
+                    wf += wcj * fj;
+                }
+                w_new[c] = wfree[c] - wf;
+                let x_other = if l.epp {
+                    let (up, vp) = epp_pred[c];
+                    let vd = v_now[l.floor] - w_new[c];
+                    let ad = (vd - vp) / gdt;
+                    let ud = up + bdt2 * ad;
+                    epp[c] = EppState {
+                        u: ud,
+                        v: vd,
+                        a: ad,
+                    };
+                    ud
+                } else {
+                    u_now[l.other]
+                };
+                let now_stuck = qp.status(c) == Bound::Free;
+                if now_stuck != stuck[c] {
+                    peaks.transitions[l.floor] += 1;
+                    stuck[c] = now_stuck;
+                }
+                peaks.observe_slip(l.floor, u_now[l.floor] - x_other);
+            }
+        }
+        peaks.observe_floors(u_now, a_now, ag1);
+        peaks.observe_base_shear(base_shear(a_now, ag1, p1));
+        let mut e_row = None;
+        if energies {
+            let data = StepEnergyData {
+                dt,
+                mr,
+                ag: (ag0, ag1),
+                p: (p0, p1),
+                force_floor: hf,
+                v: (&v_old, v_now),
+                f: (&f_old, &f_new),
+                w: (&w_old, &w_new),
+            };
+            e_row = Some(acc.step(plan, &data, u_now, &epp, initial_energy));
+        }
+        if let Some(hist) = history.as_mut() {
+            record_row(plan, hist, t1, ag1, u_now, &f_new, &w_new, &epp, e_row);
+        }
+        std::mem::swap(&mut f_old, &mut f_new);
+        std::mem::swap(&mut w_old, &mut w_new);
+        ag0 = ag1;
+        p0 = p1;
+    }
+    let (u_end, rest) = s.split_at(n);
+    let v_end = &rest[..n];
+    let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp, initial_energy));
+    let response = peaks.into_plan_response(plan, energy);
+    Ok(Outcome {
+        response,
+        diagnostics: Diagnostics {
+            qp_iterations_mean: if plan.steps > 0 {
+                qp_iter_total as f64 / plan.steps as f64
+            } else {
+                0.0
+            },
+            qp_iterations_max: qp_iter_max,
+            balance_error_max_relative: acc.balance_max_rel,
+            initial_energy,
+            strain_energy_area: acc.strain_area,
+            ..Default::default()
+        },
+        history,
+    })
 }
