@@ -183,27 +183,47 @@ impl Peaks {
     /// used) with ground acceleration `ag`.
     #[inline]
     pub fn observe_floors(&mut self, x: &[f64], a: &[f64], ag: f64) {
+        // Plain comparisons (a NaN never replaces a peak, as with `f64::max`) over zipped
+        // slices: no bounds checks, nothing the step loop has to wait for.
         let mut below = 0.0;
-        for i in 0..self.drift.len() {
-            let d = x[i] - below;
-            below = x[i];
-            self.last_drift[i] = d;
-            self.drift[i] = self.drift[i].max(d.abs());
-            self.displacement[i] = self.displacement[i].max(x[i].abs());
-            self.abs_acceleration[i] = self.abs_acceleration[i].max((a[i] + ag).abs());
+        let rows = self
+            .drift
+            .iter_mut()
+            .zip(&mut self.displacement)
+            .zip(&mut self.abs_acceleration)
+            .zip(&mut self.last_drift)
+            .zip(x.iter().zip(a));
+        for ((((pd, px), pa), ld), (&xi, &ai)) in rows {
+            let d = xi - below;
+            below = xi;
+            *ld = d;
+            let (d, xa, aa) = (d.abs(), xi.abs(), (ai + ag).abs());
+            if d > *pd {
+                *pd = d;
+            }
+            if xa > *px {
+                *px = xa;
+            }
+            if aa > *pa {
+                *pa = aa;
+            }
         }
     }
 
     /// Keeps the larger |base shear| (N).
     #[inline]
     pub fn observe_base_shear(&mut self, v: f64) {
-        self.base_shear = self.base_shear.max(v.abs());
+        if v.abs() > self.base_shear {
+            self.base_shear = v.abs();
+        }
     }
 
     /// Keeps the larger |slip| (m) of the damper on `floor` (from 0).
     #[inline]
     pub fn observe_slip(&mut self, floor: usize, s: f64) {
-        self.slip[floor] = self.slip[floor].max(s.abs());
+        if s.abs() > self.slip[floor] {
+            self.slip[floor] = s.abs();
+        }
     }
 
     /// Builds the contract's response of a run of `plan` (method, step, step count and

@@ -8,7 +8,8 @@
 //! of a massless dissipator DOF). The friction law is then the box QP
 //! F = argmin_{F⁻≤F≤F⁺} ½FᵀWF − Fᵀw_free, solved exactly by [`BoxQp`].
 //!
-//! The linear part of a step is one precomputed n×3n operator applied to (u, v, a).
+//! The linear part of a step is one precomputed n×2n operator [−A⁻¹K, −A⁻¹C] applied to the
+//! (HHT-weighted) Newmark predictors of u and v.
 //! Nothing is allocated inside the step loop unless histories are asked for. The loop is
 //! compiled once per small DOF count (1–8, 10, 12, 20) with the count a constant, so its
 //! small products unroll, and once for any other count; the ground acceleration of each
@@ -45,8 +46,9 @@ struct Operators {
     alpha: f64,
     beta: f64,
     gamma: f64,
-    /// [−A⁻¹K, −A⁻¹(C + (1+α)ΔtK), −(1+α)A⁻¹((½−β)Δt²K + (1−γ)ΔtC)], n × 3n.
-    p: DMatrix<f64>,
+    /// [−A⁻¹K, −A⁻¹C], n × 2n, applied to the weighted predictors ((1+α)ũ − αu,
+    /// (1+α)ṽ − αv) with ũ = u + Δt v + (½−β)Δt² a, ṽ = v + (1−γ)Δt a.
+    q: DMatrix<f64>,
     /// A⁻¹ M r.
     h: DVector<f64>,
     /// A⁻¹ e(force floor), when a harmonic force acts.
@@ -74,14 +76,9 @@ impl Operators {
             what: "Newmark iteration matrix M + γΔtC + βΔt²K".into(),
             hint: " (a mass, damping or stiffness matrix is invalid)".into(),
         })?;
-        let pu = -chol.solve(k);
-        let pv = -chol.solve(&(c + k * ((1.0 + alpha) * dt)));
-        let pa =
-            -chol.solve(&(k * ((0.5 - beta) * dt * dt) + c * ((1.0 - gamma) * dt))) * (1.0 + alpha);
-        let mut p = DMatrix::zeros(n, 3 * n);
-        p.view_mut((0, 0), (n, n)).copy_from(&pu);
-        p.view_mut((0, n), (n, n)).copy_from(&pv);
-        p.view_mut((0, 2 * n), (n, n)).copy_from(&pa);
+        let mut q = DMatrix::zeros(n, 2 * n);
+        q.view_mut((0, 0), (n, n)).copy_from(&(-chol.solve(k)));
+        q.view_mut((0, n), (n, n)).copy_from(&(-chol.solve(c)));
         let mr = plan.mass_influence();
         let h = chol.solve(&mr);
         let hp = plan.harmonic.map(|hm| {
@@ -111,7 +108,7 @@ impl Operators {
             alpha,
             beta,
             gamma,
-            p,
+            q,
             h,
             hp,
             g,
@@ -198,8 +195,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
             },
         })
         .collect();
-    // Flat operators: P column-major n×3n, G column-major n×nc, W symmetric nc×nc.
-    let p = &ops.p.as_slice()[..3 * n * n];
+    // Flat operators: Q column-major n×2n, G column-major n×nc, W symmetric nc×nc.
+    let qm = &ops.q.as_slice()[..2 * n * n];
     let h = &ops.h.as_slice()[..n];
     let g = &ops.g.as_slice()[..n * nc];
     let w = ops.w.as_slice();
@@ -224,6 +221,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let mut af = vec![0.0; n];
     let mut ut = vec![0.0; n];
     let mut vt = vec![0.0; n];
+    let mut z = vec![0.0; 2 * n];
     let mut wfree = vec![0.0; nc];
     let mut w_old: Vec<f64> = (0..nc)
         .map(|c| slip_rate(plan, c, &start.v, &epp))
@@ -265,15 +263,32 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         let t1 = (step + 1) as f64 * dt;
         let ag1 = ground.next_accel();
         let p1 = if hf.is_some() { plan.force(t1) } else { 0.0 };
-        // Linear part: a_free = P (u, v, a) + loads (+ HHT friction memory).
+        // Predictors ũ, ṽ; then the linear part a_free = Q z + loads (+ HHT friction memory)
+        // with z = (1+α)(ũ, ṽ) − α(u, v).
+        for i in 0..n {
+            let (u, v, a) = (s[i], s[n + i], s[2 * n + i]);
+            ut[i] = u + dt * v + c_u * a;
+            vt[i] = v + c_v * a;
+        }
+        let zs: &[f64] = if alpha == 0.0 {
+            z[..n].copy_from_slice(&ut);
+            z[n..].copy_from_slice(&vt);
+            &z
+        } else {
+            for i in 0..n {
+                z[i] = (1.0 + alpha) * ut[i] - alpha * s[i];
+                z[n + i] = (1.0 + alpha) * vt[i] - alpha * s[n + i];
+            }
+            &z
+        };
         let load = -((1.0 + alpha) * ag1 - alpha * ag0);
         for i in 0..n {
             af[i] = load * h[i];
         }
-        for (j, &sj) in s.iter().enumerate() {
-            let col = &p[j * n..(j + 1) * n];
+        for (j, &zj) in zs.iter().enumerate() {
+            let col = &qm[j * n..(j + 1) * n];
             for i in 0..n {
-                af[i] += col[i] * sj;
+                af[i] += col[i] * zj;
             }
         }
         if let Some((_, hp)) = &ops.hp {
@@ -290,11 +305,6 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                     af[i] += c * fj * col[i];
                 }
             }
-        }
-        for i in 0..n {
-            let (u, v, a) = (s[i], s[n + i], s[2 * n + i]);
-            ut[i] = u + dt * v + c_u * a;
-            vt[i] = v + c_v * a;
         }
         if let Some(qp) = qp.as_mut() {
             for (c, l) in links.iter().enumerate() {
