@@ -20,17 +20,26 @@ fn json(args: &[&str]) -> serde_json::Value {
 
 #[test]
 fn free_vibration_agrees_with_newmark_at_the_papers_dt() {
-    let run = |m: &str| {
-        json(&[
-            "simulate",
-            "configs/paper-1story-free.json",
-            "--method",
-            m,
-            "--format",
-            "json",
-        ])
-    };
-    let (d, n) = (run("delacruz"), run("newmark"));
+    // delacruz's default is the paper's Δt = T₁/200; newmark runs at the same step.
+    let d = json(&[
+        "simulate",
+        "configs/paper-1story-free.json",
+        "--method",
+        "delacruz",
+        "--format",
+        "json",
+    ]);
+    let dt = d["dt"].as_f64().unwrap().to_string();
+    let n = json(&[
+        "simulate",
+        "configs/paper-1story-free.json",
+        "--method",
+        "newmark",
+        "--dt",
+        &dt,
+        "--format",
+        "json",
+    ]);
     assert_eq!(d["method"], "delacruz");
     assert_eq!(d["dt"], n["dt"]);
     for key in ["peak_displacement", "peak_slip"] {

@@ -63,8 +63,8 @@ fn json_output_has_exactly_the_contract_keys() {
     assert_eq!(v["peak_drift"].as_array().unwrap().len(), 3);
     assert_eq!(v["method"], "newmark");
     assert_eq!(
-        v["steps"], 2000,
-        "10 s at T1/200 rounded to divide 0.02 s: dt = 0.005 s"
+        v["steps"], 4000,
+        "10 s at T1/400 rounded to divide 0.02 s: dt = 0.0025 s"
     );
 }
 

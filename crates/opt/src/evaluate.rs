@@ -61,7 +61,7 @@ pub fn run_one(
     let duration = rec.duration();
     let dt = fid
         .dt_s
-        .unwrap_or_else(|| default_dt(study.building.t1(), Some(rec.dt()), duration))
+        .unwrap_or_else(|| default_dt(fid.method, study.building.t1(), Some(rec.dt()), duration))
         * fid.dt_factor;
     let alpha = if fid.method == MethodName::Hht {
         -0.05

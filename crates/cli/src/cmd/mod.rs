@@ -1,6 +1,7 @@
 //! Subcommands of `slipload`.
 
 pub mod accuracy;
+pub mod bench;
 pub mod explain;
 pub mod merge;
 pub mod optimize;
@@ -33,6 +34,8 @@ pub enum Command {
     Rank(rank::RankArgs),
     /// Tabulate a study's optimum over period scale × intensity scale
     Table(table::TableArgs),
+    /// Throughput figures beside their targets (simulations per second, memory, scaling)
+    Bench(bench::BenchArgs),
 }
 
 /// Runs one subcommand.
@@ -47,5 +50,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Optimize(args) => optimize::run(args),
         Command::Rank(args) => rank::run(args),
         Command::Table(args) => table::run(args),
+        Command::Bench(args) => bench::run(args),
     }
 }

@@ -32,7 +32,7 @@ pub struct SceneArgs {
     /// Integration method
     #[arg(long)]
     pub method: Option<MethodName>,
-    /// Time step, s (default: T1/200 rounded to divide the record's dt)
+    /// Time step, s (default: T1/400, delacruz T1/200, rounded to divide the record's dt)
     #[arg(long)]
     pub dt: Option<f64>,
     /// Simulated time, s (default: the record's duration)

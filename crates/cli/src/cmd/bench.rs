@@ -1,0 +1,620 @@
+//! `slipload bench`: the throughput figures of the project, each beside its target.
+//!
+//! Every figure is measured in this process, single-threaded unless it says otherwise,
+//! on the whole process's CPU time (the sweep's parallel efficiency on wall-clock time,
+//! since it compares thread counts). A figure is the median of
+//! several repeats after one warm-up run; a repeat runs a batch of simulations long
+//! enough that the clock's resolution does not matter.
+//!
+//! Scenes: the benchmark three-storey building and the ten-storey building (embedded
+//! configs), each under a 15 s synthetic record (seed 2007, dt 0.01 s, 0.4 g), peaks only
+//! (no energies, no histories), at each method's default time step — and the first
+//! figures check that this default is within 1 % of `exact` on every storey's peak drift.
+
+use crate::cmd::scene_args::BENCHMARK_BUILDING;
+use crate::cmd::study_args::load_study;
+use anyhow::{Context, bail};
+use serde::Serialize;
+use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
+use slipload_sim::{MethodName, Plan, Scene, SceneOverrides, run_plan};
+use std::path::Path;
+use std::time::Instant;
+
+/// The ten-storey building, embedded so `slipload bench` runs with no files.
+const TEN_STORY_BUILDING: &str = include_str!("../../../../configs/ten-story.json");
+
+/// Arguments of `slipload bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Shorter batches and fewer repeats (a smoke run: figures are noisier)
+    #[arg(long)]
+    pub quick: bool,
+    /// Run only the cases whose name contains this text (repeatable)
+    #[arg(long)]
+    pub only: Vec<String>,
+    /// Internal: run one peaks-only benchmark simulation of this many seconds and print
+    /// the process's peak resident memory (kB); used by the memory case
+    #[arg(long, hide = true)]
+    pub memory_probe: Option<f64>,
+}
+
+/// Output formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// A list of `{case, metric, value, unit, target, met}` objects
+    Json,
+    /// A table for people
+    Table,
+}
+
+/// One measured figure.
+#[derive(Debug, Clone, Serialize)]
+pub struct Figure {
+    /// What was run.
+    pub case: String,
+    /// What was measured.
+    pub metric: String,
+    /// The measurement.
+    pub value: f64,
+    /// Its unit.
+    pub unit: String,
+    /// The target, e.g. ">= 5000" (`null`: reported, no target).
+    pub target: Option<String>,
+    /// Whether the target is met (`null` without a target).
+    pub met: Option<bool>,
+}
+
+impl Figure {
+    fn new(case: &str, metric: &str, value: f64, unit: &str) -> Figure {
+        Figure {
+            case: case.into(),
+            metric: metric.into(),
+            value,
+            unit: unit.into(),
+            target: None,
+            met: None,
+        }
+    }
+    fn at_least(mut self, t: f64) -> Figure {
+        self.target = Some(format!(">= {}", fmt(t)));
+        self.met = Some(self.value >= t);
+        self
+    }
+    fn at_most(mut self, t: f64) -> Figure {
+        self.target = Some(format!("<= {}", fmt(t)));
+        self.met = Some(self.value <= t);
+        self
+    }
+    fn between(mut self, lo: f64, hi: f64) -> Figure {
+        self.target = Some(format!("{} .. {}", fmt(lo), fmt(hi)));
+        self.met = Some(self.value >= lo && self.value <= hi);
+        self
+    }
+}
+
+fn fmt(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-2) {
+        format!("{v:.3e}")
+    } else if v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+/// CPU time of the whole process, s (`CLOCK_PROCESS_CPUTIME_ID` on Linux, ns resolution).
+struct Clock {
+    start: cpu_time::ProcessTime,
+}
+
+impl Clock {
+    fn new() -> Clock {
+        Clock {
+            start: cpu_time::ProcessTime::now(),
+        }
+    }
+    fn now(&self) -> f64 {
+        self.start.elapsed().as_secs_f64()
+    }
+}
+
+/// Peak resident set size of this process, kB (Linux `VmHWM`).
+fn peak_rss_kb() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = text.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Budgets of one measurement.
+#[derive(Debug, Clone, Copy)]
+struct Budget {
+    /// CPU seconds per repeat.
+    seconds: f64,
+    /// Repeats (the median is reported).
+    repeats: usize,
+}
+
+/// Median CPU seconds per run of `plan` (one warm-up run first).
+fn seconds_per_run(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<f64> {
+    let t0 = clock.now();
+    run_plan(plan).with_context(|| format!("running {}", plan.name))?;
+    let first = (clock.now() - t0).max(1e-6);
+    let batch = ((b.seconds / first).ceil() as usize).max(1);
+    let mut times = Vec::with_capacity(b.repeats);
+    for _ in 0..b.repeats {
+        let t = clock.now();
+        for _ in 0..batch {
+            std::hint::black_box(run_plan(std::hint::black_box(plan))?);
+        }
+        times.push((clock.now() - t) / batch as f64);
+    }
+    Ok(median(&mut times))
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n == 0 {
+        f64::NAN
+    } else if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// A building JSON with every dissipator mass set to 0 (the m′ = 0 design model).
+fn massless(building: &str) -> anyhow::Result<String> {
+    let mut v: serde_json::Value = serde_json::from_str(building)?;
+    if let Some(ds) = v["dissipators"].as_array_mut() {
+        for d in ds {
+            d["mass"] = 0.into();
+        }
+    }
+    Ok(v.to_string())
+}
+
+/// A building JSON with the slip load of every dissipator but the first set to 0.
+fn first_damper_only(building: &str) -> anyhow::Result<String> {
+    let mut v: serde_json::Value = serde_json::from_str(building)?;
+    if let Some(ds) = v["dissipators"].as_array_mut() {
+        for d in ds.iter_mut().skip(1) {
+            d["slip_load"] = 0.into();
+        }
+    }
+    Ok(v.to_string())
+}
+
+/// A uniform shear building of `n` storeys: 5e5 kg floors, storey stiffness giving
+/// T₁ = 0.1·n s, 2 % modal damping, 3.5 m storeys, and on every floor an m′ = 0 dissipator
+/// with k′ = 2k and a slip load of 5 % of the weight above it.
+fn shear_building(n: usize) -> String {
+    let m = 5e5;
+    let t1 = 0.1 * n as f64;
+    let w1 = 2.0 * std::f64::consts::PI / t1;
+    let s = (std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin();
+    let k = m * (w1 / (2.0 * s)).powi(2);
+    let masses: Vec<String> = (0..n).map(|_| format!("\"{m} kg\"")).collect();
+    let ks: Vec<String> = (0..n).map(|_| format!("\"{k} N/m\"")).collect();
+    let hs: Vec<String> = (0..n).map(|_| "\"3.5 m\"".to_string()).collect();
+    let ds: Vec<String> = (0..n)
+        .map(|i| {
+            let above = (n - i) as f64 * m * 9.81;
+            format!(
+                r#"{{ "floor": {}, "brace_stiffness": "{} N/m", "mass": 0, "brace_damping": 0, "slip_load": "{} N" }}"#,
+                i + 1,
+                2.0 * k,
+                0.05 * above
+            )
+        })
+        .collect();
+    format!(
+        r#"{{ "name": "shear-{n}", "floor_masses": [{}], "storey_stiffness": [{}], "damping": {{ "modal": {{ "ratio": 0.02 }} }}, "storey_heights": [{}], "dissipators": [{}] }}"#,
+        masses.join(", "),
+        ks.join(", "),
+        hs.join(", "),
+        ds.join(", ")
+    )
+}
+
+/// Options of one bench scene.
+#[derive(Debug, Clone, Copy)]
+struct SceneOpts {
+    method: MethodName,
+    duration: f64,
+    dt: Option<f64>,
+    reduce: bool,
+}
+
+impl SceneOpts {
+    fn new(method: MethodName) -> SceneOpts {
+        SceneOpts {
+            method,
+            duration: 15.0,
+            dt: None,
+            reduce: true,
+        }
+    }
+}
+
+/// A peaks-only scene of `building` (JSON) under the 15 s (or `duration`) synthetic record.
+fn scene(building: &str, o: SceneOpts) -> anyhow::Result<Scene> {
+    let json = format!(
+        r#"{{ "name": "bench", "building": {building},
+             "excitation": {{ "synthetic": {{ "seed": 2007, "duration": {}, "dt": 0.01 }} }},
+             "outputs": {{ "energies": false, "histories": false }}, "reduce": {} }}"#,
+        o.duration, o.reduce
+    );
+    let over = SceneOverrides {
+        method: Some(o.method),
+        dt: o.dt,
+        ..Default::default()
+    };
+    Ok(Scene::from_json(
+        &json,
+        Path::new("slipload bench (embedded scene)"),
+        &over,
+    )?)
+}
+
+fn plan(building: &str, o: SceneOpts) -> anyhow::Result<Plan> {
+    Ok(Plan::compile(&scene(building, o)?)?)
+}
+
+/// Max relative difference of two peak-drift vectors.
+fn max_rel(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs() / y.abs().max(f64::MIN_POSITIVE))
+        .fold(0.0, f64::max)
+}
+
+/// Runs `slipload bench`.
+pub fn run(args: BenchArgs) -> anyhow::Result<()> {
+    if let Some(seconds) = args.memory_probe {
+        return memory_probe(seconds);
+    }
+    let budget = if args.quick {
+        Budget {
+            seconds: 0.05,
+            repeats: 3,
+        }
+    } else {
+        Budget {
+            seconds: 0.4,
+            repeats: 5,
+        }
+    };
+    let want = |case: &str| args.only.is_empty() || args.only.iter().any(|o| case.contains(o));
+    let clock = Clock::new();
+    let mut figs: Vec<Figure> = Vec::new();
+    let b3 = BENCHMARK_BUILDING;
+    let b10 = TEN_STORY_BUILDING;
+
+    // Accuracy of the defaults, then throughput.
+    for (name, building, target) in [("benchmark-3story", b3, 5000.0), ("ten-story", b10, 500.0)] {
+        let case = format!("{name}, 15 s synthetic, newmark default dt");
+        if want(&case) {
+            let p = plan(building, SceneOpts::new(MethodName::Newmark))?;
+            let reference = run_plan(&plan(building, SceneOpts::new(MethodName::Exact))?)?;
+            let out = run_plan(&p)?;
+            let err = max_rel(&out.response.peak_drift, &reference.response.peak_drift);
+            figs.push(
+                Figure::new(&case, "max rel. peak-drift error vs exact", err, "-").at_most(0.01),
+            );
+            figs.push(Figure::new(&case, "time step", p.method.dt, "s"));
+            let s = seconds_per_run(&p, &clock, budget)?;
+            figs.push(
+                Figure::new(&case, "simulations per second per core", 1.0 / s, "1/s")
+                    .at_least(target),
+            );
+            figs.push(Figure::new(
+                &case,
+                "time per step",
+                s / p.steps as f64 * 1e9,
+                "ns",
+            ));
+        }
+    }
+    let case = "benchmark-3story, 15 s synthetic, exact";
+    if want(case) {
+        let p = plan(b3, SceneOpts::new(MethodName::Exact))?;
+        let s = seconds_per_run(
+            &p,
+            &clock,
+            Budget {
+                repeats: 3,
+                ..budget
+            },
+        )?;
+        figs.push(
+            Figure::new(case, "simulations per second per core", 1.0 / s, "1/s").at_least(2000.0),
+        );
+        let out = run_plan(&p)?;
+        figs.push(Figure::new(
+            case,
+            "stick-slip events",
+            out.response.transitions.iter().sum::<u64>() as f64,
+            "-",
+        ));
+        let p0 = plan(&massless(b3)?, SceneOpts::new(MethodName::Exact))?;
+        let s0 = seconds_per_run(
+            &p0,
+            &clock,
+            Budget {
+                repeats: 3,
+                ..budget
+            },
+        )?;
+        figs.push(Figure::new(
+            "benchmark-3story m'=0, 15 s synthetic, exact",
+            "simulations per second per core",
+            1.0 / s0,
+            "1/s",
+        ));
+    }
+
+    // The plan reductions pay: same answers, less time.
+    for (case, building) in [
+        (
+            "reductions: benchmark-3story m'=0 (EPP elements vs 2N DOFs)",
+            massless(b3)?,
+        ),
+        (
+            "reductions: ten-story m'=0 (EPP elements vs 2N DOFs)",
+            massless(b10)?,
+        ),
+        (
+            "reductions: benchmark-3story m'=0, damper on floor 1 only",
+            first_damper_only(&massless(b3)?)?,
+        ),
+    ] {
+        if !want(case) {
+            continue;
+        }
+        let mut o = SceneOpts::new(MethodName::Newmark);
+        let reduced = plan(&building, o)?;
+        o.reduce = false;
+        let full = plan(&building, o)?;
+        let (a, b) = (run_plan(&reduced)?, run_plan(&full)?);
+        figs.push(
+            Figure::new(
+                case,
+                "max rel. peak-drift difference reduced vs full",
+                max_rel(&a.response.peak_drift, &b.response.peak_drift),
+                "-",
+            )
+            .at_most(1e-9),
+        );
+        let (sr, sf) = (
+            seconds_per_run(&reduced, &clock, budget)?,
+            seconds_per_run(&full, &clock, budget)?,
+        );
+        figs.push(
+            Figure::new(
+                case,
+                &format!("speed-up ({} vs {} DOFs)", reduced.dofs(), full.dofs()),
+                sf / sr,
+                "x",
+            )
+            .at_least(1.0),
+        );
+    }
+
+    // Cost against record length (linear) and storeys (as measured).
+    let case = "benchmark-3story newmark, record length 15/30/60/120 s";
+    if want(case) {
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        for d in [15.0, 30.0, 60.0, 120.0] {
+            let p = plan(
+                b3,
+                SceneOpts {
+                    duration: d,
+                    ..SceneOpts::new(MethodName::Newmark)
+                },
+            )?;
+            let s = seconds_per_run(&p, &clock, budget)?;
+            figs.push(Figure::new(
+                case,
+                &format!("time per simulation, {d} s"),
+                s * 1e3,
+                "ms",
+            ));
+            xs.push(d);
+            ys.push(s);
+        }
+        figs.push(
+            Figure::new(
+                case,
+                "exponent of cost vs length (log-log slope)",
+                slope(&xs, &ys),
+                "-",
+            )
+            .between(0.9, 1.1),
+        );
+    }
+    let case = "shear buildings with m'=0 dampers, newmark dt 2.5 ms, 15 s";
+    if want(case) {
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        for n in [3usize, 6, 10, 20, 50] {
+            let p = plan(
+                &shear_building(n),
+                SceneOpts {
+                    dt: Some(0.0025),
+                    ..SceneOpts::new(MethodName::Newmark)
+                },
+            )?;
+            let s = seconds_per_run(&p, &clock, budget)?;
+            figs.push(Figure::new(
+                case,
+                &format!("time per simulation, {n} storeys"),
+                s * 1e3,
+                "ms",
+            ));
+            xs.push(n as f64);
+            ys.push(s);
+        }
+        figs.push(Figure::new(
+            case,
+            "exponent of cost vs storeys, 3-50 (log-log slope)",
+            slope(&xs, &ys),
+            "-",
+        ));
+        figs.push(Figure::new(
+            case,
+            "exponent of cost vs storeys, 10-50 (log-log slope)",
+            slope(&xs[2..], &ys[2..]),
+            "-",
+        ));
+    }
+
+    // Memory: peak RSS of a 15 s and a 300 s peaks-only run, each in a fresh process.
+    let case = "memory: benchmark-3story newmark peaks only, 15 s vs 300 s record";
+    if want(case) {
+        let exe = std::env::current_exe().context("locating the slipload executable")?;
+        let mut rss = Vec::new();
+        for d in [15.0, 300.0] {
+            let out = std::process::Command::new(&exe)
+                .args(["bench", "--memory-probe", &d.to_string()])
+                .output()
+                .with_context(|| format!("running {} bench --memory-probe {d}", exe.display()))?;
+            if !out.status.success() {
+                bail!(
+                    "memory probe of {d} s failed: {}",
+                    String::from_utf8_lossy(&out.stderr)
+                );
+            }
+            let kb: f64 = String::from_utf8_lossy(&out.stdout)
+                .trim()
+                .parse()
+                .context("reading the memory probe's answer")?;
+            figs.push(Figure::new(
+                case,
+                &format!("peak RSS, {d} s"),
+                kb / 1024.0,
+                "MiB",
+            ));
+            rss.push(kb);
+        }
+        figs.push(
+            Figure::new(
+                case,
+                "peak RSS difference",
+                (rss[1] - rss[0]) / 1024.0,
+                "MiB",
+            )
+            .at_most(1.0),
+        );
+    }
+
+    // Sweep: parallel efficiency from 1 to 2 threads (wall-clock).
+    let case = "sweep: benchmark study, 8 designs x 10 records of 20 s";
+    if want(case) {
+        let study = load_study(None)?;
+        let fid = Fidelity::sweep(&study);
+        let tasks: Vec<Task> = (0..8)
+            .flat_map(|d| {
+                (0..study.records.len()).map(move |r| Task {
+                    label: format!("#{d}"),
+                    slip_loads: vec![250e3 * (d + 1) as f64; 3],
+                    record: r,
+                })
+            })
+            .collect();
+        let mut rates = Vec::new();
+        for threads in [1usize, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .context("building a thread pool")?;
+            let mut times = Vec::new();
+            for rep in 0..=budget.repeats.min(3) {
+                let t = Instant::now();
+                pool.install(|| run_tasks(&study, &tasks, &fid, &|_, _| Ok(())))?;
+                if rep > 0 {
+                    times.push(t.elapsed().as_secs_f64());
+                }
+            }
+            let rate = tasks.len() as f64 / median(&mut times);
+            figs.push(Figure::new(
+                case,
+                &format!("tasks per second, {threads} thread(s), wall-clock"),
+                rate,
+                "1/s",
+            ));
+            rates.push(rate);
+        }
+        figs.push(
+            Figure::new(
+                case,
+                "parallel efficiency 1 -> 2 threads",
+                rates[1] / (2.0 * rates[0]),
+                "-",
+            )
+            .at_least(0.9),
+        );
+    }
+
+    let clock_note = "process CPU time";
+    match args.format {
+        Format::Json => println!("{}", serde_json::to_string_pretty(&figs)?),
+        Format::Table => print_table(&figs, clock_note),
+    }
+    Ok(())
+}
+
+/// Least-squares slope of log y on log x.
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+fn print_table(figs: &[Figure], clock_note: &str) {
+    println!("slipload bench — single thread unless stated; times are {clock_note}, medians");
+    let mut last = "";
+    for f in figs {
+        if f.case != last {
+            println!("\n{}", f.case);
+            last = &f.case;
+        }
+        let target = f.target.as_deref().unwrap_or("");
+        let met = match f.met {
+            Some(true) => "met",
+            Some(false) => "NOT MET",
+            None => "",
+        };
+        println!(
+            "  {:<52} {:>12} {:<4} {:>12} {}",
+            f.metric,
+            fmt(f.value),
+            f.unit,
+            target,
+            met
+        );
+    }
+}
+
+/// The memory case's child: one peaks-only run, then the process's peak RSS in kB.
+fn memory_probe(seconds: f64) -> anyhow::Result<()> {
+    let p = plan(
+        BENCHMARK_BUILDING,
+        SceneOpts {
+            duration: seconds,
+            ..SceneOpts::new(MethodName::Newmark)
+        },
+    )?;
+    std::hint::black_box(run_plan(&p)?);
+    let kb = peak_rss_kb().context("reading VmHWM from /proc/self/status")?;
+    println!("{kb}");
+    Ok(())
+}
