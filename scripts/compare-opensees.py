@@ -21,10 +21,12 @@ programs, and reports:
 Timing scope, the same for both programs: the time-stepping only, from a built model to
 the peaks. slipload: `cpu_seconds` of `slipload simulate --format json` (wall-clock of the
 integrator run, plan compiled and record read beforehand; peaks only, no energies or
-histories). OpenSees: wall-clock of the analysis set-up commands (constraints, numberer,
-system, test, algorithm, integrator, analysis) plus one `analyze(steps, dt)` call, with an
-EnvelopeElement recorder of the storey drifts (its peaks); the model (nodes, materials,
-elements, the record as a Path time series) is built beforehand and reported separately.
+histories), run as target/release/slipload after `cargo build --release -p slipload` (the
+binary `cargo run --release --` runs), one process per run. OpenSees: wall-clock of the
+analysis set-up commands (constraints, numberer, system, test, algorithm, integrator,
+analysis) plus one `analyze(steps, dt)` call, with an EnvelopeElement recorder of the
+storey drifts (its peaks); the model (nodes, materials, elements, the record as a Path
+time series) is built beforehand and reported separately.
 
 Writes results/performance/opensees.json and results/performance/opensees.md atomically.
 
@@ -92,6 +94,7 @@ def ensure_environment() -> None:
         print(f"installing {' '.join(REQUIREMENTS)} into {VENV.relative_to(ROOT)} ...", file=sys.stderr)
         subprocess.run([str(py), "-m", "pip", "install", "--quiet", *REQUIREMENTS], check=True)
     if in_venv:
+        importlib.invalidate_caches()
         return
     os.execv(str(py), [str(py), str(Path(__file__).resolve()), *sys.argv[1:]])
 
@@ -533,7 +536,10 @@ def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats
     st = opensees_stepwise(ops, b, dt_rec, acc, dt, steps, algorithms[0], system)
     ref = newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal=False)
     trap = newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal=True)
-    # Timing, interleaved.
+    # Timing, interleaved, after one untimed warm-up run of each.
+    for a in algorithms:
+        opensees_timed(ops, b, dt_rec, acc, dt, steps, a, system, tmp)
+    slipload_run(binary, scene)
     times = {a: [] for a in algorithms}
     build = []
     sl_times = []
@@ -771,7 +777,7 @@ def main() -> None:
             "integrator": f"Newmark gamma = {GAMMA}, beta = {BETA}",
             "opensees_model": "floors as nodes with their masses, storey springs (zeroLength, Elastic) for the frame, zeroLength ElasticPP (k', yield μN/k') for each brace + damper, rayleigh α on the masses and β K_initial on the frame springs only (-doRayleigh 0 on the EPP elements), the record as a Path series in a UniformExcitation, initial accelerations -a_g(0)",
             "opensees_solution": f"Newton (current tangent: exact for the piecewise-linear EPP response, so it ends in a finite number of steps once the yielding pattern is right), test NormDispIncr {TEST_TOL:g} m, at most {TEST_MAX_ITER} iterations, system {args.system}; ModifiedNewton timed as a variant",
-            "timing": "wall-clock of the time-stepping only, median of the repeats, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json` (the integrator run: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
+            "timing": "wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json` (the integrator run: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
         },
         "model_checks": checks,
         "cases": cases,
