@@ -1,0 +1,793 @@
+#!/usr/bin/env python3
+"""slipload against OpenSees on the benchmark three-storey building with massless dissipators.
+
+Builds configs/benchmark-3story-massless.json (m' = 0: each brace + friction damper is an
+elastic-perfectly plastic element) in OpenSees through openseespy, runs the same records
+at the same time step with Newmark average acceleration (gamma = 1/2, beta = 1/4) in both
+programs, and reports:
+
+* model checks: the frame stiffness matrix assembled here from the storey stiffnesses,
+  its periods against slipload's bare T1 and the config's 1.01/0.33/0.17 s, the periods
+  of the OpenSees model, and the damping matrix OpenSees actually uses (read back from its
+  system matrix) against alpha*M + beta*K_frame (the EPP elements must carry none);
+* physics: peak drifts per storey, peak base shear and the drift / damper-force histories
+  of slipload `newmark` against OpenSees, plus both against slipload `exact` (the
+  event-located reference) and against an independent return-mapping Newmark written
+  here in Python (the discrete equations OpenSees solves);
+* timing: the median over R repeats of the time per simulation of each program,
+  measured interleaved (OpenSees, slipload, OpenSees, slipload, ...) on the same machine,
+  and their ratio.
+
+Timing scope, the same for both programs: the time-stepping only, from a built model to
+the peaks. slipload: `cpu_seconds` of `slipload simulate --format json` (wall-clock of the
+integrator run, plan compiled and record read beforehand; peaks only, no energies or
+histories), run as target/release/slipload after `cargo build --release -p slipload` (the
+binary `cargo run --release --` runs), one process per run. OpenSees: wall-clock of the
+analysis set-up commands (constraints, numberer, system, test, algorithm, integrator,
+analysis) plus one `analyze(steps, dt)` call, with an EnvelopeElement recorder of the
+storey drifts (its peaks); the model (nodes, materials, elements, the record as a Path
+time series) is built beforehand and reported separately.
+
+Writes results/performance/opensees.json and results/performance/opensees.md atomically.
+
+Usage: scripts/compare-opensees.py [--repeats R] [--dt DT] [--record FILE|synthetic ...]
+Creates scripts/.venv with openseespy + numpy on first use and re-runs itself inside it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+VENV = ROOT / "scripts" / ".venv"
+REQUIREMENTS = ["openseespy==3.7.1.2", "numpy"]
+G = 9.80665  # m/s² per g, as slipload-motion's G
+BUILDING = ROOT / "configs" / "benchmark-3story-massless.json"
+RECORDS = ROOT.parent / "shared" / "records"
+OUT_DIR = ROOT / "results" / "performance"
+SYNTHETIC = "synthetic"
+SYNTHETIC_DURATION = 15.0  # s, the issue's benchmark record
+SYNTHETIC_DT = 0.01  # s
+# Newmark average acceleration, as slipload's `newmark` at alpha = 0.
+GAMMA, BETA = 0.5, 0.25
+# Newton convergence: norm of the last displacement correction. The response is piecewise
+# linear in u_{n+1} (linear springs, EPP return mapping), so a Newton step with the right
+# active set lands on the solution and the next correction is round-off (~1e-17 m for
+# displacements of ~0.1 m); 1e-12 m (1e-11 of the peak drifts) stops there and no later.
+TEST_TOL = 1e-12
+TEST_MAX_ITER = 100
+
+
+# ---------------------------------------------------------------------------------------
+# Environment: venv with openseespy, then the OpenSees module itself.
+# ---------------------------------------------------------------------------------------
+
+
+def have_modules() -> bool:
+    return all(importlib.util.find_spec(m) is not None for m in ("openseespy", "numpy"))
+
+
+def ensure_environment() -> None:
+    """Re-executes this script inside scripts/.venv, creating it and installing when missing."""
+    if have_modules():
+        return
+    py = VENV / "bin" / "python"
+    in_venv = Path(sys.prefix).resolve() == VENV.resolve()
+    if not in_venv and not py.exists():
+        print(f"creating {VENV.relative_to(ROOT)} ...", file=sys.stderr)
+        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
+    check = "import importlib.util as u,sys; sys.exit(0 if u.find_spec('openseespy') and u.find_spec('numpy') else 1)"
+    if subprocess.run([str(py), "-c", check]).returncode != 0:
+        print(f"installing {' '.join(REQUIREMENTS)} into {VENV.relative_to(ROOT)} ...", file=sys.stderr)
+        subprocess.run([str(py), "-m", "pip", "install", "--quiet", *REQUIREMENTS], check=True)
+    if in_venv:
+        importlib.invalidate_caches()
+        return
+    os.execv(str(py), [str(py), str(Path(__file__).resolve()), *sys.argv[1:]])
+
+
+def import_opensees():
+    """Imports openseespy.opensees.
+
+    The Linux wheel ships libblas.so.3 in openseespylinux/lib, and opensees.so finds its
+    libraries there through its RUNPATH, but the shipped liblapack.so.3 needs libblas.so.3
+    too and has no RUNPATH of its own: on a machine without a system BLAS the import
+    fails. Loading the shipped BLAS first, globally, satisfies it.
+    """
+    import ctypes
+
+    spec = importlib.util.find_spec("openseespylinux")
+    if spec is not None and spec.origin is not None:
+        blas = Path(spec.origin).parent / "lib" / "libblas.so.3"
+        if blas.exists():
+            ctypes.CDLL(str(blas), mode=ctypes.RTLD_GLOBAL)
+    import openseespy.opensees as ops
+
+    return ops
+
+
+# ---------------------------------------------------------------------------------------
+# Inputs: the building config and the records.
+# ---------------------------------------------------------------------------------------
+
+UNIT = {"kg": 1.0, "t": 1e3, "N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "N": 1.0, "kN": 1e3, "MN": 1e6, "m": 1.0, "s": 1.0}
+
+
+def quantity(value, what: str) -> float:
+    """A config quantity: a number (SI) or a string "<number> <unit>"."""
+    if isinstance(value, (int, float)):
+        return float(value)
+    parts = str(value).split()
+    if len(parts) == 2 and parts[1] in UNIT:
+        return float(parts[0]) * UNIT[parts[1]]
+    if len(parts) == 1:
+        return float(parts[0])
+    raise SystemExit(f"{BUILDING}: {what}: cannot read the quantity {value!r}")
+
+
+def load_building(path: Path) -> dict:
+    cfg = json.loads(path.read_text())
+    masses = [quantity(m, "floor_masses") for m in cfg["floor_masses"]]
+    k = [quantity(v, "storey_stiffness") for v in cfg["storey_stiffness"]]
+    ray = cfg["damping"]["rayleigh"]
+    n = len(masses)
+    kp = [0.0] * n
+    fy = [0.0] * n
+    for d in cfg["dissipators"]:
+        i = int(d["floor"]) - 1
+        if quantity(d.get("mass", 0), "dissipators.mass") != 0.0:
+            raise SystemExit(f"{path}: dissipator of floor {i + 1} has mass: the comparison needs m' = 0")
+        if quantity(d.get("brace_damping", 0), "dissipators.brace_damping") != 0.0:
+            raise SystemExit(f"{path}: dissipator of floor {i + 1} has brace damping: not modelled here")
+        kp[i] = quantity(d["brace_stiffness"], "dissipators.brace_stiffness")
+        fy[i] = quantity(d["slip_load"], "dissipators.slip_load")
+    if any(v == 0.0 for v in kp):
+        raise SystemExit(f"{path}: every floor needs a dissipator for this comparison")
+    return {"name": cfg["name"], "m": masses, "k": k, "alpha": float(ray["alpha"]), "beta": float(ray["beta"]), "kp": kp, "fy": fy}
+
+
+def storey_matrix(k: list[float]):
+    """Stiffness matrix of springs k[i] between floor i-1 (ground for i = 0) and floor i."""
+    import numpy as np
+
+    n = len(k)
+    K = np.zeros((n, n))
+    for i, ki in enumerate(k):
+        K[i, i] += ki
+        if i > 0:
+            K[i - 1, i - 1] += ki
+            K[i - 1, i] -= ki
+            K[i, i - 1] -= ki
+    return K
+
+
+def read_at2(path: Path) -> tuple[float, list[float]]:
+    """PEER AT2 (values in g): the NPTS/DT header line, then NPTS values."""
+    lines = path.read_text().splitlines()
+    npts = dt = None
+    for i, line in enumerate(lines[:10]):
+        mn = re.search(r"NPTS\s*=\s*(\d+)", line, re.I)
+        md = re.search(r"DT\s*=\s*([0-9.Ee+-]+)", line, re.I)
+        if mn and md:
+            npts, dt, start = int(mn.group(1)), float(md.group(1)), i + 1
+            break
+    if npts is None:
+        raise SystemExit(f"{path}: no NPTS=/DT= header line in the first 10 lines")
+    vals = [float(t) for line in lines[start:] for t in line.replace(",", " ").split()]
+    if len(vals) < npts:
+        raise SystemExit(f"{path}: header says NPTS={npts}, found {len(vals)} values")
+    return dt, [v * G for v in vals[:npts]]
+
+
+def read_csv_record(path: Path) -> tuple[float, list[float]]:
+    """time_s,accel_m_s2 CSV as written by `slipload record synth` (uniform steps)."""
+    rows = [line.split(",") for line in path.read_text().splitlines()[1:] if line.strip()]
+    t = [float(r[0]) for r in rows]
+    a = [float(r[1]) for r in rows]
+    dt = t[1] - t[0]
+    for i in range(1, len(t)):
+        if abs(t[i] - t[0] - i * dt) > 1e-9 * max(1.0, t[i]):
+            raise SystemExit(f"{path}: line {i + 2}: time {t[i]} is not on the uniform grid of dt = {dt}")
+    return dt, a
+
+
+def ground_accel(dt_rec: float, acc: list[float], t: float) -> float:
+    """Linear interpolation between samples, zero after the last (OpenSees Path series)."""
+    x = t / dt_rec
+    i = int(math.floor(x + 1e-9))
+    if i >= len(acc) - 1:
+        return acc[-1] if abs(x - (len(acc) - 1)) < 1e-9 else 0.0
+    f = max(0.0, x - i)
+    return acc[i] + f * (acc[i + 1] - acc[i])
+
+
+# ---------------------------------------------------------------------------------------
+# slipload
+# ---------------------------------------------------------------------------------------
+
+
+def slipload_bin() -> Path:
+    subprocess.run(["cargo", "build", "--release", "--quiet", "-p", "slipload"], cwd=ROOT, check=True)
+    return ROOT / "target" / "release" / "slipload"
+
+
+def slipload_scene(tmp: Path, label: str, record: Path, units: str, dt: float) -> Path:
+    scene = {
+        "name": f"benchmark-3story-massless, {label}",
+        "building": str(BUILDING),
+        "excitation": {"record": {"file": str(record.resolve()), "units": units}},
+        "method": {"name": "newmark", "dt": dt},
+        "outputs": {"energies": False, "histories": False},
+    }
+    path = tmp / f"scene-{label}.json"
+    path.write_text(json.dumps(scene, indent=2))
+    return path
+
+
+def slipload_run(binary: Path, scene: Path, *extra: str) -> dict:
+    out = subprocess.run([str(binary), "simulate", str(scene), "--format", "json", *extra], cwd=ROOT, check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def read_history(path: Path) -> dict[str, list[float]]:
+    lines = path.read_text().splitlines()
+    cols = lines[0].split(",")
+    data = {c: [] for c in cols}
+    for line in lines[1:]:
+        for c, v in zip(cols, line.split(",")):
+            data[c].append(float(v))
+    return data
+
+
+# ---------------------------------------------------------------------------------------
+# OpenSees
+# ---------------------------------------------------------------------------------------
+
+FRAME_TAG = 1  # frame springs: elements 1..n; EPP elements: 101..100+n
+EPP_TAG = 101
+
+
+def build_model(ops, b: dict, dt_rec: float, acc: list[float]) -> None:
+    """Floors as nodes with their masses on a fixed ground node 0; frame and EPP elements as
+    zeroLength springs between consecutive floors; the record as a uniform excitation."""
+    n = len(b["m"])
+    ops.wipe()
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    ops.node(0, 0.0)
+    ops.fix(0, 1)
+    for i in range(n):
+        ops.node(i + 1, 0.0)
+        ops.mass(i + 1, b["m"][i])
+    for i in range(n):
+        # Frame storey spring: takes part in Rayleigh damping.
+        ops.uniaxialMaterial("Elastic", FRAME_TAG + i, b["k"][i])
+        ops.element("zeroLength", FRAME_TAG + i, i, i + 1, "-mat", FRAME_TAG + i, "-dir", 1, "-doRayleigh", 1)
+        # Brace + damper: elastic-perfectly plastic, stiffness k', yield displacement muN/k';
+        # no Rayleigh damping (c' = 0 in the config).
+        ops.uniaxialMaterial("ElasticPP", EPP_TAG + i, b["kp"][i], b["fy"][i] / b["kp"][i])
+        ops.element("zeroLength", EPP_TAG + i, i, i + 1, "-mat", EPP_TAG + i, "-dir", 1, "-doRayleigh", 0)
+    # alpha*M on the nodes, beta*K_initial on the elements that take Rayleigh damping: the
+    # frame springs only. K_initial = K for the linear frame.
+    ops.rayleigh(b["alpha"], 0.0, b["beta"], 0.0)
+    # -useLast: OpenSees accumulates time by adding dt, so the last step may land a few ulps
+    # past the last sample, where a Path series is otherwise 0; slipload (and the references
+    # here) take the last sample at the record's end.
+    ops.timeSeries("Path", 1, "-dt", dt_rec, "-values", *acc, "-useLast")
+    ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
+    # Start from rest in equilibrium with the first sample, as slipload does: relative
+    # accelerations -a_g(0) (OpenSees would otherwise start from zero accelerations).
+    for i in range(n):
+        ops.setNodeAccel(i + 1, 1, -acc[0], "-commit")
+
+
+def analysis(ops, algorithm: str, system: str) -> None:
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system(system)
+    ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
+    ops.algorithm(algorithm)
+    ops.integrator("Newmark", GAMMA, BETA)
+    ops.analysis("Transient")
+
+
+def opensees_timed(ops, b, dt_rec, acc, dt, steps, algorithm, system, tmp: Path) -> dict:
+    """One simulation: build (timed apart), then set-up + analyze(steps) timed."""
+    t0 = time.perf_counter()
+    build_model(ops, b, dt_rec, acc)
+    env = tmp / "envelope-drift.out"
+    n = len(b["m"])
+    ops.recorder("EnvelopeElement", "-file", str(env), "-precision", 17, "-ele", *range(FRAME_TAG, FRAME_TAG + n), "deformation")
+    t1 = time.perf_counter()
+    analysis(ops, algorithm, system)
+    ok = ops.analyze(steps, dt)
+    t2 = time.perf_counter()
+    ops.wipe()  # flushes the envelope recorder
+    if ok != 0:
+        raise SystemExit(f"OpenSees analyze({steps}, {dt}) failed (code {ok}) with {algorithm}: see the step-by-step run")
+    rows = [[float(v) for v in line.split()] for line in env.read_text().splitlines() if line.strip()]
+    # rows: min, max, absmax over time, one column per element.
+    return {"build_s": t1 - t0, "run_s": t2 - t1, "peak_drift": rows[2]}
+
+
+def opensees_stepwise(ops, b, dt_rec, acc, dt, steps, algorithm, system) -> dict:
+    """The same analysis one step at a time, recording histories, Newton iterations and
+    any step that does not converge (then retried with line search and with a
+    modified Newton of many iterations; counted either way)."""
+    build_model(ops, b, dt_rec, acc)
+    analysis(ops, algorithm, system)
+    n = len(b["m"])
+    m = b["m"]
+    drift = [[0.0] * n]
+    force = [[0.0] * n]
+    peak_bs = 0.0  # at rest, in equilibrium with a_g(0): no inertia force
+    iters = []
+    failed = []
+    for s in range(1, steps + 1):
+        ok = ops.analyze(1, dt)
+        it = ops.testIter()
+        if ok != 0:
+            failed.append(s)
+            for retry in (("NewtonLineSearch",), ("ModifiedNewton", "-initial")):
+                ops.algorithm(*retry)
+                ops.test("NormDispIncr", TEST_TOL, 10 * TEST_MAX_ITER, 0)
+                ok = ops.analyze(1, dt)
+                it += ops.testIter()
+                ops.algorithm(algorithm)
+                ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
+                if ok == 0:
+                    break
+            if ok != 0:
+                raise SystemExit(f"OpenSees: step {s} (t = {s * dt:.4f} s) does not converge even with line search / modified Newton")
+        iters.append(it)
+        u = [ops.nodeDisp(i + 1, 1) for i in range(n)]
+        drift.append([u[i] - (u[i - 1] if i > 0 else 0.0) for i in range(n)])
+        force.append([ops.eleForce(EPP_TAG + i)[1] for i in range(n)])
+        ag = ground_accel(dt_rec, acc, s * dt)
+        bs = abs(sum(m[i] * (ops.nodeAccel(i + 1, 1) + ag) for i in range(n)))
+        peak_bs = max(peak_bs, bs)
+    ops.wipe()
+    # Elastic <-> yielded changes of each EPP element (|F| at its yield force, to round-off),
+    # the counterpart of slipload's stick <-> slip `transitions`.
+    tol = 1e-9
+    at_bound = [[abs(f[i]) >= b["fy"][i] * (1.0 - tol) for i in range(n)] for f in force]
+    transitions = [sum(1 for p, q in zip(at_bound, at_bound[1:]) if p[i] != q[i]) for i in range(n)]
+    return {
+        "transitions": transitions,
+        "drift": drift,
+        "force": force,
+        "peak_drift": [max(abs(d[i]) for d in drift) for i in range(n)],
+        "peak_base_shear": peak_bs,
+        "newton_iterations": {"total": sum(iters), "mean": sum(iters) / len(iters), "max": max(iters)},
+        "failed_steps": failed,
+    }
+
+
+def newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal: bool) -> dict:
+    """Newmark average acceleration on the floors with the EPP elements solved to round-off
+    by Newton, written independently of both programs, in two variants of the slip update:
+
+    * `trapezoidal = False`: return mapping, the plastic slip advanced by backward Euler
+      (the slip increment decides the yield direction): what OpenSees's ElasticPP does;
+    * `trapezoidal = True`: the massless dissipator's displacement advanced by the same
+      Newmark rule as the floors, so the slip increment is dt/2 (w_n + w_{n+1}) with the
+      friction law imposed on the end-of-step slip rate w_{n+1}: what slipload's `newmark`
+      does with m' = 0 (an EPP element whose return starts from s_n + dt/2 w_n).
+    """
+    import numpy as np
+
+    n = len(b["m"])
+    M = np.diag(b["m"])
+    K = storey_matrix(b["k"])
+    C = b["alpha"] * M + b["beta"] * K
+    kp, fy = b["kp"], b["fy"]
+    c_a = 1.0 / (BETA * dt * dt)
+    c_v = GAMMA / (BETA * dt)
+    A0 = K + c_v * C + c_a * M
+    u = np.zeros(n)
+    v = np.zeros(n)
+    a = -acc[0] * np.ones(n)
+    sp = np.zeros(n)  # slip of each EPP element (drift minus brace elongation), m
+    w = np.zeros(n)  # slip rate at the end of the step, m/s (trapezoidal variant)
+    peak = np.zeros(n)
+    drift = [[0.0] * n]
+    force = [[0.0] * n]
+    for s in range(1, steps + 1):
+        ag = ground_accel(dt_rec, acc, s * dt)
+        start = sp + 0.5 * dt * w if trapezoidal else sp
+        # a(u1), v(u1) by Newmark; residual R(u1) = M a + C v + K u1 + B f(u1) + M r ag.
+        ua = u + dt * v + (0.5 - BETA) * dt * dt * a
+        va = v + (1.0 - GAMMA) * dt * a
+        u1 = u.copy()
+        for _ in range(100):
+            d = u1 - np.concatenate(([0.0], u1[:-1]))
+            trial = [kp[i] * (d[i] - start[i]) for i in range(n)]
+            f = np.array([min(max(t, -fy[i]), fy[i]) for i, t in enumerate(trial)])
+            kt = [kp[i] if abs(trial[i]) <= fy[i] else 0.0 for i in range(n)]
+            a1 = c_a * (u1 - ua)
+            v1 = va + GAMMA * dt * a1
+            bf = f.copy()
+            bf[:-1] -= f[1:]  # element i pulls floor i by -f and floor i-1 by +f
+            R = M @ a1 + C @ v1 + K @ u1 + bf + M @ np.full(n, ag)
+            du = np.linalg.solve(A0 + storey_matrix(kt), -R)
+            u1 = u1 + du
+            if np.max(np.abs(du)) < 1e-14:
+                break
+        else:
+            raise SystemExit(f"Newmark EPP reference: step {s} did not converge")
+        d = u1 - np.concatenate(([0.0], u1[:-1]))
+        f = np.array([min(max(kp[i] * (d[i] - start[i]), -fy[i]), fy[i]) for i in range(n)])
+        new_sp = d - f / np.array(kp)
+        if trapezoidal:
+            w = 2.0 * (new_sp - start) / dt
+        sp = new_sp
+        a1 = c_a * (u1 - ua)
+        v = va + GAMMA * dt * a1
+        u, a = u1, a1
+        peak = np.maximum(peak, np.abs(d))
+        drift.append(d.tolist())
+        force.append(f.tolist())
+    return {"peak_drift": peak.tolist(), "drift": drift, "force": force}
+
+
+def model_checks(ops, b: dict, dt: float, slipload_t1: float | None) -> dict:
+    """Periods and damping of the OpenSees model against the matrices assembled here."""
+    import numpy as np
+
+    n = len(b["m"])
+    M = np.diag(b["m"])
+    K = storey_matrix(b["k"])
+    Kb = K + storey_matrix(b["kp"])
+    C = b["alpha"] * M + b["beta"] * K
+
+    def periods(Km):
+        w2 = np.sort(np.linalg.eigvals(np.linalg.solve(M, Km)).real)
+        return (2.0 * math.pi / np.sqrt(w2)).tolist()
+
+    bare = periods(K)
+    braced = periods(Kb)
+    zeta = [b["alpha"] / (2.0 * (2.0 * math.pi / T)) + b["beta"] * (2.0 * math.pi / T) / 2.0 for T in bare]
+    # OpenSees: braced periods (initial tangent) by eigen, the damping matrix read back
+    # from the Newmark system matrix A = K_t + gamma/(beta dt) C + 1/(beta dt^2) M after a
+    # first (elastic) step of a tiny pulse.
+    build_model(ops, b, 1.0, [0.0, 1e-6, 0.0])
+    w2 = sorted(ops.eigen("-fullGenLapack", n))
+    os_braced = [2.0 * math.pi / math.sqrt(x) for x in w2]
+    analysis(ops, "Newton", "FullGeneral")
+    if ops.analyze(1, dt) != 0:
+        raise SystemExit("OpenSees: model check step failed")
+    A = np.array(ops.printA("-ret")).reshape(n, n)
+    ops.wipe()
+    C_os = (A - Kb - M / (BETA * dt * dt)) * (BETA * dt / GAMMA)
+    c_err = float(np.max(np.abs(C_os - C)) / np.max(np.abs(C)))
+    return {
+        "frame_stiffness_N_m": K.tolist(),
+        "bare_periods_s": bare,
+        "bare_T1_slipload_s": slipload_t1,
+        "bare_damping_ratios": zeta,
+        "braced_periods_s": braced,
+        "braced_periods_opensees_s": os_braced,
+        "braced_period_max_rel_diff": max(abs(x - y) / y for x, y in zip(os_braced, braced)),
+        "damping_matrix_opensees_N_s_m": C_os.tolist(),
+        "damping_matrix_max_rel_diff": c_err,
+    }
+
+
+# ---------------------------------------------------------------------------------------
+# The comparison
+# ---------------------------------------------------------------------------------------
+
+
+def rel(a: float, b: float) -> float:
+    return abs(a - b) / abs(b)
+
+
+def max_rel(xs, ys) -> float:
+    return max(rel(x, y) for x, y in zip(xs, ys))
+
+
+def history_rows(cols: dict[str, list[float]], prefix: str, n: int) -> list[list[float]]:
+    """Rows (one per step) of the storey columns `drift<i>_m` or `F<i>_N` of a slipload history."""
+    unit = "m" if prefix == "drift" else "N"
+    return [list(r) for r in zip(*(cols[f"{prefix}{i + 1}_{unit}"] for i in range(n)))]
+
+
+def history_gap(rows, ref_rows) -> float:
+    """max over steps and storeys of |rows - ref_rows|, over the peak |ref_rows| of that storey."""
+    if len(rows) != len(ref_rows):
+        raise SystemExit(f"history lengths differ: {len(rows)} and {len(ref_rows)} steps")
+    worst = 0.0
+    for i in range(len(ref_rows[0])):
+        scale = max(abs(r[i]) for r in ref_rows)
+        worst = max(worst, max(abs(x[i] - r[i]) for x, r in zip(rows, ref_rows)) / scale)
+    return worst
+
+
+def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats, algorithms, system) -> dict:
+    n = len(b["m"])
+    scene = slipload_scene(tmp, label, record, units, dt)
+    print(f"\n== {label}: {record.name}, {len(acc)} samples at {dt_rec} s, dt = {dt} s", file=sys.stderr)
+    # slipload: one run with histories, one exact run (with histories: its peaks at the steps).
+    hist = tmp / f"history-{label}.csv"
+    sl = slipload_run(binary, scene, "--history", str(hist))
+    steps = int(sl["steps"])
+    if abs(sl["dt"] - dt) > 1e-15:
+        raise SystemExit(f"slipload chose dt = {sl['dt']}, asked for {dt}")
+    sl_hist = read_history(hist)
+    sl_drift = history_rows(sl_hist, "drift", n)
+    sl_force = history_rows(sl_hist, "F", n)
+    ex_hist_path = tmp / f"history-{label}-exact.csv"
+    ex = slipload_run(binary, scene, "--method", "exact", "--history", str(ex_hist_path))
+    ex_hist = read_history(ex_hist_path)
+    ex_sampled = [max(abs(x) for x in ex_hist[f"drift{i + 1}_m"]) for i in range(n)]
+    # OpenSees step by step (physics, convergence), and the return-mapping reference.
+    st = opensees_stepwise(ops, b, dt_rec, acc, dt, steps, algorithms[0], system)
+    ref = newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal=False)
+    trap = newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal=True)
+    # Timing, interleaved, after one untimed warm-up run of each.
+    for a in algorithms:
+        opensees_timed(ops, b, dt_rec, acc, dt, steps, a, system, tmp)
+    slipload_run(binary, scene)
+    times = {a: [] for a in algorithms}
+    build = []
+    sl_times = []
+    env_peaks = None
+    for r in range(repeats):
+        for a in algorithms:
+            t = opensees_timed(ops, b, dt_rec, acc, dt, steps, a, system, tmp)
+            times[a].append(t["run_s"])
+            build.append(t["build_s"])
+            env_peaks = env_peaks or t["peak_drift"]
+        sl_times.append(slipload_run(binary, scene)["cpu_seconds"])
+        print(f"  repeat {r + 1}/{repeats}: OpenSees " + ", ".join(f"{a} {times[a][-1] * 1e3:.2f} ms" for a in algorithms) + f"; slipload {sl_times[-1] * 1e3:.3f} ms", file=sys.stderr)
+    med = {a: statistics.median(v) for a, v in times.items()}
+    sl_med = statistics.median(sl_times)
+    case = {
+        "label": label,
+        "record": str(record.relative_to(ROOT.parent)) if record.is_relative_to(ROOT.parent) else str(record),
+        "record_samples": len(acc),
+        "record_dt_s": dt_rec,
+        "dt_s": dt,
+        "steps": steps,
+        "duration_s": steps * dt,
+        "slipload": {
+            "method": "newmark",
+            "median_s": sl_med,
+            "times_s": sl_times,
+            "peak_drift_m": sl["peak_drift"],
+            "peak_base_shear_N": sl["peak_base_shear"],
+            "transitions": sl["transitions"],
+        },
+        "opensees": {
+            "algorithm": algorithms[0],
+            "system": system,
+            "median_s": med[algorithms[0]],
+            "times_s": times[algorithms[0]],
+            "model_build_median_s": statistics.median(build),
+            "other_algorithms": {a: {"median_s": med[a], "times_s": times[a]} for a in algorithms[1:]},
+            "peak_drift_m": st["peak_drift"],
+            "envelope_recorder_peak_drift_m": env_peaks,
+            "peak_base_shear_N": st["peak_base_shear"],
+            "newton_iterations": st["newton_iterations"],
+            "failed_steps": st["failed_steps"],
+            "transitions": st["transitions"],
+        },
+        "exact": {
+            "peak_drift_continuous_m": ex["peak_drift"],
+            "peak_drift_at_steps_m": ex_sampled,
+            "peak_base_shear_N": ex["peak_base_shear"],
+            "transitions": ex["transitions"],
+        },
+        "ratio_opensees_over_slipload": med[algorithms[0]] / sl_med,
+        "ratio_fastest_opensees_over_slipload": min(med.values()) / sl_med,
+        "max_rel_diff_peak_drift": max_rel(st["peak_drift"], sl["peak_drift"]),
+        "rel_diff_peak_drift_by_storey": [rel(x, y) for x, y in zip(st["peak_drift"], sl["peak_drift"])],
+        "rel_diff_peak_base_shear": rel(st["peak_base_shear"], sl["peak_base_shear"]),
+        "max_rel_diff_drift_history": history_gap(st["drift"], sl_drift),
+        "max_rel_diff_force_history": history_gap(st["force"], sl_force),
+        "opensees_vs_return_mapping_max_rel_diff_peak_drift": max_rel(st["peak_drift"], ref["peak_drift"]),
+        "opensees_vs_return_mapping_max_rel_diff_drift_history": history_gap(st["drift"], ref["drift"]),
+        "slipload_vs_trapezoidal_max_rel_diff_peak_drift": max_rel(sl["peak_drift"], trap["peak_drift"]),
+        "slipload_vs_trapezoidal_max_rel_diff_drift_history": history_gap(sl_drift, trap["drift"]),
+        "slipload_vs_trapezoidal_max_rel_diff_force_history": history_gap(sl_force, trap["force"]),
+        "opensees_envelope_vs_stepwise_max_rel_diff": max_rel(env_peaks, st["peak_drift"]),
+        "slipload_vs_exact_max_rel_diff_peak_drift": max_rel(sl["peak_drift"], ex_sampled),
+        "opensees_vs_exact_max_rel_diff_peak_drift": max_rel(st["peak_drift"], ex_sampled),
+    }
+    print(
+        f"  OpenSees {med[algorithms[0]] * 1e3:.2f} ms, slipload {sl_med * 1e3:.3f} ms per simulation: ratio {case['ratio_opensees_over_slipload']:.1f}\n"
+        f"  peak drifts: max rel. diff {case['max_rel_diff_peak_drift']:.2e} (by storey "
+        + ", ".join(f"{x:.1e}" for x in case["rel_diff_peak_drift_by_storey"])
+        + f"), base shear {case['rel_diff_peak_base_shear']:.2e}\n"
+        f"  against exact (peaks at the steps): slipload {case['slipload_vs_exact_max_rel_diff_peak_drift']:.2e}, OpenSees {case['opensees_vs_exact_max_rel_diff_peak_drift']:.2e}; "
+        f"OpenSees against the return-mapping reference {case['opensees_vs_return_mapping_max_rel_diff_peak_drift']:.1e}\n"
+        f"  Newton iterations per step: mean {st['newton_iterations']['mean']:.2f}, max {st['newton_iterations']['max']}; steps that failed to converge: {len(st['failed_steps'])}",
+        file=sys.stderr,
+    )
+    return case
+
+
+def write_atomic(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def machine(ops) -> dict:
+    info = {}
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+        for line in out.splitlines():
+            key, _, val = line.partition(":")
+            info[key.strip()] = val.strip()
+    except OSError:
+        pass
+    commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    from importlib.metadata import version
+
+    return {
+        "cpu_model": info.get("Model name", platform.processor()),
+        "cpus": info.get("CPU(s)"),
+        "threads_per_core": info.get("Thread(s) per core"),
+        "os": platform.platform(),
+        "python": platform.python_version(),
+        "opensees": ops.version() if hasattr(ops, "version") else None,
+        "openseespy": version("openseespy"),
+        "slipload_commit": commit + ("-dirty" if dirty else ""),
+        "rustc": subprocess.run(["rustc", "--version"], capture_output=True, text=True).stdout.strip(),
+    }
+
+
+def markdown(report: dict) -> str:
+    m = report["machine"]
+    s = report["settings"]
+    chk = report["model_checks"]
+    lines = [
+        "# slipload against OpenSees",
+        "",
+        f"Regenerate with `{s['command']}`.",
+        "",
+        f"Building: `{s['building']}` (the benchmark three-storey frame, massless dissipators: each brace + damper an",
+        "elastic–perfectly plastic element). Both programs: Newmark average acceleration (γ = ½, β = ¼), the same record,",
+        f"the same Δt, peaks at the steps. OpenSees: {s['opensees_model']}; {s['opensees_solution']}.",
+        "",
+        f"Timing: {s['timing']}",
+        "",
+        "| record | steps × Δt | OpenSees (ms / sim) | slipload (ms / sim) | ratio | fastest OpenSees variant (ms) | rel. diff. peak drift, storeys 1, 2, 3 | rel. diff. peak base shear | max rel. diff. drift history | Newton it./step (max) | unconverged steps |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for c in report["cases"]:
+        o = c["opensees"]
+        fastest = min([o["median_s"]] + [v["median_s"] for v in o["other_algorithms"].values()])
+        lines.append(
+            f"| {c['label']} | {c['steps']} × {c['dt_s']} s | {o['median_s'] * 1e3:.2f} | {c['slipload']['median_s'] * 1e3:.3f} | "
+            f"**{c['ratio_opensees_over_slipload']:.0f}×** | {fastest * 1e3:.2f} | {', '.join(f'{x:.1e}' for x in c['rel_diff_peak_drift_by_storey'])} | "
+            f"{c['rel_diff_peak_base_shear']:.1e} | {c['max_rel_diff_drift_history']:.1e} | "
+            f"{o['newton_iterations']['mean']:.2f} ({o['newton_iterations']['max']}) | {len(o['failed_steps'])} |"
+        )
+    lines += [
+        "",
+        "Where the gap comes from (max relative differences of the peak drifts over storeys; histories: max over steps and",
+        "storeys of the difference over the storey's peak). The two Newmark references are written in the script, independently",
+        "of both programs: *return mapping* advances the plastic slip by backward Euler (OpenSees's ElasticPP); *trapezoidal*",
+        "advances the massless dissipator's displacement with the floors' Newmark rule, the friction law acting on the",
+        "end-of-step slip rate (slipload's `newmark` with m′ = 0). Against `exact`: the event-located solution, peaks at the same steps.",
+        "",
+        "| record | OpenSees vs return mapping (peaks / drift history) | slipload vs trapezoidal (peaks / drift history) | slipload newmark vs exact | OpenSees vs exact | stick↔slip transitions per storey: slipload / OpenSees / exact |",
+        "|---|---:|---:|---:|---:|---|",
+    ]
+    for c in report["cases"]:
+        lines.append(
+            f"| {c['label']} | {c['opensees_vs_return_mapping_max_rel_diff_peak_drift']:.0e} / {c['opensees_vs_return_mapping_max_rel_diff_drift_history']:.0e} | "
+            f"{c['slipload_vs_trapezoidal_max_rel_diff_peak_drift']:.0e} / {c['slipload_vs_trapezoidal_max_rel_diff_drift_history']:.0e} | "
+            f"{c['slipload_vs_exact_max_rel_diff_peak_drift']:.1e} | {c['opensees_vs_exact_max_rel_diff_peak_drift']:.1e} | "
+            f"{c['slipload']['transitions']} / {c['opensees']['transitions']} / {c['exact']['transitions']} |"
+        )
+    lines += [
+        "",
+        "Model checks: bare-frame periods from the storey stiffnesses "
+        + ", ".join(f"{t:.4f}" for t in chk["bare_periods_s"])
+        + f" s (slipload's bare T1: {chk['bare_T1_slipload_s']} s; the config states 1.01 / 0.33 / 0.17 s), "
+        + "damping ratios " + ", ".join(f"{100 * z:.2f} %" for z in chk["bare_damping_ratios"])
+        + "; braced periods " + ", ".join(f"{t:.4f}" for t in chk["braced_periods_s"])
+        + f" s, OpenSees eigen within {chk['braced_period_max_rel_diff']:.1e}; the damping matrix OpenSees uses (read back from"
+        + f" its system matrix) equals α M + β K_frame within {chk['damping_matrix_max_rel_diff']:.1e} (relative), so the EPP elements carry no damping.",
+        "",
+        f"Machine: {m['cpu_model']}, {m['cpus']} CPUs ({m['threads_per_core']} thread per core), shared with other jobs; {m['os']};",
+        f"OpenSees {m['opensees']} through openseespy {m['openseespy']} (Python {m['python']}); slipload {m['slipload_commit']} built by {m['rustc']}.",
+        "",
+        "Why the peaks differ at all: see the README section \"Against OpenSees\".",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ensure_environment()
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--record", action="append", help=f"record file (.AT2, in g) or '{SYNTHETIC}' (a {SYNTHETIC_DURATION:g} s record from `slipload record synth`); repeatable [default: synthetic, SYL090.AT2, I-ELC180.AT2]")
+    ap.add_argument("--dt", type=float, default=0.005, help="time step of both programs, s [default: 0.005, slipload's default T1/200 rounded to divide the records' dt]")
+    ap.add_argument("--repeats", type=int, default=21, help="timed repeats per program and record (median) [default: 21]")
+    ap.add_argument("--system", default="ProfileSPD", help="OpenSees linear system [default: ProfileSPD, the fastest direct solver measured here]")
+    ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder [default: results/performance]")
+    args = ap.parse_args()
+    if args.repeats < 1:
+        raise SystemExit("--repeats must be at least 1")
+    ops = import_opensees()
+    binary = slipload_bin()
+    b = load_building(BUILDING)
+    records = args.record or [SYNTHETIC, str(RECORDS / "SYL090.AT2"), str(RECORDS / "I-ELC180.AT2")]
+    # Newton first (the reported figure), ModifiedNewton (tangent of the step start) as a variant.
+    algorithms = ["Newton", "ModifiedNewton"]
+    explain = subprocess.run([str(binary), "explain", str(BUILDING), "--duration", "1"], cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    mt = re.search(r"bare T1 = ([0-9.]+) s", explain)
+    checks = model_checks(ops, b, args.dt, float(mt.group(1)) if mt else None)
+    print(f"model checks: bare periods {checks['bare_periods_s']}, slipload bare T1 {checks['bare_T1_slipload_s']}; damping matrix rel. diff {checks['damping_matrix_max_rel_diff']:.1e}; braced periods rel. diff {checks['braced_period_max_rel_diff']:.1e}", file=sys.stderr)
+    cases = []
+    with tempfile.TemporaryDirectory(prefix="slipload-opensees-") as td:
+        tmp = Path(td)
+        for spec in records:
+            if spec == SYNTHETIC:
+                path = tmp / "synthetic-15s.csv"
+                subprocess.run([str(binary), "record", "synth", "--duration", str(SYNTHETIC_DURATION), "--dt", str(SYNTHETIC_DT), "--out", str(path)], cwd=ROOT, check=True, capture_output=True)
+                dt_rec, acc = read_csv_record(path)
+                units, label = "m/s2", f"synthetic {SYNTHETIC_DURATION:g} s"
+                record = path
+            else:
+                record = Path(spec).resolve()
+                if not record.exists():
+                    raise SystemExit(f"{spec}: no such record file")
+                dt_rec, acc = read_at2(record)
+                units, label = "g", record.stem
+            ratio = dt_rec / args.dt
+            if abs(ratio - round(ratio)) > 1e-9:
+                raise SystemExit(f"{spec}: dt = {args.dt} s does not divide the record's dt = {dt_rec} s")
+            case = run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, args.dt, args.repeats, algorithms, args.system)
+            if spec == SYNTHETIC:
+                case["record"] = f"`slipload record synth --duration {SYNTHETIC_DURATION:g} --dt {SYNTHETIC_DT}` (seed 2007, PGA 0.4 g)"
+            cases.append(case)
+    report = {
+        "machine": machine(ops),
+        "settings": {
+            "command": "scripts/compare-opensees.py" + "".join(f" {a}" for a in sys.argv[1:]),
+            "building": str(BUILDING.relative_to(ROOT)),
+            "dt_s": args.dt,
+            "repeats": args.repeats,
+            "integrator": f"Newmark gamma = {GAMMA}, beta = {BETA}",
+            "opensees_model": "floors as nodes with their masses, storey springs (zeroLength, Elastic) for the frame, zeroLength ElasticPP (k', yield μN/k') for each brace + damper, rayleigh α on the masses and β K_initial on the frame springs only (-doRayleigh 0 on the EPP elements), the record as a Path series in a UniformExcitation, initial accelerations -a_g(0)",
+            "opensees_solution": f"Newton (current tangent: exact for the piecewise-linear EPP response, so it ends in a finite number of steps once the yielding pattern is right), test NormDispIncr {TEST_TOL:g} m, at most {TEST_MAX_ITER} iterations, system {args.system}; ModifiedNewton timed as a variant",
+            "timing": "wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json` (the integrator run: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
+        },
+        "model_checks": checks,
+        "cases": cases,
+    }
+    args.out.mkdir(parents=True, exist_ok=True)
+    write_atomic(args.out / "opensees.json", json.dumps(report, indent=2) + "\n")
+    write_atomic(args.out / "opensees.md", markdown(report))
+    print(f"\nwrote {args.out / 'opensees.json'} and {args.out / 'opensees.md'}", file=sys.stderr)
+    print(markdown(report))
+
+
+if __name__ == "__main__":
+    main()
