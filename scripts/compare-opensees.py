@@ -727,7 +727,7 @@ def main() -> None:
     ensure_environment()
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--record", action="append", help=f"record file (.AT2, in g) or '{SYNTHETIC}' (a {SYNTHETIC_DURATION:g} s record from `slipload record synth`); repeatable [default: synthetic, SYL090.AT2, I-ELC180.AT2]")
-    ap.add_argument("--dt", type=float, default=0.005, help="time step of both programs, s [default: 0.005, slipload's default T1/200 rounded to divide the records' dt]")
+    ap.add_argument("--dt", type=float, default=0.0025, help="time step of both programs, s [default: 0.0025, slipload's default T1/400 rounded to divide the records' dt]")
     ap.add_argument("--repeats", type=int, default=21, help="timed repeats per program and record (median) [default: 21]")
     ap.add_argument("--system", default="ProfileSPD", help="OpenSees linear system [default: ProfileSPD, the fastest direct solver measured here]")
     ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder [default: results/performance]")
