@@ -450,11 +450,16 @@ impl StudyReport {
                     )
                 });
             let cpu = e.cpu_seconds.map_or(String::new(), |c| format!("{c:.6e}"));
+            // Scene names hold commas ("benchmark, synthetic 0"): quoted, as RFC 4180 says.
             let fail = e.failure.as_deref().unwrap_or("").replace('"', "'");
             let _ = writeln!(
                 s,
-                "{},{},{},{:.9e},{a},{b},{c},{cpu},{},\"{fail}\"",
-                self.scene, e.method, e.dt_label, e.dt, e.events
+                "\"{}\",{},{},{:.9e},{a},{b},{c},{cpu},{},\"{fail}\"",
+                self.scene.replace('"', "\"\""),
+                e.method,
+                e.dt_label,
+                e.dt,
+                e.events
             );
         }
         s
