@@ -1,6 +1,7 @@
 //! The `slipload` command-line program.
 
 mod cmd;
+mod html;
 mod output;
 
 use clap::Parser;

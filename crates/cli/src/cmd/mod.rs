@@ -6,6 +6,7 @@ pub mod merge;
 pub mod optimize;
 pub mod rank;
 pub mod record;
+pub mod report;
 pub mod scene_args;
 pub mod simulate;
 pub mod study_args;
@@ -33,6 +34,8 @@ pub enum Command {
     Rank(rank::RankArgs),
     /// Tabulate a study's optimum over period scale × intensity scale
     Table(table::TableArgs),
+    /// One self-contained HTML page (tables, figures, inputs) from an output folder
+    Report(report::ReportArgs),
 }
 
 /// Runs one subcommand.
@@ -47,5 +50,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Optimize(args) => optimize::run(args),
         Command::Rank(args) => rank::run(args),
         Command::Table(args) => table::run(args),
+        Command::Report(args) => report::run(args),
     }
 }
