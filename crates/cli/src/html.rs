@@ -94,19 +94,30 @@ fn align_of(cell: &str) -> Align {
     }
 }
 
-fn td(tag: &str, align: Align, content: &str) -> String {
-    match align {
-        Align::Left => format!("<{tag}>{content}</{tag}>"),
-        Align::Right => format!("<{tag} class=\"num\">{content}</{tag}>"),
-        Align::Center => format!("<{tag} class=\"mid\">{content}</{tag}>"),
-    }
+/// A cell; `content` is already HTML. Numbers never wrap (`1.2e-3` must not break at
+/// its minus sign).
+fn td(tag: &str, align: Align, content: &str, number: bool) -> String {
+    let class = match (align, number) {
+        (Align::Left, false) => "",
+        (Align::Left, true) => " class=\"nw\"",
+        (Align::Right, _) => " class=\"num\"",
+        (Align::Center, false) => " class=\"mid\"",
+        (Align::Center, true) => " class=\"mid nw\"",
+    };
+    format!("<{tag}{class}>{content}</{tag}>")
 }
 
-/// Renders the Markdown subset slipload writes. Headings are shifted down by
-/// `heading_shift` levels (capped at `<h6>`) so a file's `#` fits under the page's
-/// section heading.
-pub fn markdown(text: &str, heading_shift: usize) -> String {
+/// Renders the Markdown subset slipload writes. Headings are shifted so the file's
+/// highest heading becomes `<h{top}>` (capped at `<h6>`), to fit under the page's
+/// section heading whatever level the file starts at.
+pub fn markdown(text: &str, top: usize) -> String {
     let lines: Vec<&str> = text.lines().collect();
+    let highest = lines
+        .iter()
+        .filter_map(|l| heading_level(l.trim()))
+        .min()
+        .unwrap_or(1);
+    let heading_shift = top.saturating_sub(highest);
     let mut out = String::new();
     let mut para: Vec<&str> = Vec::new();
     let flush = |para: &mut Vec<&str>, out: &mut String| {
@@ -141,14 +152,14 @@ pub fn markdown(text: &str, heading_shift: usize) -> String {
             let al = |k: usize| aligns.get(k).copied().unwrap_or(Align::Left);
             out.push_str("<div class=\"scroll\"><table>\n<thead><tr>");
             for (k, c) in head.iter().enumerate() {
-                out.push_str(&td("th", al(k), &inline(c)));
+                out.push_str(&td("th", al(k), &inline(c), false));
             }
             out.push_str("</tr></thead>\n<tbody>\n");
             i += 2;
             while i < lines.len() && lines[i].trim().starts_with('|') {
                 out.push_str("<tr>");
                 for (k, c) in split_row(lines[i]).iter().enumerate() {
-                    out.push_str(&td("td", al(k), &inline(c)));
+                    out.push_str(&td("td", al(k), &inline(c), is_number(c)));
                 }
                 out.push_str("</tr>\n");
                 i += 1;
@@ -251,12 +262,12 @@ pub fn csv_table(text: &str, max_rows: usize) -> String {
     for r in body.iter().take(max_rows) {
         out.push_str("<tr>");
         for c in r {
-            let align = if is_number(c) {
-                Align::Right
+            let (align, number) = if is_number(c) {
+                (Align::Right, true)
             } else {
-                Align::Left
+                (Align::Left, false)
             };
-            out.push_str(&td("td", align, &escape(c)));
+            out.push_str(&td("td", align, &escape(c), number));
         }
         out.push_str("</tr>\n");
     }
@@ -372,10 +383,11 @@ mod tests {
     #[test]
     fn markdown_table_keeps_alignment_and_escapes_cells() {
         let html = markdown(
-            "# T\n\ntext <x>\n\n| a | b |\n|---|---:|\n| <s> | 1.5 |\n",
-            1,
+            "## T\n\ntext <x>\n\n| a | b |\n|---|---:|\n| <s> | 1.5 |\n\n### U\n",
+            3,
         );
-        assert!(html.contains("<h2>T</h2>"), "{html}");
+        assert!(html.contains("<h3>T</h3>"), "{html}");
+        assert!(html.contains("<h4>U</h4>"), "{html}");
         assert!(html.contains("<p>text &lt;x&gt;</p>"), "{html}");
         assert!(
             html.contains("<td>&lt;s&gt;</td><td class=\"num\">1.5</td>"),

@@ -125,8 +125,11 @@ fn recognise(dir: &Path, files: &[Entry]) -> Option<(FolderKind, String)> {
         })
         .collect();
     if !accuracy.is_empty() {
-        let names: Vec<&str> = accuracy.iter().map(|e| e.stem.as_str()).collect();
-        return Some((FolderKind::Accuracy, names.join(", ")));
+        let title = match accuracy.as_slice() {
+            [one] => one.stem.clone(),
+            many => format!("{} accuracy studies", many.len()),
+        };
+        return Some((FolderKind::Accuracy, title));
     }
     let history = files.iter().find(|e| {
         e.ext == "csv"
@@ -315,7 +318,7 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
                 page.body,
                 "<div class=\"file\"><p class=\"src\">{}</p>\n{}</div>",
                 escape(&e.name),
-                markdown(&read(e)?, 2)
+                markdown(&read(e)?, 3)
             );
             shown.push(e.name.clone());
         }
@@ -498,7 +501,8 @@ nav ul{list-style:none;padding:0;display:flex;flex-wrap:wrap;gap:1.2em}
 table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
 th,td{border:1px solid #ccc;padding:.25em .6em;text-align:left;vertical-align:top}
 thead th{background:#eef2f6}
-td.num,th.num{text-align:right;font-variant-numeric:tabular-nums}
+td.num,th.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+td.nw{white-space:nowrap;font-variant-numeric:tabular-nums}
 td.mid,th.mid{text-align:center}
 table.kv th{background:#f6f8fa;font-weight:600}
 .scroll{overflow-x:auto}
