@@ -3,6 +3,7 @@
 mod cmd;
 mod html;
 mod output;
+mod study_figures;
 
 use clap::Parser;
 
