@@ -29,9 +29,11 @@ pub struct ObjectiveMap {
     pub loads_b_kn: Vec<f64>,
     /// Objective at (a\[i\], b\[j\]): `objective[i * loads_b_kn.len() + j]`.
     pub objective: Vec<f64>,
-    /// The optimum's slip loads on the two floors, kN.
+    /// The optimum's slip loads on the two floors, kN (the marker on the map).
+    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub optimum_kn: [f64; 2],
-    /// The objective, as a label.
+    /// The objective, as a label (the colour bar's).
+    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub label: String,
 }
 
@@ -59,18 +61,9 @@ fn map_bounds(study: &Study, k: usize, optimum: f64) -> (f64, f64) {
     }
 }
 
-/// Runs the objective map: `grid` × `grid` designs over the bounds of the dissipators on
-/// `floors` (from 1), every other slip load at `optimum` (N per dissipator), each over
-/// every record at the sweep fidelity. `bare` holds the bare frame's responses at that
-/// fidelity (the sweep's first design).
-pub fn objective_map(
-    study: &Study,
-    optimum: &[f64],
-    bare: &[RecordMetrics],
-    floors: [usize; 2],
-    grid: usize,
-    tick: &(dyn Fn() + Sync),
-) -> anyhow::Result<ObjectiveMap> {
+/// The dissipator indices of the map's two floors (from 1), checked before any
+/// simulation: two different floors that have dissipators, and a grid of at least 2.
+pub fn map_dampers(study: &Study, floors: [usize; 2], grid: usize) -> anyhow::Result<[usize; 2]> {
     if floors[0] == floors[1] {
         bail!(
             "--map-floors: give two different floors (got {0},{0})",
@@ -99,7 +92,22 @@ pub fn objective_map(
                 )
             })
     };
-    let (ka, kb) = (damper(floors[0])?, damper(floors[1])?);
+    Ok([damper(floors[0])?, damper(floors[1])?])
+}
+
+/// Runs the objective map: `grid` × `grid` designs over the bounds of the dissipators on
+/// `floors` (from 1), every other slip load at `optimum` (N per dissipator), each over
+/// every record at the sweep fidelity. `bare` holds the bare frame's responses at that
+/// fidelity (the sweep's first design).
+pub fn objective_map(
+    study: &Study,
+    optimum: &[f64],
+    bare: &[RecordMetrics],
+    floors: [usize; 2],
+    grid: usize,
+    tick: &(dyn Fn() + Sync),
+) -> anyhow::Result<ObjectiveMap> {
+    let [ka, kb] = map_dampers(study, floors, grid)?;
     let axis = |k: usize| -> Vec<f64> {
         let (lo, hi) = map_bounds(study, k, optimum[k]);
         (0..grid)
@@ -295,12 +303,14 @@ pub struct StudyFigures {
     /// The best design vs the bare frame, per record.
     pub scatter: Option<RecordScatter>,
     /// Method and time step of the profiles and the scatter, for the titles.
+    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub fidelity: String,
 }
 
 impl StudyFigures {
-    /// Writes every figure present (`NAME.svg`, `NAME.png`) with its `NAME.csv` into
-    /// `dir`; returns the names written.
+    /// Writes the data of every figure present (`NAME.csv`) into `dir`; returns the
+    /// names written. The drawings (`NAME.svg`, `NAME.png`) are added with the shared
+    /// plot module, under the same names.
     pub fn write(&self, dir: &Path) -> anyhow::Result<Vec<String>> {
         let mut names = Vec::new();
         let mut put = |stem: &str, csv: String| -> anyhow::Result<()> {

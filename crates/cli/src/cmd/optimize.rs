@@ -4,7 +4,7 @@
 
 use super::study_args::{load_study, progress};
 use crate::study_figures::{
-    RecordScatter, StudyFigures, convergence, drift_profiles, objective_map,
+    RecordScatter, StudyFigures, convergence, drift_profiles, map_dampers, objective_map,
 };
 use anyhow::Context;
 use slipload_opt::journal::write_atomic;
@@ -35,7 +35,7 @@ pub struct OptimizeArgs {
     #[arg(long)]
     pub map: bool,
     /// The two floors (from 1) of the objective map
-    #[arg(long, value_delimiter = ',', num_args = 2, default_value = "1,2")]
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub map_floors: Vec<usize>,
     /// Grid points per axis of the objective map
     #[arg(long, default_value_t = 11)]
@@ -81,6 +81,13 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
+    let map_floors = match args.map_floors.as_slice() {
+        &[a, b] => [a, b],
+        other => anyhow::bail!("--map-floors takes two floors, like 1,2 (got {other:?})"),
+    };
+    if args.map {
+        map_dampers(&study, map_floors, args.map_grid)?;
+    }
     let manifest = sweep::Manifest::of(&study);
     let pb = progress(manifest.tasks() as u64, args.quiet, "sweep");
     let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
@@ -241,7 +248,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         args.out.display()
     );
     println!(
-        "figures (with their CSV): {}/{{{}}}",
+        "figure data: {}/{{{}}}.csv",
         args.out.display(),
         written.join(",")
     );
