@@ -1,6 +1,7 @@
 //! The `slipload` command-line program.
 
 mod cmd;
+mod figures;
 mod output;
 mod plot;
 

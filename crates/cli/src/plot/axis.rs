@@ -15,6 +15,8 @@ pub struct Axis {
     pub range: Option<(f64, f64)>,
     /// Include zero in a fitted linear range (bars, energies, drift profiles).
     pub include_zero: bool,
+    /// Ticks at whole numbers only (storeys, counts).
+    pub integer: bool,
 }
 
 impl Axis {
@@ -25,6 +27,7 @@ impl Axis {
             log: false,
             range: None,
             include_zero: false,
+            integer: false,
         }
     }
 
@@ -82,6 +85,8 @@ pub struct Scale {
     pub log: bool,
     /// Labelled ticks wanted (at most; nice steps give between about half and all).
     pub ticks: usize,
+    /// Ticks at whole numbers only (linear axes).
+    pub integer: bool,
 }
 
 impl Scale {
@@ -103,7 +108,13 @@ impl Scale {
         if self.log {
             log_ticks(self.lo, self.hi, n).0
         } else {
-            linear_ticks(self.lo, self.hi, n).0
+            let (ticks, step) = linear_ticks(self.lo, self.hi, n);
+            if self.integer && step < 1.0 {
+                let (a, b) = (self.lo.ceil() as i64, self.hi.floor() as i64);
+                (a..=b).map(|k| k as f64).collect()
+            } else {
+                ticks
+            }
         }
     }
 
@@ -123,7 +134,7 @@ impl Scale {
             format_log(v)
         } else {
             let step = linear_ticks(self.lo, self.hi, self.ticks).1;
-            format_linear(v, step)
+            format_linear(v, if self.integer { step.max(1.0) } else { step })
         }
     }
 }

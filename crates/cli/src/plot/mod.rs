@@ -53,6 +53,9 @@ pub enum Legend {
     LowerRight,
     /// Inside, bottom left.
     LowerLeft,
+    /// Outside, right of the axes, top-aligned (the axes give up the width it needs):
+    /// for time histories, which fill their axes.
+    Right,
     /// No legend.
     None,
 }
@@ -294,6 +297,18 @@ impl Panel {
     /// A fitted y range that includes zero.
     pub fn y_from_zero(mut self) -> Self {
         self.y.include_zero = true;
+        self
+    }
+
+    /// Whole-number ticks on y (storeys, counts).
+    pub fn y_integer(mut self) -> Self {
+        self.y.integer = true;
+        self
+    }
+
+    /// Whole-number ticks on x.
+    pub fn x_integer(mut self) -> Self {
+        self.x.integer = true;
         self
     }
 

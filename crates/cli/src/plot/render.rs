@@ -161,12 +161,14 @@ fn scales(p: &Panel, tops: &[Vec<f64>]) -> (Scale, Scale) {
             hi: xhi,
             log: p.x.log,
             ticks: X_TICKS,
+            integer: p.x.integer,
         },
         Scale {
             lo: ylo,
             hi: yhi,
             log: p.y.log,
             ticks: Y_TICKS,
+            integer: p.y.integer,
         },
     )
 }
@@ -186,6 +188,14 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
     check_lengths(p)?;
     let tops = stacked_tops(p)?;
     let (sx, sy) = scales(p, &tops);
+    let (cell, legend_strip) = if p.legend == Legend::Right {
+        let (w, _) = cell.dim_in_pixel();
+        let lw = legend_size(&legend_entries(p)).0 as u32 + 6;
+        let (a, b) = cell.split_horizontally(w.saturating_sub(lw));
+        (a, Some(b))
+    } else {
+        (cell.clone(), None)
+    };
     let (chart_area, bar_area) = if p.heatmap.is_some() {
         let (w, _) = cell.dim_in_pixel();
         let (a, b) = cell.split_horizontally(w.saturating_sub(100));
@@ -224,7 +234,6 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
     let (px, _) = chart.plotting_area().get_pixel_range();
     let width_px = (px.end - px.start).max(1) as usize;
     let mut metas = Vec::new();
-    let mut legend = Vec::new();
     let mut area_i = 0;
     let mut base: Option<&Vec<f64>> = None;
     for (i, s) in p.series.iter().enumerate() {
@@ -243,9 +252,6 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
         if s.marker.is_some() || s.kind == Kind::Scatter {
             draw_markers(&mut chart, &pts, s, color)?;
         }
-        if s.in_legend && !s.name.is_empty() {
-            legend.push((s, color));
-        }
         metas.push(SeriesMeta {
             name: s.name.clone(),
             kind: match s.kind {
@@ -260,7 +266,30 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
             y: range_of(pts.iter().map(|p| p.1)),
         });
     }
-    draw_legend(root, &chart, &legend, p.legend)?;
+    let legend = legend_entries(p);
+    match legend_strip {
+        Some(strip) => {
+            let (xr, _) = strip.get_pixel_range();
+            let (_, yr) = chart.plotting_area().get_pixel_range();
+            draw_legend(root, (xr.start, yr.start), &legend)?;
+        }
+        None => {
+            let (xr, yr) = chart.plotting_area().get_pixel_range();
+            let (w, h) = legend_size(&legend);
+            let margin = 8;
+            let x0 = match p.legend {
+                Legend::UpperLeft | Legend::LowerLeft => xr.start + margin,
+                _ => xr.end - margin - w,
+            };
+            let y0 = match p.legend {
+                Legend::LowerLeft | Legend::LowerRight => yr.end - margin - h,
+                _ => yr.start + margin,
+            };
+            if p.legend != Legend::None {
+                draw_legend(root, (x0, y0), &legend)?;
+            }
+        }
+    }
     Ok(PanelMeta {
         title: p.title.clone(),
         x: AxisMeta {
@@ -445,20 +474,28 @@ fn draw_markers(
     Ok(())
 }
 
-/// Legend box inside the plotting area (pixel coordinates of the root area).
-fn draw_legend(
-    root: &Area,
-    chart: &Chart,
-    entries: &[(&Series, RGBColor)],
-    place: Legend,
-) -> anyhow::Result<()> {
-    if entries.is_empty() || place == Legend::None {
-        return Ok(());
+/// The legend entries of a panel: named series not left out, with their colours.
+fn legend_entries(p: &Panel) -> Vec<(&Series, RGBColor)> {
+    p.series
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.in_legend && !s.name.is_empty())
+        .map(|(i, s)| (s, s.color.unwrap_or_else(|| style::color(i))))
+        .collect()
+}
+
+const LEGEND_PAD: i32 = 7;
+const LEGEND_GLYPH: i32 = 26;
+
+fn legend_row() -> i32 {
+    (style::LEGEND_PX * 1.45).round() as i32
+}
+
+/// Legend box size, px.
+fn legend_size(entries: &[(&Series, RGBColor)]) -> (i32, i32) {
+    if entries.is_empty() {
+        return (0, 0);
     }
-    let (xr, yr) = chart.plotting_area().get_pixel_range();
-    let row = (style::LEGEND_PX * 1.45).round() as i32;
-    let glyph = 26;
-    let pad = 7;
     let text_w = entries
         .iter()
         .map(|(s, _)| s.name.chars().count())
@@ -466,17 +503,23 @@ fn draw_legend(
         .unwrap_or(0) as f64
         * style::LEGEND_PX
         * style::CHAR_WIDTH;
-    let w = pad * 3 + glyph + text_w.ceil() as i32;
-    let h = pad * 2 + row * entries.len() as i32;
-    let margin = 8;
-    let x0 = match place {
-        Legend::UpperLeft | Legend::LowerLeft => xr.start + margin,
-        _ => xr.end - margin - w,
-    };
-    let y0 = match place {
-        Legend::LowerLeft | Legend::LowerRight => yr.end - margin - h,
-        _ => yr.start + margin,
-    };
+    (
+        LEGEND_PAD * 3 + LEGEND_GLYPH + text_w.ceil() as i32,
+        LEGEND_PAD * 2 + legend_row() * entries.len() as i32,
+    )
+}
+
+/// Legend box with its top-left corner at `(x0, y0)` (pixel coordinates of the root).
+fn draw_legend(
+    root: &Area,
+    (x0, y0): (i32, i32),
+    entries: &[(&Series, RGBColor)],
+) -> anyhow::Result<()> {
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let (w, h) = legend_size(entries);
+    let (pad, glyph, row) = (LEGEND_PAD, LEGEND_GLYPH, legend_row());
     root.draw(&Rectangle::new(
         [(x0, y0), (x0 + w, y0 + h)],
         WHITE.mix(0.88).filled(),
@@ -571,12 +614,14 @@ fn draw_heatmap(chart: &mut Chart, h: &HeatMap, bar: Option<&Area>) -> anyhow::R
             hi: zhi,
             log: false,
             ticks: Y_TICKS,
+            integer: false,
         };
         let unit = Scale {
             lo: 0.0,
             hi: 1.0,
             log: false,
             ticks: 2,
+            integer: false,
         };
         let mut b = ChartBuilder::on(bar)
             .margin_top(10)
