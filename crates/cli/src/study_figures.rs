@@ -30,10 +30,8 @@ pub struct ObjectiveMap {
     /// Objective at (a\[i\], b\[j\]): `objective[i * loads_b_kn.len() + j]`.
     pub objective: Vec<f64>,
     /// The optimum's slip loads on the two floors, kN (the marker on the map).
-    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub optimum_kn: [f64; 2],
     /// The objective, as a label (the colour bar's).
-    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub label: String,
 }
 
@@ -303,32 +301,116 @@ pub struct StudyFigures {
     /// The best design vs the bare frame, per record.
     pub scatter: Option<RecordScatter>,
     /// Method and time step of the profiles and the scatter, for the titles.
-    #[allow(dead_code)] // read by the drawing, which comes with the shared plot module
     pub fidelity: String,
 }
 
 impl StudyFigures {
-    /// Writes the data of every figure present (`NAME.csv`) into `dir`; returns the
-    /// names written. The drawings (`NAME.svg`, `NAME.png`) are added with the shared
-    /// plot module, under the same names.
+    /// Writes every figure present (`NAME.svg`, `NAME.png`, in the shared plot style)
+    /// with its data (`NAME.csv`) into `dir`; returns the names written.
     pub fn write(&self, dir: &Path) -> anyhow::Result<Vec<String>> {
+        use crate::plot::{Figure, HeatMap, Legend, Marker, Panel, Series, style};
         let mut names = Vec::new();
-        let mut put = |stem: &str, csv: String| -> anyhow::Result<()> {
+        let mut put = |stem: &str, csv: String, fig: Figure| -> anyhow::Result<()> {
             crate::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
+            fig.save(&dir.join(stem))?;
             names.push(stem.to_string());
             Ok(())
         };
         if let Some(m) = &self.map {
-            put("objective-map", m.to_csv())?;
+            let [a, b] = m.floors;
+            let nb = m.loads_b_kn.len();
+            let z: Vec<Vec<f64>> = (0..nb)
+                .map(|j| {
+                    (0..m.loads_a_kn.len())
+                        .map(|i| m.objective[i * nb + j])
+                        .collect()
+                })
+                .collect();
+            let fig = Figure::new(format!("Objective map: {}", m.label)).panel(
+                Panel::new(
+                    format!("slip load, floor {a} (kN)"),
+                    format!("slip load, floor {b} (kN)"),
+                )
+                .title("other floors at the optimum")
+                .legend(Legend::UpperRight)
+                .heatmap(HeatMap {
+                    x: m.loads_a_kn.clone(),
+                    y: m.loads_b_kn.clone(),
+                    z,
+                    label: format!("{} (-)", m.label),
+                    z_range: None,
+                })
+                .series(
+                    Series::scatter("optimum", vec![m.optimum_kn[0]], vec![m.optimum_kn[1]])
+                        .marker(Marker::Diamond)
+                        .rgb(style::INK),
+                ),
+            );
+            put("objective-map", m.to_csv(), fig)?;
         }
         if !self.convergence.is_empty() {
-            put("convergence", convergence_csv(&self.convergence))?;
+            let mut panel = Panel::new("simulations (-)", "best objective so far (-)")
+                .legend(Legend::UpperRight);
+            for (k, c) in self.convergence.iter().enumerate() {
+                let x = c.points.iter().map(|p| p.0 as f64).collect();
+                let y = c.points.iter().map(|p| p.2).collect();
+                panel = panel.series(
+                    Series::line(c.refiner.clone(), x, y)
+                        .color(k)
+                        .marker(Marker::ALL[k % Marker::ALL.len()]),
+                );
+            }
+            let fig = Figure::new("Refiner convergence").panel(panel);
+            put("convergence", convergence_csv(&self.convergence), fig)?;
         }
         if !self.profiles.is_empty() {
-            put("drift-profiles", drift_profiles_csv(&self.profiles))?;
+            let mut panel = Panel::new("peak drift ratio (%)", "storey (-)")
+                .title(format!(
+                    "solid: mean, dashed: 84th percentile; {}",
+                    self.fidelity
+                ))
+                .x_from_zero()
+                .legend(Legend::UpperRight);
+            for (k, p) in self.profiles.iter().enumerate() {
+                let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();
+                let pct = |v: &[f64]| v.iter().map(|x| 100.0 * x).collect::<Vec<_>>();
+                panel = panel
+                    .series(
+                        Series::line(p.design.clone(), pct(&p.mean), storeys.clone())
+                            .color(k)
+                            .marker(Marker::Circle),
+                    )
+                    .series(
+                        Series::line(format!("{} p84", p.design), pct(&p.p84), storeys)
+                            .color(k)
+                            .dashed()
+                            .no_legend(),
+                    );
+            }
+            let fig = Figure::new("Peak drift-ratio profiles of the ranked designs").panel(panel);
+            put("drift-profiles", drift_profiles_csv(&self.profiles), fig)?;
         }
-        if let Some(s) = &self.scatter {
-            put("records-scatter", s.to_csv())?;
+        if let Some(sc) = &self.scatter {
+            let x: Vec<f64> = sc.bare.iter().map(|v| 100.0 * v).collect();
+            let y: Vec<f64> = sc.design_values.iter().map(|v| 100.0 * v).collect();
+            let top = x.iter().chain(&y).copied().fold(0.0, f64::max);
+            let fig = Figure::new(format!("Per record: {} vs bare frame", sc.design)).panel(
+                Panel::new(
+                    "bare frame: peak drift ratio (%)",
+                    format!("{}: peak drift ratio (%)", sc.design),
+                )
+                .title(self.fidelity.clone())
+                .x_from_zero()
+                .y_from_zero()
+                .legend(Legend::UpperLeft)
+                .series(Series::scatter("records", x, y).color(0))
+                .series(
+                    Series::line("1:1", vec![0.0, top], vec![0.0, top])
+                        .dashed()
+                        .rgb(style::INK),
+                ),
+            );
+            put("records-scatter", sc.to_csv(), fig)?;
         }
         Ok(names)
     }

@@ -9,6 +9,9 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
+#[path = "../src/plot/meta.rs"]
+#[allow(dead_code)] // the writer half of the module is not used by a reader
+mod meta;
 use common::{root, scratch, slipload_in};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -56,6 +59,33 @@ fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
     (head, rows)
+}
+
+/// The figure's metadata, read back from the SVG written; the PNG is there and not empty.
+fn figure(dir: &Path, stem: &str) -> meta::PanelMeta {
+    let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).unwrap();
+    assert!(
+        std::fs::metadata(dir.join(format!("{stem}.png")))
+            .unwrap()
+            .len()
+            > 1000
+    );
+    let m = meta::FigureMeta::from_svg(&svg).unwrap();
+    assert_eq!(m.panels.len(), 1, "{stem}");
+    m.panels.into_iter().next().unwrap()
+}
+
+/// Every value lies within the axis as drawn, and the drawn series' range matches.
+fn within(axis: &meta::AxisMeta, values: &[f64], what: &str) {
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    assert!(
+        axis.min <= lo && hi <= axis.max,
+        "{what}: [{lo}, {hi}] outside the axis [{}, {}]",
+        axis.min,
+        axis.max
+    );
 }
 
 fn num(s: &str) -> f64 {
@@ -204,6 +234,50 @@ fn optimize_figure_data_is_the_studys_own() {
             .all(|r| num(&r[2]).is_finite() && num(&r[2]) > 0.0)
     );
 
+    // the figures, read back: series counts and ranges against the CSVs
+    let (_, prof) = csv(&out.join("drift-profiles.csv"));
+    let p = figure(&out, "drift-profiles");
+    assert_eq!(p.series.len(), 2 * trows.len(), "mean and p84 per design");
+    let pct: Vec<f64> = prof
+        .iter()
+        .flat_map(|r| [100.0 * num(&r[2]), 100.0 * num(&r[3])])
+        .collect();
+    within(&p.x, &pct, "drift profiles");
+    within(&p.y, &[1.0, 3.0], "storeys");
+    let (_, sc) = csv(&out.join("records-scatter.csv"));
+    let p = figure(&out, "records-scatter");
+    assert_eq!(p.series.len(), 2, "records and the 1:1 line");
+    assert_eq!(p.series[0].points, nr);
+    within(
+        &p.x,
+        &sc.iter().map(|r| 100.0 * num(&r[1])).collect::<Vec<_>>(),
+        "scatter x",
+    );
+    within(
+        &p.y,
+        &sc.iter().map(|r| 100.0 * num(&r[2])).collect::<Vec<_>>(),
+        "scatter y",
+    );
+    let p = figure(&out, "convergence");
+    assert_eq!(p.series.len(), 1);
+    within(
+        &p.x,
+        &sims.iter().map(|&v| v as f64).collect::<Vec<_>>(),
+        "convergence x",
+    );
+    within(&p.y, &best, "convergence y");
+    let (_, map) = csv(&out.join("objective-map.csv"));
+    let p = figure(&out, "objective-map");
+    let h = p.heatmap.unwrap();
+    assert_eq!((h.nx, h.ny), (3, 3));
+    let z: Vec<f64> = map.iter().map(|r| num(&r[2])).collect();
+    let (zlo, zhi) = z
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    assert_eq!(h.z, [Some(zlo), Some(zhi)]);
+    within(&p.x, &[0.0, 2000.0], "map x");
+    within(&p.y, &[0.0, 1000.0], "map y");
+
     // a second refiner into the same folder: one line per refiner
     run(
         &dir,
@@ -221,6 +295,7 @@ fn optimize_figure_data_is_the_studys_own() {
     let mut refiners: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
     refiners.dedup();
     assert_eq!(refiners, ["random", "trust-region"]);
+    assert_eq!(figure(&out, "convergence").series.len(), 2);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -270,6 +345,9 @@ fn sweep_figure_data_comes_from_its_responses() {
         let peak = drift_cols.iter().map(|&c| num(&b[c])).fold(0.0, f64::max);
         assert_eq!(num(&r[1]), peak);
     }
+    let p = figure(&out, "drift-profiles");
+    assert_eq!(p.series.len(), 2 * 5);
+    assert_eq!(figure(&out, "records-scatter").series[0].points, bare.len());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

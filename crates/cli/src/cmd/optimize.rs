@@ -248,7 +248,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         args.out.display()
     );
     println!(
-        "figure data: {}/{{{}}}.csv",
+        "figures (SVG, PNG, CSV): {}/{{{}}}",
         args.out.display(),
         written.join(",")
     );

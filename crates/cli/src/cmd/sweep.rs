@@ -65,7 +65,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         );
         let written = sweep_figures(&study, &report.manifest, rows)?.write(&args.out)?;
         eprintln!(
-            "figure data: {}/{{{}}}.csv",
+            "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),
             written.join(",")
         );
