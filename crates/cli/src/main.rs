@@ -1,7 +1,11 @@
 //! The `slipload` command-line program.
 
 mod cmd;
+mod figures;
+mod html;
 mod output;
+mod plot;
+mod study_figures;
 
 use clap::Parser;
 

@@ -98,6 +98,18 @@ impl DesignTable {
         designs: &[(String, Vec<f64>)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<DesignTable, OptError> {
+        Self::build_with_runs(study, designs, tick).map(|(table, _)| table)
+    }
+
+    /// As [`DesignTable::build`], also returning the responses it ran (so figures need
+    /// no extra simulations), each over every record of the study: `runs[0]` the bare
+    /// frame, then for design `k` `runs[1 + 3k]` (its slip loads), `runs[2 + 3k]` (× 0.75)
+    /// and `runs[3 + 3k]` (× 1.25).
+    pub fn build_with_runs(
+        study: &Study,
+        designs: &[(String, Vec<f64>)],
+        tick: &(dyn Fn() + Sync),
+    ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         let fid = Fidelity::check(study);
         let m = study.space.dampers.len();
         let mut all: Vec<Vec<f64>> = vec![vec![0.0; m]];
@@ -167,7 +179,7 @@ impl DesignTable {
                 objective_at_125pct: objective(&runs[3 + 3 * k])?,
             });
         }
-        Ok(DesignTable {
+        let table = DesignTable {
             study: study.name.clone(),
             objective: study.objective.label(),
             fidelity: format!(
@@ -178,7 +190,8 @@ impl DesignTable {
             damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
             records: study.records.len(),
             rows,
-        })
+        };
+        Ok((table, runs))
     }
 
     /// CSV, full precision, one line per design.

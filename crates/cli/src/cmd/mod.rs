@@ -7,6 +7,7 @@ pub mod merge;
 pub mod optimize;
 pub mod rank;
 pub mod record;
+pub mod report;
 pub mod scene_args;
 pub mod simulate;
 pub mod study_args;
@@ -36,6 +37,8 @@ pub enum Command {
     Table(table::TableArgs),
     /// Throughput figures beside their targets (simulations per second, memory, scaling)
     Bench(bench::BenchArgs),
+    /// One self-contained HTML page (tables, figures, inputs) from an output folder
+    Report(report::ReportArgs),
 }
 
 /// Runs one subcommand.
@@ -51,5 +54,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Rank(args) => rank::run(args),
         Command::Table(args) => table::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Report(args) => report::run(args),
     }
 }

@@ -3,6 +3,9 @@
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
 use super::study_args::{load_study, progress};
+use crate::study_figures::{
+    RecordScatter, StudyFigures, convergence, drift_profiles, map_dampers, objective_map,
+};
 use anyhow::Context;
 use slipload_opt::journal::write_atomic;
 use slipload_opt::optimize::{OptimizeReport, optimize};
@@ -27,6 +30,16 @@ pub struct OptimizeArgs {
     /// No progress bar
     #[arg(long)]
     pub quiet: bool,
+    /// Also draw the objective map over two floors' slip loads (the others at the
+    /// optimum): GRID × GRID designs × every record, at the sweep fidelity
+    #[arg(long)]
+    pub map: bool,
+    /// The two floors (from 1) of the objective map
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
+    pub map_floors: Vec<usize>,
+    /// Grid points per axis of the objective map
+    #[arg(long, default_value_t = 11)]
+    pub map_grid: usize,
 }
 
 fn kn(v: &[f64]) -> String {
@@ -68,6 +81,13 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
+    let map_floors = match args.map_floors.as_slice() {
+        &[a, b] => [a, b],
+        other => anyhow::bail!("--map-floors takes two floors, like 1,2 (got {other:?})"),
+    };
+    if args.map {
+        map_dampers(&study, map_floors, args.map_grid)?;
+    }
     let manifest = sweep::Manifest::of(&study);
     let pb = progress(manifest.tasks() as u64, args.quiet, "sweep");
     let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
@@ -95,8 +115,21 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         args.quiet,
         "design table",
     );
-    let table = DesignTable::build(&study, &designs, &|| pb.inc(1)).context("design table")?;
+    let (table, runs) =
+        DesignTable::build_with_runs(&study, &designs, &|| pb.inc(1)).context("design table")?;
     pb.finish_and_clear();
+    let map = if args.map {
+        let grid = args.map_grid;
+        let pb = progress((grid * grid * nr) as u64, args.quiet, "objective map");
+        let floors = [args.map_floors[0], args.map_floors[1]];
+        let m = objective_map(&study, &r.optimum_loads, &rows[..nr], floors, grid, &|| {
+            pb.inc(1)
+        })?;
+        pb.finish_and_clear();
+        Some(m)
+    } else {
+        None
+    };
     write_atomic(
         &args.out.join("refine.csv"),
         refine_csv(&study, &r).as_bytes(),
@@ -133,6 +166,32 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let mut text = serde_json::to_string_pretty(&candidates)?;
     text.push('\n');
     write_atomic(&args.out.join("candidates.json"), text.as_bytes())?;
+    let figures = StudyFigures {
+        map,
+        convergence: convergence(&args.out, report.manifest.tasks(), nr, r.best_sweep.f)?,
+        profiles: {
+            // the designs ranked by the objective (design-table fidelity)
+            let mut order: Vec<usize> = (0..designs.len()).collect();
+            order.sort_by(|&a, &b| {
+                table.rows[a]
+                    .objective
+                    .total_cmp(&table.rows[b].objective)
+                    .then(a.cmp(&b))
+            });
+            let names: Vec<String> = order.iter().map(|&k| designs[k].0.clone()).collect();
+            let rows: Vec<&[slipload_opt::RecordMetrics]> =
+                order.iter().map(|&k| runs[1 + 3 * k].as_slice()).collect();
+            drift_profiles(&names, &rows)
+        },
+        scatter: Some(RecordScatter::new(
+            &designs[0].0,
+            &study,
+            &runs[0],
+            &runs[1],
+        )),
+        fidelity: table.fidelity.clone(),
+    };
+    let written = figures.write(&args.out)?;
 
     let floors: Vec<String> = study
         .space
@@ -187,6 +246,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     println!(
         "wrote {}/{{designs.csv,responses.csv,refine.csv,optimum.json,candidates.json,design-table.csv,design-table.md,design-table.json}}",
         args.out.display()
+    );
+    println!(
+        "figures (SVG, PNG, CSV): {}/{{{}}}",
+        args.out.display(),
+        written.join(",")
     );
     Ok(())
 }

@@ -29,14 +29,43 @@ pub struct SimulateArgs {
     /// energies) to this CSV file
     #[arg(long)]
     history: Option<PathBuf>,
+    /// Draw the run's figures into this folder (SVG + PNG): displacement histories with
+    /// the ±μN/k′ thresholds, friction hysteresis, energies, peak drift profile. Turns on
+    /// histories and energies; the data go beside the figures (history.csv,
+    /// drift-profile.csv, response.json)
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
+    /// With --plot: also run the bare frame — the same scene with no braces, i.e. every
+    /// slip load 0 (a brace without friction carries no force) — and draw floor
+    /// displacements with and without dampers on one axis
+    #[arg(long, requires = "plot")]
+    compare_bare: bool,
 }
 
 /// Runs `slipload simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
-    let scene = args.scene.load(args.history.is_some())?;
+    let mut scene = args
+        .scene
+        .load(args.history.is_some() || args.plot.is_some())?;
+    if args.plot.is_some() {
+        scene.outputs.energies = true;
+    }
     let out = simulate(&scene).with_context(|| format!("simulating {}", scene.name))?;
     if let (Some(path), Some(h)) = (&args.history, &out.history) {
         write_atomic(path, h.to_csv().as_bytes())?;
+    }
+    if let Some(dir) = &args.plot {
+        let bare = if args.compare_bare {
+            let mut b = scene.clone();
+            b.name = format!("{} (bare frame)", scene.name);
+            b.building.dissipators = vec![None; b.building.floors()];
+            Some(simulate(&b).with_context(|| format!("simulating {}", b.name))?)
+        } else {
+            None
+        };
+        let files = crate::figures::simulation::write_all(dir, &scene, &out, bare.as_ref())
+            .with_context(|| format!("writing figures to {}", dir.display()))?;
+        eprintln!("wrote {} files to {}", files.len(), dir.display());
     }
     match args.format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&out.response)?),

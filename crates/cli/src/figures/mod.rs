@@ -1,0 +1,3 @@
+//! The figures each command draws from its data (the look lives in [`crate::plot`]).
+
+pub mod simulation;

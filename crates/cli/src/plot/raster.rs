@@ -1,0 +1,106 @@
+//! SVG → PNG with resvg, so the PNG is the SVG pixel for pixel (same layout, same text).
+//!
+//! Text needs a font file: DejaVu Sans, looked for at run time in the usual system
+//! folders (Debian/Ubuntu package `fonts-dejavu-core`), or the file named by the
+//! environment variable `SLIPLOAD_FONT`. No font is embedded in the program.
+
+use anyhow::{Context, anyhow};
+use resvg::{tiny_skia, usvg};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+/// Environment variable naming a TrueType font file to use instead of DejaVu Sans.
+pub const FONT_ENV: &str = "SLIPLOAD_FONT";
+
+/// Where DejaVu Sans is looked for (Debian/Ubuntu, Fedora, Arch, Alpine, macOS Homebrew).
+pub const FONT_PATHS: [&str; 6] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
+    "/usr/local/share/fonts/DejaVuSans.ttf",
+    "/opt/homebrew/share/fonts/DejaVuSans.ttf",
+];
+
+/// The fonts for PNG text (found once per process).
+fn fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
+    static FONTS: OnceLock<Result<Arc<usvg::fontdb::Database>, String>> = OnceLock::new();
+    FONTS
+        .get_or_init(|| load_fonts().map_err(|e| format!("{e:#}")))
+        .clone()
+        .map_err(|e| anyhow!(e))
+}
+
+fn font_files() -> anyhow::Result<Vec<PathBuf>> {
+    if let Some(p) = std::env::var_os(FONT_ENV) {
+        let p = PathBuf::from(p);
+        anyhow::ensure!(p.is_file(), "{FONT_ENV}={} is not a font file", p.display());
+        return Ok(vec![p]);
+    }
+    let regular = FONT_PATHS
+        .iter()
+        .map(Path::new)
+        .find(|p| p.is_file())
+        .ok_or_else(|| {
+            anyhow!(
+                "no DejaVu Sans font for the PNG figures: looked at {}; install it \
+                 (Debian/Ubuntu: apt-get install fonts-dejavu-core) or set {FONT_ENV} to a .ttf file",
+                FONT_PATHS.join(", ")
+            )
+        })?;
+    let mut files = vec![regular.to_path_buf()];
+    let bold = regular.with_file_name("DejaVuSans-Bold.ttf");
+    if bold.is_file() {
+        files.push(bold);
+    }
+    Ok(files)
+}
+
+fn load_fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
+    let mut db = usvg::fontdb::Database::new();
+    for f in font_files()? {
+        let bytes = std::fs::read(&f).with_context(|| format!("reading font {}", f.display()))?;
+        let before = db.len();
+        db.load_font_data(bytes);
+        anyhow::ensure!(
+            db.len() > before,
+            "{} holds no font resvg can read",
+            f.display()
+        );
+    }
+    let family = db
+        .faces()
+        .next()
+        .and_then(|f| f.families.first().map(|(name, _)| name.clone()))
+        .expect("one face was loaded above");
+    db.set_sans_serif_family(family.clone());
+    db.set_serif_family(family.clone());
+    db.set_monospace_family(family);
+    Ok(Arc::new(db))
+}
+
+/// Renders `svg` to PNG bytes at its own size (white background).
+pub fn svg_to_png(svg: &str) -> anyhow::Result<Vec<u8>> {
+    let fontdb = fonts()?;
+    let family = fontdb
+        .faces()
+        .next()
+        .and_then(|f| f.families.first().map(|(name, _)| name.clone()))
+        .expect("the font database holds a face");
+    let opt = usvg::Options {
+        font_family: family,
+        fontdb,
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opt).context("parsing the SVG we drew")?;
+    let size = tree.size().to_int_size();
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
+        .ok_or_else(|| anyhow!("figure size {}×{} px", size.width(), size.height()))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+    pixmap.encode_png().context("encoding the PNG")
+}
