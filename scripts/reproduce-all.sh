@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Regenerates everything under results/ with its figures, then one HTML report per folder:
+#   results/paper/        the paper's examples (scripts/reproduce-paper.sh)
+#   results/accuracy/     accuracy vs cost, work-precision figures (scripts/accuracy-study.sh)
+#   results/benchmark-3story/, results/ten-story/  design tables and study figures
+#                         (scripts/design-tables.sh)
+#   results/performance/  `slipload bench` and the OpenSees comparison
+#   results/figures/      the simulation and spectrum figures the README shows
+# Usage: scripts/reproduce-all.sh   (from anywhere; needs ../shared/records beside the repo;
+# about 15 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet -p slipload
+bin=target/release/slipload
+
+scripts/reproduce-paper.sh
+scripts/accuracy-study.sh
+scripts/design-tables.sh
+scripts/bench.sh
+python3 scripts/compare-opensees.py
+
+fig=results/figures
+rm -rf "$fig"
+mkdir -p "$fig"
+# The benchmark under Sylmar 090 with and without dampers (the paper's Figs. 6-7, 10, 13).
+"$bin" simulate configs/paper-benchmark-sylmar.json --plot "$fig/benchmark-sylmar" --compare-bare --format table > "$fig/benchmark-sylmar.txt"
+# The embedded synthetic suite's spectra with the ASCE 7 design spectrum it is scaled near.
+"$bin" record spectrum --synthetic 10 --plot "$fig/suite-spectra" > /dev/null
+
+for dir in results/paper results/accuracy results/benchmark-3story results/ten-story "$fig/benchmark-sylmar"; do
+    "$bin" report "$dir" > /dev/null
+done
+echo "results/ regenerated; open results/*/report.html"
