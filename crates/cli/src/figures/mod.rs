@@ -1,3 +1,4 @@
 //! The figures each command draws from its data (the look lives in [`crate::plot`]).
 
 pub mod simulation;
+pub mod spectra;

@@ -8,8 +8,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Labelled ticks along x and y (at most).
-const X_TICKS: usize = 9;
-const Y_TICKS: usize = 7;
+const X_TICKS: usize = 10;
+const Y_TICKS: usize = 8;
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
