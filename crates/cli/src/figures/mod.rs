@@ -2,3 +2,4 @@
 
 pub mod simulation;
 pub mod spectra;
+pub mod accuracy;
