@@ -53,7 +53,11 @@ fn error_range(r: &StudyReport, err: fn(&Errors) -> f64) -> (f64, f64, f64) {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
-    let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (1e-6, 1e-2) };
+    let (lo, hi) = if lo.is_finite() {
+        (lo, hi)
+    } else {
+        (1e-6, 1e-2)
+    };
     // Failed runs sit on a row 8× above the largest error; the axis ends at 20×.
     (lo / 3.0, hi * 8.0, hi * 20.0)
 }
@@ -100,7 +104,10 @@ pub fn figures(r: &StudyReport) -> (Figure, Figure) {
                 .copied()
                 .filter(|e| e.errors.is_some())
                 .collect();
-            let x_cpu: Vec<f64> = ok.iter().map(|e| e.cpu_seconds.unwrap_or(f64::NAN)).collect();
+            let x_cpu: Vec<f64> = ok
+                .iter()
+                .map(|e| e.cpu_seconds.unwrap_or(f64::NAN))
+                .collect();
             let x_dt: Vec<f64> = ok.iter().map(|e| e.dt).collect();
             let y: Vec<f64> = ok
                 .iter()
