@@ -1,6 +1,8 @@
 //! `slipload accuracy`: what accuracy costs — every method × time step against the
 //! `exact` integrator, per record and the median over records, written as CSV, JSON and a
-//! Markdown summary (each file atomically).
+//! Markdown summary (each file atomically), and drawn as the work-precision diagram and
+//! error vs Δt (`NAME-work-precision`, `NAME-error-vs-dt`, SVG + PNG) for the median (or
+//! the one record).
 
 use crate::output::write_atomic;
 use anyhow::Context;
@@ -181,6 +183,9 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
     write_atomic(&file("md"), md.as_bytes())?;
+    let drawn = median.as_ref().unwrap_or(&reports[0]);
+    crate::figures::accuracy::write(&args.out, &name, drawn)
+        .with_context(|| format!("drawing the accuracy figures into {}", args.out.display()))?;
     print!("{md}");
     Ok(())
 }

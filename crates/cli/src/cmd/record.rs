@@ -1,16 +1,17 @@
 //! `slipload record …`: read, measure and synthesise ground-motion records.
 //!
 //! * `info FILE…` — samples, time step, duration and intensity measures of each record;
-//! * `spectrum FILE` — its elastic response spectrum (pseudo-acceleration, pseudo-velocity,
-//!   displacement);
+//! * `spectrum FILE…` — elastic response spectra (pseudo-acceleration, pseudo-velocity,
+//!   displacement); `--plot` draws the suite's spectra, their mean and a design target;
 //! * `synth` — Clough–Penzien synthetic records as `time_s,accel_m_s2` CSV.
 //!
 //! Results go to stdout (or the `--out` files, written atomically), messages to stderr.
 
 use anyhow::{Context, bail};
 use slipload_motion::{
-    DEFAULT_DAMPING, DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, G, Intensity, Record, Spectrum,
-    SuiteTarget, Synthetic, Units, default_periods, format_csv, read_record, synthetic_suite,
+    DEFAULT_DAMPING, DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DesignSpectrum, G, Intensity, Record,
+    Spectrum, SuiteTarget, Synthetic, Units, default_periods, default_suite, format_csv,
+    read_record, synthetic_suite,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -26,7 +27,7 @@ pub struct RecordArgs {
 enum RecordCommand {
     /// Print NPTS, dt, duration, PGA, PGV, PGD, Arias intensity and D5–95 of records
     Info(InfoArgs),
-    /// Print the elastic response spectrum of one record
+    /// Print the elastic response spectra of records (and plot them with their mean)
     Spectrum(SpectrumArgs),
     /// Write Clough–Penzien synthetic records as CSV (time_s,accel_m_s2)
     Synth(SynthArgs),
@@ -76,8 +77,13 @@ enum SpectrumFormat {
 
 #[derive(Debug, clap::Args)]
 struct SpectrumArgs {
-    /// Record file (.AT2, any case, or CSV/text)
-    file: PathBuf,
+    /// Record files (.AT2, any case, or CSV/text); with several, the CSV gains a leading
+    /// `record` column and the JSON is a list
+    #[arg(required_unless_present = "synthetic")]
+    files: Vec<PathBuf>,
+    /// Use the first N records of the embedded synthetic suite (seed 2007, 0.4 g)
+    #[arg(long, conflicts_with = "files", value_name = "N")]
+    synthetic: Option<usize>,
     #[command(flatten)]
     read: ReadOptions,
     /// Damping ratio (fraction of critical)
@@ -89,6 +95,19 @@ struct SpectrumArgs {
     /// Output format
     #[arg(long, value_enum, default_value_t = SpectrumFormat::Csv)]
     format: SpectrumFormat,
+    /// Draw the pseudo-acceleration spectra, their mean and the target (if given) into
+    /// FILE.svg and FILE.png, with the data in FILE.csv (FILE is a stem; .svg/.png dropped)
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// Target: ASCE 7-16 design spectrum with this S_DS, g (needs --target-sd1)
+    #[arg(long, requires = "target_sd1", value_name = "G")]
+    target_sds: Option<f64>,
+    /// Target: S_D1, g (needs --target-sds)
+    #[arg(long, requires = "target_sds", value_name = "G")]
+    target_sd1: Option<f64>,
+    /// Target: long-period transition T_L, s
+    #[arg(long, default_value_t = 8.0, value_name = "S")]
+    target_tl: f64,
 }
 
 #[derive(Debug, clap::Args)]
@@ -198,13 +217,48 @@ fn info_table(rows: &[InfoRow]) -> String {
 }
 
 fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
-    let r = args.read.read(&args.file)?;
     let periods = args.periods.clone().unwrap_or_else(default_periods);
     if periods.is_empty() {
         bail!("--periods needs at least one period");
     }
-    let s = Spectrum::compute(&r, args.damping, &periods)
-        .with_context(|| format!("computing the spectrum of {}", args.file.display()))?;
+    let target = match (args.target_sds, args.target_sd1) {
+        (Some(sds), Some(sd1)) => Some(
+            DesignSpectrum::new(sds, sd1, args.target_tl)
+                .context("--target-sds/--target-sd1/--target-tl")?,
+        ),
+        _ => None,
+    };
+    // (name shown, record)
+    let records: Vec<(String, Record)> = match args.synthetic {
+        Some(n) => {
+            let suite = default_suite();
+            if n == 0 || n > suite.len() {
+                bail!(
+                    "--synthetic {n}: the embedded suite has {} records (1 to {} allowed)",
+                    suite.len(),
+                    suite.len()
+                );
+            }
+            suite
+                .into_iter()
+                .take(n)
+                .map(|r| (r.name().to_string(), r))
+                .collect()
+        }
+        None => args
+            .files
+            .iter()
+            .map(|p| Ok((p.display().to_string(), args.read.read(p)?)))
+            .collect::<anyhow::Result<_>>()?,
+    };
+    let spectra: Vec<Spectrum> = records
+        .iter()
+        .map(|(name, r)| {
+            Spectrum::compute(r, args.damping, &periods)
+                .with_context(|| format!("computing the spectrum of {name}"))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let several = records.len() > 1;
     let text = match args.format {
         SpectrumFormat::Json => {
             #[derive(serde::Serialize)]
@@ -213,30 +267,64 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
                 #[serde(flatten)]
                 spectrum: &'a Spectrum,
             }
-            let out = Out {
-                file: args.file.display().to_string(),
-                spectrum: &s,
-            };
-            serde_json::to_string_pretty(&out).context("formatting JSON")? + "\n"
+            let outs: Vec<Out> = records
+                .iter()
+                .zip(&spectra)
+                .map(|((name, _), s)| Out {
+                    file: name.clone(),
+                    spectrum: s,
+                })
+                .collect();
+            if several {
+                serde_json::to_string_pretty(&outs).context("formatting JSON")? + "\n"
+            } else {
+                serde_json::to_string_pretty(&outs[0]).context("formatting JSON")? + "\n"
+            }
         }
         SpectrumFormat::Csv => {
-            let mut t = String::from("period_s,sd_m,psv_m_s,psa_m_s2,psa_g\n");
-            for k in 0..s.periods_s.len() {
-                let _ = writeln!(
-                    t,
-                    "{},{},{},{},{}",
-                    s.periods_s[k],
-                    s.sd_m[k],
-                    s.psv_m_s[k],
-                    s.psa_m_s2[k],
-                    s.psa_m_s2[k] / G
-                );
+            let mut t = String::from(if several { "record," } else { "" });
+            t.push_str("period_s,sd_m,psv_m_s,psa_m_s2,psa_g\n");
+            for ((name, _), s) in records.iter().zip(&spectra) {
+                for k in 0..s.periods_s.len() {
+                    if several {
+                        let _ = write!(t, "{},", csv_field(name));
+                    }
+                    let _ = writeln!(
+                        t,
+                        "{},{},{},{},{}",
+                        s.periods_s[k],
+                        s.sd_m[k],
+                        s.psv_m_s[k],
+                        s.psa_m_s2[k],
+                        s.psa_m_s2[k] / G
+                    );
+                }
             }
             t
         }
     };
+    if let Some(stem) = &args.plot {
+        let names: Vec<String> = records.iter().map(|(n, _)| short_name(n)).collect();
+        crate::figures::spectra::write(stem, &names, &spectra, args.damping, target.as_ref())?;
+    }
     print!("{text}");
     Ok(())
+}
+
+/// A CSV field: quoted when it holds a comma or a quote.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// A record's name for legends and CSV headers: its file name without folders.
+fn short_name(name: &str) -> String {
+    Path::new(name)
+        .file_name()
+        .map_or_else(|| name.to_string(), |f| f.to_string_lossy().into_owned())
 }
 
 fn synth(args: &SynthArgs) -> anyhow::Result<()> {
@@ -328,8 +416,16 @@ mod tests {
             panic!("not spectrum")
         };
         assert_eq!(s.periods, Some(vec![0.1, 0.5, 1.0]));
+        assert_eq!(s.files.len(), 1);
         assert_eq!(s.format, SpectrumFormat::Csv);
         assert!(parse(&["spectrum", "a.AT2", "--periods", "0.1,x"]).is_err());
+        assert!(parse(&["spectrum"]).is_err(), "records are required");
+        assert!(parse(&["spectrum", "--synthetic", "3", "--plot", "s"]).is_ok());
+        assert!(parse(&["spectrum", "a.AT2", "--synthetic", "3"]).is_err());
+        assert!(
+            parse(&["spectrum", "a.AT2", "--target-sds", "1"]).is_err(),
+            "S_DS needs S_D1"
+        );
     }
 
     #[test]

@@ -1,3 +1,5 @@
 //! The figures each command draws from its data (the look lives in [`crate::plot`]).
 
+pub mod accuracy;
 pub mod simulation;
+pub mod spectra;

@@ -202,8 +202,9 @@ pub fn linear_ticks(lo: f64, hi: f64, n: usize) -> (Vec<f64>, f64) {
     (ticks, step)
 }
 
-/// Log ticks inside [lo, hi]: (labelled, minor). Decades are labelled; with fewer than
-/// about three decades 2 and 5 are labelled too; minor ticks are 1…9 × 10^k.
+/// Log ticks inside [lo, hi]: (labelled, minor). Decades are labelled; when the range
+/// spans at most three decades (and `n` ≥ 8) 2 and 5 are labelled too; minor ticks are
+/// 1…9 × 10^k.
 fn log_ticks(lo: f64, hi: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
     if lo.is_nan() || hi.is_nan() || lo <= 0.0 || hi <= lo {
         return (vec![], vec![]);
@@ -226,7 +227,7 @@ fn log_ticks(lo: f64, hi: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
             let labelled = if m == 1 {
                 ((k - k0) as usize).is_multiple_of(every.max(1))
             } else {
-                decades <= 2 && (m == 2 || m == 5)
+                (decades <= 2 || (decades <= 3 && n >= 8)) && (m == 2 || m == 5)
             };
             if labelled {
                 major.push(v);

@@ -8,8 +8,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Labelled ticks along x and y (at most).
-const X_TICKS: usize = 9;
-const Y_TICKS: usize = 7;
+const X_TICKS: usize = 10;
+const Y_TICKS: usize = 8;
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
@@ -134,20 +134,28 @@ fn check_lengths(p: &Panel) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The axis scales of a panel: fixed ranges, else fitted to all data drawn.
+/// The axis scales of a panel: fixed ranges, else fitted to the points that can be drawn
+/// (both coordinates finite, and positive on a log axis).
 fn scales(p: &Panel, tops: &[Vec<f64>]) -> (Scale, Scale) {
+    let ok_x = |v: f64| v.is_finite() && (!p.x.log || v > 0.0);
+    let ok_y = |v: f64| v.is_finite() && (!p.y.log || v > 0.0);
     let mut xs: Vec<f64> = Vec::new();
     let mut ys: Vec<f64> = Vec::new();
+    let mut push = |x: &[f64], y: &[f64]| {
+        for (&a, &b) in x.iter().zip(y) {
+            if ok_x(a) && ok_y(b) {
+                xs.push(a);
+                ys.push(b);
+            }
+        }
+    };
     let mut areas = 0;
     for s in &p.series {
-        xs.extend(&s.x);
         if s.kind == Kind::Area {
-            ys.extend(&tops[areas]);
-            ys.extend(&s.y);
+            push(&s.x, &tops[areas]);
             areas += 1;
-        } else {
-            ys.extend(&s.y);
         }
+        push(&s.x, &s.y);
     }
     if let Some(h) = &p.heatmap {
         xs.extend(heat_edges(&h.x));

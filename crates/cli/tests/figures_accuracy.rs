@@ -1,0 +1,147 @@
+//! Contract: `slipload accuracy … --out DIR` draws NAME-work-precision and NAME-error-vs-dt
+//! (SVG + PNG, non-empty) beside NAME.csv: one panel per error measure, one series per
+//! method plus one of failed runs; every series matches the CSV rows it comes from, the
+//! failed runs sit above every error, and the legend of error vs Δt gives the fitted order
+//! that NAME.json reports.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+mod common;
+mod figures_common;
+
+use common::{scratch, slipload};
+use figures_common::{assert_inside, assert_x, assert_y, figure};
+
+/// The CSV prints errors, CPU times and Δt with 7 significant digits (`{:.6e}`;
+/// Δt with 10): relative rounding ≤ 5e-7.
+const REL: f64 = 1e-6;
+
+struct Row {
+    method: String,
+    dt: f64,
+    errors: Option<[f64; 3]>,
+    cpu: Option<f64>,
+}
+
+fn rows(csv: &str) -> Vec<Row> {
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            let c: Vec<&str> = l.splitn(10, ',').collect();
+            let num = |s: &str| s.parse::<f64>().ok();
+            Row {
+                method: c[1].to_string(),
+                dt: num(c[3]).unwrap(),
+                errors: num(c[4]).map(|a| [a, num(c[5]).unwrap(), num(c[6]).unwrap()]),
+                cpu: num(c[7]),
+            }
+        })
+        .collect()
+}
+
+fn span(v: impl Iterator<Item = f64>) -> (f64, f64) {
+    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    })
+}
+
+#[test]
+fn work_precision_and_error_vs_dt_match_the_csv() {
+    let dir = scratch("figacc", "m");
+    let out = slipload(&[
+        "accuracy",
+        "configs/benchmark-3story-massless.json",
+        "--record",
+        "../shared/records/SYL090.AT2",
+        "--duration",
+        "3",
+        "--methods",
+        "delacruz,newmark",
+        "--dts",
+        "T1/25,T1/50,T1/100",
+        "--repeats",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--name",
+        "m",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rows = rows(&std::fs::read_to_string(dir.join("m.csv")).unwrap());
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("m.json")).unwrap()).unwrap();
+    let methods = ["delacruz", "newmark"];
+    // This case must contain a failure for the test to check how failures are drawn:
+    // delacruz is conditionally stable and T1/25 is beyond its limit on this building.
+    let failed: Vec<&Row> = rows.iter().filter(|r| r.errors.is_none()).collect();
+    assert_eq!(failed.len(), 1, "one failed run expected");
+    assert_eq!(failed[0].method, "delacruz");
+
+    let wp = figure(&dir.join("m-work-precision"));
+    let dt = figure(&dir.join("m-error-vs-dt"));
+    assert_eq!(wp.panels.len(), 3);
+    assert_eq!(dt.panels.len(), 3);
+    for k in 0..3 {
+        let (pw, pd) = (&wp.panels[k], &dt.panels[k]);
+        assert!(pw.x.log && pw.y.log && pd.x.log && pd.y.log, "log-log");
+        assert_inside(pw);
+        assert_inside(pd);
+        assert_eq!(pw.series.len(), methods.len() + 1);
+        assert_eq!(pd.series.len(), methods.len() + 1);
+        let mut max_err: f64 = 0.0;
+        for (i, m) in methods.iter().enumerate() {
+            let ok: Vec<&Row> = rows
+                .iter()
+                .filter(|r| r.method == *m && r.errors.is_some())
+                .collect();
+            let e = span(ok.iter().map(|r| r.errors.unwrap()[k]));
+            max_err = max_err.max(e.1);
+            let c = span(ok.iter().map(|r| r.cpu.unwrap()));
+            let d = span(ok.iter().map(|r| r.dt));
+            assert_eq!(pw.series[i].drawn, ok.len(), "{m}: a marker per Δt");
+            assert_y(&pw.series[i], e, REL * e.1);
+            assert_x(&pw.series[i], c, REL * c.1);
+            assert_y(&pd.series[i], e, REL * e.1);
+            assert_x(&pd.series[i], d, REL * d.1);
+            // The fitted order in the legend is the report's.
+            let order = json["records"][0]["orders"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|o| o["method"] == *m)
+                .unwrap()[["peak_drift", "friction_energy", "roof_history"][k]]
+                .as_f64()
+                .unwrap();
+            assert!(
+                pd.series[i].name.contains(&format!("order {order:.2}")),
+                "{}",
+                pd.series[i].name
+            );
+        }
+        // Failed runs: a cross at its Δt (and at the cost estimated from the nearest
+        // successful Δt of the same method, ∝ 1/Δt), above every error.
+        let f = &pd.series[methods.len()];
+        assert_eq!((f.kind.as_str(), f.drawn), ("scatter", 1));
+        assert_x(f, (failed[0].dt, failed[0].dt), REL * failed[0].dt);
+        assert!(f.y[0].unwrap() > max_err && f.y[0].unwrap() <= pd.y.max);
+        let near = rows
+            .iter()
+            .filter(|r| r.method == "delacruz" && r.errors.is_some())
+            .min_by(|a, b| {
+                (a.dt / failed[0].dt)
+                    .ln()
+                    .abs()
+                    .total_cmp(&(b.dt / failed[0].dt).ln().abs())
+            })
+            .unwrap();
+        let est = near.cpu.unwrap() * near.dt / failed[0].dt;
+        let fw = &pw.series[methods.len()];
+        assert_eq!(fw.drawn, 1);
+        assert_x(fw, (est, est), 2.0 * REL * est);
+        assert!(fw.y[0].unwrap() > max_err);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
