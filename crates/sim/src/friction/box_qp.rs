@@ -530,9 +530,9 @@ impl BoxQp {
         for q in 0..k {
             let i = self.idx[q];
             let mut r = b[i];
-            for j in 0..m {
+            for (j, &fj) in f.iter().enumerate() {
                 if mask & (1 << j) == 0 {
-                    r -= self.w[i + j * m] * f[j];
+                    r -= self.w[i + j * m] * fj;
                 }
             }
             self.rhs[q] = r;
@@ -588,8 +588,8 @@ impl BoxQp {
             col[..k].fill(0.0);
             col[q] = 1.0;
             cholesky_solve(&a, k, k, &mut col[..k]);
-            for p in 0..k {
-                self.inv[base + p * k + q] = col[p];
+            for (p, &c) in col[..k].iter().enumerate() {
+                self.inv[base + p * k + q] = c;
             }
         }
         // Symmetrise: the inverse of a symmetric matrix is symmetric; round-off is not.
