@@ -194,3 +194,34 @@ fn compare_bare_needs_plot_and_bad_folder_is_an_error() {
     assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Without a font the PNG cannot be drawn: the error names the variable or the paths
+/// looked at, and nothing is written.
+#[test]
+fn missing_font_is_a_clear_error_before_any_output() {
+    let dir = scratch("figsim", "nofont");
+    let plot = dir.join("figs");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_slipload"))
+        .args([
+            "simulate",
+            "--duration",
+            "1",
+            "--plot",
+            plot.to_str().unwrap(),
+        ])
+        .current_dir(common::root())
+        .env("SLIPLOAD_FONT", dir.join("no-such-font.ttf"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("SLIPLOAD_FONT") && err.contains("no-such-font.ttf"),
+        "{err}"
+    );
+    assert!(
+        !plot.exists(),
+        "no output folder for a run that cannot draw"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -113,6 +113,8 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
     if args.methods.is_empty() || args.dts.is_empty() {
         anyhow::bail!("--methods and --dts need at least one value each");
     }
+    // The figures need a font: find out before the study runs.
+    crate::plot::raster::check_fonts()?;
     let mut scenes = Vec::new();
     if let Some(count) = args.synthetic {
         for i in 0..count {

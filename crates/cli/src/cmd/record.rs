@@ -217,6 +217,9 @@ fn info_table(rows: &[InfoRow]) -> String {
 }
 
 fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
+    if args.plot.is_some() {
+        crate::plot::raster::check_fonts()?;
+    }
     let periods = args.periods.clone().unwrap_or_else(default_periods);
     if periods.is_empty() {
         bail!("--periods needs at least one period");

@@ -44,6 +44,9 @@ pub struct SimulateArgs {
 
 /// Runs `slipload simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
+    if args.plot.is_some() {
+        crate::plot::raster::check_fonts()?;
+    }
     let mut scene = args
         .scene
         .load(args.history.is_some() || args.plot.is_some())?;

@@ -50,6 +50,7 @@ pub fn write_all(
     out: &Outcome,
     bare: Option<&Outcome>,
 ) -> anyhow::Result<Vec<PathBuf>> {
+    crate::plot::raster::check_fonts()?;
     let h = out
         .history
         .as_ref()

@@ -373,7 +373,7 @@ impl Series {
     pub fn hline(name: impl Into<String>, y: f64, x0: f64, x1: f64) -> Self {
         let mut s = Self::new(name, vec![x0, x1], vec![y, y], Kind::Line);
         s.dashed = true;
-        s.width = style::REF_WIDTH.max(1) + 1;
+        s.width = style::REF_WIDTH;
         s
     }
 

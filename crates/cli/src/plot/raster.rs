@@ -31,6 +31,12 @@ fn fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
         .map_err(|e| anyhow!(e))
 }
 
+/// Fails with the message `save` would give when no font can be found: commands call it
+/// before any work or output, so a missing font costs nothing and leaves no files.
+pub fn check_fonts() -> anyhow::Result<()> {
+    fonts().map(|_| ())
+}
+
 fn font_files() -> anyhow::Result<Vec<PathBuf>> {
     if let Some(p) = std::env::var_os(FONT_ENV) {
         let p = PathBuf::from(p);

@@ -251,7 +251,7 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
             Kind::Area => {
                 let top = &tops[area_i];
                 area_i += 1;
-                draw_band(&mut chart, &s.x, top, base, color, sx, sy)?;
+                draw_band(&mut chart, &s.x, top, base, color, (sx, sy), width_px)?;
                 base = Some(top);
             }
             Kind::Line => draw_line(&mut chart, &s.x, &s.y, s, color, sx, sy, width_px)?,
@@ -412,8 +412,8 @@ fn draw_band(
     top: &[f64],
     base: Option<&Vec<f64>>,
     color: RGBColor,
-    sx: Scale,
-    sy: Scale,
+    (sx, sy): (Scale, Scale),
+    width_px: usize,
 ) -> anyhow::Result<()> {
     let ok = |x: f64, y: f64| sx.accepts(x) && sy.accepts(y);
     let upper: Vec<(f64, f64)> = xs
@@ -435,7 +435,6 @@ fn draw_band(
             .map(|x| (*x, if sy.log { sy.lo } else { 0.0 }))
             .collect(),
     };
-    let width_px = 2000;
     let upper = thin(&upper, sx, width_px);
     let lower = thin(&lower, sx, width_px);
     let mut poly = upper.clone();

@@ -36,8 +36,8 @@ pub const CHAR_WIDTH: f64 = 0.60;
 
 /// Data line width, px.
 pub const LINE_WIDTH: u32 = 2;
-/// Reference-line (threshold, target) width, px.
-pub const REF_WIDTH: u32 = 1;
+/// Reference-line (threshold, target) width, px (dashed).
+pub const REF_WIDTH: u32 = 2;
 /// Marker radius, px.
 pub const MARKER_RADIUS: i32 = 4;
 /// Dash and gap of dashed lines, px.
