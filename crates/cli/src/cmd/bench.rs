@@ -16,6 +16,7 @@ use crate::cmd::study_args::load_study;
 use anyhow::{Context, bail};
 use serde::Serialize;
 use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
+use slipload_sim::accuracy::{median, observed_order};
 use slipload_sim::{MethodName, Plan, Scene, SceneOverrides, run_plan};
 use std::path::Path;
 use std::time::Instant;
@@ -152,18 +153,6 @@ fn seconds_per_run(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<f64>
         times.push((clock.now() - t) / batch as f64);
     }
     Ok(median(&mut times))
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n == 0 {
-        f64::NAN
-    } else if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 /// A building JSON with every dissipator mass set to 0 (the m′ = 0 design model).
@@ -568,15 +557,10 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Least-squares slope of log y on log x.
+/// Least-squares slope of log y on log x (the accuracy study's order fit; NaN if undefined).
 fn slope(x: &[f64], y: &[f64]) -> f64 {
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
-    let n = lx.len() as f64;
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
-    sxy / sxx
+    let pts: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+    observed_order(&pts).unwrap_or(f64::NAN)
 }
 
 fn print_table(figs: &[Figure], clock_note: &str) {
