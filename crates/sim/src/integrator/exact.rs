@@ -7,11 +7,14 @@
 //! each mode set (which contacts stick, which slide and which way) is one autonomous linear
 //! system ẏ = A y, and y(t + τ) = exp(Aτ) y(t) exactly (Van Loan 1978). The exponential is
 //! applied as its Taylor series p_k = Aᵏy/k!, truncated at [`TAYLOR_TERMS`] terms on
-//! substeps with ρτ ≤ [`SUBSTEP_PHASE`], where ρ bounds the spectral radius of every mode's
-//! A (|λ| ≤ ν_max + ω_max for the quadratic eigenproblem, ν and ω the extreme Rayleigh
-//! quotients of C and K over M, plus k′/c′ of damped massless dissipators and the harmonic
-//! ω): the remainder is below (ρτ)²²/22! ≈ 2e-28 of the state, i.e. the series is exact
-//! to round-off. The same polynomial gives every quantity inside the substep as a scalar
+//! substeps with ρτ ≤ [`SUBSTEP_PHASE`], where ρ bounds the spectral radius of the current
+//! mode set's A (|λ| ≤ ν_max + ω_max for the quadratic eigenproblem, ν and ω² the extreme
+//! Rayleigh quotients of C and K over M on the subspace the stuck dissipators leave free,
+//! plus k′/c′ of sliding damped massless dissipators and the harmonic ω): the remainder is
+//! below (ρτ)²²/22! ≈ 2e-28 of the state, i.e. the series is exact to round-off. The bound
+//! is per mode set because a stuck dissipator with mass moves with its floor: the
+//! dissipator's own fast mode (k′/m′ on a stiff brace, hundreds of rad/s) rings only while
+//! it slides, and the substeps of the stuck phases follow the frame's modes. The same polynomial gives every quantity inside the substep as a scalar
 //! polynomial in τ, which is where events and peaks are located. Mode matrices are cached
 //! per mode set ([`MODE_CACHE`] entries, cleared when full); no matrix exponential is formed.
 //!
@@ -166,6 +169,30 @@ struct ModeOps {
     /// Stuck contacts with a DOF and the projector data (M⁻¹B_S, W_S⁻¹) for them.
     stuck: Vec<usize>,
     proj: Option<(DMatrix<f64>, DMatrix<f64>)>,
+    /// Substep data, filled when the mode set enters the cache ([`Model::prepare`]).
+    stepping: Stepping,
+}
+
+/// What the substeps of one mode set reuse: its longest substep, the regular grid of an
+/// output step and the propagator over one grid interval, and every scanned function
+/// (events, then storey drifts) as Taylor rows so its coefficients are one product with y.
+#[derive(Default)]
+struct Stepping {
+    /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
+    delta_max: f64,
+    /// Substeps per output step, m = ⌈Δt/δ_max⌉, and the grid interval h = Δt/m.
+    per_step: usize,
+    h: f64,
+    /// exp(A h) (its Taylor polynomial, exact to round-off as above), dim × dim.
+    phi: DMatrix<f64>,
+    /// exp(A x h) at the Gauss–Legendre nodes x (energies), empty when energies are off.
+    phi_nodes: Vec<DMatrix<f64>>,
+    /// Column f·K + k: the k-th Taylor row r Aᵏ/k! of scanned function f, so that its
+    /// coefficient on τᵏ over a substep from y is that column · y.
+    rows: DMatrix<f64>,
+    /// Column f: Σ_{k≥1} |r Aᵏ/k!| hᵏ componentwise, so that |g(τ) − g(0)| ≤ Σ_j |y_j|·tail_j
+    /// for τ ≤ h (every term is nonnegative and grows with τ).
+    tails: DMatrix<f64>,
 }
 
 /// Run-wide model data.
@@ -173,6 +200,8 @@ struct Model<'a> {
     plan: &'a Plan,
     lay: Layout,
     minv: DMatrix<f64>,
+    /// L⁻¹ of the mass matrix's Cholesky factor M = LLᵀ.
+    linv: DMatrix<f64>,
     mr: DVector<f64>,
     /// Contact columns of B.
     bcols: Vec<DVector<f64>>,
@@ -212,15 +241,19 @@ impl<'a> Model<'a> {
             i_one: next + 4,
             dim: next + 5,
         };
-        let minv = plan
+        let chol = plan
             .mass
             .clone()
             .cholesky()
             .ok_or_else(|| SimError::NotPositiveDefinite {
                 what: "mass matrix".into(),
                 hint: " (exact needs every DOF to carry mass)".into(),
-            })?
-            .inverse();
+            })?;
+        let minv = chol.inverse();
+        let linv = chol
+            .l()
+            .try_inverse()
+            .expect("the Cholesky factor of an SPD matrix is invertible");
         let mr = plan.mass_influence();
         let bm = plan.contact_matrix();
         let bcols = (0..plan.contacts.len())
@@ -242,6 +275,7 @@ impl<'a> Model<'a> {
             plan,
             lay,
             minv,
+            linv,
             mr,
             bcols,
             f0,
@@ -251,43 +285,65 @@ impl<'a> Model<'a> {
 
     /// Bound ρ on |λ(A)| for every mode set: ν_max + ω_max over all-stuck elastic
     /// braces (constraints only lower both), k′/c′ of sliding damped massless
-    /// dissipators, and the harmonic frequency.
-    fn spectral_bound(&self) -> Result<f64, SimError> {
+    /// dissipators, and the harmonic frequency. Used for the run's substep budget.
+    fn spectral_bound(&self) -> f64 {
+        self.bound(None)
+    }
+
+    /// Bound ρ on |λ(A)| of one mode set. A nonzero eigenvalue λ of the mode matrix has
+    /// an eigenvector u in null(B_Sᵀ) (the stuck dissipators with mass move with their
+    /// floors) with λ²uᴴMu + λuᴴC_mu + uᴴK_mu = 0, so |λ| ≤ ν + ω with ν, ω² the largest
+    /// Rayleigh quotients of C_m and K_m over M on that subspace (M-orthogonal projection
+    /// keeps the quotients of the unconstrained matrices there). K_m, C_m carry the braces
+    /// of stuck massless dissipators; a sliding damped one adds its rate k′/c′. `None`:
+    /// the bound over every mode set (no constraints, every brace, every rate).
+    fn bound(&self, modes: Option<&[Mode]>) -> f64 {
         let plan = self.plan;
         let mut k = plan.stiffness.clone();
         let mut c = plan.damping.clone();
         let mut maxwell: f64 = 0.0;
-        for ct in &plan.contacts {
-            if ct.kind == ContactKind::Epp {
-                add_link(&mut k, ct.floor, ct.below, ct.brace_stiffness);
-                add_link(&mut c, ct.floor, ct.below, ct.brace_damping);
-                if ct.brace_damping > 0.0 {
-                    maxwell = maxwell.max(ct.brace_stiffness / ct.brace_damping);
+        let mut stuck_cols = Vec::new();
+        for (i, ct) in plan.contacts.iter().enumerate() {
+            let mode = modes.map(|m| m[i]);
+            match ct.kind {
+                ContactKind::Epp => {
+                    if matches!(mode, None | Some(Mode::Stuck)) {
+                        add_link(&mut k, ct.floor, ct.below, ct.brace_stiffness);
+                        add_link(&mut c, ct.floor, ct.below, ct.brace_damping);
+                    }
+                    if !matches!(mode, Some(Mode::Stuck)) && ct.brace_damping > 0.0 {
+                        maxwell = maxwell.max(ct.brace_stiffness / ct.brace_damping);
+                    }
+                }
+                ContactKind::Dof { .. } => {
+                    // A contact with F⁻ = F⁺ never sticks (its force is fixed).
+                    if mode == Some(Mode::Stuck) && ct.lower != ct.upper {
+                        stuck_cols.push(&self.linv * &self.bcols[i]);
+                    }
                 }
             }
         }
-        let l = plan
-            .mass
-            .clone()
-            .cholesky()
-            .ok_or_else(|| SimError::NotPositiveDefinite {
-                what: "mass matrix".into(),
-                hint: String::new(),
-            })?
-            .l();
-        let linv = l
-            .try_inverse()
-            .expect("the Cholesky factor of an SPD matrix is invertible");
+        let n = self.lay.n;
+        // Orthogonal projector onto the complement of L⁻¹B_S (y = Lᵀu coordinates).
+        let proj = if stuck_cols.is_empty() {
+            None
+        } else {
+            let d = DMatrix::from_columns(&stuck_cols);
+            let dtd = d.transpose() * &d;
+            dtd.cholesky()
+                .map(|ch| DMatrix::identity(n, n) - &d * ch.solve(&d.transpose()))
+        };
         let top = |m: &DMatrix<f64>| -> f64 {
-            let s = &linv * m * linv.transpose();
+            let mut s = &self.linv * m * self.linv.transpose();
+            if let Some(p) = &proj {
+                s = p * s * p;
+            }
             let s = (&s + s.transpose()) * 0.5;
             s.symmetric_eigenvalues()
                 .iter()
                 .fold(0.0f64, |a, &x| a.max(x.abs()))
         };
-        let omega = top(&k).sqrt();
-        let nu = top(&c);
-        Ok(omega + nu + maxwell + self.omega_h)
+        top(&k).sqrt() + top(&c) + maxwell + self.omega_h
     }
 
     fn build(&self, modes: &[Mode]) -> ModeOps {
@@ -443,7 +499,81 @@ impl<'a> Model<'a> {
             events,
             stuck,
             proj,
+            stepping: Stepping::default(),
         }
+    }
+}
+
+impl Model<'_> {
+    /// Fills the substep data of a mode set (once per mode set, when it is cached).
+    fn prepare(&self, ops: &mut ModeOps, modes: &[Mode]) {
+        let dim = self.lay.dim;
+        let nf = self.plan.floors;
+        let dt = self.plan.method.dt;
+        let rho = self.bound(Some(modes));
+        let delta_max = if rho > 0.0 {
+            SUBSTEP_PHASE / rho
+        } else {
+            f64::INFINITY
+        };
+        let per_step = if delta_max.is_finite() {
+            ((dt / delta_max) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+        } else {
+            1
+        };
+        let h = dt / per_step as f64;
+        // exp(A τ) by Horner on its Taylor polynomial.
+        let expm = |tau: f64| {
+            let at = &ops.a * tau;
+            let mut phi = DMatrix::identity(dim, dim);
+            for k in (1..TAYLOR_TERMS).rev() {
+                phi = DMatrix::identity(dim, dim) + &at * phi / k as f64;
+            }
+            phi
+        };
+        let phi = expm(h);
+        let phi_nodes = if self.plan.outputs.energies {
+            GAUSS.iter().map(|(x, _)| expm(x * h)).collect()
+        } else {
+            Vec::new()
+        };
+        let nfun = ops.events.len() + nf;
+        let mut rows = DMatrix::zeros(dim, nfun * TAYLOR_TERMS);
+        let mut tails = DMatrix::zeros(dim, nfun);
+        let at = ops.a.transpose();
+        for f in 0..nfun {
+            let mut r = if f < ops.events.len() {
+                ops.events[f].row.clone()
+            } else {
+                let i = f - ops.events.len();
+                let mut d = DVector::zeros(dim);
+                d[i] = 1.0;
+                if i > 0 {
+                    d[i - 1] = -1.0;
+                }
+                d
+            };
+            let mut hk = 1.0;
+            for k in 0..TAYLOR_TERMS {
+                if k > 0 {
+                    r = &at * r / k as f64;
+                    hk *= h;
+                    for j in 0..dim {
+                        tails[(j, f)] += r[j].abs() * hk;
+                    }
+                }
+                rows.set_column(f * TAYLOR_TERMS + k, &r);
+            }
+        }
+        ops.stepping = Stepping {
+            delta_max,
+            per_step,
+            h,
+            phi,
+            phi_nodes,
+            rows,
+            tails,
+        };
     }
 }
 
@@ -562,7 +692,9 @@ impl Cache {
         if self.modes.len() >= MODE_CACHE {
             self.modes.clear();
         }
-        let ops = Rc::new(model.build(key));
+        let mut ops = model.build(key);
+        model.prepare(&mut ops, key);
+        let ops = Rc::new(ops);
         self.modes.insert(key.to_vec(), Rc::clone(&ops));
         ops
     }
@@ -769,7 +901,7 @@ impl Integrator for Exact {
         let (n, dim) = (lay.n, lay.dim);
         let nf = plan.floors;
         let nc = plan.contacts.len();
-        let rho = model.spectral_bound()?;
+        let rho = model.spectral_bound();
         let delta_max = if rho > 0.0 {
             SUBSTEP_PHASE / rho
         } else {
@@ -932,6 +1064,7 @@ impl Integrator for Exact {
         let mut coef = vec![0.0; TAYLOR_TERMS];
         let mut dcoef = vec![0.0; TAYLOR_TERMS];
         let mut ynode = DVector::zeros(dim);
+        let mut yabs = DVector::zeros(dim);
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
             out.copy_from(&p[TAYLOR_TERMS - 1]);
             for k in (0..TAYLOR_TERMS - 1).rev() {
@@ -947,30 +1080,66 @@ impl Integrator for Exact {
         for step in 0..plan.steps {
             let t_step_end = (step + 1) as f64 * dt;
             let mut ta = step as f64 * dt;
+            let step_start = ta;
             while ta < t_step_end {
                 let tb = piece_end(plan, ta, t_step_end);
                 set_inputs(&mut y, ta, tb);
+                // A piece that is a whole output step runs on its mode set's grid
+                // ta + j·h (h = Δt/m): a substep from one grid point to the next is one
+                // product with the cached exp(A h), and its scans start with a bound that
+                // rules most of them out. Substeps off the grid (after an event, or in
+                // pieces cut by record samples) sum the Taylor series for their length.
+                let whole = ta == step_start && tb == t_step_end;
                 let mut t = ta;
+                let mut on_grid = whole.then_some(0usize);
                 while t < tb {
+                    let st = &ops.stepping;
                     let rem = tb - t;
-                    let len = if rem <= delta_max * (1.0 + 1e-12) {
-                        rem
+                    // (length, grid index reached, whether it starts on the grid)
+                    let (len, reach, regular) = if whole {
+                        let m = st.per_step;
+                        match on_grid {
+                            Some(j) => (st.h, Some(j + 1), true),
+                            None => {
+                                let j = (((t - ta) / st.h).floor() as usize + 1).min(m);
+                                let tn = if j >= m { tb } else { ta + j as f64 * st.h };
+                                if tn <= t {
+                                    // Already at that grid point (to round-off).
+                                    on_grid = Some(j);
+                                    t = tn;
+                                    continue;
+                                }
+                                (tn - t, Some(j), false)
+                            }
+                        }
                     } else {
-                        rem / (rem / delta_max).ceil()
+                        let len = if rem <= st.delta_max * (1.0 + 1e-12) {
+                            rem
+                        } else {
+                            rem / (rem / st.delta_max).ceil()
+                        };
+                        (len, None, false)
                     };
-                    // Taylor coefficients p_k = Aᵏ y / k!.
-                    p[0].copy_from(&y);
-                    for k in 1..TAYLOR_TERMS {
-                        let (lo, hi) = p.split_at_mut(k);
-                        hi[0].gemv(1.0 / k as f64, &ops.a, &lo[k - 1], 0.0);
+                    let fast = regular;
+                    if fast {
+                        for (a, b) in yabs.iter_mut().zip(y.iter()) {
+                            *a = b.abs();
+                        }
                     }
+                    let coefs = |f: usize, y: &DVector<f64>, coef: &mut [f64]| {
+                        for (k, c) in coef.iter_mut().enumerate() {
+                            *c = st.rows.column(f * TAYLOR_TERMS + k).dot(y);
+                        }
+                    };
                     // Earliest event.
                     let mut tau_end = len;
                     let mut fired: Option<usize> = None;
                     for (e, ef) in ops.events.iter().enumerate() {
-                        for k in 0..TAYLOR_TERMS {
-                            coef[k] = ef.row.dot(&p[k]);
+                        if fast && ef.row.dot(&y) >= st.tails.column(e).dot(&yabs) {
+                            // g(τ) ≥ g(0) − Σ|y_j|·tail_j ≥ 0 on the whole substep.
+                            continue;
                         }
+                        coefs(e, &y, &mut coef);
                         let thr = match ef.scale {
                             Scale::Force(b) => GRAZE_REL * b,
                             Scale::Velocity => GRAZE_REL * v_ref,
@@ -983,11 +1152,15 @@ impl Integrator for Exact {
                         }
                     }
                     // Drift extrema inside (0, tau_end].
+                    let nev = ops.events.len();
                     for i in 0..nf {
-                        for k in 0..TAYLOR_TERMS {
-                            let below = if i == 0 { 0.0 } else { p[k][i - 1] };
-                            coef[k] = p[k][i] - below;
+                        if fast {
+                            let d0 = y[i] - if i == 0 { 0.0 } else { y[i - 1] };
+                            if d0.abs() + st.tails.column(nev + i).dot(&yabs) <= cont_drift[i] {
+                                continue;
+                            }
                         }
+                        coefs(nev + i, &y, &mut coef);
                         let mut bound = 0.0;
                         let mut tk = 1.0;
                         for c in &coef {
@@ -1013,27 +1186,63 @@ impl Integrator for Exact {
                         }
                         cont_drift[i] = cont_drift[i].max(poly(&coef, tau_end).0.abs());
                     }
-                    // Energies: Gauss–Legendre on [0, tau_end].
-                    if energies {
-                        let mut di = 0.0;
-                        let mut dv = 0.0;
-                        let mut df = 0.0;
-                        for (x, w) in GAUSS {
-                            eval(&p, x * tau_end, &mut ynode);
-                            let (pi, pv, pf) = model.powers(&ops, &ynode);
-                            di += w * pi;
-                            dv += w * pv;
-                            df += w * pf;
+                    if fast && fired.is_none() {
+                        if energies {
+                            let mut di = 0.0;
+                            let mut dv = 0.0;
+                            let mut df = 0.0;
+                            for ((_, w), phi) in GAUSS.iter().zip(&st.phi_nodes) {
+                                ynode.gemv(1.0, phi, &y, 0.0);
+                                let (pi, pv, pf) = model.powers(&ops, &ynode);
+                                di += w * pi;
+                                dv += w * pv;
+                                df += w * pf;
+                            }
+                            integ.input += di * len;
+                            integ.viscous += dv * len;
+                            integ.friction += df * len;
                         }
-                        integ.input += di * tau_end;
-                        integ.viscous += dv * tau_end;
-                        integ.friction += df * tau_end;
-                    }
-                    eval(&p, tau_end, &mut y);
-                    if fired.is_none() && len == rem {
-                        t = tb;
+                        ynode.gemv(1.0, &st.phi, &y, 0.0);
+                        std::mem::swap(&mut y, &mut ynode);
                     } else {
-                        t += tau_end;
+                        // Taylor coefficients p_k = Aᵏ y / k!.
+                        p[0].copy_from(&y);
+                        for k in 1..TAYLOR_TERMS {
+                            let (lo, hi) = p.split_at_mut(k);
+                            hi[0].gemv(1.0 / k as f64, &ops.a, &lo[k - 1], 0.0);
+                        }
+                        // Energies: Gauss–Legendre on [0, tau_end].
+                        if energies {
+                            let mut di = 0.0;
+                            let mut dv = 0.0;
+                            let mut df = 0.0;
+                            for (x, w) in GAUSS {
+                                eval(&p, x * tau_end, &mut ynode);
+                                let (pi, pv, pf) = model.powers(&ops, &ynode);
+                                di += w * pi;
+                                dv += w * pv;
+                                df += w * pf;
+                            }
+                            integ.input += di * tau_end;
+                            integ.viscous += dv * tau_end;
+                            integ.friction += df * tau_end;
+                        }
+                        eval(&p, tau_end, &mut y);
+                    }
+                    match (fired, reach) {
+                        (None, Some(j)) => {
+                            t = if j >= st.per_step {
+                                tb
+                            } else {
+                                ta + j as f64 * st.h
+                            };
+                            on_grid = Some(j);
+                        }
+                        (None, None) if len == rem => t = tb,
+                        _ => {
+                            t += tau_end;
+                            on_grid = None;
+                        }
                     }
                     for i in 0..nf {
                         v_ref = v_ref.max(y[n + i].abs());
@@ -1154,10 +1363,14 @@ impl Integrator for Exact {
             // dynamics keep it only to round-off, which accumulates over many substeps on
             // very stiff braces (the kinetic energy removed, ~ε², goes to friction).
             if ops.proj.is_some() {
-                let (ke_before, _) = model.stored(&y);
-                project(&mut y, &ops);
-                let (ke_after, _) = model.stored(&y);
-                integ.friction += ke_before - ke_after;
+                if energies {
+                    let (ke_before, _) = model.stored(&y);
+                    project(&mut y, &ops);
+                    let (ke_after, _) = model.stored(&y);
+                    integ.friction += ke_before - ke_after;
+                } else {
+                    project(&mut y, &ops);
+                }
             }
             observe(&mut peaks, &ops, &y, &mut acc);
             let mut e_row = None;
