@@ -1,5 +1,16 @@
 //! The `slipload` command-line program.
 
+/// `print!` to standard output that ends the process quietly (exit 0) when the reader has
+/// gone (`slipload … | head`), instead of panicking on the broken pipe.
+macro_rules! out {
+    ($($arg:tt)*) => { $crate::output::stdout_fmt(format_args!($($arg)*), false) };
+}
+
+/// `println!` with the broken-pipe handling of [`out!`].
+macro_rules! outln {
+    ($($arg:tt)*) => { $crate::output::stdout_fmt(format_args!($($arg)*), true) };
+}
+
 mod cmd;
 mod figures;
 mod html;

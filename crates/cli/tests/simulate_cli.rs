@@ -156,3 +156,23 @@ fn bad_config_fails_with_file_and_field() {
     assert!(String::from_utf8_lossy(&missing.stderr).contains("no-such-file.json"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A reader that stops early (`slipload simulate | head`) ends the program quietly: exit
+/// status 0 and no panic message, instead of Rust's default panic on a broken pipe.
+#[test]
+fn closed_stdout_pipe_is_not_a_panic() {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slipload"))
+        .args(["simulate", "--format", "json"])
+        .current_dir(common::root())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close the read end before the simulation has printed anything.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+}

@@ -188,6 +188,6 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
     let drawn = median.as_ref().unwrap_or(&reports[0]);
     crate::figures::accuracy::write(&args.out, &name, drawn)
         .with_context(|| format!("drawing the accuracy figures into {}", args.out.display()))?;
-    print!("{md}");
+    out!("{md}");
     Ok(())
 }

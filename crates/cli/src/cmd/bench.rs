@@ -551,7 +551,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
 
     let clock_note = "process CPU time";
     match args.format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&figs)?),
+        Format::Json => outln!("{}", serde_json::to_string_pretty(&figs)?),
         Format::Table => print_table(&figs, clock_note),
     }
     Ok(())
@@ -564,11 +564,11 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
 }
 
 fn print_table(figs: &[Figure], clock_note: &str) {
-    println!("slipload bench — single thread unless stated; times are {clock_note}, medians");
+    outln!("slipload bench — single thread unless stated; times are {clock_note}, medians");
     let mut last = "";
     for f in figs {
         if f.case != last {
-            println!("\n{}", f.case);
+            outln!("\n{}", f.case);
             last = &f.case;
         }
         let target = f.target.as_deref().unwrap_or("");
@@ -577,7 +577,7 @@ fn print_table(figs: &[Figure], clock_note: &str) {
             Some(false) => "NOT MET",
             None => "",
         };
-        println!(
+        outln!(
             "  {:<52} {:>12} {:<4} {:>12} {}",
             f.metric,
             fmt(f.value),
@@ -599,6 +599,6 @@ fn memory_probe(seconds: f64) -> anyhow::Result<()> {
     )?;
     std::hint::black_box(run_plan(&p)?);
     let kb = peak_rss_kb().context("reading VmHWM from /proc/self/status")?;
-    println!("{kb}");
+    outln!("{kb}");
     Ok(())
 }

@@ -14,6 +14,6 @@ pub struct ExplainArgs {
 pub fn run(args: ExplainArgs) -> anyhow::Result<()> {
     let scene = args.scene.load(false)?;
     let plan = Plan::compile(&scene)?;
-    print!("{}", plan.explain());
+    out!("{}", plan.explain());
     Ok(())
 }

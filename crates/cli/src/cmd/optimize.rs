@@ -199,13 +199,13 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         .iter()
         .map(|f| format!("{}", f + 1))
         .collect();
-    println!(
+    outln!(
         "{}: {} over {} records",
         study.name,
         study.objective.label(),
         nr
     );
-    println!(
+    outln!(
         "sweep: {} designs; refine ({}): {} designs ({} replayed from the refine journal); {} simulations in {:.1} s",
         r.sweep_designs,
         method.as_str(),
@@ -214,13 +214,13 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         report.manifest.tasks() + r.simulations,
         started.elapsed().as_secs_f64()
     );
-    println!(
+    outln!(
         "optimal slip loads, floors {} (kN): {}",
         floors.join(" / "),
         kn(&r.optimum_loads)
     );
     let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
-    println!(
+    outln!(
         "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",
         r.optimum.f,
         r.bare_objective,
@@ -229,25 +229,25 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         r.file_objective,
         pct(r.optimum.f, r.file_objective)
     );
-    println!(
+    outln!(
         "check at reference accuracy ({} at {} × dt): finalists' ranking {}",
         study.config.fidelity.check_method.as_str(),
         study.config.fidelity.check_dt_factor,
         if r.ranking_held { "held" } else { "changed" }
     );
     for f in &r.finalists {
-        println!(
+        outln!(
             "  {} kN: objective {:.6} (sweep {:.6})",
             kn(&f.slip_loads_n),
             f.f_check,
             f.f_sweep
         );
     }
-    println!(
+    outln!(
         "wrote {}/{{designs.csv,responses.csv,refine.csv,optimum.json,candidates.json,design-table.csv,design-table.md,design-table.json}}",
         args.out.display()
     );
-    println!(
+    outln!(
         "figures (SVG, PNG, CSV): {}/{{{}}}",
         args.out.display(),
         written.join(",")

@@ -178,7 +178,7 @@ fn info(args: &InfoArgs) -> anyhow::Result<()> {
         InfoFormat::Json => serde_json::to_string_pretty(&rows).context("formatting JSON")? + "\n",
         InfoFormat::Table => info_table(&rows),
     };
-    print!("{text}");
+    out!("{text}");
     Ok(())
 }
 
@@ -310,7 +310,7 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
         let names: Vec<String> = records.iter().map(|(n, _)| short_name(n)).collect();
         crate::figures::spectra::write(stem, &names, &spectra, args.damping, target.as_ref())?;
     }
-    print!("{text}");
+    out!("{text}");
     Ok(())
 }
 

@@ -71,8 +71,8 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         eprintln!("wrote {} files to {}", files.len(), dir.display());
     }
     match args.format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&out.response)?),
-        Format::Table => print!("{}", table(&scene.name, &out)),
+        Format::Json => outln!("{}", serde_json::to_string_pretty(&out.response)?),
+        Format::Table => out!("{}", table(&scene.name, &out)),
     }
     Ok(())
 }

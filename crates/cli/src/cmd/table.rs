@@ -49,7 +49,7 @@ pub fn run(args: TableArgs) -> anyhow::Result<()> {
     )?;
     let md = to_markdown(&cells, &floors, &study.objective.label());
     write_atomic(&args.out.join("family.md"), md.as_bytes())?;
-    print!("{}\n\n{md}", study.name);
-    println!("wrote {}/{{family.csv,family.md}}", args.out.display());
+    out!("{}\n\n{md}", study.name);
+    outln!("wrote {}/{{family.csv,family.md}}", args.out.display());
     Ok(())
 }
