@@ -169,14 +169,13 @@ struct ModeOps {
     /// Stuck contacts with a DOF and the projector data (M⁻¹B_S, W_S⁻¹) for them.
     stuck: Vec<usize>,
     proj: Option<(DMatrix<f64>, DMatrix<f64>)>,
-    /// Substep data, filled when the mode set enters the cache ([`Model::prepare`]).
-    stepping: Stepping,
+    /// Substep data ([`Model::prepare`]); `None` for a mode set only used to decide.
+    stepping: Option<Stepping>,
 }
 
 /// What the substeps of one mode set reuse: its longest substep, the regular grid of an
 /// output step and the propagator over one grid interval, and every scanned function
 /// (events, then storey drifts) as Taylor rows so its coefficients are one product with y.
-#[derive(Default)]
 struct Stepping {
     /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
     delta_max: f64,
@@ -499,7 +498,7 @@ impl<'a> Model<'a> {
             events,
             stuck,
             proj,
-            stepping: Stepping::default(),
+            stepping: None,
         }
     }
 }
@@ -522,12 +521,18 @@ impl Model<'_> {
             1
         };
         let h = dt / per_step as f64;
-        // exp(A τ) by Horner on its Taylor polynomial.
+        // exp(A τ) = Σ_k (Aᵏ/k!) τᵏ, the powers formed once for every τ.
+        let mut powers = Vec::with_capacity(TAYLOR_TERMS);
+        powers.push(DMatrix::identity(dim, dim));
+        for k in 1..TAYLOR_TERMS {
+            let next = &ops.a * &powers[k - 1] / k as f64;
+            powers.push(next);
+        }
         let expm = |tau: f64| {
-            let at = &ops.a * tau;
-            let mut phi = DMatrix::identity(dim, dim);
-            for k in (1..TAYLOR_TERMS).rev() {
-                phi = DMatrix::identity(dim, dim) + &at * phi / k as f64;
+            let mut phi = powers[TAYLOR_TERMS - 1].clone();
+            for pk in powers[..TAYLOR_TERMS - 1].iter().rev() {
+                phi *= tau;
+                phi += pk;
             }
             phi
         };
@@ -565,7 +570,7 @@ impl Model<'_> {
                 rows.set_column(f * TAYLOR_TERMS + k, &r);
             }
         }
-        ops.stepping = Stepping {
+        ops.stepping = Some(Stepping {
             delta_max,
             per_step,
             h,
@@ -573,7 +578,7 @@ impl Model<'_> {
             phi_nodes,
             rows,
             tails,
-        };
+        });
     }
 }
 
@@ -651,14 +656,44 @@ fn illinois(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     if fa.abs() < fb.abs() { a } else { b }
 }
 
+/// Σ_{k≥1} |c_k| lenᵏ, and the degree past which the terms add less than 1e-17 of
+/// Σ_k |c_k| lenᵏ (the polynomial is scanned without them: a change far below round-off of
+/// its values, and of its roots below the root finder's 1e-15 s).
+fn tail_and_degree(c: &[f64], len: f64) -> (f64, usize) {
+    let mut terms = [0.0; TAYLOR_TERMS];
+    let mut tail = 0.0;
+    let mut tk = 1.0;
+    for (k, ck) in c.iter().enumerate() {
+        terms[k] = ck.abs() * tk;
+        if k > 0 {
+            tail += terms[k];
+        }
+        tk *= len;
+    }
+    let total = tail + terms[0];
+    let mut dropped = 0.0;
+    let mut degree = c.len() - 1;
+    while degree > 1 && dropped + terms[degree] < 1e-17 * total {
+        dropped += terms[degree];
+        degree -= 1;
+    }
+    (tail, degree)
+}
+
 /// First τ in (0, len] where the polynomial goes below −thr (a crossing, or a minimum
 /// between scan points), located at its zero (or at −thr when it started in (−thr, 0)).
 fn first_crossing(c: &[f64], len: f64, thr: f64) -> Option<f64> {
-    let (g0, _) = poly(c, 0.0);
+    let g0 = c[0];
     if g0 < -thr {
         // Already past: a contact recovering from round-off after its switch.
         return None;
     }
+    // g(τ) ≥ g(0) − Σ_{k≥1} |c_k| τᵏ: nothing to find when that stays nonnegative.
+    let (tail, degree) = tail_and_degree(c, len);
+    if g0 - tail >= 0.0 {
+        return None;
+    }
+    let c = &c[..=degree];
     let mut prev = (0.0, poly(c, 0.0));
     for j in 1..=SCAN_POINTS {
         let t = len * j as f64 / SCAN_POINTS as f64;
@@ -685,15 +720,26 @@ struct Cache {
 }
 
 impl Cache {
+    /// The mode set's operators, with their substep data.
     fn get(&mut self, model: &Model, key: &[Mode]) -> Rc<ModeOps> {
-        if let Some(m) = self.modes.get(key) {
+        self.fetch(model, key, true)
+    }
+
+    /// The mode set's operators; `stepping` asks for the substep data as well (a mode set
+    /// only used by [`Model::decide`] needs its force rows alone).
+    fn fetch(&mut self, model: &Model, key: &[Mode], stepping: bool) -> Rc<ModeOps> {
+        if let Some(m) = self.modes.get(key)
+            && (m.stepping.is_some() || !stepping)
+        {
             return Rc::clone(m);
         }
         if self.modes.len() >= MODE_CACHE {
             self.modes.clear();
         }
         let mut ops = model.build(key);
-        model.prepare(&mut ops, key);
+        if stepping {
+            model.prepare(&mut ops, key);
+        }
         let ops = Rc::new(ops);
         self.modes.insert(key.to_vec(), Rc::clone(&ops));
         ops
@@ -760,6 +806,7 @@ impl Model<'_> {
     /// (all other contacts keep `modes`).
     fn decide(
         &self,
+        cache: &mut Cache,
         y: &DVector<f64>,
         modes: &mut [Mode],
         decide: &[usize],
@@ -776,7 +823,7 @@ impl Model<'_> {
         for &c in decide {
             tmp[c] = Mode::Upper; // placeholder: its force is excluded below
         }
-        let ops = self.build(&tmp);
+        let ops = cache.fetch(self, &tmp, false);
         let mut g = &self.f0 * y;
         for (c, _) in plan.contacts.iter().enumerate() {
             if decide.contains(&c) {
@@ -992,10 +1039,10 @@ impl Integrator for Exact {
                 }
             }
         }
-        model.decide(&y, &mut modes, &to_decide, 0.0)?;
         let mut cache = Cache {
             modes: HashMap::new(),
         };
+        model.decide(&mut cache, &y, &mut modes, &to_decide, 0.0)?;
         let mut ops = cache.get(&model, &modes);
         let mut integ = Integrals::default();
         let (k0, s0) = model.stored(&y);
@@ -1062,7 +1109,7 @@ impl Integrator for Exact {
         // Work buffers.
         let mut p: Vec<DVector<f64>> = vec![DVector::zeros(dim); TAYLOR_TERMS];
         let mut coef = vec![0.0; TAYLOR_TERMS];
-        let mut dcoef = vec![0.0; TAYLOR_TERMS];
+        let mut dcoef = [0.0; TAYLOR_TERMS];
         let mut ynode = DVector::zeros(dim);
         let mut yabs = DVector::zeros(dim);
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
@@ -1093,7 +1140,10 @@ impl Integrator for Exact {
                 let mut t = ta;
                 let mut on_grid = whole.then_some(0usize);
                 while t < tb {
-                    let st = &ops.stepping;
+                    let st = ops
+                        .stepping
+                        .as_ref()
+                        .expect("the run's mode sets come prepared from the cache");
                     let rem = tb - t;
                     // (length, grid index reached, whether it starts on the grid)
                     let (len, reach, regular) = if whole {
@@ -1161,30 +1211,26 @@ impl Integrator for Exact {
                             }
                         }
                         coefs(nev + i, &y, &mut coef);
-                        let mut bound = 0.0;
-                        let mut tk = 1.0;
-                        for c in &coef {
-                            bound += c.abs() * tk;
-                            tk *= tau_end;
-                        }
-                        if bound <= cont_drift[i] {
+                        let (tail, degree) = tail_and_degree(&coef, tau_end);
+                        if coef[0].abs() + tail <= cont_drift[i] {
                             continue;
                         }
-                        for k in 1..TAYLOR_TERMS {
+                        let coef = &coef[..=degree];
+                        for k in 1..=degree {
                             dcoef[k - 1] = coef[k] * k as f64;
                         }
-                        dcoef[TAYLOR_TERMS - 1] = 0.0;
-                        let mut prev = (0.0, poly(&dcoef, 0.0).0);
+                        let dcoef = &dcoef[..degree];
+                        let mut prev = (0.0, poly(dcoef, 0.0).0);
                         for j in 1..=SCAN_POINTS {
                             let tj = tau_end * j as f64 / SCAN_POINTS as f64;
-                            let dj = poly(&dcoef, tj).0;
+                            let dj = poly(dcoef, tj).0;
                             if (prev.1 > 0.0 && dj < 0.0) || (prev.1 < 0.0 && dj > 0.0) {
-                                let tm = illinois(|t| poly(&dcoef, t).0, prev.0, tj);
-                                cont_drift[i] = cont_drift[i].max(poly(&coef, tm).0.abs());
+                                let tm = illinois(|t| poly(dcoef, t).0, prev.0, tj);
+                                cont_drift[i] = cont_drift[i].max(poly(coef, tm).0.abs());
                             }
                             prev = (tj, dj);
                         }
-                        cont_drift[i] = cont_drift[i].max(poly(&coef, tau_end).0.abs());
+                        cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
                     }
                     if fast && fired.is_none() {
                         if energies {
@@ -1344,7 +1390,7 @@ impl Integrator for Exact {
                             }
                         }
                         decide.sort_unstable();
-                        model.decide(&y, &mut modes, &decide, t)?;
+                        model.decide(&mut cache, &y, &mut modes, &decide, t)?;
                     }
                     for c in 0..nc {
                         if (modes[c] == Mode::Stuck) != (old[c] == Mode::Stuck) {
@@ -1352,10 +1398,14 @@ impl Integrator for Exact {
                         }
                     }
                     ops = cache.get(&model, &modes);
-                    let (ke_before, _) = model.stored(&y);
-                    project(&mut y, &ops);
-                    let (ke_after, _) = model.stored(&y);
-                    integ.friction += ke_before - ke_after;
+                    if energies {
+                        let (ke_before, _) = model.stored(&y);
+                        project(&mut y, &ops);
+                        let (ke_after, _) = model.stored(&y);
+                        integ.friction += ke_before - ke_after;
+                    } else {
+                        project(&mut y, &ops);
+                    }
                 }
                 ta = tb;
             }
