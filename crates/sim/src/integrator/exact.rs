@@ -74,6 +74,7 @@ use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
+use std::cell::{Cell, OnceCell};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -169,19 +170,23 @@ struct ModeOps {
     /// Stuck contacts with a DOF and the projector data (M⁻¹B_S, W_S⁻¹) for them.
     stuck: Vec<usize>,
     proj: Option<(DMatrix<f64>, DMatrix<f64>)>,
-    /// Substep data ([`Model::prepare`]); `None` for a mode set only used to decide.
-    stepping: Option<Stepping>,
-}
-
-/// What the substeps of one mode set reuse: its longest substep, the regular grid of an
-/// output step and the propagator over one grid interval, and every scanned function
-/// (events, then storey drifts) as Taylor rows so its coefficients are one product with y.
-struct Stepping {
     /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
     delta_max: f64,
     /// Substeps per output step, m = ⌈Δt/δ_max⌉, and the grid interval h = Δt/m.
     per_step: usize,
     h: f64,
+    /// Grid substeps taken with the Taylor sums so far, and how many make the mode set
+    /// worth its propagators (forming them costs about dim + scanned functions substeps).
+    uses: Cell<usize>,
+    prepare_after: usize,
+    /// The grid propagators ([`Model::stepping`]), formed once the mode set has lasted.
+    stepping: OnceCell<Stepping>,
+}
+
+/// What the grid substeps of one long-lived mode set reuse: the propagator over one grid
+/// interval, and every scanned function (events, then storey drifts) as Taylor rows so its
+/// coefficients are one product with y.
+struct Stepping {
     /// exp(A h) (its Taylor polynomial, exact to round-off as above), dim × dim.
     phi: DMatrix<f64>,
     /// exp(A x h) at the Gauss–Legendre nodes x (energies), empty when energies are off.
@@ -490,25 +495,7 @@ impl<'a> Model<'a> {
                 }),
             }
         }
-        ModeOps {
-            a,
-            force,
-            slip_rate,
-            xdot,
-            events,
-            stuck,
-            proj,
-            stepping: None,
-        }
-    }
-}
-
-impl Model<'_> {
-    /// Fills the substep data of a mode set (once per mode set, when it is cached).
-    fn prepare(&self, ops: &mut ModeOps, modes: &[Mode]) {
-        let dim = self.lay.dim;
-        let nf = self.plan.floors;
-        let dt = self.plan.method.dt;
+        let dt = plan.method.dt;
         let rho = self.bound(Some(modes));
         let delta_max = if rho > 0.0 {
             SUBSTEP_PHASE / rho
@@ -520,7 +507,31 @@ impl Model<'_> {
         } else {
             1
         };
-        let h = dt / per_step as f64;
+        let prepare_after = dim + events.len() + plan.floors;
+        ModeOps {
+            a,
+            force,
+            slip_rate,
+            xdot,
+            events,
+            stuck,
+            proj,
+            delta_max,
+            per_step,
+            h: dt / per_step as f64,
+            uses: Cell::new(0),
+            prepare_after,
+            stepping: OnceCell::new(),
+        }
+    }
+}
+
+impl Model<'_> {
+    /// The grid propagators of a mode set.
+    fn stepping(&self, ops: &ModeOps) -> Stepping {
+        let dim = self.lay.dim;
+        let nf = self.plan.floors;
+        let h = ops.h;
         // exp(A τ) = Σ_k (Aᵏ/k!) τᵏ, the powers formed once for every τ.
         let mut powers = Vec::with_capacity(TAYLOR_TERMS);
         powers.push(DMatrix::identity(dim, dim));
@@ -570,15 +581,12 @@ impl Model<'_> {
                 rows.set_column(f * TAYLOR_TERMS + k, &r);
             }
         }
-        ops.stepping = Some(Stepping {
-            delta_max,
-            per_step,
-            h,
+        Stepping {
             phi,
             phi_nodes,
             rows,
             tails,
-        });
+        }
     }
 }
 
@@ -599,6 +607,15 @@ fn row_dot(m: &DMatrix<f64>, r: usize, y: &DVector<f64>) -> f64 {
         s += m[(r, j)] * yj;
     }
     s
+}
+
+/// The Taylor coefficients p_k = Aᵏ y / k! of exp(Aτ) y.
+fn taylor(a: &DMatrix<f64>, y: &DVector<f64>, p: &mut [DVector<f64>]) {
+    p[0].copy_from(y);
+    for k in 1..p.len() {
+        let (lo, hi) = p.split_at_mut(k);
+        hi[0].gemv(1.0 / k as f64, a, &lo[k - 1], 0.0);
+    }
 }
 
 /// Scalar polynomial Σ c_k τᵏ and its derivative.
@@ -720,27 +737,14 @@ struct Cache {
 }
 
 impl Cache {
-    /// The mode set's operators, with their substep data.
     fn get(&mut self, model: &Model, key: &[Mode]) -> Rc<ModeOps> {
-        self.fetch(model, key, true)
-    }
-
-    /// The mode set's operators; `stepping` asks for the substep data as well (a mode set
-    /// only used by [`Model::decide`] needs its force rows alone).
-    fn fetch(&mut self, model: &Model, key: &[Mode], stepping: bool) -> Rc<ModeOps> {
-        if let Some(m) = self.modes.get(key)
-            && (m.stepping.is_some() || !stepping)
-        {
+        if let Some(m) = self.modes.get(key) {
             return Rc::clone(m);
         }
         if self.modes.len() >= MODE_CACHE {
             self.modes.clear();
         }
-        let mut ops = model.build(key);
-        if stepping {
-            model.prepare(&mut ops, key);
-        }
-        let ops = Rc::new(ops);
+        let ops = Rc::new(model.build(key));
         self.modes.insert(key.to_vec(), Rc::clone(&ops));
         ops
     }
@@ -823,7 +827,7 @@ impl Model<'_> {
         for &c in decide {
             tmp[c] = Mode::Upper; // placeholder: its force is excluded below
         }
-        let ops = cache.fetch(self, &tmp, false);
+        let ops = cache.get(self, &tmp);
         let mut g = &self.f0 * y;
         for (c, _) in plan.contacts.iter().enumerate() {
             if decide.contains(&c) {
@@ -1140,19 +1144,15 @@ impl Integrator for Exact {
                 let mut t = ta;
                 let mut on_grid = whole.then_some(0usize);
                 while t < tb {
-                    let st = ops
-                        .stepping
-                        .as_ref()
-                        .expect("the run's mode sets come prepared from the cache");
                     let rem = tb - t;
                     // (length, grid index reached, whether it starts on the grid)
                     let (len, reach, regular) = if whole {
-                        let m = st.per_step;
+                        let m = ops.per_step;
                         match on_grid {
-                            Some(j) => (st.h, Some(j + 1), true),
+                            Some(j) => (ops.h, Some(j + 1), true),
                             None => {
-                                let j = (((t - ta) / st.h).floor() as usize + 1).min(m);
-                                let tn = if j >= m { tb } else { ta + j as f64 * st.h };
+                                let j = (((t - ta) / ops.h).floor() as usize + 1).min(m);
+                                let tn = if j >= m { tb } else { ta + j as f64 * ops.h };
                                 if tn <= t {
                                     // Already at that grid point (to round-off).
                                     on_grid = Some(j);
@@ -1163,33 +1163,60 @@ impl Integrator for Exact {
                             }
                         }
                     } else {
-                        let len = if rem <= st.delta_max * (1.0 + 1e-12) {
+                        let len = if rem <= ops.delta_max * (1.0 + 1e-12) {
                             rem
                         } else {
-                            rem / (rem / st.delta_max).ceil()
+                            rem / (rem / ops.delta_max).ceil()
                         };
                         (len, None, false)
                     };
-                    let fast = regular;
-                    if fast {
+                    // A grid substep of a mode set that has lasted uses its propagators;
+                    // any other substep sums the Taylor coefficients p_k = Aᵏ y / k!.
+                    if regular && ops.stepping.get().is_none() {
+                        let u = ops.uses.get() + 1;
+                        ops.uses.set(u);
+                        if u > ops.prepare_after {
+                            let _ = ops.stepping.set(model.stepping(&ops));
+                        }
+                    }
+                    let fast = if regular { ops.stepping.get() } else { None };
+                    if fast.is_some() {
                         for (a, b) in yabs.iter_mut().zip(y.iter()) {
                             *a = b.abs();
                         }
+                    } else {
+                        taylor(&ops.a, &y, &mut p);
                     }
-                    let coefs = |f: usize, y: &DVector<f64>, coef: &mut [f64]| {
-                        for (k, c) in coef.iter_mut().enumerate() {
-                            *c = st.rows.column(f * TAYLOR_TERMS + k).dot(y);
-                        }
-                    };
+                    let nev = ops.events.len();
+                    let coefs =
+                        |f: usize, y: &DVector<f64>, p: &[DVector<f64>], coef: &mut [f64]| {
+                            if let Some(st) = fast {
+                                for (k, c) in coef.iter_mut().enumerate() {
+                                    *c = st.rows.column(f * TAYLOR_TERMS + k).dot(y);
+                                }
+                            } else if f < nev {
+                                let row = &ops.events[f].row;
+                                for (c, pk) in coef.iter_mut().zip(p) {
+                                    *c = row.dot(pk);
+                                }
+                            } else {
+                                let i = f - nev;
+                                for (c, pk) in coef.iter_mut().zip(p) {
+                                    *c = pk[i] - if i == 0 { 0.0 } else { pk[i - 1] };
+                                }
+                            }
+                        };
                     // Earliest event.
                     let mut tau_end = len;
                     let mut fired: Option<usize> = None;
                     for (e, ef) in ops.events.iter().enumerate() {
-                        if fast && ef.row.dot(&y) >= st.tails.column(e).dot(&yabs) {
+                        if let Some(st) = fast
+                            && ef.row.dot(&y) >= st.tails.column(e).dot(&yabs)
+                        {
                             // g(τ) ≥ g(0) − Σ|y_j|·tail_j ≥ 0 on the whole substep.
                             continue;
                         }
-                        coefs(e, &y, &mut coef);
+                        coefs(e, &y, &p, &mut coef);
                         let thr = match ef.scale {
                             Scale::Force(b) => GRAZE_REL * b,
                             Scale::Velocity => GRAZE_REL * v_ref,
@@ -1202,15 +1229,14 @@ impl Integrator for Exact {
                         }
                     }
                     // Drift extrema inside (0, tau_end].
-                    let nev = ops.events.len();
                     for i in 0..nf {
-                        if fast {
+                        if let Some(st) = fast {
                             let d0 = y[i] - if i == 0 { 0.0 } else { y[i - 1] };
                             if d0.abs() + st.tails.column(nev + i).dot(&yabs) <= cont_drift[i] {
                                 continue;
                             }
                         }
-                        coefs(nev + i, &y, &mut coef);
+                        coefs(nev + i, &y, &p, &mut coef);
                         let (tail, degree) = tail_and_degree(&coef, tau_end);
                         if coef[0].abs() + tail <= cont_drift[i] {
                             continue;
@@ -1232,7 +1258,7 @@ impl Integrator for Exact {
                         }
                         cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
                     }
-                    if fast && fired.is_none() {
+                    if let (Some(st), None) = (fast, fired) {
                         if energies {
                             let mut di = 0.0;
                             let mut dv = 0.0;
@@ -1251,11 +1277,9 @@ impl Integrator for Exact {
                         ynode.gemv(1.0, &st.phi, &y, 0.0);
                         std::mem::swap(&mut y, &mut ynode);
                     } else {
-                        // Taylor coefficients p_k = Aᵏ y / k!.
-                        p[0].copy_from(&y);
-                        for k in 1..TAYLOR_TERMS {
-                            let (lo, hi) = p.split_at_mut(k);
-                            hi[0].gemv(1.0 / k as f64, &ops.a, &lo[k - 1], 0.0);
+                        if fast.is_some() {
+                            // A grid substep cut by an event.
+                            taylor(&ops.a, &y, &mut p);
                         }
                         // Energies: Gauss–Legendre on [0, tau_end].
                         if energies {
@@ -1277,10 +1301,10 @@ impl Integrator for Exact {
                     }
                     match (fired, reach) {
                         (None, Some(j)) => {
-                            t = if j >= st.per_step {
+                            t = if j >= ops.per_step {
                                 tb
                             } else {
-                                ta + j as f64 * st.h
+                                ta + j as f64 * ops.h
                             };
                             on_grid = Some(j);
                         }
