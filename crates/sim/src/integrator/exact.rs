@@ -14,9 +14,19 @@
 //! below (ρτ)²²/22! ≈ 2e-28 of the state, i.e. the series is exact to round-off. The bound
 //! is per mode set because a stuck dissipator with mass moves with its floor: the
 //! dissipator's own fast mode (k′/m′ on a stiff brace, hundreds of rad/s) rings only while
-//! it slides, and the substeps of the stuck phases follow the frame's modes. The same polynomial gives every quantity inside the substep as a scalar
-//! polynomial in τ, which is where events and peaks are located. Mode matrices are cached
-//! per mode set ([`MODE_CACHE`] entries, cleared when full); no matrix exponential is formed.
+//! it slides, and the substeps of the stuck phases follow the frame's modes. The same
+//! polynomial gives every quantity inside the substep as a scalar polynomial in τ, which is
+//! where events and peaks are located. Mode matrices are cached per mode set
+//! ([`MODE_CACHE`] entries, cleared when full).
+//!
+//! Whole output steps run on the mode set's grid h = Δt/m (m = ⌈Δt ρ/[`SUBSTEP_PHASE`]⌉).
+//! Once a mode set has lasted as many grid substeps as forming them costs, it caches the
+//! same truncated series as a matrix, exp(A h) (and exp(A x h) at the Gauss nodes when
+//! energies are asked for), and each scanned function's Taylor rows r Aᵏ/k!; a grid
+//! substep is then one matrix–vector product, and a scan starts from the bound
+//! |g(τ) − g(0)| ≤ Σ_j |y_j| Σ_{k≥1} |r Aᵏ/k!|_j hᵏ, which rules out most of them. Substeps
+//! off the grid (after an event, or where record samples cut an output step) sum the
+//! series for their own length.
 //!
 //! Contacts:
 //! - a dissipator with mass that sticks is the constraint w = 0, imposed by a Lagrange
@@ -790,6 +800,29 @@ impl Model<'_> {
         (input, viscous, friction)
     }
 
+    /// Adds the input, viscous and friction work over a substep of length `len` by
+    /// 8-point Gauss–Legendre; `node(g, out)` writes the state at the g-th node.
+    fn integrate_powers(
+        &self,
+        ops: &ModeOps,
+        integ: &mut Integrals,
+        len: f64,
+        ynode: &mut DVector<f64>,
+        mut node: impl FnMut(usize, &mut DVector<f64>),
+    ) {
+        let (mut di, mut dv, mut df) = (0.0, 0.0, 0.0);
+        for (g, (_, w)) in GAUSS.iter().enumerate() {
+            node(g, ynode);
+            let (pi, pv, pf) = self.powers(ops, ynode);
+            di += w * pi;
+            dv += w * pv;
+            df += w * pf;
+        }
+        integ.input += di * len;
+        integ.viscous += dv * len;
+        integ.friction += df * len;
+    }
+
     fn stored(&self, y: &DVector<f64>) -> (f64, f64) {
         let plan = self.plan;
         let n = self.lay.n;
@@ -1260,19 +1293,9 @@ impl Integrator for Exact {
                     }
                     if let (Some(st), None) = (fast, fired) {
                         if energies {
-                            let mut di = 0.0;
-                            let mut dv = 0.0;
-                            let mut df = 0.0;
-                            for ((_, w), phi) in GAUSS.iter().zip(&st.phi_nodes) {
-                                ynode.gemv(1.0, phi, &y, 0.0);
-                                let (pi, pv, pf) = model.powers(&ops, &ynode);
-                                di += w * pi;
-                                dv += w * pv;
-                                df += w * pf;
-                            }
-                            integ.input += di * len;
-                            integ.viscous += dv * len;
-                            integ.friction += df * len;
+                            model.integrate_powers(&ops, &mut integ, len, &mut ynode, |g, out| {
+                                out.gemv(1.0, &st.phi_nodes[g], &y, 0.0);
+                            });
                         }
                         ynode.gemv(1.0, &st.phi, &y, 0.0);
                         std::mem::swap(&mut y, &mut ynode);
@@ -1281,21 +1304,16 @@ impl Integrator for Exact {
                             // A grid substep cut by an event.
                             taylor(&ops.a, &y, &mut p);
                         }
-                        // Energies: Gauss–Legendre on [0, tau_end].
                         if energies {
-                            let mut di = 0.0;
-                            let mut dv = 0.0;
-                            let mut df = 0.0;
-                            for (x, w) in GAUSS {
-                                eval(&p, x * tau_end, &mut ynode);
-                                let (pi, pv, pf) = model.powers(&ops, &ynode);
-                                di += w * pi;
-                                dv += w * pv;
-                                df += w * pf;
-                            }
-                            integ.input += di * tau_end;
-                            integ.viscous += dv * tau_end;
-                            integ.friction += df * tau_end;
+                            model.integrate_powers(
+                                &ops,
+                                &mut integ,
+                                tau_end,
+                                &mut ynode,
+                                |g, out| {
+                                    eval(&p, GAUSS[g].0 * tau_end, out);
+                                },
+                            );
                         }
                         eval(&p, tau_end, &mut y);
                     }
