@@ -1101,6 +1101,18 @@ impl Integrator for Exact {
             }
         };
         project(&mut y, &ops);
+        // The same during the run, the kinetic energy it removes booked as friction work
+        // (when energies are asked for).
+        let project_counted = |y: &mut DVector<f64>, ops: &ModeOps, integ: &mut Integrals| {
+            if energies {
+                let (ke_before, _) = model.stored(y);
+                project(y, ops);
+                let (ke_after, _) = model.stored(y);
+                integ.friction += ke_before - ke_after;
+            } else {
+                project(y, ops);
+            }
+        };
 
         let mut peaks = Peaks::new(nf);
         let mut cont_drift = vec![0.0; nf];
@@ -1440,14 +1452,7 @@ impl Integrator for Exact {
                         }
                     }
                     ops = cache.get(&model, &modes);
-                    if energies {
-                        let (ke_before, _) = model.stored(&y);
-                        project(&mut y, &ops);
-                        let (ke_after, _) = model.stored(&y);
-                        integ.friction += ke_before - ke_after;
-                    } else {
-                        project(&mut y, &ops);
-                    }
+                    project_counted(&mut y, &ops, &mut integ);
                 }
                 ta = tb;
             }
@@ -1455,14 +1460,7 @@ impl Integrator for Exact {
             // dynamics keep it only to round-off, which accumulates over many substeps on
             // very stiff braces (the kinetic energy removed, ~ε², goes to friction).
             if ops.proj.is_some() {
-                if energies {
-                    let (ke_before, _) = model.stored(&y);
-                    project(&mut y, &ops);
-                    let (ke_after, _) = model.stored(&y);
-                    integ.friction += ke_before - ke_after;
-                } else {
-                    project(&mut y, &ops);
-                }
+                project_counted(&mut y, &ops, &mut integ);
             }
             observe(&mut peaks, &ops, &y, &mut acc);
             let mut e_row = None;
