@@ -22,7 +22,10 @@ Timing scope, the same for both programs: the time-stepping only, from a built m
 the peaks. slipload: `cpu_seconds` of `slipload simulate --format json` (wall-clock of the
 integrator run, plan compiled and record read beforehand; peaks only, no energies or
 histories), run as target/release/slipload after `cargo build --release -p slipload` (the
-binary `cargo run --release --` runs), one process per run. OpenSees: wall-clock of the
+binary `cargo run --release --` runs), one process per repeat that runs the simulation
+SLIPLOAD_REPEAT times and reports the median (`simulate --repeat`: a warm process, as
+OpenSees is timed in its warm interpreter; a fresh process started right after an
+OpenSees analysis runs with cold caches). OpenSees: wall-clock of the
 analysis set-up commands (constraints, numberer, system, test, algorithm, integrator,
 analysis) plus one `analyze(steps, dt)` call, with an EnvelopeElement recorder of the
 storey drifts (its peaks); the model (nodes, materials, elements, the record as a Path
@@ -53,6 +56,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 VENV = ROOT / "scripts" / ".venv"
+# Simulations per slipload process in the timed repeats (their median is the figure).
+SLIPLOAD_REPEAT = 5
 REQUIREMENTS = ["openseespy==3.7.1.2", "numpy"]
 G = 9.80665  # m/s² per g, as slipload-motion's G
 BUILDING = ROOT / "configs" / "benchmark-3story-massless.json"
@@ -550,7 +555,7 @@ def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats
             times[a].append(t["run_s"])
             build.append(t["build_s"])
             env_peaks = env_peaks or t["peak_drift"]
-        sl_times.append(slipload_run(binary, scene)["cpu_seconds"])
+        sl_times.append(slipload_run(binary, scene, "--repeat", str(SLIPLOAD_REPEAT))["cpu_seconds"])
         print(f"  repeat {r + 1}/{repeats}: OpenSees " + ", ".join(f"{a} {times[a][-1] * 1e3:.2f} ms" for a in algorithms) + f"; slipload {sl_times[-1] * 1e3:.3f} ms", file=sys.stderr)
     med = {a: statistics.median(v) for a, v in times.items()}
     sl_med = statistics.median(sl_times)
@@ -777,7 +782,7 @@ def main() -> None:
             "integrator": f"Newmark gamma = {GAMMA}, beta = {BETA}",
             "opensees_model": "floors as nodes with their masses, storey springs (zeroLength, Elastic) for the frame, zeroLength ElasticPP (k', yield μN/k') for each brace + damper, rayleigh α on the masses and β K_initial on the frame springs only (-doRayleigh 0 on the EPP elements), the record as a Path series in a UniformExcitation, initial accelerations -a_g(0)",
             "opensees_solution": f"Newton (current tangent: exact for the piecewise-linear EPP response, so it ends in a finite number of steps once the yielding pattern is right), test NormDispIncr {TEST_TOL:g} m, at most {TEST_MAX_ITER} iterations, system {args.system}; ModifiedNewton timed as a variant",
-            "timing": "wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json` (the integrator run: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
+            "timing": f"wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json --repeat {SLIPLOAD_REPEAT}` (the integrator run, median of that many runs in one process: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
         },
         "model_checks": checks,
         "cases": cases,

@@ -176,3 +176,28 @@ fn closed_stdout_pipe_is_not_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(out.status.success(), "{:?}: {stderr}", out.status);
 }
+
+/// `--repeat N` (for timing scripts) runs the same simulation N times in one process: the
+/// answers are those of one run, `cpu_seconds` is a positive median.
+#[test]
+fn repeat_reports_the_same_answers_with_a_median_time() {
+    let json = |extra: &[&str]| {
+        let mut args = vec!["simulate", "--format", "json", "--duration", "3"];
+        args.extend_from_slice(extra);
+        let out = slipload(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let once = json(&[]);
+    let thrice = json(&["--repeat", "3"]);
+    assert_eq!(once["peak_drift"], thrice["peak_drift"]);
+    assert_eq!(once["energy"], thrice["energy"]);
+    assert!(thrice["cpu_seconds"].as_f64().unwrap() > 0.0);
+    let bad = slipload(&["simulate", "--repeat", "0"]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--repeat"));
+}
