@@ -84,7 +84,7 @@ use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
-use std::cell::{Cell, OnceCell};
+use std::cell::{Cell, OnceCell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -177,9 +177,9 @@ struct ModeOps {
     /// ẋ′ rows of elastic–perfectly plastic contacts (by contact; zero rows for others).
     xdot: DMatrix<f64>,
     events: Vec<EventFn>,
-    /// Stuck contacts with a DOF and the projector data (M⁻¹B_S, W_S⁻¹) for them.
-    stuck: Vec<usize>,
-    proj: Option<(DMatrix<f64>, DMatrix<f64>)>,
+    /// The M-orthogonal projector of the velocities onto B_Sᵀv = 0 for the stuck contacts
+    /// with a DOF, I − M⁻¹B_S W_S⁻¹B_Sᵀ (n × n); `None` when none sticks.
+    proj: Option<DMatrix<f64>>,
     /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
     delta_max: f64,
     /// Substeps per output step, m = ⌈Δt/δ_max⌉, and the grid interval h = Δt/m.
@@ -436,7 +436,8 @@ impl<'a> Model<'a> {
             for (k, &c) in stuck.iter().enumerate() {
                 force.set_row(c, &lam.row(k));
             }
-            (minv_f - &y * &lam, Some((y, wsinv)))
+            let proj = DMatrix::identity(n, n) - &y * &wsinv * bs.transpose();
+            (minv_f - &y * &lam, Some(proj))
         };
         let mut a = DMatrix::zeros(dim, dim);
         for i in 0..n {
@@ -524,7 +525,6 @@ impl<'a> Model<'a> {
             slip_rate,
             xdot,
             events,
-            stuck,
             proj,
             delta_max,
             per_step,
@@ -828,8 +828,16 @@ impl Model<'_> {
         let n = self.lay.n;
         let u = y.rows(0, n);
         let v = y.rows(n, n);
-        let kinetic = 0.5 * v.dot(&(&plan.mass * v));
-        let mut strain = 0.5 * u.dot(&(&plan.stiffness * u));
+        // Quadratic forms without temporaries (called at every output step).
+        let quad = |m: &DMatrix<f64>, x: &nalgebra::DVectorView<f64>| -> f64 {
+            let mut q = 0.0;
+            for (j, xj) in x.iter().enumerate() {
+                q += xj * m.column(j).dot(x);
+            }
+            q
+        };
+        let kinetic = 0.5 * quad(&plan.mass, &v);
+        let mut strain = 0.5 * quad(&plan.stiffness, &u);
         for (c, ct) in plan.contacts.iter().enumerate() {
             if let Some(s) = self.lay.epp_slot[c] {
                 let e = y[s] - ct.below.map_or(0.0, |j| u[j]);
@@ -1089,15 +1097,12 @@ impl Integrator for Exact {
         let mut strain_prev = s0;
         // Project the initial velocities onto the stuck constraints (a no-op for
         // consistent initial states).
+        let scratch = RefCell::new(DVector::zeros(n));
         let project = |y: &mut DVector<f64>, ops: &ModeOps| {
-            if let Some((minv_bs, wsinv)) = &ops.proj {
-                let mut wv = DVector::zeros(ops.stuck.len());
-                for (k, &c) in ops.stuck.iter().enumerate() {
-                    wv[k] = model.bcols[c].dot(&y.rows(n, n));
-                }
-                let corr = minv_bs * (wsinv * wv);
-                let mut v = y.rows_mut(n, n);
-                v -= corr;
+            if let Some(p) = &ops.proj {
+                let mut v = scratch.borrow_mut();
+                v.gemv(1.0, p, &y.rows(n, n), 0.0);
+                y.rows_mut(n, n).copy_from(&*v);
             }
         };
         project(&mut y, &ops);
