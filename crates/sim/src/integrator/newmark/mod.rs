@@ -20,6 +20,8 @@
 //! α = 0 is Newmark's average acceleration, for which the energies below balance to
 //! round-off (Δt·v̄ᵀ(equation averaged over the step) is an exact identity of the method).
 
+mod fixed;
+
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -132,6 +134,40 @@ struct Link {
     k_over_kappa: f64,
 }
 
+/// The contacts as the step loops read them.
+fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
+    plan.contacts
+        .iter()
+        .enumerate()
+        .map(|(c, ct)| match ct.kind {
+            ContactKind::Dof { dof } => Link {
+                floor: ct.floor,
+                other: dof,
+                epp: false,
+                k_over_kappa: 0.0,
+            },
+            ContactKind::Epp => Link {
+                floor: ct.floor,
+                other: ct.below.unwrap_or(GROUND),
+                epp: true,
+                k_over_kappa: ct.brace_stiffness / ops.kappa[c],
+            },
+        })
+        .collect()
+}
+
+/// Dispatches a peaks-only run to the fixed-size loop of its DOF and contact counts, for
+/// the counts listed (small buildings with up to four dampers, the ten-storey building
+/// with and without dissipator DOFs); `None` for any other.
+macro_rules! fixed_dispatch {
+    ($plan:expr, $ops:expr, $links:expr; $(($n:literal, $nc:literal)),* $(,)?) => {
+        match ($ops.n, $plan.contacts.len()) {
+            $(($n, $nc) => Some(fixed::run::<$n, $nc>($plan, $ops, $links)),)*
+            _ => None,
+        }
+    };
+}
+
 impl Integrator for Newmark {
     fn name(&self) -> &'static str {
         "newmark"
@@ -143,6 +179,23 @@ impl Integrator for Newmark {
             return Err(SimError::BadTimeStep { dt });
         }
         let ops = Operators::build(plan)?;
+        if fixed::applies(plan) {
+            let links = links(plan, &ops);
+            let run = fixed_dispatch!(plan, &ops, &links;
+                (1, 0), (1, 1),
+                (2, 0), (2, 1), (2, 2),
+                (3, 0), (3, 1), (3, 2), (3, 3),
+                (4, 0), (4, 1), (4, 2), (4, 3), (4, 4),
+                (5, 0), (5, 1), (5, 2), (5, 3), (5, 4),
+                (6, 0), (6, 1), (6, 2), (6, 3), (6, 4),
+                (7, 0), (7, 1), (7, 2), (7, 3), (7, 4),
+                (8, 0), (8, 1), (8, 2), (8, 3), (8, 4),
+                (10, 10), (20, 10),
+            );
+            if let Some(outcome) = run {
+                return outcome;
+            }
+        }
         match ops.n {
             1 => run_loop::<1>(plan, &ops),
             2 => run_loop::<2>(plan, &ops),
@@ -176,25 +229,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let msum: f64 = ops.mr.iter().sum();
     let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
     let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
-    let links: Vec<Link> = plan
-        .contacts
-        .iter()
-        .enumerate()
-        .map(|(c, ct)| match ct.kind {
-            ContactKind::Dof { dof } => Link {
-                floor: ct.floor,
-                other: dof,
-                epp: false,
-                k_over_kappa: 0.0,
-            },
-            ContactKind::Epp => Link {
-                floor: ct.floor,
-                other: ct.below.unwrap_or(GROUND),
-                epp: true,
-                k_over_kappa: ct.brace_stiffness / ops.kappa[c],
-            },
-        })
-        .collect();
+    let links = links(plan, ops);
     // Flat operators: Q column-major n×2n, G column-major n×nc, W symmetric nc×nc.
     let qm = &ops.q.as_slice()[..2 * n * n];
     let h = &ops.h.as_slice()[..n];

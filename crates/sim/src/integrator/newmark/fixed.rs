@@ -1,0 +1,352 @@
+//! The peaks-only step loop of `newmark` for a compile-time DOF count `N` and contact
+//! count `NC`.
+//!
+//! Same step as the general loop in the parent module — the same operators and
+//! predictors, the products summed in another order (round-off apart, the same numbers) —
+//! with every vector and operator a fixed-size array, so the products unroll and nothing
+//! is bounds-checked, and with the
+//! friction QP answered from its stick/slip pattern ([`PatternQp`]) before the general
+//! active-set solver is asked. It records peaks only: runs that ask for energies or
+//! histories take the general loop, which the `peaks_only_loop` tests hold it equal to.
+
+// Index loops over compile-time sizes read as the formulas they compute, and unroll.
+#![allow(clippy::needless_range_loop)]
+
+use super::{GROUND, Link, Operators};
+use crate::error::SimError;
+use crate::friction::BoxQp;
+use crate::friction::box_qp::Bound;
+use crate::friction::pattern::PatternQp;
+use crate::integrator::state::{EppState, base_shear, initial_state};
+use crate::plan::Plan;
+use crate::response::{Diagnostics, Outcome, Peaks};
+
+/// Fixed-size copies of the run's operators.
+struct Ops<const N: usize, const NC: usize> {
+    /// Columns of −A⁻¹K and −A⁻¹C.
+    qu: [[f64; N]; N],
+    qv: [[f64; N]; N],
+    /// A⁻¹ M r.
+    h: [f64; N],
+    /// A⁻¹ e(force floor) (zeros without a harmonic force).
+    hp: [f64; N],
+    /// Columns of (1+α) A⁻¹ B.
+    g: [[f64; N]; NC],
+    /// M r.
+    mr: [f64; N],
+}
+
+impl<const N: usize, const NC: usize> Ops<N, NC> {
+    fn new(ops: &Operators) -> Ops<N, NC> {
+        let mut o = Ops {
+            qu: [[0.0; N]; N],
+            qv: [[0.0; N]; N],
+            h: [0.0; N],
+            hp: [0.0; N],
+            g: [[0.0; N]; NC],
+            mr: [0.0; N],
+        };
+        for j in 0..N {
+            for i in 0..N {
+                o.qu[j][i] = ops.q[(i, j)];
+                o.qv[j][i] = ops.q[(i, N + j)];
+            }
+        }
+        for c in 0..NC {
+            for i in 0..N {
+                o.g[c][i] = ops.g[(i, c)];
+            }
+        }
+        o.h.copy_from_slice(ops.h.as_slice());
+        if let Some((_, hp)) = &ops.hp {
+            o.hp.copy_from_slice(hp.as_slice());
+        }
+        o.mr.copy_from_slice(ops.mr.as_slice());
+        o
+    }
+}
+
+/// Whether the fixed loop can run `plan`: peaks only, every contact with a finite box of
+/// positive width (the pattern solver's premise).
+pub(super) fn applies(plan: &Plan) -> bool {
+    !plan.outputs.energies
+        && !plan.outputs.histories
+        && plan
+            .contacts
+            .iter()
+            .all(|c| c.lower.is_finite() && c.upper.is_finite() && c.lower < c.upper)
+}
+
+/// Runs the peaks-only loop for `N` DOFs and `NC` contacts (the caller matched them).
+pub(super) fn run<const N: usize, const NC: usize>(
+    plan: &Plan,
+    ops: &Operators,
+    links: &[Link],
+) -> Result<Outcome, SimError> {
+    debug_assert!(ops.n == N && plan.contacts.len() == NC && links.len() == NC);
+    let o = Ops::<N, NC>::new(ops);
+    let dt = plan.method.dt;
+    let nf = plan.floors;
+    let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
+    let c_u = (0.5 - beta) * dt * dt;
+    let c_v = (1.0 - gamma) * dt;
+    let gdt = gamma * dt;
+    let bdt2 = beta * dt * dt;
+    let bg = beta * dt / gamma;
+    let msum: f64 = ops.mr.iter().sum();
+    let mut lo = [0.0; NC];
+    let mut hi = [0.0; NC];
+    let mut link = [Link {
+        floor: 0,
+        other: GROUND,
+        epp: false,
+        k_over_kappa: 0.0,
+    }; NC];
+    for c in 0..NC {
+        lo[c] = plan.contacts[c].lower;
+        hi[c] = plan.contacts[c].upper;
+        link[c] = links[c];
+    }
+    let hhht = alpha != 0.0 && NC > 0;
+    let forced = ops.hp.is_some();
+
+    let start = initial_state(plan)?;
+    let mut u = [0.0; N];
+    let mut v = [0.0; N];
+    let mut a = [0.0; N];
+    u.copy_from_slice(&start.u);
+    v.copy_from_slice(&start.v);
+    a.copy_from_slice(&start.a);
+    let mut f_old = [0.0; NC];
+    f_old.copy_from_slice(&start.f);
+    let mut epp = [EppState::default(); NC];
+    epp.copy_from_slice(&start.epp);
+    let mut stuck = [false; NC];
+    stuck.copy_from_slice(&start.stuck);
+    let mut qp = if NC > 0 {
+        Some(
+            BoxQp::new(ops.w.as_slice(), NC)
+                .map_err(|source| SimError::Friction { t: 0.0, source })?,
+        )
+    } else {
+        None
+    };
+    let mut pq = PatternQp::<NC>::new(ops.w.as_slice(), &lo, &hi);
+
+    // Peaks, by floor (the first `nf` entries).
+    let mut pk_drift = [0.0f64; N];
+    let mut pk_disp = [0.0f64; N];
+    let mut pk_acc = [0.0f64; N];
+    let mut pk_slip = [0.0f64; N];
+    let mut trans = [0u64; N];
+    let mut pk_shear = 0.0f64;
+    let observe = |u: &[f64; N],
+                   a: &[f64; N],
+                   ag: f64,
+                   pk_drift: &mut [f64; N],
+                   pk_disp: &mut [f64; N],
+                   pk_acc: &mut [f64; N]| {
+        let mut below = 0.0;
+        for i in 0..nf.min(N) {
+            // f64::max keeps the peak when the other operand is NaN, as the general
+            // loop's comparisons do.
+            pk_drift[i] = pk_drift[i].max((u[i] - below).abs());
+            below = u[i];
+            pk_disp[i] = pk_disp[i].max(u[i].abs());
+            pk_acc[i] = pk_acc[i].max((a[i] + ag).abs());
+        }
+    };
+
+    let mut ag0 = plan.ground_accel(0.0);
+    let mut ground = plan.ground_steps();
+    let mut p0 = plan.force(0.0);
+    observe(&u, &a, ag0, &mut pk_drift, &mut pk_disp, &mut pk_acc);
+    pk_shear = pk_shear.max(base_shear(&o.mr, msum, &a, ag0, p0));
+    for c in 0..NC {
+        let l = link[c];
+        let x_other = if l.epp { epp[c].u } else { u[l.other] };
+        pk_slip[l.floor] = pk_slip[l.floor].max((u[l.floor] - x_other).abs());
+    }
+
+    let mut wfree = [0.0; NC];
+    let mut f_new = [0.0; NC];
+    let mut slip_rate = [0.0; NC];
+    let mut epp_pred = [(0.0, 0.0); NC];
+    let mut qp_iter_total: u64 = 0;
+    let mut qp_iter_max: u32 = 0;
+    for step in 0..plan.steps {
+        let ag1 = ground.next_accel();
+        let p1 = if forced {
+            plan.force((step + 1) as f64 * dt)
+        } else {
+            0.0
+        };
+        let mut ut = [0.0; N];
+        let mut vt = [0.0; N];
+        for i in 0..N {
+            ut[i] = u[i] + dt * v[i] + c_u * a[i];
+            vt[i] = v[i] + c_v * a[i];
+        }
+        let (zu, zv) = if alpha == 0.0 {
+            (ut, vt)
+        } else {
+            let mut zu = [0.0; N];
+            let mut zv = [0.0; N];
+            for i in 0..N {
+                zu[i] = (1.0 + alpha) * ut[i] - alpha * u[i];
+                zv[i] = (1.0 + alpha) * vt[i] - alpha * v[i];
+            }
+            (zu, zv)
+        };
+        let load = -((1.0 + alpha) * ag1 - alpha * ag0);
+        let cp = (1.0 + alpha) * p1 - alpha * p0;
+        let ch = alpha / (1.0 + alpha);
+        // The accelerations without friction: a_free = h·load + Q z (+ force, + HHT's
+        // friction memory).
+        let (qzu, qzv) = (mul(&o.qu, &zu), mul(&o.qv, &zv));
+        let mut af = [0.0; N];
+        for i in 0..N {
+            af[i] = load * o.h[i] + (qzu[i] + qzv[i]);
+        }
+        if forced {
+            for i in 0..N {
+                af[i] += cp * o.hp[i];
+            }
+        }
+        if hhht {
+            for j in 0..NC {
+                for i in 0..N {
+                    af[i] += ch * f_old[j] * o.g[j][i];
+                }
+            }
+        }
+        if let Some(qp) = qp.as_mut() {
+            for c in 0..NC {
+                let l = link[c];
+                let vf = vt[l.floor] + gdt * af[l.floor];
+                wfree[c] = if !l.epp {
+                    vf - (vt[l.other] + gdt * af[l.other])
+                } else {
+                    let e = epp[c];
+                    let up = e.u + dt * e.v + c_u * e.a;
+                    let vp = e.v + c_v * e.a;
+                    epp_pred[c] = (up, vp);
+                    let (uj, vj, vj_end) = if l.other == GROUND {
+                        (0.0, 0.0, 0.0)
+                    } else {
+                        let j = l.other;
+                        (ut[j], vt[j], vt[j] + gdt * af[j])
+                    };
+                    let q = (up - uj) - bg * (vp - vj);
+                    vf - vj_end + l.k_over_kappa * q
+                };
+            }
+            let iterations = match pq.solve(&wfree, &mut f_new, &mut slip_rate) {
+                Some(it) => it,
+                None => {
+                    let stats = qp.solve(&wfree, &lo, &hi, &mut f_new).map_err(|source| {
+                        SimError::Friction {
+                            t: (step + 1) as f64 * dt,
+                            source,
+                        }
+                    })?;
+                    pq.adopt(|c| qp.status(c), &wfree, &f_new, &mut slip_rate);
+                    stats.iterations + 1
+                }
+            };
+            qp_iter_total += u64::from(iterations);
+            qp_iter_max = qp_iter_max.max(iterations);
+            let gf = mul(&o.g, &f_new);
+            for i in 0..N {
+                af[i] -= gf[i];
+            }
+        }
+        let mut finite = 0.0;
+        for i in 0..N {
+            let ai = af[i];
+            a[i] = ai;
+            u[i] = ut[i] + bdt2 * ai;
+            v[i] = vt[i] + gdt * ai;
+            finite += u[i];
+        }
+        if !finite.is_finite() {
+            return Err(SimError::NonFinite {
+                step: step + 1,
+                t: (step + 1) as f64 * dt,
+                hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
+            });
+        }
+        for c in 0..NC {
+            let l = link[c];
+            let x_other = if l.epp {
+                let (up, vp) = epp_pred[c];
+                let vd = v[l.floor] - slip_rate[c];
+                let ad = (vd - vp) / gdt;
+                let ud = up + bdt2 * ad;
+                epp[c] = EppState {
+                    u: ud,
+                    v: vd,
+                    a: ad,
+                };
+                ud
+            } else {
+                u[l.other]
+            };
+            let now_stuck = pq.status(c) == Bound::Free;
+            if now_stuck != stuck[c] {
+                trans[l.floor] += 1;
+                stuck[c] = now_stuck;
+            }
+            pk_slip[l.floor] = pk_slip[l.floor].max((u[l.floor] - x_other).abs());
+        }
+        observe(&u, &a, ag1, &mut pk_drift, &mut pk_disp, &mut pk_acc);
+        pk_shear = pk_shear.max(base_shear(&o.mr, msum, &a, ag1, p1));
+        f_old = f_new;
+        ag0 = ag1;
+        p0 = p1;
+    }
+    let mut peaks = Peaks::new(nf);
+    let mut below = 0.0;
+    for i in 0..nf.min(N) {
+        peaks.drift[i] = pk_drift[i];
+        peaks.displacement[i] = pk_disp[i];
+        peaks.abs_acceleration[i] = pk_acc[i];
+        peaks.slip[i] = pk_slip[i];
+        peaks.transitions[i] = trans[i];
+        peaks.last_drift[i] = u[i] - below;
+        below = u[i];
+    }
+    peaks.base_shear = pk_shear;
+    Ok(Outcome {
+        response: peaks.into_plan_response(plan, None),
+        diagnostics: Diagnostics {
+            qp_iterations_mean: if plan.steps > 0 {
+                qp_iter_total as f64 / plan.steps as f64
+            } else {
+                0.0
+            },
+            qp_iterations_max: qp_iter_max,
+            initial_energy: {
+                let (k0, s0) =
+                    crate::integrator::state::stored_energy(plan, &start.u, &start.v, &start.epp);
+                k0 + s0
+            },
+            ..Default::default()
+        },
+        history: None,
+    })
+}
+
+/// Σⱼ cols[j]·x[j] (the products of the displacement and the velocity predictors run as
+/// two independent sums, so that neither waits on the other).
+#[inline(always)]
+fn mul<const R: usize, const C: usize>(cols: &[[f64; R]; C], x: &[f64; C]) -> [f64; R] {
+    let mut out = [0.0; R];
+    for j in 0..C {
+        let xj = x[j];
+        for i in 0..R {
+            out[i] += cols[j][i] * xj;
+        }
+    }
+    out
+}
