@@ -157,8 +157,9 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
 }
 
 /// Dispatches a peaks-only run to the fixed-size loop of its DOF and contact counts, for
-/// the counts listed (small buildings with up to four dampers, the ten-storey building
-/// with and without dissipator DOFs); `None` for any other.
+/// the counts listed (up to eight DOFs with up to four dampers; up to twelve storeys with
+/// a massless damper on every floor; ten storeys with dissipator DOFs); `None` for any
+/// other, which the general loop runs.
 macro_rules! fixed_dispatch {
     ($plan:expr, $ops:expr, $links:expr; $(($n:literal, $nc:literal)),* $(,)?) => {
         match ($ops.n, $plan.contacts.len()) {
@@ -190,7 +191,7 @@ impl Integrator for Newmark {
                 (6, 0), (6, 1), (6, 2), (6, 3), (6, 4),
                 (7, 0), (7, 1), (7, 2), (7, 3), (7, 4),
                 (8, 0), (8, 1), (8, 2), (8, 3), (8, 4),
-                (10, 10), (20, 10),
+                (5, 5), (6, 6), (7, 7), (8, 8), (10, 10), (12, 12), (20, 10),
             );
             if let Some(outcome) = run {
                 return outcome;
