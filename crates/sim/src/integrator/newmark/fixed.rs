@@ -91,6 +91,8 @@ pub(super) fn run<const N: usize, const NC: usize>(
     let c_u = (0.5 - beta) * dt * dt;
     let c_v = (1.0 - gamma) * dt;
     let gdt = gamma * dt;
+    // A product, not a division, in the EPP update (on the step-to-step dependency chain).
+    let inv_gdt = 1.0 / gdt;
     let bdt2 = beta * dt * dt;
     let bg = beta * dt / gamma;
     let msum: f64 = ops.mr.iter().sum();
@@ -281,7 +283,7 @@ pub(super) fn run<const N: usize, const NC: usize>(
             let x_other = if l.epp {
                 let (up, vp) = epp_pred[c];
                 let vd = v[l.floor] - slip_rate[c];
-                let ad = (vd - vp) / gdt;
+                let ad = (vd - vp) * inv_gdt;
                 let ud = up + bdt2 * ad;
                 epp[c] = EppState {
                     u: ud,
