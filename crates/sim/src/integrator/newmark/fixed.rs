@@ -4,10 +4,10 @@
 //! Same step as the general loop in the parent module — the same operators and
 //! predictors, the products summed in another order (round-off apart, the same numbers) —
 //! with every vector and operator a fixed-size array, so the products unroll and nothing
-//! is bounds-checked, and with the
-//! friction QP answered from its stick/slip pattern ([`PatternQp`]) before the general
-//! active-set solver is asked. It records peaks only: runs that ask for energies or
-//! histories take the general loop, which the `peaks_only_loop` tests hold it equal to.
+//! is bounds-checked, and with the friction QP answered from its stick/slip pattern
+//! ([`PatternQp`]) before the general active-set solver is asked. It records peaks only:
+//! runs that ask for energies or histories take the general loop, which the
+//! `peaks_only_loop` tests hold it equal to.
 
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
