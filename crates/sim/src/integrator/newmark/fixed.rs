@@ -12,7 +12,7 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::{GROUND, Link, Operators};
+use super::{GROUND, Link, Operators, StepConstants, non_finite};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -88,13 +88,8 @@ pub(super) fn run<const N: usize, const NC: usize>(
     let dt = plan.method.dt;
     let nf = plan.floors;
     let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
-    let c_u = (0.5 - beta) * dt * dt;
-    let c_v = (1.0 - gamma) * dt;
-    let gdt = gamma * dt;
-    // A product, not a division, in the EPP update (on the step-to-step dependency chain).
-    let inv_gdt = 1.0 / gdt;
-    let bdt2 = beta * dt * dt;
-    let bg = beta * dt / gamma;
+    let k = StepConstants::new(dt, beta, gamma);
+    let (c_u, c_v, gdt, bdt2) = (k.c_u, k.c_v, k.gdt, k.bdt2);
     let msum: f64 = ops.mr.iter().sum();
     let mut lo = [0.0; NC];
     let mut hi = [0.0; NC];
@@ -224,24 +219,7 @@ pub(super) fn run<const N: usize, const NC: usize>(
         }
         if let Some(qp) = qp.as_mut() {
             for c in 0..NC {
-                let l = link[c];
-                let vf = vt[l.floor] + gdt * af[l.floor];
-                wfree[c] = if !l.epp {
-                    vf - (vt[l.other] + gdt * af[l.other])
-                } else {
-                    let e = epp[c];
-                    let up = e.u + dt * e.v + c_u * e.a;
-                    let vp = e.v + c_v * e.a;
-                    epp_pred[c] = (up, vp);
-                    let (uj, vj, vj_end) = if l.other == GROUND {
-                        (0.0, 0.0, 0.0)
-                    } else {
-                        let j = l.other;
-                        (ut[j], vt[j], vt[j] + gdt * af[j])
-                    };
-                    let q = (up - uj) - bg * (vp - vj);
-                    vf - vj_end + l.k_over_kappa * q
-                };
+                (wfree[c], epp_pred[c]) = link[c].free_slip_rate(&k, epp[c], &ut, &vt, &af);
             }
             let iterations = match pq.solve(&wfree, &mut f_new, &mut slip_rate) {
                 Some(it) => it,
@@ -272,25 +250,13 @@ pub(super) fn run<const N: usize, const NC: usize>(
             finite += u[i];
         }
         if !finite.is_finite() {
-            return Err(SimError::NonFinite {
-                step: step + 1,
-                t: (step + 1) as f64 * dt,
-                hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
-            });
+            return Err(non_finite(step + 1, dt));
         }
         for c in 0..NC {
             let l = link[c];
             let x_other = if l.epp {
-                let (up, vp) = epp_pred[c];
-                let vd = v[l.floor] - slip_rate[c];
-                let ad = (vd - vp) * inv_gdt;
-                let ud = up + bdt2 * ad;
-                epp[c] = EppState {
-                    u: ud,
-                    v: vd,
-                    a: ad,
-                };
-                ud
+                epp[c] = Link::epp_update(&k, epp_pred[c], v[l.floor], slip_rate[c]);
+                epp[c].u
             } else {
                 u[l.other]
             };

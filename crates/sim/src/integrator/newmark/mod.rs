@@ -134,6 +134,89 @@ struct Link {
     k_over_kappa: f64,
 }
 
+/// The Newmark constants of a run's step.
+#[derive(Debug, Clone, Copy)]
+struct StepConstants {
+    dt: f64,
+    /// (½ − β)Δt² and (1 − γ)Δt: the predictors' weights of the acceleration.
+    c_u: f64,
+    c_v: f64,
+    /// γΔt, βΔt², βΔt/γ and 1/(γΔt).
+    gdt: f64,
+    bdt2: f64,
+    bg: f64,
+    inv_gdt: f64,
+}
+
+impl StepConstants {
+    fn new(dt: f64, beta: f64, gamma: f64) -> StepConstants {
+        StepConstants {
+            dt,
+            c_u: (0.5 - beta) * dt * dt,
+            c_v: (1.0 - gamma) * dt,
+            gdt: gamma * dt,
+            bdt2: beta * dt * dt,
+            bg: beta * dt / gamma,
+            inv_gdt: 1.0 / (gamma * dt),
+        }
+    }
+}
+
+impl Link {
+    /// The contact's slip rate at the end of the step if it carried no friction force, from
+    /// the predictors `ut`, `vt` and the free accelerations `af`; for an EPP element also
+    /// its own predictors (ũ, ṽ), from its state `e` (the condensed massless DOF).
+    #[inline(always)]
+    fn free_slip_rate(
+        &self,
+        k: &StepConstants,
+        e: EppState,
+        ut: &[f64],
+        vt: &[f64],
+        af: &[f64],
+    ) -> (f64, (f64, f64)) {
+        let vf = vt[self.floor] + k.gdt * af[self.floor];
+        if !self.epp {
+            return (vf - (vt[self.other] + k.gdt * af[self.other]), (0.0, 0.0));
+        }
+        let up = e.u + k.dt * e.v + k.c_u * e.a;
+        let vp = e.v + k.c_v * e.a;
+        let (uj, vj, vj_end) = if self.other == GROUND {
+            (0.0, 0.0, 0.0)
+        } else {
+            let j = self.other;
+            (ut[j], vt[j], vt[j] + k.gdt * af[j])
+        };
+        let q = (up - uj) - k.bg * (vp - vj);
+        (vf - vj_end + self.k_over_kappa * q, (up, vp))
+    }
+
+    /// An EPP element's state at the end of the step, from its predictors, its floor's
+    /// velocity and the contact's slip rate. A product by 1/(γΔt), not a division: the
+    /// update sits on the step-to-step dependency chain.
+    #[inline(always)]
+    fn epp_update(k: &StepConstants, pred: (f64, f64), v_floor: f64, slip_rate: f64) -> EppState {
+        let (up, vp) = pred;
+        let v = v_floor - slip_rate;
+        let a = (v - vp) * k.inv_gdt;
+        EppState {
+            u: up + k.bdt2 * a,
+            v,
+            a,
+        }
+    }
+}
+
+/// The error of a run whose state stopped being finite at `step` (from 1).
+fn non_finite(step: usize, dt: f64) -> SimError {
+    SimError::NonFinite {
+        step,
+        t: step as f64 * dt,
+        hint: "the response grew without bound; check units of masses, stiffnesses and the record"
+            .into(),
+    }
+}
+
 /// The contacts as the step loops read them.
 fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
     plan.contacts
@@ -222,11 +305,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let nf = plan.floors;
     let nc = plan.contacts.len();
     let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
-    let c_u = (0.5 - beta) * dt * dt;
-    let c_v = (1.0 - gamma) * dt;
-    let gdt = gamma * dt;
-    let bdt2 = beta * dt * dt;
-    let bg = beta * dt / gamma;
+    let k = StepConstants::new(dt, beta, gamma);
+    let (c_u, c_v, gdt, bdt2) = (k.c_u, k.c_v, k.gdt, k.bdt2);
     let msum: f64 = ops.mr.iter().sum();
     let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
     let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
@@ -344,23 +424,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         }
         if let Some(qp) = qp.as_mut() {
             for (c, l) in links.iter().enumerate() {
-                let vf = vt[l.floor] + gdt * af[l.floor];
-                wfree[c] = if !l.epp {
-                    vf - (vt[l.other] + gdt * af[l.other])
-                } else {
-                    let e = epp[c];
-                    let up = e.u + dt * e.v + c_u * e.a;
-                    let vp = e.v + c_v * e.a;
-                    epp_pred[c] = (up, vp);
-                    let (uj, vj, vj_end) = if l.other == GROUND {
-                        (0.0, 0.0, 0.0)
-                    } else {
-                        let j = l.other;
-                        (ut[j], vt[j], vt[j] + gdt * af[j])
-                    };
-                    let q = (up - uj) - bg * (vp - vj);
-                    vf - vj_end + l.k_over_kappa * q
-                };
+                (wfree[c], epp_pred[c]) = l.free_slip_rate(&k, epp[c], &ut, &vt, &af);
             }
             let stats = qp
                 .solve(&wfree, &lo, &hi, &mut f_new)
@@ -388,11 +452,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
             finite += s[i];
         }
         if !finite.is_finite() {
-            return Err(SimError::NonFinite {
-                step: step + 1,
-                t: t1,
-                hint: "the response grew without bound; check units of masses, stiffnesses and the record".into(),
-            });
+            return Err(non_finite(step + 1, dt));
         }
         let (u_now, rest) = s.split_at(n);
         let (v_now, a_now) = rest.split_at(n);
@@ -405,16 +465,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 }
                 w_new[c] = wfree[c] - wf;
                 let x_other = if l.epp {
-                    let (up, vp) = epp_pred[c];
-                    let vd = v_now[l.floor] - w_new[c];
-                    let ad = (vd - vp) / gdt;
-                    let ud = up + bdt2 * ad;
-                    epp[c] = EppState {
-                        u: ud,
-                        v: vd,
-                        a: ad,
-                    };
-                    ud
+                    epp[c] = Link::epp_update(&k, epp_pred[c], v_now[l.floor], w_new[c]);
+                    epp[c].u
                 } else {
                     u_now[l.other]
                 };
