@@ -10,10 +10,13 @@
 //!
 //! The linear part of a step is one precomputed n×2n operator [−A⁻¹K, −A⁻¹C] applied to the
 //! (HHT-weighted) Newmark predictors of u and v.
-//! Nothing is allocated inside the step loop unless histories are asked for. The loop is
-//! compiled once per small DOF count (1–8, 10, 12, 20) with the count a constant, so its
-//! small products unroll, and once for any other count; the ground acceleration of each
-//! step is interpolated incrementally ([`Plan::ground_steps`]).
+//! Nothing is allocated inside the step loop unless histories are asked for; the ground
+//! acceleration of each step is interpolated incrementally ([`Plan::ground_steps`]).
+//! Peaks-only runs of the sizes `fixed_dispatch!` lists step in the fixed-size loop of
+//! `newmark/fixed.rs` (DOF and contact counts compile-time constants, the friction QP
+//! answered from its stick/slip pattern); runs that ask for energies or histories, and
+//! other sizes, step in the general loop below, compiled once per small DOF count
+//! (1–8, 10, 12, 20) with the count a constant and once for any other count.
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
