@@ -130,39 +130,17 @@ pub(super) fn run<const N: usize, const NC: usize>(
     };
     let mut pq = PatternQp::<NC>::new(ops.w.as_slice(), &lo, &hi);
 
-    // Peaks, by floor (the first `nf` entries).
-    let mut pk_drift = [0.0f64; N];
-    let mut pk_disp = [0.0f64; N];
-    let mut pk_acc = [0.0f64; N];
-    let mut pk_slip = [0.0f64; N];
-    let mut trans = [0u64; N];
-    let mut pk_shear = 0.0f64;
-    let observe = |u: &[f64; N],
-                   a: &[f64; N],
-                   ag: f64,
-                   pk_drift: &mut [f64; N],
-                   pk_disp: &mut [f64; N],
-                   pk_acc: &mut [f64; N]| {
-        let mut below = 0.0;
-        for i in 0..nf.min(N) {
-            // f64::max keeps the peak when the other operand is NaN, as the general
-            // loop's comparisons do.
-            pk_drift[i] = pk_drift[i].max((u[i] - below).abs());
-            below = u[i];
-            pk_disp[i] = pk_disp[i].max(u[i].abs());
-            pk_acc[i] = pk_acc[i].max((a[i] + ag).abs());
-        }
-    };
+    let mut peaks = Peaks::new(nf);
 
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
     let mut p0 = plan.force(0.0);
-    observe(&u, &a, ag0, &mut pk_drift, &mut pk_disp, &mut pk_acc);
-    pk_shear = pk_shear.max(base_shear(&o.mr, msum, &a, ag0, p0));
+    peaks.observe_floors(&u, &a, ag0);
+    peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag0, p0));
     for c in 0..NC {
         let l = link[c];
         let x_other = if l.epp { epp[c].u } else { u[l.other] };
-        pk_slip[l.floor] = pk_slip[l.floor].max((u[l.floor] - x_other).abs());
+        peaks.observe_slip(l.floor, u[l.floor] - x_other);
     }
 
     let mut wfree = [0.0; NC];
@@ -262,29 +240,17 @@ pub(super) fn run<const N: usize, const NC: usize>(
             };
             let now_stuck = pq.status(c) == Bound::Free;
             if now_stuck != stuck[c] {
-                trans[l.floor] += 1;
+                peaks.transitions[l.floor] += 1;
                 stuck[c] = now_stuck;
             }
-            pk_slip[l.floor] = pk_slip[l.floor].max((u[l.floor] - x_other).abs());
+            peaks.observe_slip(l.floor, u[l.floor] - x_other);
         }
-        observe(&u, &a, ag1, &mut pk_drift, &mut pk_disp, &mut pk_acc);
-        pk_shear = pk_shear.max(base_shear(&o.mr, msum, &a, ag1, p1));
+        peaks.observe_floors(&u, &a, ag1);
+        peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag1, p1));
         f_old = f_new;
         ag0 = ag1;
         p0 = p1;
     }
-    let mut peaks = Peaks::new(nf);
-    let mut below = 0.0;
-    for i in 0..nf.min(N) {
-        peaks.drift[i] = pk_drift[i];
-        peaks.displacement[i] = pk_disp[i];
-        peaks.abs_acceleration[i] = pk_acc[i];
-        peaks.slip[i] = pk_slip[i];
-        peaks.transitions[i] = trans[i];
-        peaks.last_drift[i] = u[i] - below;
-        below = u[i];
-    }
-    peaks.base_shear = pk_shear;
     Ok(Outcome {
         response: peaks.into_plan_response(plan, None),
         diagnostics: Diagnostics {
