@@ -40,41 +40,7 @@ fn scene_json_checked(text: &str) -> slipload_sim::Scene {
 /// non-expansive (dissipative) map. Transition counts are fragile (a grazing contact may
 /// stick for one step in one run and not the other): within 2 or 1 %.
 fn assert_same(name: &str, a: &Response, b: &Response) {
-    let pairs = [
-        ("peak_drift", &a.peak_drift, &b.peak_drift),
-        (
-            "peak_displacement",
-            &a.peak_displacement,
-            &b.peak_displacement,
-        ),
-        (
-            "peak_abs_acceleration",
-            &a.peak_abs_acceleration,
-            &b.peak_abs_acceleration,
-        ),
-        ("peak_slip", &a.peak_slip, &b.peak_slip),
-        ("residual_drift", &a.residual_drift, &b.residual_drift),
-    ];
-    for (what, x, y) in pairs {
-        assert_eq!(x.len(), y.len(), "{name}: {what} lengths");
-        let scale = x
-            .iter()
-            .chain(y.iter())
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1e-30);
-        for (i, (p, q)) in x.iter().zip(y.iter()).enumerate() {
-            assert!(
-                (p - q).abs() <= 1e-9 * scale,
-                "{name}: {what}[{i}] peaks-only {p} vs with energies {q}"
-            );
-        }
-    }
-    assert!(
-        (a.peak_base_shear - b.peak_base_shear).abs() <= 1e-9 * b.peak_base_shear,
-        "{name}: base shear {} vs {}",
-        a.peak_base_shear,
-        b.peak_base_shear
-    );
+    assert_peaks_close(name, a, b, 1e-9);
     for (i, (p, q)) in a.transitions.iter().zip(&b.transitions).enumerate() {
         let allowed = 2u64.max(q / 100);
         assert!(

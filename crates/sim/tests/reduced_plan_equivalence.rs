@@ -25,32 +25,7 @@ fn run(building: &str, reduce: bool, record: &str, pga_g: f64) -> (Response, usi
 /// well-conditioned linear solve is ~1e-12, the tolerance 1e-9 leaves room for the
 /// different (but algebraically equal) operation order of the condensed element.
 fn assert_same(a: &Response, b: &Response) {
-    let pairs = [
-        ("peak_drift", &a.peak_drift, &b.peak_drift),
-        (
-            "peak_displacement",
-            &a.peak_displacement,
-            &b.peak_displacement,
-        ),
-        (
-            "peak_abs_acceleration",
-            &a.peak_abs_acceleration,
-            &b.peak_abs_acceleration,
-        ),
-        ("peak_slip", &a.peak_slip, &b.peak_slip),
-        ("residual_drift", &a.residual_drift, &b.residual_drift),
-    ];
-    for (name, x, y) in pairs {
-        let scale = x
-            .iter()
-            .chain(y.iter())
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1e-30);
-        for (i, (p, q)) in x.iter().zip(y.iter()).enumerate() {
-            assert!((p - q).abs() <= 1e-9 * scale, "{name}[{i}]: {p} vs {q}");
-        }
-    }
-    assert!((a.peak_base_shear - b.peak_base_shear).abs() <= 1e-9 * a.peak_base_shear);
+    assert_peaks_close("reduced vs full", a, b, 1e-9);
     let (ea, eb) = (a.energy.unwrap(), b.energy.unwrap());
     for (p, q) in [
         (ea.input, eb.input),

@@ -5,7 +5,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use slipload_motion::Record;
-use slipload_sim::{Scene, SceneOverrides};
+use slipload_sim::{Response, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
 
 /// The repository's configs folder.
@@ -121,4 +121,45 @@ pub fn max_error(hist: &[f64], exact: &[DVector<f64>], floor: usize, stride: usi
         .enumerate()
         .map(|(k, x)| (hist[k * stride] - x[floor]).abs())
         .fold(0.0, f64::max)
+}
+
+/// Every peak array and the peak base shear of `a` and `b` to `rel` of the array's (or the
+/// shear's) largest value; `what` names the comparison in a failure.
+pub fn assert_peaks_close(what: &str, a: &Response, b: &Response, rel: f64) {
+    let pairs = [
+        ("peak_drift", &a.peak_drift, &b.peak_drift),
+        (
+            "peak_displacement",
+            &a.peak_displacement,
+            &b.peak_displacement,
+        ),
+        (
+            "peak_abs_acceleration",
+            &a.peak_abs_acceleration,
+            &b.peak_abs_acceleration,
+        ),
+        ("peak_slip", &a.peak_slip, &b.peak_slip),
+        ("residual_drift", &a.residual_drift, &b.residual_drift),
+    ];
+    for (name, x, y) in pairs {
+        assert_eq!(x.len(), y.len(), "{what}: {name} lengths");
+        let scale = x
+            .iter()
+            .chain(y.iter())
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(1e-30);
+        for (i, (p, q)) in x.iter().zip(y.iter()).enumerate() {
+            assert!(
+                (p - q).abs() <= rel * scale,
+                "{what}: {name}[{i}]: {p} vs {q}"
+            );
+        }
+    }
+    assert!(
+        (a.peak_base_shear - b.peak_base_shear).abs()
+            <= rel * a.peak_base_shear.abs().max(b.peak_base_shear.abs()),
+        "{what}: peak base shear {} vs {}",
+        a.peak_base_shear,
+        b.peak_base_shear
+    );
 }
