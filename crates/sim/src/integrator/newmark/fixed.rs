@@ -271,16 +271,31 @@ pub(super) fn run<const N: usize, const NC: usize>(
     })
 }
 
-/// Σⱼ cols[j]·x[j] (the products of the displacement and the velocity predictors run as
-/// two independent sums, so that neither waits on the other).
+/// Σⱼ cols[j]·x[j], summed as two interleaved halves (even and odd j) that meet at the
+/// end, so that the chain of additions each output waits on is half as long (the
+/// products of the displacement and the velocity predictors also run as two independent
+/// sums).
 #[inline(always)]
 fn mul<const R: usize, const C: usize>(cols: &[[f64; R]; C], x: &[f64; C]) -> [f64; R] {
-    let mut out = [0.0; R];
-    for j in 0..C {
-        let xj = x[j];
+    let mut even = [0.0; R];
+    let mut odd = [0.0; R];
+    let mut j = 0;
+    while j + 1 < C {
+        let (x0, x1) = (x[j], x[j + 1]);
         for i in 0..R {
-            out[i] += cols[j][i] * xj;
+            even[i] += cols[j][i] * x0;
+            odd[i] += cols[j + 1][i] * x1;
+        }
+        j += 2;
+    }
+    if j < C {
+        let x0 = x[j];
+        for i in 0..R {
+            even[i] += cols[j][i] * x0;
         }
     }
-    out
+    for i in 0..R {
+        even[i] += odd[i];
+    }
+    even
 }
