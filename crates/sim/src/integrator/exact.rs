@@ -21,8 +21,9 @@
 //!
 //! Whole output steps run on the mode set's grid h = Δt/m (m = ⌈Δt ρ/[`SUBSTEP_PHASE`]⌉).
 //! Once a mode set has lasted as many grid substeps as forming them costs, it caches the
-//! same truncated series as a matrix, exp(A h) (and exp(A x h) at the Gauss nodes when
-//! energies are asked for), and each scanned function's Taylor rows r Aᵏ/k!; a grid
+//! same truncated series as a matrix, exp(A h) (and, when energies are asked for, the work
+//! over h as quadratic forms of the starting state, below), and each scanned function's
+//! Taylor rows r Aᵏ/k!; a grid
 //! substep is then one matrix–vector product, and a scan starts from the bound
 //! |g(τ) − g(0)| ≤ Σ_j |y_j| Σ_{k≥1} |r Aᵏ/k!|_j hᵏ, which rules out most of them; failing
 //! that, from the same bound on the terms past the first [`LEAD_TERMS`] coefficients,
@@ -78,6 +79,10 @@
 //! peaks (displacement, acceleration, base shear, slip) are taken at the output steps.
 //! Energies: input, viscous and friction powers integrated by 8-point Gauss–Legendre on
 //! every substep (order 16 on a polynomial of phase ≤ 2ρτ ≤ 1: error ~1e-14 relative).
+//! Each power is a quadratic form p(y) = yᵀ Q_p y of the augmented state, so on the grid
+//! substeps of a lasting mode set the rule is summed once, W_p = h Σ_g w_g Φ_gᵀ Q_p Φ_g
+//! (Φ_g = exp(A x_g h)), and a substep's work is yᵀ W_p y: the same quadrature, three
+//! matrix–vector products instead of eight states and their powers.
 
 use crate::error::SimError;
 use crate::friction::BoxQp;
@@ -206,8 +211,11 @@ struct ModeOps {
 struct Stepping {
     /// exp(A h) (its Taylor polynomial, exact to round-off as above), dim × dim.
     phi: DMatrix<f64>,
-    /// exp(A x h) at the Gauss–Legendre nodes x (energies), empty when energies are off.
-    phi_nodes: Vec<DMatrix<f64>>,
+    /// The input, viscous and friction work over one grid interval as quadratic forms of
+    /// its starting state, h Σ_g w_g exp(A x_g h)ᵀ Q_p exp(A x_g h) for each power
+    /// p(y) = yᵀ Q_p y: the same 8-point Gauss–Legendre rule as [`Model::integrate_powers`],
+    /// summed once per mode set instead of once per substep. `None` when energies are off.
+    work: Option<[DMatrix<f64>; 3]>,
     /// Column f·K + k: the k-th Taylor row r Aᵏ/k! of scanned function f, so that its
     /// coefficient on τᵏ over a substep from y is that column · y.
     rows: DMatrix<f64>,
@@ -568,11 +576,18 @@ impl Model<'_> {
             phi
         };
         let phi = expm(h);
-        let phi_nodes = if self.plan.outputs.energies {
-            GAUSS.iter().map(|(x, _)| expm(x * h)).collect()
-        } else {
-            Vec::new()
-        };
+        let work = self.plan.outputs.energies.then(|| {
+            let forms = self.power_forms(ops);
+            let mut work = [(); 3].map(|_| DMatrix::zeros(dim, dim));
+            for (x, w) in GAUSS {
+                let phi_g = expm(x * h);
+                for (wp, q) in work.iter_mut().zip(&forms) {
+                    let qphi = q * &phi_g;
+                    wp.gemm_tr(w * h, &phi_g, &qphi, 1.0);
+                }
+            }
+            work
+        });
         let nfun = ops.events.len() + nf;
         let mut rows = DMatrix::zeros(dim, nfun * TAYLOR_TERMS);
         let mut tails = DMatrix::zeros(dim, nfun);
@@ -607,7 +622,7 @@ impl Model<'_> {
         }
         Stepping {
             phi,
-            phi_nodes,
+            work,
             rows,
             tails,
             tails_far,
@@ -657,6 +672,13 @@ fn lead_high(st: &Stepping, f: usize, y: &DVector<f64>, h: f64, d0: f64) -> f64 
         high += (st.rows.column(f * TAYLOR_TERMS + k).dot(y) * hk).abs();
     }
     high
+}
+
+/// yᵀ Q y, with `scratch` for Q y.
+#[inline]
+fn quadratic(q: &DMatrix<f64>, y: &DVector<f64>, scratch: &mut DVector<f64>) -> f64 {
+    scratch.gemv(1.0, q, y, 0.0);
+    y.dot(scratch)
 }
 
 /// The Taylor coefficients p_k = Aᵏ y / k! of exp(Aτ) y.
@@ -809,6 +831,46 @@ struct Integrals {
 }
 
 impl Model<'_> {
+    /// The symmetric matrices Q_p with p(y) = yᵀ Q_p y of the input, viscous and friction
+    /// powers of [`Model::powers`] (each is a quadratic form of the augmented state: the
+    /// ground acceleration, the harmonic force and the constant slip forces are states).
+    fn power_forms(&self, ops: &ModeOps) -> [DMatrix<f64>; 3] {
+        let lay = &self.lay;
+        let (n, dim) = (lay.n, lay.dim);
+        let plan = self.plan;
+        let mut input = DMatrix::zeros(dim, dim);
+        let mut viscous = DMatrix::zeros(dim, dim);
+        let mut friction = DMatrix::zeros(dim, dim);
+        // −a_g (M r · v), and the harmonic force's F sin · v_floor.
+        for i in 0..n {
+            input[(lay.i_ag, n + i)] -= self.mr[i];
+        }
+        if let Some(h) = &plan.harmonic {
+            input[(lay.i_sin, n + h.floor)] += h.amplitude;
+        }
+        // vᵀ C v.
+        for j in 0..n {
+            for i in 0..n {
+                viscous[(n + i, n + j)] += plan.damping[(i, j)];
+            }
+        }
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            // (force row · y)(slip-rate row · y).
+            let f = ops.force.row(c);
+            let w = ops.slip_rate.row(c);
+            friction.ger(1.0, &f.transpose(), &w.transpose(), 1.0);
+            if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
+                // c′ (ẋ′ − v_below)².
+                let mut e = ops.xdot.row(c).transpose();
+                if let Some(j) = ct.below {
+                    e[n + j] -= 1.0;
+                }
+                viscous.ger(ct.brace_damping, &e, &e, 1.0);
+            }
+        }
+        [input, viscous, friction].map(|q| (&q + q.transpose()) * 0.5)
+    }
+
     fn powers(&self, ops: &ModeOps, y: &DVector<f64>) -> (f64, f64, f64) {
         let lay = &self.lay;
         let n = lay.n;
@@ -1364,10 +1426,11 @@ impl Integrator for Exact {
                         cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
                     }
                     if let (Some(st), None) = (fast, fired) {
-                        if energies {
-                            model.integrate_powers(&ops, &mut integ, len, &mut ynode, |g, out| {
-                                out.gemv(1.0, &st.phi_nodes[g], &y, 0.0);
-                            });
+                        if let Some([wi, wv, wf]) = &st.work {
+                            // One grid interval: its work is a quadratic form of y.
+                            integ.input += quadratic(wi, &y, &mut ynode);
+                            integ.viscous += quadratic(wv, &y, &mut ynode);
+                            integ.friction += quadratic(wf, &y, &mut ynode);
                         }
                         ynode.gemv(1.0, &st.phi, &y, 0.0);
                         std::mem::swap(&mut y, &mut ynode);
@@ -1573,6 +1636,63 @@ impl Integrator for Exact {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn power_forms_are_the_powers() {
+        // Two storeys: a massless dissipator with a damped brace (its c′ term), one with
+        // mass (a Lagrange multiplier while stuck), a harmonic force and Rayleigh damping.
+        // For every mode set, yᵀ Q_p y must be the power itself at any augmented state, to
+        // round-off of the sums (relative to their absolute terms, ~1e-15).
+        let text = r#"{ "building": { "floor_masses": [4.0e5, 3.0e5], "storey_stiffness": [2.0e8, 1.5e8],
+                "damping": { "rayleigh": { "alpha": 0.2, "beta": 1e-3 } },
+                "dissipators": [
+                  { "floor": 1, "brace_stiffness": 4.0e8, "mass": 0, "brace_damping": 3e5, "slip_load": 4e5 },
+                  { "floor": 2, "brace_stiffness": 3.0e8, "mass": 350, "brace_damping": 0, "slip_load": 2e5 } ] },
+              "excitation": { "harmonic": { "floor": 2, "amplitude": 1e5, "omega": 9.0 } },
+              "duration": 1.0, "method": { "name": "exact", "dt": 0.01 }, "outputs": { "energies": true } }"#;
+        let scene = crate::scene::Scene::from_json(
+            text,
+            std::path::Path::new("inline.json"),
+            &crate::scene::SceneOverrides::default(),
+        )
+        .unwrap();
+        let plan = Plan::compile(&scene).unwrap();
+        let model = Model::new(&plan).unwrap();
+        let dim = model.lay.dim;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        use Mode::{Lower, Stuck, Upper};
+        for modes in [
+            [Stuck, Stuck],
+            [Upper, Lower],
+            [Lower, Stuck],
+            [Stuck, Upper],
+        ] {
+            let ops = model.build(&modes);
+            let forms = model.power_forms(&ops);
+            for _ in 0..20 {
+                let y = DVector::from_fn(dim, |_, _| uniform());
+                let (pi, pv, pf) = model.powers(&ops, &y);
+                for (q, p, what) in [
+                    (&forms[0], pi, "input"),
+                    (&forms[1], pv, "viscous"),
+                    (&forms[2], pf, "friction"),
+                ] {
+                    let from_form = (q * &y).dot(&y);
+                    let scale = (q.abs() * y.abs()).dot(&y.abs());
+                    assert!(
+                        (from_form - p).abs() <= 1e-13 * scale,
+                        "{modes:?} {what}: form {from_form:e}, power {p:e}, scale {scale:e}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn polynomial_and_derivative() {
