@@ -649,29 +649,16 @@ fn row_dot(m: &DMatrix<f64>, r: usize, y: &DVector<f64>) -> f64 {
     s
 }
 
-/// A lower bound of g(0) + Σ_{1≤k<L} c_k τᵏ on [0, h] for scanned function `f`
-/// (c_k = rows·y): each negative term at its largest, g(0) = `g0`.
+/// The leading terms c_k hᵏ, 1 ≤ k < [`LEAD_TERMS`], of scanned function `f` over a grid
+/// substep from `y` (c_k = its Taylor row · y), each the largest |c_k τᵏ| on [0, h]: so
+/// g(0) + Σ min(0, ·) bounds g(0) + Σ c_k τᵏ from below there, |g(0)| + Σ |·| from above.
 #[inline]
-fn lead_low(st: &Stepping, f: usize, y: &DVector<f64>, h: f64, g0: f64) -> f64 {
-    let mut low = g0;
+fn lead_terms(st: &Stepping, f: usize, y: &DVector<f64>, h: f64) -> [f64; LEAD_TERMS - 1] {
     let mut hk = 1.0;
-    for k in 1..LEAD_TERMS {
+    std::array::from_fn(|i| {
         hk *= h;
-        low += (st.rows.column(f * TAYLOR_TERMS + k).dot(y) * hk).min(0.0);
-    }
-    low
-}
-
-/// An upper bound of |d(0) + Σ_{1≤k<L} c_k τᵏ| on [0, h] for scanned function `f`.
-#[inline]
-fn lead_high(st: &Stepping, f: usize, y: &DVector<f64>, h: f64, d0: f64) -> f64 {
-    let mut high = d0.abs();
-    let mut hk = 1.0;
-    for k in 1..LEAD_TERMS {
-        hk *= h;
-        high += (st.rows.column(f * TAYLOR_TERMS + k).dot(y) * hk).abs();
-    }
-    high
+        st.rows.column(f * TAYLOR_TERMS + i + 1).dot(y) * hk
+    })
 }
 
 /// yᵀ Q y, with `scratch` for Q y.
@@ -1369,7 +1356,9 @@ impl Integrator for Exact {
                                 continue;
                             }
                             if g0 >= 0.0
-                                && lead_low(st, e, &y, ops.h, g0)
+                                && lead_terms(st, e, &y, ops.h)
+                                    .iter()
+                                    .fold(g0, |low, t| low + t.min(0.0))
                                     >= st.tails_far.column(e).dot(&yabs)
                             {
                                 // g(τ) ≥ Σ_{k<L} min(0, c_k hᵏ) − Σ|y_j|·tail_far_j ≥ 0
@@ -1396,7 +1385,9 @@ impl Integrator for Exact {
                             if d0.abs() + st.tails.column(nev + i).dot(&yabs) <= cont_drift[i] {
                                 continue;
                             }
-                            if lead_high(st, nev + i, &y, ops.h, d0)
+                            if lead_terms(st, nev + i, &y, ops.h)
+                                .iter()
+                                .fold(d0.abs(), |high, t| high + t.abs())
                                 + st.tails_far.column(nev + i).dot(&yabs)
                                 <= cont_drift[i]
                             {

@@ -231,19 +231,15 @@ pub(super) fn run<const N: usize, const NC: usize>(
             return Err(non_finite(step + 1, dt));
         }
         for c in 0..NC {
-            let l = link[c];
-            let x_other = if l.epp {
-                epp[c] = Link::epp_update(&k, epp_pred[c], v[l.floor], slip_rate[c]);
-                epp[c].u
-            } else {
-                u[l.other]
-            };
-            let now_stuck = pq.status(c) == Bound::Free;
-            if now_stuck != stuck[c] {
-                peaks.transitions[l.floor] += 1;
-                stuck[c] = now_stuck;
-            }
-            peaks.observe_slip(l.floor, u[l.floor] - x_other);
+            link[c].finish_step(
+                &k,
+                (epp_pred[c], slip_rate[c]),
+                (&u, &v),
+                pq.status(c) == Bound::Free,
+                &mut epp[c],
+                &mut stuck[c],
+                &mut peaks,
+            );
         }
         peaks.observe_floors(&u, &a, ag1);
         peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag1, p1));

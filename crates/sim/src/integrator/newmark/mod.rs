@@ -194,6 +194,35 @@ impl Link {
         (vf - vj_end + self.k_over_kappa * q, (up, vp))
     }
 
+    /// The end of a step for this contact, shared by both step loops: an EPP element's new
+    /// state (from its predictors `pred` and the slip rate), a stick↔slip change counted
+    /// against `stuck`, and the slip peak (floor minus the other end, `u` the new
+    /// displacements, `v` the new velocities).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // one contact's end-of-step inputs, all distinct
+    fn finish_step(
+        &self,
+        k: &StepConstants,
+        (pred, slip_rate): ((f64, f64), f64),
+        (u, v): (&[f64], &[f64]),
+        now_stuck: bool,
+        epp: &mut EppState,
+        stuck: &mut bool,
+        peaks: &mut Peaks,
+    ) {
+        let x_other = if self.epp {
+            *epp = Link::epp_update(k, pred, v[self.floor], slip_rate);
+            epp.u
+        } else {
+            u[self.other]
+        };
+        if now_stuck != *stuck {
+            peaks.transitions[self.floor] += 1;
+            *stuck = now_stuck;
+        }
+        peaks.observe_slip(self.floor, u[self.floor] - x_other);
+    }
+
     /// An EPP element's state at the end of the step, from its predictors, its floor's
     /// velocity and the contact's slip rate. A product by 1/(γΔt), not a division: the
     /// update sits on the step-to-step dependency chain.
@@ -467,18 +496,15 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                     wf += wcj * fj;
                 }
                 w_new[c] = wfree[c] - wf;
-                let x_other = if l.epp {
-                    epp[c] = Link::epp_update(&k, epp_pred[c], v_now[l.floor], w_new[c]);
-                    epp[c].u
-                } else {
-                    u_now[l.other]
-                };
-                let now_stuck = qp.status(c) == Bound::Free;
-                if now_stuck != stuck[c] {
-                    peaks.transitions[l.floor] += 1;
-                    stuck[c] = now_stuck;
-                }
-                peaks.observe_slip(l.floor, u_now[l.floor] - x_other);
+                l.finish_step(
+                    &k,
+                    (epp_pred[c], w_new[c]),
+                    (u_now, v_now),
+                    qp.status(c) == Bound::Free,
+                    &mut epp[c],
+                    &mut stuck[c],
+                    &mut peaks,
+                );
             }
         }
         peaks.observe_floors(u_now, a_now, ag1);
