@@ -12,7 +12,7 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::{GROUND, Link, Operators, StepConstants, non_finite};
+use super::{GROUND, Link, Operators, StepConstants, mean_per_step, non_finite};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -250,11 +250,7 @@ pub(super) fn run<const N: usize, const NC: usize>(
     Ok(Outcome {
         response: peaks.into_plan_response(plan, None),
         diagnostics: Diagnostics {
-            qp_iterations_mean: if plan.steps > 0 {
-                qp_iter_total as f64 / plan.steps as f64
-            } else {
-                0.0
-            },
+            qp_iterations_mean: mean_per_step(qp_iter_total, plan.steps),
             qp_iterations_max: qp_iter_max,
             initial_energy: {
                 let (k0, s0) =

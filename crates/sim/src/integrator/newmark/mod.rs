@@ -239,6 +239,15 @@ impl Link {
     }
 }
 
+/// Friction QP iterations per step over a run (0 for a run of no steps).
+fn mean_per_step(total: u64, steps: usize) -> f64 {
+    if steps > 0 {
+        total as f64 / steps as f64
+    } else {
+        0.0
+    }
+}
+
 /// The error of a run whose state stopped being finite at `step` (from 1).
 fn non_finite(step: usize, dt: f64) -> SimError {
     SimError::NonFinite {
@@ -538,11 +547,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     Ok(Outcome {
         response,
         diagnostics: Diagnostics {
-            qp_iterations_mean: if plan.steps > 0 {
-                qp_iter_total as f64 / plan.steps as f64
-            } else {
-                0.0
-            },
+            qp_iterations_mean: mean_per_step(qp_iter_total, plan.steps),
             qp_iterations_max: qp_iter_max,
             balance_error_max_relative: acc.balance_max_rel,
             initial_energy,
