@@ -162,7 +162,7 @@ pub struct FidelityConfig {
     /// Method of the sweep and refinement (default newmark).
     #[serde(default)]
     pub method: MethodName,
-    /// Time step, s (default: sim's default, T₁/200 dividing the record's dt).
+    /// Time step, s (default: the simulation's, T₁/400 rounded to divide the record's dt).
     #[serde(default)]
     pub dt_s: Option<f64>,
     /// Method of the final check (default `exact`, the event-driven reference).

@@ -210,7 +210,8 @@ pub struct MethodConfig {
     /// Method (default newmark).
     #[serde(default)]
     pub name: MethodName,
-    /// Time step (s); default min(record dt, T₁/200) rounded to divide the record's dt.
+    /// Time step (s); default T₁/400 (`delacruz` T₁/200) rounded to divide the record's dt
+    /// ([`default_dt`]).
     #[serde(default)]
     pub dt: Option<Time>,
     /// HHT α in [−1/3, 0] (default −0.05 for hht, 0 for newmark).

@@ -79,7 +79,7 @@
 //! peaks (displacement, acceleration, base shear, slip) are taken at the output steps.
 //! Energies: input, viscous and friction powers integrated by 6-point Gauss–Legendre on
 //! every substep (exact to degree 11; with phase 2ρτ ≤ 1 the rule's error term is below
-//! 2e-16 of the powers' scale, see [`GAUSS`]).
+//! 2e-16 of the powers' scale: Davis & Rabinowitz 1984, §2.7).
 //! Each power is a quadratic form p(y) = yᵀ Q_p y of the augmented state, so on the grid
 //! substeps of a lasting mode set the rule is summed once, W_p = h Σ_g w_g Φ_gᵀ Q_p Φ_g
 //! (Φ_g = exp(A x_g h)), and a substep's work is yᵀ W_p y: the same quadrature, three
