@@ -184,11 +184,13 @@ struct EventFn {
 /// Everything fixed for one mode set.
 struct ModeOps {
     a: DMatrix<f64>,
-    /// Friction force of each contact as a row on y.
+    /// Friction force of each contact as a row on y, stored transposed (dim × contacts:
+    /// column c is contact c's row, contiguous for [`row_dot`]).
     force: DMatrix<f64>,
-    /// Slip rate of each contact as a row on y.
+    /// Slip rate of each contact as a row on y, transposed likewise.
     slip_rate: DMatrix<f64>,
-    /// ẋ′ rows of elastic–perfectly plastic contacts (by contact; zero rows for others).
+    /// ẋ′ rows of elastic–perfectly plastic contacts (zero rows for others), transposed
+    /// likewise.
     xdot: DMatrix<f64>,
     events: Vec<EventFn>,
     /// The M-orthogonal projector of the velocities onto B_Sᵀv = 0 for the stuck contacts
@@ -541,9 +543,9 @@ impl<'a> Model<'a> {
         let prepare_after = dim + events.len() + plan.floors;
         ModeOps {
             a,
-            force,
-            slip_rate,
-            xdot,
+            force: force.transpose(),
+            slip_rate: slip_rate.transpose(),
+            xdot: xdot.transpose(),
             events,
             proj,
             delta_max,
@@ -641,12 +643,17 @@ fn add_link(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
     }
 }
 
-/// Row `r` of `m` times `y`, without allocating.
+/// Contact `r`'s row on y, stored as column `r` of `m` (a [`ModeOps`] row set), times `y`,
+/// summed in order without allocating.
 #[inline]
 fn row_dot(m: &DMatrix<f64>, r: usize, y: &DVector<f64>) -> f64 {
     let mut s = 0.0;
-    for (j, yj) in y.iter().enumerate() {
-        s += m[(r, j)] * yj;
+    let rows = m.nrows();
+    for (mj, yj) in m.as_slice()[r * rows..(r + 1) * rows]
+        .iter()
+        .zip(y.as_slice())
+    {
+        s += mj * yj;
     }
     s
 }
@@ -845,12 +852,12 @@ impl Model<'_> {
         }
         for (c, ct) in plan.contacts.iter().enumerate() {
             // (force row · y)(slip-rate row · y).
-            let f = ops.force.row(c);
-            let w = ops.slip_rate.row(c);
-            friction.ger(1.0, &f.transpose(), &w.transpose(), 1.0);
+            let f = ops.force.column(c);
+            let w = ops.slip_rate.column(c);
+            friction.ger(1.0, &f, &w, 1.0);
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 // c′ (ẋ′ − v_below)².
-                let mut e = ops.xdot.row(c).transpose();
+                let mut e = ops.xdot.column(c).into_owned();
                 if let Some(j) = ct.below {
                     e[n + j] -= 1.0;
                 }
