@@ -1,54 +1,115 @@
-//! Asking for energies must not change the peaks: a peaks-only `newmark` run takes the
-//! fixed-size step loop (compile-time DOF and contact counts, friction answered from its
-//! stick/slip pattern), a run with energies the general loop, and both solve the same
-//! equations exactly. Their answers may differ only by round-off.
+//! The fixed-size step loop of `newmark` (compile-time DOF and contact counts, friction
+//! answered from its stick/slip pattern) runs peaks-only runs and runs with energies; a run
+//! that also records histories takes the general loop. All three solve the same equations
+//! exactly, so their answers may differ only by round-off: asking for energies or
+//! histories must not change the peaks, and the fixed loop's energies must be the
+//! general loop's.
 //!
 //! Covers every branch of the fixed loop: dissipators with mass (contacts with DOF),
 //! massless ones condensed into elastic–perfectly plastic elements (first floor against
 //! the ground, upper floors against the floor below), the ten-storey building in both
 //! forms, HHT-α (friction memory), a harmonic floor force, asymmetric friction bounds,
 //! dampers on some floors only, and a bare frame; and a DOF count without a fixed loop,
-//! where both runs take the general loop.
+//! where every run takes the general loop.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
 use common::*;
-use slipload_sim::{Plan, Response, SceneOverrides, run_plan};
+use slipload_sim::{Outcome, Plan, SceneOverrides, run_plan};
 
-/// Runs `scene_json` twice, peaks only and with energies; returns both responses and the
-/// plan's (DOFs, contacts).
-fn both(scene_json: &str) -> (Response, Response, (usize, usize)) {
+/// The runs of one scene: peaks only, with energies, and with energies and histories (the
+/// general loop).
+struct Runs {
+    peaks: Outcome,
+    energies: Outcome,
+    general: Outcome,
+    /// The plan's (DOFs, contacts).
+    dims: (usize, usize),
+}
+
+/// Runs `scene_json` peaks only, with energies, and with energies and histories.
+fn both(scene_json: &str) -> Runs {
     let mut scene = scene_json_checked(scene_json);
-    scene.outputs.energies = false;
-    scene.outputs.histories = false;
-    let fast = Plan::compile(&scene).unwrap();
-    let dims = (fast.dofs(), fast.contacts.len());
-    let a = run_plan(&fast).unwrap().response;
-    scene.outputs.energies = true;
-    let b = run_plan(&Plan::compile(&scene).unwrap()).unwrap().response;
-    assert!(a.energy.is_none() && b.energy.is_some());
-    (a, b, dims)
+    let mut run = |energies: bool, histories: bool| {
+        scene.outputs.energies = energies;
+        scene.outputs.histories = histories;
+        let plan = Plan::compile(&scene).unwrap();
+        (run_plan(&plan).unwrap(), (plan.dofs(), plan.contacts.len()))
+    };
+    let (peaks, dims) = run(false, false);
+    let (energies, _) = run(true, false);
+    let (general, _) = run(true, true);
+    assert!(peaks.response.energy.is_none() && energies.response.energy.is_some());
+    assert!(peaks.history.is_none() && energies.history.is_none());
+    assert!(general.history.is_some(), "histories take the general loop");
+    Runs {
+        peaks,
+        energies,
+        general,
+        dims,
+    }
 }
 
 fn scene_json_checked(text: &str) -> slipload_sim::Scene {
     scene_json(text, &SceneOverrides::default())
 }
 
-/// Every peak to 1e-9 of its array's largest value: both loops run the same arithmetic
+/// Every peak to 1e-9 of its array's largest value: the loops run the same arithmetic
 /// up to the order of a few sums and the friction solve (explicit inverse of the free
 /// block vs a Cholesky factor), ~1e-15 per step, over a few thousand steps of a
 /// non-expansive (dissipative) map. Transition counts are fragile (a grazing contact may
-/// stick for one step in one run and not the other): within 2 or 1 %.
-fn assert_same(name: &str, a: &Response, b: &Response) {
-    assert_peaks_close(name, a, b, 1e-9);
-    for (i, (p, q)) in a.transitions.iter().zip(&b.transitions).enumerate() {
-        let allowed = 2u64.max(q / 100);
+/// stick for one step in one run and not the other): within 2 or 1 %. The energies and
+/// the strain-energy area to 1e-9 of the largest energy: the same trapezoidal sums over
+/// those states, their quadratic forms summed in another order.
+fn assert_same(name: &str, runs: &Runs) {
+    let g = &runs.general;
+    for (what, o) in [("peaks only", &runs.peaks), ("energies", &runs.energies)] {
+        let (a, b) = (&o.response, &g.response);
+        let name = format!("{name} ({what} vs general loop)");
+        assert_peaks_close(&name, a, b, 1e-9);
+        for (i, (p, q)) in a.transitions.iter().zip(&b.transitions).enumerate() {
+            let allowed = 2u64.max(q / 100);
+            assert!(
+                p.abs_diff(*q) <= allowed,
+                "{name}: transitions[{i}] {p} vs {q}"
+            );
+        }
+        assert_eq!(a.steps, b.steps);
+    }
+    let (e, f) = (
+        runs.energies.response.energy.as_ref().unwrap(),
+        g.response.energy.as_ref().unwrap(),
+    );
+    let pairs = [
+        ("input", e.input, f.input),
+        ("kinetic", e.kinetic, f.kinetic),
+        ("strain", e.strain, f.strain),
+        ("viscous", e.viscous, f.viscous),
+        ("friction", e.friction, f.friction),
+        ("balance_error", e.balance_error, f.balance_error),
+    ];
+    let scale = pairs
+        .iter()
+        .fold(0.0f64, |m, (_, x, y)| m.max(x.abs()).max(y.abs()))
+        .max(1e-30);
+    for (what, x, y) in pairs {
         assert!(
-            p.abs_diff(*q) <= allowed,
-            "{name}: transitions[{i}] {p} vs {q}"
+            (x - y).abs() <= 1e-9 * scale,
+            "{name}: energy {what}: {x} vs {y} (scale {scale})"
         );
     }
-    assert_eq!(a.steps, b.steps);
+    let (sa, sb) = (
+        runs.energies.diagnostics.strain_energy_area,
+        g.diagnostics.strain_energy_area,
+    );
+    assert!(
+        sa > 0.0 && (sa - sb).abs() <= 1e-9 * sb,
+        "{name}: strain energy area {sa} vs {sb}"
+    );
+    assert_eq!(
+        runs.energies.diagnostics.initial_energy, g.diagnostics.initial_energy,
+        "{name}: initial energy"
+    );
 }
 
 fn record_scene(building: &str, record: &str, pga_g: f64, duration: f64, extra: &str) -> String {
@@ -62,13 +123,13 @@ fn record_scene(building: &str, record: &str, pga_g: f64, duration: f64, extra: 
 #[test]
 fn dissipators_with_mass() {
     let s = record_scene(r#""benchmark-3story.json""#, "SYL090.AT2", 0.6, 10.0, "");
-    let (a, b, dims) = both(&s);
-    assert_eq!(dims, (6, 3));
+    let runs = both(&s);
+    assert_eq!(runs.dims, (6, 3));
     assert!(
-        a.transitions.iter().sum::<u64>() > 100,
+        runs.peaks.response.transitions.iter().sum::<u64>() > 100,
         "the case must slip and stick"
     );
-    assert_same("benchmark", &a, &b);
+    assert_same("benchmark", &runs);
 }
 
 #[test]
@@ -80,9 +141,9 @@ fn massless_dissipators_as_epp_elements() {
         10.0,
         "",
     );
-    let (a, b, dims) = both(&s);
-    assert_eq!(dims, (3, 3));
-    assert_same("benchmark massless", &a, &b);
+    let runs = both(&s);
+    assert_eq!(runs.dims, (3, 3));
+    assert_same("benchmark massless", &runs);
 }
 
 #[test]
@@ -90,9 +151,9 @@ fn ten_storeys_reduced_and_full() {
     for (reduce, dims) in [(true, (10, 10)), (false, (20, 10))] {
         let extra = format!(r#", "reduce": {reduce}"#);
         let s = record_scene(r#""ten-story.json""#, "I-ELC180.AT2", 0.4, 8.0, &extra);
-        let (a, b, got) = both(&s);
-        assert_eq!(got, dims);
-        assert_same(&format!("ten-story reduce={reduce}"), &a, &b);
+        let runs = both(&s);
+        assert_eq!(runs.dims, dims);
+        assert_same(&format!("ten-story reduce={reduce}"), &runs);
     }
 }
 
@@ -105,8 +166,8 @@ fn hht_alpha_keeps_its_friction_memory() {
         6.0,
         r#", "method": { "name": "hht", "alpha": -0.1 }"#,
     );
-    let (a, b, _) = both(&s);
-    assert_same("benchmark hht", &a, &b);
+    let runs = both(&s);
+    assert_same("benchmark hht", &runs);
 }
 
 #[test]
@@ -114,10 +175,10 @@ fn harmonic_floor_force() {
     let s = r#"{ "building": "paper-1story.json",
                  "excitation": { "harmonic": { "floor": 1, "amplitude": "127.491 kN", "omega": 15.9781 } },
                  "duration": 5 }"#;
-    let (a, b, dims) = both(s);
-    assert_eq!(dims.1, 1);
-    assert!(a.transitions[0] > 0);
-    assert_same("one storey harmonic", &a, &b);
+    let runs = both(s);
+    assert_eq!(runs.dims.1, 1);
+    assert!(runs.peaks.response.transitions[0] > 0);
+    assert_same("one storey harmonic", &runs);
 }
 
 #[test]
@@ -133,9 +194,9 @@ fn asymmetric_bounds_and_some_floors_without_dampers() {
             "bounds": ["-300 kN", "200 kN"] }
         ] }"#;
     let s = record_scene(building, "SYL090.AT2", 0.6, 8.0, "");
-    let (a, b, dims) = both(&s);
-    assert_eq!(dims, (4, 2));
-    assert_same("asymmetric, floors 1 and 3", &a, &b);
+    let runs = both(&s);
+    assert_eq!(runs.dims, (4, 2));
+    assert_same("asymmetric, floors 1 and 3", &runs);
 }
 
 #[test]
@@ -144,10 +205,10 @@ fn bare_frame_and_sizes_without_a_fixed_loop() {
         "floor_masses": ["4.78e5 kg", "4.78e5 kg", "5.18e5 kg"],
         "storey_stiffness": ["68913.163 kN/m", "271262.264 kN/m", "121340.205 kN/m"],
         "damping": { "rayleigh": { "alpha": 0.213, "beta": 9.33e-4 } } }"#;
-    let (a, b, dims) = both(&record_scene(bare, "SYL090.AT2", 0.6, 8.0, ""));
-    assert_eq!(dims, (3, 0));
-    assert_same("bare frame", &a, &b);
-    // Nine storeys with massless dampers: no fixed loop for (9, 9); both take the
+    let runs = both(&record_scene(bare, "SYL090.AT2", 0.6, 8.0, ""));
+    assert_eq!(runs.dims, (3, 0));
+    assert_same("bare frame", &runs);
+    // Nine storeys with massless dampers: no fixed loop for (9, 9); every run takes the
     // general loop.
     let masses: Vec<String> = (0..9).map(|_| "\"5e5 kg\"".into()).collect();
     let ks: Vec<String> = (0..9).map(|_| "\"4e8 N/m\"".into()).collect();
@@ -165,7 +226,7 @@ fn bare_frame_and_sizes_without_a_fixed_loop() {
         ks.join(","),
         ds.join(",")
     );
-    let (a, b, dims) = both(&record_scene(&nine, "I-ELC180.AT2", 0.4, 6.0, ""));
-    assert_eq!(dims, (9, 9));
-    assert_same("nine storeys", &a, &b);
+    let runs = both(&record_scene(&nine, "I-ELC180.AT2", 0.4, 6.0, ""));
+    assert_eq!(runs.dims, (9, 9));
+    assert_same("nine storeys", &runs);
 }

@@ -71,8 +71,8 @@
 use crate::error::SimError;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
-    self, EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row,
-    slip, stored_energy,
+    self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
+    record_row, slip, stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, LoopIterations, Outcome, Peaks};
@@ -777,7 +777,8 @@ impl Integrator for DelaCruz {
                     f: (&f, &f_dyn),
                     w: (&w, &w_new),
                 };
-                e_row = Some(acc.step(plan, &data, &u, &epp, initial_energy));
+                let q = StepForms::of_plan(plan, (&v_old, &v), &u, &epp);
+                e_row = Some(acc.step(plan, &data, q, &epp, initial_energy));
             }
             if let Some(h) = history.as_mut() {
                 record_row(plan, h, t1, ag1, &u, &f_new, &w_new, &epp, e_row);

@@ -71,7 +71,14 @@ fn quad_avg(a: &DMatrix<f64>, x0: &[f64], x1: &[f64]) -> f64 {
 pub(crate) fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> (f64, f64) {
     debug_assert_eq!(u.len(), plan.dofs());
     let kinetic = 0.5 * quad_avg(&plan.mass, v, v);
-    let mut strain = 0.5 * quad_avg(&plan.stiffness, u, u);
+    let strain = 0.5 * quad_avg(&plan.stiffness, u, u) + epp_strain(plan, u, epp);
+    (kinetic, strain)
+}
+
+/// Strain energy of the elastic–perfectly plastic elements' braces, J.
+#[inline]
+pub(crate) fn epp_strain(plan: &Plan, u: &[f64], epp: &[EppState]) -> f64 {
+    let mut strain = 0.0;
     for (c, ct) in plan.contacts.iter().enumerate() {
         if ct.kind == ContactKind::Epp {
             let uj = ct.below.map_or(0.0, |j| u[j]);
@@ -79,7 +86,7 @@ pub(crate) fn stored_energy(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState])
             strain += 0.5 * ct.brace_stiffness * e * e;
         }
     }
-    (kinetic, strain)
+    strain
 }
 
 /// A consistent initial state on the plan's DOFs.
@@ -352,6 +359,35 @@ pub(crate) struct StepEnergyData<'a> {
     pub(crate) w: (&'a [f64], &'a [f64]),
 }
 
+/// The quadratic forms of one step's energies, which each step loop evaluates with its
+/// own storage of M, C and K.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StepForms {
+    /// v̄ᵀCv̄ with v̄ the step's mean velocity, W.
+    pub(crate) cvv: f64,
+    /// Kinetic energy at the end of the step, J.
+    pub(crate) kinetic: f64,
+    /// Strain energy at the end of the step (frame, braces with DOF and EPP braces), J.
+    pub(crate) strain: f64,
+}
+
+impl StepForms {
+    /// The forms from the plan's matrices (the loops with run-time sizes).
+    pub(crate) fn of_plan(
+        plan: &Plan,
+        (v_old, v_now): (&[f64], &[f64]),
+        u_now: &[f64],
+        epp: &[EppState],
+    ) -> StepForms {
+        let (kinetic, strain) = stored_energy(plan, u_now, v_now, epp);
+        StepForms {
+            cvv: quad_avg(&plan.damping, v_old, v_now),
+            kinetic,
+            strain,
+        }
+    }
+}
+
 impl EnergyAccumulator {
     /// The run's energies at its end state (u, v, `epp`).
     pub(crate) fn finish(
@@ -381,17 +417,18 @@ impl EnergyAccumulator {
         }
     }
 
-    /// Adds one step's increments; returns the history row (input, kinetic, strain,
-    /// viscous, friction) at the end of the step. `epp` is the elements' state at the end.
+    /// Adds one step's increments, its quadratic forms `q` evaluated by the caller;
+    /// returns the history row (input, kinetic, strain, viscous, friction) at the end of
+    /// the step. `epp` is the elements' state at the end.
     pub(crate) fn step(
         &mut self,
         plan: &Plan,
         d: &StepEnergyData<'_>,
-        u_now: &[f64],
+        q: StepForms,
         epp: &[EppState],
         initial_energy: f64,
     ) -> [f64; 5] {
-        let n = u_now.len();
+        let n = d.mr.len();
         let dt = d.dt;
         let (ag0, ag1) = d.ag;
         let (p0, p1) = d.p;
@@ -403,7 +440,7 @@ impl EnergyAccumulator {
         for i in 0..n {
             mrv += d.mr[i] * 0.5 * (v_old[i] + v_now[i]);
         }
-        let cvv = quad_avg(&plan.damping, v_old, v_now);
+        let cvv = q.cvv;
         let mut d_input = -ag_avg * mrv;
         if let Some(f) = d.force_floor {
             d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
@@ -423,7 +460,7 @@ impl EnergyAccumulator {
                 self.viscous += dt * ct.brace_damping * ed * ed;
             }
         }
-        let (ek, es) = stored_energy(plan, u_now, v_now, epp);
+        let (ek, es) = (q.kinetic, q.strain);
         self.strain_area += 0.5 * dt * (self.strain_prev + es);
         self.strain_prev = es;
         let bal = self.input + initial_energy - (ek + es + self.viscous + self.friction);

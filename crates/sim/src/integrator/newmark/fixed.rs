@@ -1,13 +1,13 @@
-//! The peaks-only step loop of `newmark` for a compile-time DOF count `N` and contact
-//! count `NC`.
+//! The step loop of `newmark` for a compile-time DOF count `N` and contact count `NC`.
 //!
 //! Same step as the general loop in the parent module — the same operators and
 //! predictors, the products summed in another order (round-off apart, the same numbers) —
 //! with every vector and operator a fixed-size array, so the products unroll and nothing
 //! is bounds-checked, and with the friction QP answered from its stick/slip pattern
-//! ([`PatternQp`]) before the general active-set solver is asked. It records peaks only:
-//! runs that ask for energies or histories take the general loop, which the
-//! `peaks_only_loop` tests hold it equal to.
+//! ([`PatternQp`]) before the general active-set solver is asked. It records peaks and,
+//! when asked, energies (their quadratic forms on fixed-size copies of M, C and K, the
+//! bookkeeping shared with the general loop); runs that ask for histories take the
+//! general loop, which the `peaks_only_loop` tests hold it equal to.
 
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
@@ -17,7 +17,10 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::friction::pattern::PatternQp;
-use crate::integrator::state::{EppState, base_shear, initial_state};
+use crate::integrator::state::{
+    EnergyAccumulator, EppState, StepEnergyData, StepForms, base_shear, epp_strain, initial_state,
+    slip_rate as contact_slip_rate, stored_energy,
+};
 use crate::plan::Plan;
 use crate::response::{Diagnostics, Outcome, Peaks};
 
@@ -66,18 +69,64 @@ impl<const N: usize, const NC: usize> Ops<N, NC> {
     }
 }
 
-/// Whether the fixed loop can run `plan`: peaks only, every contact with a finite box of
+/// Fixed-size copies (columns) of the matrices the energies read.
+struct EnergyMatrices<const N: usize> {
+    m: [[f64; N]; N],
+    c: [[f64; N]; N],
+    k: [[f64; N]; N],
+}
+
+impl<const N: usize> EnergyMatrices<N> {
+    fn new(plan: &Plan) -> EnergyMatrices<N> {
+        let cols = |a: &nalgebra::DMatrix<f64>| {
+            let mut o = [[0.0; N]; N];
+            for (j, col) in o.iter_mut().enumerate() {
+                for (i, x) in col.iter_mut().enumerate() {
+                    *x = a[(i, j)];
+                }
+            }
+            o
+        };
+        EnergyMatrices {
+            m: cols(&plan.mass),
+            c: cols(&plan.damping),
+            k: cols(&plan.stiffness),
+        }
+    }
+
+    /// One step's quadratic forms: v̄ᵀCv̄ over the step (v̄ the mean of `v_old` and `v`),
+    /// and the kinetic and strain energies at its end.
+    #[inline(always)]
+    fn forms(
+        &self,
+        plan: &Plan,
+        (v_old, v): (&[f64; N], &[f64; N]),
+        u: &[f64; N],
+        epp: &[EppState],
+    ) -> StepForms {
+        let mut vm = [0.0; N];
+        for i in 0..N {
+            vm[i] = 0.5 * (v_old[i] + v[i]);
+        }
+        StepForms {
+            cvv: dot(&mul(&self.c, &vm), &vm),
+            kinetic: 0.5 * dot(&mul(&self.m, v), v),
+            strain: 0.5 * dot(&mul(&self.k, u), u) + epp_strain(plan, u, epp),
+        }
+    }
+}
+
+/// Whether the fixed loop can run `plan`: no histories, every contact with a finite box of
 /// positive width (the pattern solver's premise).
 pub(super) fn applies(plan: &Plan) -> bool {
-    !plan.outputs.energies
-        && !plan.outputs.histories
+    !plan.outputs.histories
         && plan
             .contacts
             .iter()
             .all(|c| c.lower.is_finite() && c.upper.is_finite() && c.lower < c.upper)
 }
 
-/// Runs the peaks-only loop for `N` DOFs and `NC` contacts (the caller matched them).
+/// Runs the fixed-size loop for `N` DOFs and `NC` contacts (the caller matched them).
 pub(super) fn run<const N: usize, const NC: usize>(
     plan: &Plan,
     ops: &Operators,
@@ -120,6 +169,19 @@ pub(super) fn run<const N: usize, const NC: usize>(
     epp.copy_from_slice(&start.epp);
     let mut stuck = [false; NC];
     stuck.copy_from_slice(&start.stuck);
+    let (k0, s0) = stored_energy(plan, &start.u, &start.v, &start.epp);
+    let initial_energy = k0 + s0;
+    let energies = plan
+        .outputs
+        .energies
+        .then(|| EnergyMatrices::<N>::new(plan));
+    let mut acc = EnergyAccumulator::new(s0);
+    let force_floor = ops.hp.as_ref().map(|(f, _)| *f);
+    let mut v_old = [0.0; N];
+    let mut w_old = [0.0; NC];
+    for c in 0..NC {
+        w_old[c] = contact_slip_rate(plan, c, &start.v, &start.epp);
+    }
     let mut qp = if NC > 0 {
         Some(
             BoxQp::new(ops.w.as_slice(), NC)
@@ -219,6 +281,9 @@ pub(super) fn run<const N: usize, const NC: usize>(
                 af[i] -= gf[i];
             }
         }
+        if energies.is_some() {
+            v_old = v;
+        }
         let mut finite = 0.0;
         for i in 0..N {
             let ai = af[i];
@@ -243,20 +308,36 @@ pub(super) fn run<const N: usize, const NC: usize>(
         }
         peaks.observe_floors(&u, &a, ag1);
         peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag1, p1));
+        if let Some(e) = &energies {
+            let data = StepEnergyData {
+                dt,
+                mr: &o.mr,
+                ag: (ag0, ag1),
+                p: (p0, p1),
+                force_floor,
+                v: (&v_old, &v),
+                f: (&f_old, &f_new),
+                w: (&w_old, &slip_rate),
+            };
+            let q = e.forms(plan, (&v_old, &v), &u, &epp);
+            acc.step(plan, &data, q, &epp, initial_energy);
+            w_old = slip_rate;
+        }
         f_old = f_new;
         ag0 = ag1;
         p0 = p1;
     }
+    let energy = energies
+        .is_some()
+        .then(|| acc.finish(plan, &u, &v, &epp, initial_energy));
     Ok(Outcome {
-        response: peaks.into_plan_response(plan, None),
+        response: peaks.into_plan_response(plan, energy),
         diagnostics: Diagnostics {
             qp_iterations_mean: mean_per_step(qp_iter_total, plan.steps),
             qp_iterations_max: qp_iter_max,
-            initial_energy: {
-                let (k0, s0) =
-                    crate::integrator::state::stored_energy(plan, &start.u, &start.v, &start.epp);
-                k0 + s0
-            },
+            balance_error_max_relative: acc.balance_max_rel,
+            initial_energy,
+            strain_energy_area: acc.strain_area,
             ..Default::default()
         },
         history: None,
@@ -290,4 +371,14 @@ fn mul<const R: usize, const C: usize>(cols: &[[f64; R]; C], x: &[f64; C]) -> [f
         even[i] += odd[i];
     }
     even
+}
+
+/// Σᵢ a[i]·b[i], in order.
+#[inline(always)]
+fn dot<const R: usize>(a: &[f64; R], b: &[f64; R]) -> f64 {
+    let mut s = 0.0;
+    for i in 0..R {
+        s += a[i] * b[i];
+    }
+    s
 }

@@ -12,11 +12,11 @@
 //! (HHT-weighted) Newmark predictors of u and v.
 //! Nothing is allocated inside the step loop unless histories are asked for; the ground
 //! acceleration of each step is interpolated incrementally ([`Plan::ground_steps`]).
-//! Peaks-only runs of the sizes `fixed_dispatch!` lists step in the fixed-size loop of
-//! `newmark/fixed.rs` (DOF and contact counts compile-time constants, the friction QP
-//! answered from its stick/slip pattern); runs that ask for energies or histories, and
-//! other sizes, step in the general loop below, compiled once per small DOF count
-//! (1–8, 10, 12, 20) with the count a constant and once for any other count.
+//! Runs without histories, of the sizes `fixed_dispatch!` lists, step in the fixed-size
+//! loop of `newmark/fixed.rs` (DOF and contact counts compile-time constants, the friction
+//! QP answered from its stick/slip pattern, energies when asked); runs that ask for
+//! histories, and other sizes, step in the general loop below, compiled once per small DOF
+//! count (1–8, 10, 12, 20) with the count a constant and once for any other count.
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
@@ -30,8 +30,8 @@ use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
-    self, EnergyAccumulator, EppState, StepEnergyData, history_columns, initial_state, record_row,
-    slip, slip_rate, stored_energy,
+    self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
+    record_row, slip, slip_rate, stored_energy,
 };
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, Outcome, Peaks};
@@ -280,7 +280,7 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
         .collect()
 }
 
-/// Dispatches a peaks-only run to the fixed-size loop of its DOF and contact counts, for
+/// Dispatches a run without histories to the fixed-size loop of its DOF and contact counts, for
 /// the counts listed (up to eight DOFs with up to four dampers; up to twelve storeys with
 /// a massless damper on every floor; ten storeys with dissipator DOFs); `None` for any
 /// other, which the general loop runs.
@@ -530,7 +530,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 f: (&f_old, &f_new),
                 w: (&w_old, &w_new),
             };
-            e_row = Some(acc.step(plan, &data, u_now, &epp, initial_energy));
+            let q = StepForms::of_plan(plan, (&v_old, v_now), u_now, &epp);
+            e_row = Some(acc.step(plan, &data, q, &epp, initial_energy));
         }
         if let Some(hist) = history.as_mut() {
             record_row(plan, hist, t1, ag1, u_now, &f_new, &w_new, &epp, e_row);
