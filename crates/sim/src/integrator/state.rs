@@ -419,7 +419,9 @@ impl EnergyAccumulator {
 
     /// Adds one step's increments, its quadratic forms `q` evaluated by the caller;
     /// returns the history row (input, kinetic, strain, viscous, friction) at the end of
-    /// the step. `epp` is the elements' state at the end.
+    /// the step. `epp` is the elements' state at the end. Inlined, so that the fixed-size
+    /// loop's compile-time lengths reach its loops.
+    #[inline(always)]
     pub(crate) fn step(
         &mut self,
         plan: &Plan,
