@@ -216,6 +216,7 @@ struct SceneOpts {
     duration: f64,
     dt: Option<f64>,
     reduce: bool,
+    energies: bool,
 }
 
 impl SceneOpts {
@@ -225,17 +226,19 @@ impl SceneOpts {
             duration: 15.0,
             dt: None,
             reduce: true,
+            energies: false,
         }
     }
 }
 
-/// A peaks-only scene of `building` (JSON) under the 15 s (or `duration`) synthetic record.
+/// A scene of `building` (JSON) under the 15 s (or `duration`) synthetic record, peaks
+/// only unless energies are asked for.
 fn scene(building: &str, o: SceneOpts) -> anyhow::Result<Scene> {
     let json = format!(
         r#"{{ "name": "bench", "building": {building},
              "excitation": {{ "synthetic": {{ "seed": 2007, "duration": {}, "dt": 0.01 }} }},
-             "outputs": {{ "energies": false, "histories": false }}, "reduce": {} }}"#,
-        o.duration, o.reduce
+             "outputs": {{ "energies": {}, "histories": false }}, "reduce": {} }}"#,
+        o.duration, o.energies, o.reduce
     );
     let over = SceneOverrides {
         method: Some(o.method),
@@ -308,6 +311,53 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             ));
         }
     }
+    // What asking for energies costs (peaks-only runs pay nothing for them), and that the
+    // energies balance: Newmark's average acceleration balances them to round-off.
+    for (name, building) in [("benchmark-3story", b3), ("ten-story", b10)] {
+        let case = format!("outputs: {name} newmark default dt, energies vs peaks only");
+        if want(&case) {
+            let opts = SceneOpts::new(MethodName::Newmark);
+            let p = plan(building, opts)?;
+            let pe = plan(
+                building,
+                SceneOpts {
+                    energies: true,
+                    ..opts
+                },
+            )?;
+            let s = seconds_per_run(&p, &clock, budget)?;
+            let se = seconds_per_run(&pe, &clock, budget)?;
+            figs.push(Figure::new(
+                &case,
+                "time per simulation, peaks only",
+                s * 1e3,
+                "ms",
+            ));
+            figs.push(Figure::new(
+                &case,
+                "time per simulation, with energies",
+                se * 1e3,
+                "ms",
+            ));
+            figs.push(Figure::new(&case, "cost of the energies", se / s, "x"));
+            let out = run_plan(&pe)?;
+            let e = out
+                .response
+                .energy
+                .ok_or_else(|| anyhow::anyhow!("{case}: the run returned no energies"))?;
+            let scale = e.input.abs() + out.diagnostics.initial_energy;
+            figs.push(
+                Figure::new(
+                    &case,
+                    "|energy balance error| / input",
+                    e.balance_error.abs() / scale.max(f64::MIN_POSITIVE),
+                    "-",
+                )
+                .at_most(1e-9),
+            );
+        }
+    }
+
     let case = "benchmark-3story, 15 s synthetic, exact";
     if want(case) {
         let p = plan(b3, SceneOpts::new(MethodName::Exact))?;
