@@ -565,28 +565,38 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 })
             })
             .collect();
-        let mut rates = Vec::new();
-        for threads in [1usize, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .context("building a thread pool")?;
-            let mut times = Vec::new();
-            for rep in 0..=budget.repeats.min(3) {
+        // Wall-clock on a shared machine: the two thread counts alternate round by round
+        // (so both meet the same machine states), and each keeps its fastest round, the
+        // one least disturbed by other jobs (a median of one count's rounds taken in a
+        // block had a disturbed 1-thread block report an efficiency of 1.5).
+        let pools = [1usize, 2]
+            .map(|threads| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .context("building a thread pool")
+            })
+            .into_iter()
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let mut best = [f64::INFINITY; 2];
+        for round in 0..=budget.repeats.min(3) {
+            for (pool, best) in pools.iter().zip(best.iter_mut()) {
                 let t = Instant::now();
                 pool.install(|| run_tasks(&study, &tasks, &fid, &|_, _| Ok(())))?;
-                if rep > 0 {
-                    times.push(t.elapsed().as_secs_f64());
+                // Round 0 warms up (records decoded, pages touched).
+                if round > 0 {
+                    *best = best.min(t.elapsed().as_secs_f64());
                 }
             }
-            let rate = tasks.len() as f64 / median(&mut times);
+        }
+        let rates = best.map(|t| tasks.len() as f64 / t);
+        for (threads, rate) in [1, 2].iter().zip(rates) {
             figs.push(Figure::new(
                 case,
-                &format!("tasks per second, {threads} thread(s), wall-clock"),
+                &format!("tasks per second, {threads} thread(s), wall-clock (fastest round)"),
                 rate,
                 "1/s",
             ));
-            rates.push(rate);
         }
         figs.push(
             Figure::new(
