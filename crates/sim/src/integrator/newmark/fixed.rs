@@ -126,13 +126,16 @@ pub(super) fn applies(plan: &Plan) -> bool {
             .all(|c| c.lower.is_finite() && c.upper.is_finite() && c.lower < c.upper)
 }
 
-/// Runs the fixed-size loop for `N` DOFs and `NC` contacts (the caller matched them).
-pub(super) fn run<const N: usize, const NC: usize>(
+/// Runs the fixed-size loop for `N` DOFs and `NC` contacts (the caller matched them),
+/// recording energies when `E` (the caller matched it to the plan's outputs: a peaks-only
+/// run's loop holds no energy code at all).
+pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     plan: &Plan,
     ops: &Operators,
     links: &[Link],
 ) -> Result<Outcome, SimError> {
     debug_assert!(ops.n == N && plan.contacts.len() == NC && links.len() == NC);
+    debug_assert_eq!(E, plan.outputs.energies);
     let o = Ops::<N, NC>::new(ops);
     let dt = plan.method.dt;
     let nf = plan.floors;
@@ -171,10 +174,7 @@ pub(super) fn run<const N: usize, const NC: usize>(
     stuck.copy_from_slice(&start.stuck);
     let (k0, s0) = stored_energy(plan, &start.u, &start.v, &start.epp);
     let initial_energy = k0 + s0;
-    let energies = plan
-        .outputs
-        .energies
-        .then(|| EnergyMatrices::<N>::new(plan));
+    let energies = E.then(|| EnergyMatrices::<N>::new(plan));
     let mut acc = EnergyAccumulator::new(s0);
     let force_floor = ops.hp.as_ref().map(|(f, _)| *f);
     let mut v_old = [0.0; N];

@@ -287,7 +287,11 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
 macro_rules! fixed_dispatch {
     ($plan:expr, $ops:expr, $links:expr; $(($n:literal, $nc:literal)),* $(,)?) => {
         match ($ops.n, $plan.contacts.len()) {
-            $(($n, $nc) => Some(fixed::run::<$n, $nc>($plan, $ops, $links)),)*
+            $(($n, $nc) => Some(if $plan.outputs.energies {
+                fixed::run::<$n, $nc, true>($plan, $ops, $links)
+            } else {
+                fixed::run::<$n, $nc, false>($plan, $ops, $links)
+            }),)*
             _ => None,
         }
     };
