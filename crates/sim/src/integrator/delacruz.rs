@@ -72,7 +72,7 @@ use crate::error::SimError;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
-    record_row, slip, stored_energy,
+    record_row, slip,
 };
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Diagnostics, LoopIterations, Outcome, Peaks};
@@ -616,9 +616,7 @@ impl Integrator for DelaCruz {
         let mut projection_energy = 0.0;
 
         let energies = plan.outputs.energies;
-        let (k0, s0) = stored_energy(plan, &u, &v, &epp);
-        let initial_energy = k0 + s0;
-        let mut acc = EnergyAccumulator::new(s0);
+        let mut acc = EnergyAccumulator::start(plan, &u, &v, &epp);
         let msum: f64 = s.mr.iter().sum();
         let hf = plan.harmonic.map(|h| h.floor);
         let base_shear =
@@ -637,7 +635,7 @@ impl Integrator for DelaCruz {
             .histories
             .then(|| history_columns(plan, energies));
         if let Some(h) = history.as_mut() {
-            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+            let e = energies.then(|| acc.initial_row());
             record_row(plan, h, 0.0, ag0, &u, &f, &w, &epp, e);
         }
 
@@ -778,7 +776,7 @@ impl Integrator for DelaCruz {
                     w: (&w, &w_new),
                 };
                 let q = StepForms::of_plan(plan, (&v_old, &v), &u, &epp);
-                e_row = Some(acc.step(plan, &data, q, &epp, initial_energy));
+                e_row = Some(acc.step(plan, &data, q, &epp));
             }
             if let Some(h) = history.as_mut() {
                 record_row(plan, h, t1, ag1, &u, &f_new, &w_new, &epp, e_row);
@@ -790,7 +788,7 @@ impl Integrator for DelaCruz {
             ag0 = ag1;
             p0 = p1;
         }
-        let energy = energies.then(|| acc.finish(plan, &u, &v, &epp, initial_energy));
+        let energy = energies.then(|| acc.finish(plan, &u, &v, &epp));
         let response = peaks.into_plan_response(plan, energy);
         Ok(Outcome {
             response,
@@ -798,7 +796,7 @@ impl Integrator for DelaCruz {
                 qp_iterations_mean: 0.0,
                 qp_iterations_max: 0,
                 balance_error_max_relative: acc.balance_max_rel,
-                initial_energy,
+                initial_energy: acc.initial_energy(),
                 loop_iterations: Some(LoopIterations {
                     inner_mean: cnt.inner.mean(),
                     inner_max: cnt.inner.max,

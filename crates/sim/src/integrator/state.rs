@@ -337,6 +337,8 @@ pub(crate) struct EnergyAccumulator {
     pub(crate) strain_area: f64,
     /// Strain energy at the end of the last step, J.
     strain_prev: f64,
+    /// Kinetic and strain energy of the initial state, J.
+    initial: (f64, f64),
 }
 
 /// One step's data for [`EnergyAccumulator::step`].
@@ -390,14 +392,7 @@ impl StepForms {
 
 impl EnergyAccumulator {
     /// The run's energies at its end state (u, v, `epp`).
-    pub(crate) fn finish(
-        &self,
-        plan: &Plan,
-        u: &[f64],
-        v: &[f64],
-        epp: &[EppState],
-        initial_energy: f64,
-    ) -> Energy {
+    pub(crate) fn finish(&self, plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> Energy {
         let (ek, es) = stored_energy(plan, u, v, epp);
         Energy {
             input: self.input,
@@ -405,16 +400,30 @@ impl EnergyAccumulator {
             strain: es,
             viscous: self.viscous,
             friction: self.friction,
-            balance_error: self.input + initial_energy - (ek + es + self.viscous + self.friction),
+            balance_error: self.input + self.initial_energy()
+                - (ek + es + self.viscous + self.friction),
         }
     }
 
-    /// Starts from the initial strain energy `strain0`, J.
-    pub(crate) fn new(strain0: f64) -> Self {
+    /// Starts from the initial state (u, v, `epp`): its stored energy is the balance's
+    /// initial energy and the strain-energy area's first ordinate.
+    pub(crate) fn start(plan: &Plan, u: &[f64], v: &[f64], epp: &[EppState]) -> Self {
+        let (k0, s0) = stored_energy(plan, u, v, epp);
         EnergyAccumulator {
-            strain_prev: strain0,
+            strain_prev: s0,
+            initial: (k0, s0),
             ..Default::default()
         }
+    }
+
+    /// Kinetic + strain energy of the initial state, J.
+    pub(crate) fn initial_energy(&self) -> f64 {
+        self.initial.0 + self.initial.1
+    }
+
+    /// The history row of the initial state (input, kinetic, strain, viscous, friction).
+    pub(crate) fn initial_row(&self) -> [f64; 5] {
+        [0.0, self.initial.0, self.initial.1, 0.0, 0.0]
     }
 
     /// Adds one step's increments, its quadratic forms `q` evaluated by the caller;
@@ -428,7 +437,6 @@ impl EnergyAccumulator {
         d: &StepEnergyData<'_>,
         q: StepForms,
         epp: &[EppState],
-        initial_energy: f64,
     ) -> [f64; 5] {
         let n = d.mr.len();
         let dt = d.dt;
@@ -465,8 +473,8 @@ impl EnergyAccumulator {
         let (ek, es) = (q.kinetic, q.strain);
         self.strain_area += 0.5 * dt * (self.strain_prev + es);
         self.strain_prev = es;
-        let bal = self.input + initial_energy - (ek + es + self.viscous + self.friction);
-        let scale = (self.input.abs() + initial_energy).max(f64::MIN_POSITIVE);
+        let bal = self.input + self.initial_energy() - (ek + es + self.viscous + self.friction);
+        let scale = (self.input.abs() + self.initial_energy()).max(f64::MIN_POSITIVE);
         self.balance_max_rel = self.balance_max_rel.max(bal.abs() / scale);
         [self.input, ek, es, self.viscous, self.friction]
     }

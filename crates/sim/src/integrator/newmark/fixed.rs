@@ -12,17 +12,17 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::{GROUND, Link, Operators, StepConstants, mean_per_step, non_finite};
+use super::{GROUND, Link, Operators, StepConstants, non_finite, outcome};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::friction::pattern::PatternQp;
 use crate::integrator::state::{
     EnergyAccumulator, EppState, StepEnergyData, StepForms, base_shear, epp_strain, initial_state,
-    slip_rate as contact_slip_rate, stored_energy,
+    slip_rate as contact_slip_rate,
 };
 use crate::plan::Plan;
-use crate::response::{Diagnostics, Outcome, Peaks};
+use crate::response::{Outcome, Peaks};
 
 /// Fixed-size copies of the run's operators.
 struct Ops<const N: usize, const NC: usize> {
@@ -172,10 +172,8 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     epp.copy_from_slice(&start.epp);
     let mut stuck = [false; NC];
     stuck.copy_from_slice(&start.stuck);
-    let (k0, s0) = stored_energy(plan, &start.u, &start.v, &start.epp);
-    let initial_energy = k0 + s0;
     let energies = E.then(|| EnergyMatrices::<N>::new(plan));
-    let mut acc = EnergyAccumulator::new(s0);
+    let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &start.epp);
     let force_floor = ops.hp.as_ref().map(|(f, _)| *f);
     let mut v_old = [0.0; N];
     let mut w_old = [0.0; NC];
@@ -320,28 +318,22 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
                 w: (&w_old, &slip_rate),
             };
             let q = e.forms(plan, (&v_old, &v), &u, &epp);
-            acc.step(plan, &data, q, &epp, initial_energy);
+            acc.step(plan, &data, q, &epp);
             w_old = slip_rate;
         }
         f_old = f_new;
         ag0 = ag1;
         p0 = p1;
     }
-    let energy = energies
-        .is_some()
-        .then(|| acc.finish(plan, &u, &v, &epp, initial_energy));
-    Ok(Outcome {
-        response: peaks.into_plan_response(plan, energy),
-        diagnostics: Diagnostics {
-            qp_iterations_mean: mean_per_step(qp_iter_total, plan.steps),
-            qp_iterations_max: qp_iter_max,
-            balance_error_max_relative: acc.balance_max_rel,
-            initial_energy,
-            strain_energy_area: acc.strain_area,
-            ..Default::default()
-        },
-        history: None,
-    })
+    let energy = energies.is_some().then(|| acc.finish(plan, &u, &v, &epp));
+    Ok(outcome(
+        plan,
+        peaks,
+        &acc,
+        energy,
+        (qp_iter_total, qp_iter_max),
+        None,
+    ))
 }
 
 /// Σⱼ cols[j]·x[j], summed as two interleaved halves (even and odd j) that meet at the

@@ -31,10 +31,10 @@ use crate::friction::box_qp::Bound;
 use crate::integrator::Integrator;
 use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
-    record_row, slip, slip_rate, stored_energy,
+    record_row, slip, slip_rate,
 };
 use crate::plan::{ContactKind, Plan};
-use crate::response::{Diagnostics, Outcome, Peaks};
+use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
 
@@ -239,12 +239,33 @@ impl Link {
     }
 }
 
-/// Friction QP iterations per step over a run (0 for a run of no steps).
-fn mean_per_step(total: u64, steps: usize) -> f64 {
-    if steps > 0 {
-        total as f64 / steps as f64
-    } else {
-        0.0
+/// A run's outcome from what its step loop recorded (both loops end here): the peaks, the
+/// energies at the end state when asked, the energy diagnostics, the friction QP iterations
+/// (total over the run, most in one step) and the histories when asked.
+fn outcome(
+    plan: &Plan,
+    peaks: Peaks,
+    acc: &EnergyAccumulator,
+    energy: Option<Energy>,
+    (qp_total, qp_max): (u64, u32),
+    history: Option<History>,
+) -> Outcome {
+    Outcome {
+        response: peaks.into_plan_response(plan, energy),
+        diagnostics: Diagnostics {
+            // per step, 0 for a run of no steps
+            qp_iterations_mean: if plan.steps > 0 {
+                qp_total as f64 / plan.steps as f64
+            } else {
+                0.0
+            },
+            qp_iterations_max: qp_max,
+            balance_error_max_relative: acc.balance_max_rel,
+            initial_energy: acc.initial_energy(),
+            strain_energy_area: acc.strain_area,
+            ..Default::default()
+        },
+        history,
     }
 }
 
@@ -392,9 +413,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let mut epp_pred = vec![(0.0, 0.0); nc];
 
     let energies = plan.outputs.energies;
-    let (k0, s0) = stored_energy(plan, &start.u, &start.v, &epp);
-    let initial_energy = k0 + s0;
-    let mut acc = EnergyAccumulator::new(s0);
+    let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &epp);
 
     let mut peaks = Peaks::new(nf);
     let mut ag0 = plan.ground_accel(0.0);
@@ -414,7 +433,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         .histories
         .then(|| history_columns(plan, energies));
     if let Some(hist) = history.as_mut() {
-        let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+        let e = energies.then(|| acc.initial_row());
         record_row(plan, hist, 0.0, ag0, &start.u, &f_old, &w_old, &epp, e);
     }
 
@@ -535,7 +554,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 w: (&w_old, &w_new),
             };
             let q = StepForms::of_plan(plan, (&v_old, v_now), u_now, &epp);
-            e_row = Some(acc.step(plan, &data, q, &epp, initial_energy));
+            e_row = Some(acc.step(plan, &data, q, &epp));
         }
         if let Some(hist) = history.as_mut() {
             record_row(plan, hist, t1, ag1, u_now, &f_new, &w_new, &epp, e_row);
@@ -547,18 +566,13 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     }
     let (u_end, rest) = s.split_at(n);
     let v_end = &rest[..n];
-    let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp, initial_energy));
-    let response = peaks.into_plan_response(plan, energy);
-    Ok(Outcome {
-        response,
-        diagnostics: Diagnostics {
-            qp_iterations_mean: mean_per_step(qp_iter_total, plan.steps),
-            qp_iterations_max: qp_iter_max,
-            balance_error_max_relative: acc.balance_max_rel,
-            initial_energy,
-            strain_energy_area: acc.strain_area,
-            ..Default::default()
-        },
+    let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp));
+    Ok(outcome(
+        plan,
+        peaks,
+        &acc,
+        energy,
+        (qp_iter_total, qp_iter_max),
         history,
-    })
+    ))
 }
