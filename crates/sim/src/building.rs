@@ -25,16 +25,16 @@ pub struct BuildingConfig {
     /// Lumped floor masses, bottom to top (kg). Either this or `mass_matrix`.
     #[serde(default)]
     pub floor_masses: Option<Vec<Mass>>,
-    /// Full symmetric mass matrix (kg).
+    /// Full symmetric mass matrix (kg; entries are numbers or strings with units).
     #[serde(default)]
-    pub mass_matrix: Option<Vec<Vec<f64>>>,
+    pub mass_matrix: Option<Vec<Vec<Mass>>>,
     /// Storey (shear) stiffnesses, bottom to top (N/m). Either this or `stiffness_matrix`.
     #[serde(default)]
     pub storey_stiffness: Option<Vec<Stiffness>>,
-    /// Full symmetric frame stiffness matrix on floor displacements (N/m), e.g. a
-    /// condensed frame matrix.
+    /// Full symmetric frame stiffness matrix on floor displacements (N/m; entries are
+    /// numbers or strings with units, `"436.575 MN/m"`), e.g. a condensed frame matrix.
     #[serde(default)]
-    pub stiffness_matrix: Option<Vec<Vec<f64>>>,
+    pub stiffness_matrix: Option<Vec<Vec<Stiffness>>>,
     /// Frame damping; default none.
     #[serde(default)]
     pub damping: Option<DampingConfig>,
@@ -71,8 +71,9 @@ pub enum DampingConfig {
     },
     /// Storey dashpots (shear-building form), bottom to top, N·s/m.
     Storey(Vec<Damping>),
-    /// Full symmetric damping matrix, N·s/m.
-    Matrix(Vec<Vec<f64>>),
+    /// Full symmetric damping matrix, N·s/m (entries are numbers or strings with units,
+    /// `"509.253 kN·s/m"`).
+    Matrix(Vec<Vec<Damping>>),
 }
 
 /// One friction dissipator with its brace, as written.
@@ -169,12 +170,16 @@ pub struct Building {
     pub modes: Modes,
 }
 
-fn square(
+fn square<Q: Copy + Into<f64>>(
     path: &Path,
     field: &str,
-    rows: &[Vec<f64>],
+    rows: &[Vec<Q>],
     n: Option<usize>,
 ) -> Result<DMatrix<f64>, SimError> {
+    let rows: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| r.iter().map(|&q| q.into()).collect())
+        .collect();
     let size = rows.len();
     if size == 0 {
         return Err(SimError::invalid(path, field, "must not be empty"));

@@ -137,6 +137,11 @@ macro_rules! quantity {
                 d.deserialize_any(QuantityVisitor($dim)).map($name)
             }
         }
+        impl From<$name> for f64 {
+            fn from(q: $name) -> f64 {
+                q.0
+            }
+        }
     };
 }
 
