@@ -14,6 +14,7 @@ use slipload_opt::evaluate::Fidelity;
 use slipload_opt::optimize::objectives;
 use slipload_opt::refine::Point;
 use slipload_opt::study::SpaceConfig;
+use slipload_opt::sweep::Manifest;
 use slipload_opt::{RecordMetrics, Statistic, Study};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -255,13 +256,13 @@ impl RecordScatter {
     /// From the per-record responses of the bare frame and the design.
     pub fn new(
         design: &str,
-        study: &Study,
+        records: &[String],
         bare: &[RecordMetrics],
         rows: &[RecordMetrics],
     ) -> RecordScatter {
         RecordScatter {
             design: design.to_string(),
-            records: study.records.iter().map(|r| r.name().to_string()).collect(),
+            records: records.to_vec(),
             bare: bare.iter().map(RecordMetrics::peak_drift_ratio).collect(),
             design_values: rows.iter().map(RecordMetrics::peak_drift_ratio).collect(),
         }
@@ -414,4 +415,46 @@ impl StudyFigures {
         }
         Ok(names)
     }
+}
+
+/// A sweep's figures from its manifest and responses alone (no new simulations), so a
+/// single run and `merge` of its shards draw the same bytes: drift profiles of the three
+/// best designs, the building file's design and the bare frame; the best design vs the
+/// bare frame per record.
+pub fn sweep_figures(m: &Manifest, rows: &[RecordMetrics]) -> anyhow::Result<StudyFigures> {
+    let nr = m.records.len();
+    let obj = m.objectives(rows)?;
+    let mut order: Vec<usize> = (0..obj.len()).collect();
+    order.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
+    // design 0 is the bare frame (the manifest puts it first)
+    let is_file = |d: usize| m.designs[d].label == "file";
+    let mut picked: Vec<usize> = order
+        .iter()
+        .copied()
+        .filter(|&d| d != 0 && !is_file(d))
+        .take(3)
+        .collect();
+    picked.extend(order.iter().copied().filter(|&d| is_file(d)));
+    picked.push(0);
+    picked.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
+    let names: Vec<String> = picked.iter().map(|&d| m.designs[d].label.clone()).collect();
+    let runs: Vec<&[RecordMetrics]> = picked
+        .iter()
+        .map(|&d| &rows[d * nr..(d + 1) * nr])
+        .collect();
+    let best = order.iter().copied().find(|&d| d != 0);
+    Ok(StudyFigures {
+        map: None,
+        convergence: Vec::new(),
+        profiles: drift_profiles(&names, &runs),
+        scatter: best.map(|d| {
+            RecordScatter::new(
+                &m.designs[d].label,
+                &m.records,
+                &rows[..nr],
+                &rows[d * nr..(d + 1) * nr],
+            )
+        }),
+        fidelity: format!("{} (sweep fidelity)", m.method.as_str()),
+    })
 }

@@ -395,8 +395,10 @@ pub fn run(
 }
 
 /// Joins the journals of shard folders into `out`: the bytes a single run writes.
-/// Every folder must hold the same `manifest.json`; every task must be present.
-pub fn merge(dirs: &[&Path], out: &Path) -> Result<Vec<RecordMetrics>, OptError> {
+/// Every folder must hold the same `manifest.json`; every task must be present. Returns
+/// the manifest and the rows (task order), from which the caller draws the figures a
+/// single run draws.
+pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>), OptError> {
     let mut manifest: Option<(Manifest, &Path)> = None;
     for dir in dirs {
         let path = dir.join("manifest.json");
@@ -455,5 +457,5 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<Vec<RecordMetrics>, OptError>
     if !dirs.iter().any(|d| d.join("journal.jsonl") == jout) {
         write_atomic(&jout, journal_text.as_bytes())?;
     }
-    Ok(full)
+    Ok((manifest, full))
 }

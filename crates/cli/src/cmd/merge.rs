@@ -1,5 +1,6 @@
 //! `slipload merge`: joins the journals of sweep shards into the files one run writes.
 
+use crate::study_figures::sweep_figures;
 use anyhow::Context;
 use std::path::PathBuf;
 
@@ -17,13 +18,20 @@ pub struct MergeArgs {
 /// Runs `slipload merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
-    let rows = slipload_opt::sweep::merge(&dirs, &args.out)
+    let (manifest, rows) = slipload_opt::sweep::merge(&dirs, &args.out)
         .with_context(|| format!("merging into {}", args.out.display()))?;
     eprintln!(
         "merged {} folders, {} tasks: wrote {}/{{manifest.json,responses.csv,designs.csv,journal.jsonl}}",
         dirs.len(),
         rows.len(),
         args.out.display()
+    );
+    // the figures a single sweep draws, from the same manifest and rows
+    let written = sweep_figures(&manifest, &rows)?.write(&args.out)?;
+    eprintln!(
+        "figures (SVG, PNG, CSV): {}/{{{}}}",
+        args.out.display(),
+        written.join(",")
     );
     Ok(())
 }

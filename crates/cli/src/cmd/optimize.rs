@@ -185,7 +185,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         },
         scatter: Some(RecordScatter::new(
             &designs[0].0,
-            &study,
+            &study
+                .records
+                .iter()
+                .map(|r| r.name().to_string())
+                .collect::<Vec<_>>(),
             &runs[0],
             &runs[1],
         )),

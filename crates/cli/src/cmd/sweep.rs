@@ -2,7 +2,7 @@
 //! output folder (`--resume` continues it), optionally one shard of a job array.
 
 use super::study_args::{load_study, progress};
-use crate::study_figures::{RecordScatter, StudyFigures, drift_profiles};
+use crate::study_figures::sweep_figures;
 use anyhow::Context;
 use slipload_opt::Shard;
 use slipload_opt::sweep;
@@ -63,7 +63,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
             "wrote {}/{{manifest.json,responses.csv,designs.csv}}",
             args.out.display()
         );
-        let written = sweep_figures(&study, &report.manifest, rows)?.write(&args.out)?;
+        let written = sweep_figures(&report.manifest, rows)?.write(&args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),
@@ -76,49 +76,4 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-/// The sweep's figures (no new simulations): drift profiles of the three best designs,
-/// the building file's design and the bare frame; the best design vs the bare frame per
-/// record.
-fn sweep_figures(
-    study: &slipload_opt::Study,
-    m: &sweep::Manifest,
-    rows: &[slipload_opt::RecordMetrics],
-) -> anyhow::Result<StudyFigures> {
-    let nr = m.records.len();
-    let obj = m.objectives(rows)?;
-    let mut order: Vec<usize> = (0..obj.len()).collect();
-    order.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
-    // design 0 is the bare frame (the manifest puts it first)
-    let is_file = |d: usize| m.designs[d].label == "file";
-    let mut picked: Vec<usize> = order
-        .iter()
-        .copied()
-        .filter(|&d| d != 0 && !is_file(d))
-        .take(3)
-        .collect();
-    picked.extend(order.iter().copied().filter(|&d| is_file(d)));
-    picked.push(0);
-    picked.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
-    let names: Vec<String> = picked.iter().map(|&d| m.designs[d].label.clone()).collect();
-    let runs: Vec<&[slipload_opt::RecordMetrics]> = picked
-        .iter()
-        .map(|&d| &rows[d * nr..(d + 1) * nr])
-        .collect();
-    let best = order.iter().copied().find(|&d| d != 0);
-    Ok(StudyFigures {
-        map: None,
-        convergence: Vec::new(),
-        profiles: drift_profiles(&names, &runs),
-        scatter: best.map(|d| {
-            RecordScatter::new(
-                &m.designs[d].label,
-                study,
-                &rows[..nr],
-                &rows[d * nr..(d + 1) * nr],
-            )
-        }),
-        fidelity: format!("{} (sweep fidelity)", m.method.as_str()),
-    })
 }

@@ -1,0 +1,148 @@
+//! Contract: a number the README quotes from a command is what that command prints today,
+//! and the committed results of the main job are what it writes today.
+//!
+//! The README marks each quoted output with a comment naming the command, followed by a
+//! fenced block: `<!-- printed by: slipload ARGS -->`. This test runs every such command
+//! (in a scratch folder, from the repository root's configs) and requires every line of
+//! the block to be a line of what it printed, verbatim. The main job's printed summary
+//! must also be the one committed in `results/benchmark-3story/summary.txt` (the same
+//! study: `configs/study-benchmark.json` is the embedded one), but for the line that
+//! reports the wall-clock time and the lines naming the output folder.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+mod common;
+use common::{root, scratch};
+use std::process::Command;
+
+const MARK: &str = "<!-- printed by: slipload ";
+
+/// The quoted outputs of the README: (arguments, lines of the fenced block after the mark).
+fn quoted_outputs(readme: &str) -> Vec<(Vec<String>, Vec<String>)> {
+    let lines: Vec<&str> = readme.lines().collect();
+    let mut found = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let Some(rest) = line.trim().strip_prefix(MARK) else {
+            continue;
+        };
+        let args: Vec<String> = rest
+            .trim_end_matches("-->")
+            .split_whitespace()
+            .map(str::to_string)
+            .collect();
+        let open = lines[i + 1..]
+            .iter()
+            .position(|l| l.trim_start().starts_with("```"))
+            .map(|k| i + 1 + k)
+            .unwrap_or_else(|| panic!("README line {}: no fenced block after the mark", i + 1));
+        assert_eq!(
+            open,
+            i + 1,
+            "README line {}: the block must follow the mark",
+            i + 1
+        );
+        let close = lines[open + 1..]
+            .iter()
+            .position(|l| l.trim_start().starts_with("```"))
+            .map(|k| open + 1 + k)
+            .unwrap_or_else(|| panic!("README line {}: unclosed block", open + 1));
+        let block = lines[open + 1..close]
+            .iter()
+            .filter(|l| !l.trim().is_empty())
+            .map(|l| l.to_string())
+            .collect();
+        found.push((args, block));
+    }
+    found
+}
+
+/// Runs `slipload ARGS` in a scratch folder with `configs/` reachable as in the README
+/// (commands there run from the repository root): relative paths are resolved against
+/// the root, and `--out` is pointed into the scratch folder.
+fn run(args: &[String], name: &str) -> String {
+    let dir = scratch("readme", name);
+    let mut argv: Vec<String> = Vec::new();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        if a == "--out" {
+            it.next();
+            continue;
+        }
+        argv.push(
+            if a.starts_with("configs/") || a.starts_with("../shared/") {
+                root().join(a).to_string_lossy().into_owned()
+            } else {
+                a.clone()
+            },
+        );
+    }
+    if argv
+        .first()
+        .is_some_and(|c| c == "optimize" || c == "sweep")
+    {
+        argv.extend([
+            "--out".into(),
+            dir.join("out").to_string_lossy().into_owned(),
+        ]);
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_slipload"))
+        .args(&argv)
+        .arg("--quiet")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "slipload {argv:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// A summary without what changes from run to run or folder to folder: the line with the
+/// wall-clock time, and the lines that name where the files went.
+fn comparable(summary: &str) -> Vec<String> {
+    summary
+        .lines()
+        .filter(|l| {
+            !l.contains(" simulations in ")
+                && !l.starts_with("wrote ")
+                && !l.starts_with("figures ")
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn readme_quotes_what_the_commands_print() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let quoted = quoted_outputs(&readme);
+    assert!(
+        quoted
+            .iter()
+            .any(|(args, _)| args.first().is_some_and(|c| c == "optimize")),
+        "the README quotes the main job's output"
+    );
+    for (k, (args, block)) in quoted.iter().enumerate() {
+        assert!(!block.is_empty(), "slipload {args:?}: empty quoted block");
+        let printed = run(args, &format!("q{k}"));
+        let lines: Vec<&str> = printed.lines().collect();
+        for l in block {
+            assert!(
+                lines.contains(&l.as_str()),
+                "README quotes `slipload {}` as printing\n  {l}\nbut it prints:\n{printed}",
+                args.join(" ")
+            );
+        }
+        if args.len() == 1 && args[0] == "optimize" {
+            let committed =
+                std::fs::read_to_string(root().join("results/benchmark-3story/summary.txt"))
+                    .unwrap();
+            assert_eq!(
+                comparable(&committed),
+                comparable(&printed),
+                "results/benchmark-3story/summary.txt is not what the main job prints today: run scripts/design-tables.sh"
+            );
+        }
+    }
+}
