@@ -4,9 +4,10 @@
 //! rendered size and the tables are there (checked by `scripts/check-report`, which also
 //! takes a full-page screenshot).
 //!
-//! Needs chromium (`apt-get install -y chromium`) and the script's npm packages
-//! (`npm ci` in scripts/check-report); `.ci/run` installs both. When either is missing
-//! the test FAILS with these instructions, unless `SLIPLOAD_SKIP_BROWSER=1` is set.
+//! Needs chromium (`apt-get install -y chromium`) and the script's npm packages (`npm ci`
+//! in scripts/check-report); `bash scripts/test.sh`, the README's test command, installs
+//! both and runs this test. When either is missing the test FAILS with these
+//! instructions, unless `SLIPLOAD_SKIP_BROWSER=1` is set.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -122,7 +123,7 @@ fn reports_load_in_headless_chromium_without_errors() {
         }
         panic!(
             "the headless-browser check cannot run; missing: {what}. \
-             Install them (`.ci/run` does), or set SLIPLOAD_SKIP_BROWSER=1 to skip this test explicitly."
+             Install them (`bash scripts/test.sh`, the README's test command, does), or set SLIPLOAD_SKIP_BROWSER=1 to skip this test explicitly."
         );
     }
     let work = scratch("report-browser", "all");
