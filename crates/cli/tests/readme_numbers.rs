@@ -135,6 +135,32 @@ fn readme_quotes_what_the_commands_print() {
             );
         }
         if args.len() == 1 && args[0] == "optimize" {
+            // "about N simulations" in the README is the count the main job prints
+            let printed_count = printed
+                .lines()
+                .find_map(|l| {
+                    l.split(" simulations in ")
+                        .next()
+                        .filter(|_| l.contains(" simulations in "))
+                })
+                .and_then(|head| head.rsplit(' ').next())
+                .unwrap_or_else(|| panic!("the main job prints its simulation count:\n{printed}"));
+            let claims: Vec<&str> = readme
+                .split("about ")
+                .skip(1)
+                .filter_map(|rest| rest.split_once(" simulations").map(|(n, _)| n))
+                .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
+                .collect();
+            assert!(
+                !claims.is_empty(),
+                "the README says how many simulations the main job runs"
+            );
+            for n in claims {
+                assert_eq!(
+                    n, printed_count,
+                    "the README says about {n} simulations, the main job prints {printed_count}"
+                );
+            }
             let committed =
                 std::fs::read_to_string(root().join("results/benchmark-3story/summary.txt"))
                     .unwrap();
