@@ -29,3 +29,4 @@ mkdir -p "$out"
 # Benchmark over the embedded synthetic suite (10 records): per record and the median.
 "$bin" accuracy configs/benchmark-3story.json --synthetic 10 --out "$out" --name benchmark-synthetic-suite
 echo "results in $out"
+python3 scripts/accuracy_summary.py "$out"

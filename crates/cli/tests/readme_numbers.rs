@@ -4,7 +4,9 @@
 //! The README marks each quoted output with a comment naming the command, followed by a
 //! fenced block: `<!-- printed by: slipload ARGS -->`. This test runs every such command
 //! (in a scratch folder, from the repository root's configs) and requires every line of
-//! the block to be a line of what it printed, verbatim. The main job's printed summary
+//! the block to be a line of what it printed, verbatim. A block marked
+//! `<!-- copied from: results/FILE -->` quotes a generated result file the same way: each
+//! of its lines is a line of that file (the scripts that regenerate results/ write them). The main job's printed summary
 //! must also be the one committed in `results/benchmark-3story/summary.txt` (the same
 //! study: `configs/study-benchmark.json` is the embedded one), but for the line that
 //! reports the wall-clock time and the lines naming the output folder.
@@ -14,14 +16,17 @@ mod common;
 use common::{root, scratch};
 use std::process::Command;
 
-const MARK: &str = "<!-- printed by: slipload ";
+const PRINTED: &str = "<!-- printed by: slipload ";
+const COPIED: &str = "<!-- copied from: ";
 
-/// The quoted outputs of the README: (arguments, lines of the fenced block after the mark).
-fn quoted_outputs(readme: &str) -> Vec<(Vec<String>, Vec<String>)> {
+/// The blocks of the README that follow a line starting with `mark`: (the rest of that
+/// line, split on white space; the non-empty lines of the fenced block after it, or of the
+/// Markdown table after it, up to the next blank line).
+fn quoted_blocks(readme: &str, mark: &str) -> Vec<(Vec<String>, Vec<String>)> {
     let lines: Vec<&str> = readme.lines().collect();
     let mut found = Vec::new();
     for (i, line) in lines.iter().enumerate() {
-        let Some(rest) = line.trim().strip_prefix(MARK) else {
+        let Some(rest) = line.trim().strip_prefix(mark) else {
             continue;
         };
         let args: Vec<String> = rest
@@ -29,23 +34,27 @@ fn quoted_outputs(readme: &str) -> Vec<(Vec<String>, Vec<String>)> {
             .split_whitespace()
             .map(str::to_string)
             .collect();
-        let open = lines[i + 1..]
-            .iter()
-            .position(|l| l.trim_start().starts_with("```"))
-            .map(|k| i + 1 + k)
-            .unwrap_or_else(|| panic!("README line {}: no fenced block after the mark", i + 1));
-        assert_eq!(
-            open,
-            i + 1,
-            "README line {}: the block must follow the mark",
+        let next = i + 1;
+        assert!(
+            lines.get(next).is_some_and(|l| !l.trim().is_empty()),
+            "README line {}: the quoted block must follow the mark",
             i + 1
         );
-        let close = lines[open + 1..]
-            .iter()
-            .position(|l| l.trim_start().starts_with("```"))
-            .map(|k| open + 1 + k)
-            .unwrap_or_else(|| panic!("README line {}: unclosed block", open + 1));
-        let block = lines[open + 1..close]
+        // a fenced block, or (a Markdown table) the lines up to the next blank line
+        let body: Vec<&str> = if lines[next].trim_start().starts_with("```") {
+            let close = lines[next + 1..]
+                .iter()
+                .position(|l| l.trim_start().starts_with("```"))
+                .unwrap_or_else(|| panic!("README line {}: unclosed block", next + 1));
+            lines[next + 1..next + 1 + close].to_vec()
+        } else {
+            lines[next..]
+                .iter()
+                .take_while(|l| !l.trim().is_empty())
+                .copied()
+                .collect()
+        };
+        let block = body
             .iter()
             .filter(|l| !l.trim().is_empty())
             .map(|l| l.to_string())
@@ -116,7 +125,7 @@ fn comparable(summary: &str) -> Vec<String> {
 #[test]
 fn readme_quotes_what_the_commands_print() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let quoted = quoted_outputs(&readme);
+    let quoted = quoted_blocks(&readme, PRINTED);
     assert!(
         quoted
             .iter()
@@ -168,6 +177,35 @@ fn readme_quotes_what_the_commands_print() {
                 comparable(&committed),
                 comparable(&printed),
                 "results/benchmark-3story/summary.txt is not what the main job prints today: run scripts/design-tables.sh"
+            );
+        }
+    }
+}
+
+#[test]
+fn readme_quotes_the_committed_results_verbatim() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let quoted = quoted_blocks(&readme, COPIED);
+    assert!(
+        !quoted.is_empty(),
+        "the README quotes its result tables from results/"
+    );
+    for (path, block) in quoted {
+        assert_eq!(path.len(), 1, "one file per mark: {path:?}");
+        assert!(
+            path[0].starts_with("results/"),
+            "{}: not under results/",
+            path[0]
+        );
+        let text = std::fs::read_to_string(root().join(&path[0]))
+            .unwrap_or_else(|e| panic!("README quotes {}: {e}", path[0]));
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(!block.is_empty(), "{}: empty quoted block", path[0]);
+        for l in &block {
+            assert!(
+                lines.contains(&l.as_str()),
+                "README quotes {} as holding\n  {l}\nbut it does not (regenerate results/ and copy the block again)",
+                path[0]
             );
         }
     }
