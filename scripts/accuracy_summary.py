@@ -11,6 +11,7 @@ Usage: scripts/accuracy_summary.py DIR   (standard library only)
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 from pathlib import Path
@@ -32,8 +33,14 @@ def entry(study: dict, method: str, label: str) -> dict | None:
     return None
 
 
+def two_digits(v: float) -> str:
+    """v to two significant digits, without exponent: 28, 8.0, 0.17."""
+    decimals = max(0, 1 - math.floor(math.log10(abs(v)))) if v else 1
+    return f"{v:.{decimals}f}"
+
+
 def ms(seconds: float) -> str:
-    return f"{seconds * 1e3:#.2g} ms" if seconds < 0.1 else f"{seconds:#.2g} s"
+    return f"{two_digits(seconds * 1e3)} ms" if seconds < 0.1 else f"{two_digits(seconds)} s"
 
 
 def newmark_cell(study: dict, label: str) -> str:
