@@ -4,10 +4,11 @@
 #   results/accuracy/     accuracy vs cost, work-precision figures (scripts/accuracy-study.sh)
 #   results/benchmark-3story/, results/ten-story/  design tables and study figures
 #                         (scripts/design-tables.sh)
+#   results/refiners/     the refiners against an exhaustive grid (scripts/refiner-comparison.sh)
 #   results/performance/  `slipload bench` and the OpenSees comparison
 #   results/figures/      the simulation and spectrum figures the README shows
 # Usage: scripts/reproduce-all.sh   (from anywhere; needs ../shared/records beside the repo;
-# about 15 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
+# about 20 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet -p slipload
@@ -16,6 +17,7 @@ bin=target/release/slipload
 scripts/reproduce-paper.sh
 scripts/accuracy-study.sh
 scripts/design-tables.sh
+scripts/refiner-comparison.sh
 scripts/bench.sh
 python3 scripts/compare-opensees.py
 
