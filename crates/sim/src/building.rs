@@ -279,10 +279,8 @@ impl Building {
             path: path.to_path_buf(),
             source,
         })?;
-        let cfg: BuildingConfig = serde_json::from_str(&text).map_err(|source| SimError::Json {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let cfg: BuildingConfig =
+            crate::kind::parse(&text, path, crate::kind::Expected::Building)?;
         Building::from_config(&cfg, path)
     }
 

@@ -9,6 +9,7 @@ use anyhow::Context;
 use slipload_motion::Units;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
+use slipload_sim::kind::Expected;
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
 
@@ -75,10 +76,9 @@ fn synthetic_scene(args: &AccuracyArgs, index: usize) -> anyhow::Result<Scene> {
     let value: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("parsing scene {}", path.display()))?;
     let mut cfg: SceneConfig = if value.get("building").is_some() {
-        serde_json::from_value(value).with_context(|| format!("scene {}", path.display()))?
+        slipload_sim::kind::parse(&text, path, Expected::SceneOrBuilding)?
     } else {
-        let b: BuildingConfig = serde_json::from_value(value)
-            .with_context(|| format!("building {}", path.display()))?;
+        let b: BuildingConfig = slipload_sim::kind::parse(&text, path, Expected::SceneOrBuilding)?;
         SceneConfig {
             name: b.name.clone(),
             description: None,

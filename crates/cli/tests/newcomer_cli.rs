@@ -1,0 +1,80 @@
+//! What a new user runs into first, held by tests: a file given to the wrong command
+//! says what it is and what to run; `--quiet` and `--threads` are taken by every command;
+//! default outputs go under `out/` (parent folders created); a folder of records is read
+//! whatever the case of the `.AT2` extension; `--method` lists its values.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+mod common;
+use common::{scratch, slipload};
+use std::path::Path;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_study_given_to_simulate_says_what_to_run() {
+    for cmd in ["simulate", "explain"] {
+        let o = slipload(&[cmd, "configs/study-benchmark.json"]);
+        assert!(!o.status.success(), "{cmd}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("configs/study-benchmark.json is a study, not a scene or a building")
+                && err.contains("slipload optimize configs/study-benchmark.json"),
+            "{cmd}: {err}"
+        );
+        assert!(!err.contains("unknown field"), "{cmd}: {err}");
+    }
+    // accuracy reads scenes the same way (with and without --synthetic)
+    let dir = scratch("newcomer", "acc-study");
+    for extra in [&[][..], &["--synthetic", "1"][..]] {
+        let mut args = vec![
+            "accuracy",
+            "configs/study-benchmark.json",
+            "--out",
+            s(&dir),
+        ];
+        args.extend_from_slice(extra);
+        let o = slipload(&args);
+        assert!(!o.status.success());
+        assert!(stderr(&o).contains("is a study, not a scene"), "{}", stderr(&o));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_building_or_a_scene_given_to_a_study_command_says_what_to_run() {
+    let dir = scratch("newcomer", "study-cmds");
+    for (file, kind) in [
+        ("configs/benchmark-3story.json", "a building"),
+        ("configs/paper-benchmark-sylmar.json", "a scene"),
+    ] {
+        for cmd in ["optimize", "sweep"] {
+            let out = dir.join(format!("{cmd}-out"));
+            let o = slipload(&[cmd, file, "--out", s(&out)]);
+            assert!(!o.status.success(), "{cmd} {file}");
+            let err = stderr(&o);
+            assert!(
+                err.contains(&format!("{file} is {kind}, not a study"))
+                    && err.contains(&format!("slipload simulate {file}")),
+                "{cmd} {file}: {err}"
+            );
+            assert!(!out.exists(), "{cmd}: nothing written");
+        }
+    }
+    // candidate designs given as a study point to `rank --designs`
+    let designs = dir.join("candidates.json");
+    std::fs::write(&designs, r#"[{"name": "a", "slip_loads_kn": [1, 2, 3]}]"#).unwrap();
+    let o = slipload(&["optimize", s(&designs), "--out", s(&dir.join("o"))]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("--designs") && stderr(&o).contains("candidate designs"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
