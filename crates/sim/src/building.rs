@@ -1,5 +1,5 @@
 //! The building model: floor masses, frame stiffness and damping, storey heights, and at
-//! most one friction dissipator per floor (DESIGN.md § The model).
+//! most one friction dissipator per floor (docs/MODEL.md § The model).
 //!
 //! A [`BuildingConfig`] is what a JSON file says (unknown fields rejected, units accepted
 //! as strings); [`Building::from_config`] validates it into SI matrices with errors that
