@@ -78,3 +78,33 @@ fn a_building_or_a_scene_given_to_a_study_command_says_what_to_run() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn quiet_and_threads_are_taken_by_simulate_and_merge() {
+    let o = slipload(&[
+        "simulate",
+        "configs/paper-1story-free.json",
+        "--quiet",
+        "--threads",
+        "1",
+        "--duration",
+        "0.5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // merge of folders that are not shards: an error about the folders, not the flags
+    let dir = scratch("newcomer", "merge");
+    let o = slipload(&[
+        "merge",
+        s(&dir.join("a")),
+        "--out",
+        s(&dir.join("m")),
+        "--quiet",
+    ]);
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert!(
+        !err.contains("unexpected argument") && err.contains(s(&dir.join("a"))),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -147,7 +147,9 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
     };
     let mut reports: Vec<StudyReport> = Vec::new();
     for s in &scenes {
-        eprintln!("accuracy: {} ...", s.name);
+        if !crate::output::quiet() {
+            eprintln!("accuracy: {} ...", s.name);
+        }
         reports.push(
             run_study(s, &settings).with_context(|| format!("accuracy study of {}", s.name))?,
         );

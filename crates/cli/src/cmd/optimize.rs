@@ -27,9 +27,6 @@ pub struct OptimizeArgs {
     /// Refiner: trust-region, nelder-mead or random (default: the study's)
     #[arg(long)]
     pub refine: Option<RefineMethod>,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
     /// Also draw the objective map over two floors' slip loads (the others at the
     /// optimum): GRID × GRID designs × every record, at the sweep fidelity
     #[arg(long)]
@@ -89,7 +86,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         map_dampers(&study, map_floors, args.map_grid)?;
     }
     let manifest = sweep::Manifest::of(&study);
-    let pb = progress(manifest.tasks() as u64, args.quiet, "sweep");
+    let pb = progress(manifest.tasks() as u64, "sweep");
     let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
         .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
     pb.finish_and_clear();
@@ -98,7 +95,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let rc = study.config.refine;
     // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
     let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
-    let pb = progress(est as u64, args.quiet, "refine");
+    let pb = progress(est as u64, "refine");
     let r = optimize(
         &study,
         &report.manifest,
@@ -112,7 +109,6 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let designs = standard_designs(&study, &r.optimum_loads);
     let pb = progress(
         ((designs.len() * 3 + 1) * nr) as u64,
-        args.quiet,
         "design table",
     );
     let (table, runs) =
@@ -120,7 +116,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     pb.finish_and_clear();
     let map = if args.map {
         let grid = args.map_grid;
-        let pb = progress((grid * grid * nr) as u64, args.quiet, "objective map");
+        let pb = progress((grid * grid * nr) as u64, "objective map");
         let floors = [args.map_floors[0], args.map_floors[1]];
         let m = objective_map(&study, &r.optimum_loads, &rows[..nr], floors, grid, &|| {
             pb.inc(1)

@@ -25,9 +25,6 @@ pub struct RankArgs {
     /// Bootstrap seed
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
 }
 
 /// Runs `slipload rank`.
@@ -50,7 +47,6 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
         .with_context(|| format!("checking {}", args.designs.display()))?;
     let pb = progress(
         ((designs.len() + 1) * study.records.len()) as u64,
-        args.quiet,
         "rank",
     );
     let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
