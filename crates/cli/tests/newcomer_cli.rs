@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-use common::{scratch, slipload};
+use common::{root, scratch, slipload, slipload_in};
 use std::path::Path;
 
 fn s(p: &Path) -> &str {
@@ -106,5 +106,49 @@ fn quiet_and_threads_are_taken_by_simulate_and_merge() {
         !err.contains("unexpected argument") && err.contains(s(&dir.join("a"))),
         "{err}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn default_outputs_go_under_out() {
+    let dir = scratch("newcomer", "defaults");
+    let scene = root().join("configs/paper-1story-harmonic.json");
+    let o = slipload_in(
+        &dir,
+        &[
+            "accuracy",
+            s(&scene),
+            "--duration",
+            "0.5",
+            "--methods",
+            "newmark",
+            "--dts",
+            "T1/50",
+            "--repeats",
+            "1",
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // --quiet hides the per-scene progress line
+    assert!(!stderr(&o).contains("accuracy:"), "{}", stderr(&o));
+    for ext in ["csv", "json", "md", "svg", "png"] {
+        let f = if ["svg", "png"].contains(&ext) {
+            format!("out/accuracy/paper-1story-harmonic-work-precision.{ext}")
+        } else {
+            format!("out/accuracy/paper-1story-harmonic.{ext}")
+        };
+        assert!(dir.join(&f).is_file(), "{f}");
+    }
+    assert!(!dir.join("results").exists(), "nothing outside out/");
+    // the README's history example: the folder is created
+    let free = root().join("configs/paper-1story-free.json");
+    let o = slipload_in(
+        &dir,
+        &["simulate", s(&free), "--history", "out/free.csv"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("out/free.csv")).unwrap();
+    assert!(csv.lines().count() > 10, "{csv}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

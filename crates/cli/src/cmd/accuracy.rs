@@ -50,8 +50,8 @@ pub struct AccuracyArgs {
     /// Timed repeats per entry (the median is reported, after one warm-up run)
     #[arg(long, default_value_t = 5)]
     pub repeats: usize,
-    /// Output folder
-    #[arg(long, default_value = "results/accuracy")]
+    /// Output folder (created if missing)
+    #[arg(long, default_value = "out/accuracy")]
     pub out: PathBuf,
     /// Base name of the output files (default: the scene file's stem)
     #[arg(long)]
