@@ -53,6 +53,18 @@ fn default_optimize_runs_the_embedded_benchmark() {
             .iter()
             .all(|x| (0.0..=2000.0).contains(&x.as_f64().unwrap()))
     );
+    // The first run ran every sweep task and reused none.
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(res.join("manifest.json")).unwrap())
+            .unwrap();
+    let designs = manifest["designs"].as_array().unwrap().len();
+    assert!(
+        text.contains(&format!(
+            "sweep: {designs} designs × 10 records, {} simulations run (0 reused from journal.jsonl)",
+            designs * 10
+        )),
+        "{text}"
+    );
     // interrupted refinement: keep 30 journalled points and a torn line; the second run
     // reuses the finished sweep, replays those 30 points and gives the same files
     let rj = res.join("refine-trust-region.jsonl");
@@ -69,8 +81,21 @@ fn default_optimize_runs_the_embedded_benchmark() {
     let again = run_in(&dir, &["optimize", "--quiet"]);
     assert!(again.status.success());
     let msg = String::from_utf8_lossy(&again.stdout);
+    // What was reused and what ran: no sweep task, only the refinement points after the
+    // 30 replayed ones (10 records each), then the check and the design table.
+    let n = lines.len();
     assert!(
-        msg.contains("(30 replayed from the refine journal)"),
+        msg.contains(&format!(
+            "0 simulations run ({} reused from journal.jsonl)",
+            designs * 10
+        )) && msg.contains(&format!(
+            "{n} designs, {} run (30 replayed from refine-trust-region.jsonl)",
+            n - 30
+        )),
+        "{msg}"
+    );
+    assert!(
+        msg.contains(&format!("sweep 0, refine {}, check ", (n - 30) * 10)),
         "{msg}"
     );
     assert_eq!(

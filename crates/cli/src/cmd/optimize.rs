@@ -201,14 +201,36 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         study.objective.label(),
         nr
     );
+    // What ran now, and what was taken from the journals of an earlier run.
+    let refined = (r.log.len() - r.replayed) * nr;
+    let checked = r.simulations - refined;
+    let tabled = runs.iter().map(Vec::len).sum::<usize>();
+    let mapped = if args.map { args.map_grid * args.map_grid * nr } else { 0 };
     outln!(
-        "sweep: {} designs; refine ({}): {} designs ({} replayed from the refine journal); {} simulations in {:.1} s",
-        r.sweep_designs,
+        "sweep: {} designs × {} records, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
+        report.manifest.designs.len(),
+        nr,
+        report.ran,
+        report.resumed,
         method.as_str(),
         r.log.len(),
+        r.log.len() - r.replayed,
         r.replayed,
-        report.manifest.tasks() + r.simulations,
-        started.elapsed().as_secs_f64()
+        method.as_str()
+    );
+    outln!(
+        "{} simulations run in {:.1} s: sweep {}, refine {}, check {}, design table {}{}",
+        report.ran + r.simulations + tabled + mapped,
+        started.elapsed().as_secs_f64(),
+        report.ran,
+        refined,
+        checked,
+        tabled,
+        if args.map {
+            format!(", objective map {mapped}")
+        } else {
+            String::new()
+        }
     );
     outln!(
         "optimal slip loads, floors {} (kN): {}",
