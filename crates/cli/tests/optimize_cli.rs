@@ -53,6 +53,32 @@ fn default_optimize_runs_the_embedded_benchmark() {
             .iter()
             .all(|x| (0.0..=2000.0).contains(&x.as_f64().unwrap()))
     );
+    // A floor is listed on a bound of the space (0–2000 kN) exactly when its slip load is
+    // there, and the summary names it.
+    let on_bound = v["on_bound"].as_array().unwrap();
+    for (i, x) in loads.iter().enumerate() {
+        let kn = x.as_f64().unwrap();
+        let at = if kn <= 2000.0 * 1e-6 {
+            Some("lower")
+        } else if kn >= 2000.0 * (1.0 - 1e-6) {
+            Some("upper")
+        } else {
+            None
+        };
+        let listed = on_bound
+            .iter()
+            .find(|b| b["floors"] == serde_json::json!([i + 1]));
+        assert_eq!(listed.map(|b| b["bound"].as_str().unwrap()), at, "{v:#}");
+        if let Some(bound) = at {
+            assert!(
+                text.contains(&format!("floor {} at its {bound} bound", i + 1)),
+                "{text}"
+            );
+        }
+    }
+    if on_bound.is_empty() {
+        assert!(!text.contains("on a bound"), "{text}");
+    }
     // The first run ran every sweep task and reused none.
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(res.join("manifest.json")).unwrap())

@@ -28,5 +28,5 @@ pub use error::OptError;
 pub use metrics::RecordMetrics;
 pub use objective::{Metric, Objective, Statistic, Term};
 pub use shard::Shard;
-pub use space::{DesignSpace, Shape};
+pub use space::{Bound, DesignSpace, OnBound, Shape};
 pub use study::{Study, StudyConfig};

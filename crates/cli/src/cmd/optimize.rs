@@ -11,7 +11,7 @@ use slipload_opt::journal::write_atomic;
 use slipload_opt::optimize::{OptimizeReport, optimize};
 use slipload_opt::study::RefineMethod;
 use slipload_opt::table::{DesignTable, standard_designs};
-use slipload_opt::{Shard, Study, sweep};
+use slipload_opt::{OnBound, Shard, Study, sweep};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -44,6 +44,45 @@ fn kn(v: &[f64]) -> String {
         .map(|x| format!("{:.1}", x / 1e3))
         .collect::<Vec<_>>()
         .join(" / ")
+}
+
+/// The design variables of the optimum that sit on a bound of the study's space, said
+/// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
+fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
+    let load_of = |floor: usize| {
+        study
+            .space
+            .dampers
+            .iter()
+            .position(|&f| f + 1 == floor)
+            .map_or(f64::NAN, |k| loads[k] / 1e3)
+    };
+    on.iter()
+        .map(|b| {
+            let floors: Vec<String> = b.floors.iter().map(usize::to_string).collect();
+            if study.space.shape.is_some() {
+                format!(
+                    "the profile's {} (floors {}) at its {} bound, {} kN",
+                    b.variable,
+                    floors.join(", "),
+                    b.bound.as_str(),
+                    b.floors
+                        .iter()
+                        .map(|&f| format!("{:.1}", load_of(f)))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                )
+            } else {
+                format!(
+                    "floor {} at its {} bound, {:.1} kN",
+                    floors.join(", "),
+                    b.bound.as_str(),
+                    b.floors.first().map_or(f64::NAN, |&f| load_of(f))
+                )
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// `refine.csv`: every refinement evaluation with the best objective so far.
@@ -130,12 +169,15 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         &args.out.join("refine.csv"),
         refine_csv(&study, &r).as_bytes(),
     )?;
+    // A variable on a bound of the space: the optimum may lie beyond it.
+    let on_bound = study.space.on_bounds(&r.optimum.z);
     let optimum = serde_json::json!({
         "study": study.name,
         "objective": study.objective.label(),
         "refiner": method.as_str(),
         "damper_floors": study.space.dampers.iter().map(|f| f + 1).collect::<Vec<_>>(),
         "slip_loads_kN": r.optimum_loads.iter().map(|v| v / 1e3).collect::<Vec<_>>(),
+        "on_bound": on_bound,
         "objective_value": r.optimum.f,
         "bare_objective": r.bare_objective,
         "file_objective": r.file_objective,
@@ -237,6 +279,12 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         floors.join(" / "),
         kn(&r.optimum_loads)
     );
+    if !on_bound.is_empty() {
+        outln!(
+            "on a bound of the design space (the optimum may lie beyond it: widen the bound to see): {}",
+            on_bound_text(&study, &r.optimum_loads, &on_bound)
+        );
+    }
     let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
     outln!(
         "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",
