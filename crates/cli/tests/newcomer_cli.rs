@@ -152,3 +152,30 @@ fn default_outputs_go_under_out() {
     assert!(csv.lines().count() > 10, "{csv}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_folder_of_records_is_read_whatever_the_case_of_the_extension() {
+    let dir = scratch("newcomer", "records");
+    let shared = root().join("../shared/records");
+    std::fs::copy(shared.join("ARL360.at2"), dir.join("ARL360.at2")).unwrap();
+    std::fs::copy(shared.join("SYL090.AT2"), dir.join("SYL090.AT2")).unwrap();
+    std::fs::write(dir.join("README.md"), "not a record\n").unwrap();
+    let o = slipload(&["record", "info", s(&dir), "--format", "json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let files: Vec<&str> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(files.len(), 2, "{files:?}");
+    assert!(files[0].ends_with("ARL360.at2") && files[1].ends_with("SYL090.AT2"));
+    // a folder without records is an error that says so
+    let empty = dir.join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let o = slipload(&["record", "spectrum", s(&empty)]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("holds no .AT2 record"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
