@@ -214,6 +214,13 @@ fn rank_reads_the_candidates_of_optimize() {
         ],
     );
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // rank.md says which study and objective it ranks by (the study is named by its stem)
+    let md = std::fs::read_to_string(dir.join("rank/rank.md")).unwrap();
+    assert!(
+        md.starts_with("# Ranking of 5 designs: study\n")
+            && md.contains("Objective: p84 peak_drift_ratio"),
+        "{md}"
+    );
     let csv = std::fs::read_to_string(dir.join("rank/rank.csv")).unwrap();
     // 5 candidates × (2 suites + all)
     assert_eq!(csv.lines().count(), 1 + 5 * 3);

@@ -57,7 +57,7 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let mut json = serde_json::to_string_pretty(&r)?;
     json.push('\n');
     write_atomic(&args.out.join("rank.json"), json.as_bytes())?;
-    out!("{}: {}\n\n{md}", study.name, study.objective.label());
+    out!("{md}");
     outln!(
         "wrote {}/{{rank.csv,rank.md,rank.json}}",
         args.out.display()
