@@ -179,3 +179,25 @@ fn a_folder_of_records_is_read_whatever_the_case_of_the_extension() {
     assert!(stderr(&o).contains("holds no .AT2 record"), "{}", stderr(&o));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn method_help_lists_the_methods() {
+    let o = slipload(&["simulate", "--help"]);
+    assert!(o.status.success());
+    let help = String::from_utf8_lossy(&o.stdout);
+    let at = help.find("--method").unwrap();
+    let section = &help[at..help[at..].find("--dt").map_or(help.len(), |e| at + e)];
+    for m in ["newmark", "hht", "bilinear", "delacruz", "exact"] {
+        assert!(section.contains(m), "--method help lists {m}: {section}");
+    }
+    // short help: the values on one line; long help: each with what it is
+    let o = slipload(&["accuracy", "-h"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        help.contains("[possible values: newmark, hht, bilinear, delacruz, exact]"),
+        "{help}"
+    );
+    let o = slipload(&["simulate", "--method", "verlet"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("delacruz"), "{}", stderr(&o));
+}

@@ -9,6 +9,7 @@ use anyhow::Context;
 use slipload_motion::Units;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
+use super::scene_args::MethodArg;
 use slipload_sim::kind::Expected;
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
@@ -36,10 +37,11 @@ pub struct AccuracyArgs {
     /// Methods to compare, comma-separated
     #[arg(
         long,
+        value_enum,
         value_delimiter = ',',
         default_value = "delacruz,newmark,hht,bilinear,exact"
     )]
-    pub methods: Vec<MethodName>,
+    pub methods: Vec<MethodArg>,
     /// Time steps, comma-separated: seconds or T1/k
     #[arg(
         long,
@@ -141,7 +143,7 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         }
     }
     let settings = StudySettings {
-        methods: args.methods.clone(),
+        methods: args.methods.iter().map(|&m| MethodName::from(m)).collect(),
         dts: args.dts.clone(),
         repeats: args.repeats.max(1),
     };
