@@ -364,7 +364,12 @@ impl StudyFigures {
             put("convergence", convergence_csv(&self.convergence), fig)?;
         }
         if !self.profiles.is_empty() {
-            let storeys = self.profiles.iter().map(|p| p.mean.len()).max().unwrap_or(1);
+            let storeys = self
+                .profiles
+                .iter()
+                .map(|p| p.mean.len())
+                .max()
+                .unwrap_or(1);
             let mut panel = Panel::new("peak drift ratio (%)", "storey (-)")
                 .title(format!(
                     "solid: mean, dashed: 84th percentile; {}",

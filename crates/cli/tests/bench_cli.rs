@@ -126,7 +126,9 @@ fn json_lists_figures_and_reductions_keep_answers() {
         keys.sort_unstable();
         assert_eq!(
             keys,
-            ["case", "met", "metric", "note", "status", "target", "unit", "value"]
+            [
+                "case", "met", "metric", "note", "status", "target", "unit", "value"
+            ]
         );
         assert!(f["value"].as_f64().unwrap().is_finite(), "{f}");
         check_status(f);

@@ -32,16 +32,15 @@ fn a_study_given_to_simulate_says_what_to_run() {
     // accuracy reads scenes the same way (with and without --synthetic)
     let dir = scratch("newcomer", "acc-study");
     for extra in [&[][..], &["--synthetic", "1"][..]] {
-        let mut args = vec![
-            "accuracy",
-            "configs/study-benchmark.json",
-            "--out",
-            s(&dir),
-        ];
+        let mut args = vec!["accuracy", "configs/study-benchmark.json", "--out", s(&dir)];
         args.extend_from_slice(extra);
         let o = slipload(&args);
         assert!(!o.status.success());
-        assert!(stderr(&o).contains("is a study, not a scene"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("is a study, not a scene"),
+            "{}",
+            stderr(&o)
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -143,10 +142,7 @@ fn default_outputs_go_under_out() {
     assert!(!dir.join("results").exists(), "nothing outside out/");
     // the README's history example: the folder is created
     let free = root().join("configs/paper-1story-free.json");
-    let o = slipload_in(
-        &dir,
-        &["simulate", s(&free), "--history", "out/free.csv"],
-    );
+    let o = slipload_in(&dir, &["simulate", s(&free), "--history", "out/free.csv"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(dir.join("out/free.csv")).unwrap();
     assert!(csv.lines().count() > 10, "{csv}");
@@ -176,7 +172,11 @@ fn a_folder_of_records_is_read_whatever_the_case_of_the_extension() {
     std::fs::create_dir(&empty).unwrap();
     let o = slipload(&["record", "spectrum", s(&empty)]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("holds no .AT2 record"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("holds no .AT2 record"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

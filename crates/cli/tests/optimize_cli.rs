@@ -81,8 +81,7 @@ fn default_optimize_runs_the_embedded_benchmark() {
     }
     // The first run ran every sweep task and reused none.
     let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(res.join("manifest.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(res.join("manifest.json")).unwrap()).unwrap();
     let designs = manifest["designs"].as_array().unwrap().len();
     assert!(
         text.contains(&format!(

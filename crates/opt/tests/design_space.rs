@@ -141,12 +141,17 @@ fn variables_on_a_bound_are_named_with_their_floors() {
     assert!(free.space.on_bounds(&[0.999, 0.5, 0.001]).is_empty());
     // A profile has one variable, the scale, which sets every floor with a damper.
     let profile = benchmark(|v| {
-        v["space"] = serde_json::json!({ "profile": { "shape": "uniform", "scale_kn": [0, 1500] } });
+        v["space"] =
+            serde_json::json!({ "profile": { "shape": "uniform", "scale_kn": [0, 1500] } });
     });
     let on = profile.space.on_bounds(&[1.0]);
     assert_eq!(on.len(), 1);
     assert_eq!(
-        (on[0].variable.as_str(), on[0].floors.as_slice(), on[0].bound),
+        (
+            on[0].variable.as_str(),
+            on[0].floors.as_slice(),
+            on[0].bound
+        ),
         ("scale", &[1, 2, 3][..], Bound::Upper)
     );
 }

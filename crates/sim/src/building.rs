@@ -279,8 +279,7 @@ impl Building {
             path: path.to_path_buf(),
             source,
         })?;
-        let cfg: BuildingConfig =
-            crate::kind::parse(&text, path, crate::kind::Expected::Building)?;
+        let cfg: BuildingConfig = crate::kind::parse(&text, path, crate::kind::Expected::Building)?;
         Building::from_config(&cfg, path)
     }
 

@@ -56,9 +56,10 @@ impl FileKind {
     pub fn of_value(value: &serde_json::Value) -> Option<FileKind> {
         if let Some(list) = value.as_array() {
             let designs = !list.is_empty()
-                && list
-                    .iter()
-                    .all(|d| d.as_object().is_some_and(|o| o.contains_key("slip_loads_kn")));
+                && list.iter().all(|d| {
+                    d.as_object()
+                        .is_some_and(|o| o.contains_key("slip_loads_kn"))
+                });
             return designs.then_some(FileKind::Designs);
         }
         let obj = value.as_object()?;
@@ -70,9 +71,7 @@ impl FileKind {
         ];
         let best = scores.iter().map(|s| s.1).max().unwrap_or(0);
         if best == 0 {
-            return obj
-                .contains_key("building")
-                .then_some(FileKind::Scene);
+            return obj.contains_key("building").then_some(FileKind::Scene);
         }
         let mut top = scores.iter().filter(|s| s.1 == best);
         match (top.next(), top.next()) {
@@ -106,9 +105,7 @@ impl FileKind {
             FileKind::Building | FileKind::Scene => format!(
                 "run `slipload simulate {p}` (or `explain`, `accuracy`); a study names its building in its `building` field"
             ),
-            FileKind::Study => format!(
-                "run `slipload optimize {p}` (or `sweep`, `rank`, `table`)"
-            ),
+            FileKind::Study => format!("run `slipload optimize {p}` (or `sweep`, `rank`, `table`)"),
             FileKind::Designs => format!("pass it to `slipload rank STUDY --designs {p}`"),
         }
     }

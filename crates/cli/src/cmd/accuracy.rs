@@ -4,13 +4,13 @@
 //! error vs Δt (`NAME-work-precision`, `NAME-error-vs-dt`, SVG + PNG) for the median (or
 //! the one record).
 
+use super::scene_args::MethodArg;
 use crate::output::write_atomic;
 use anyhow::Context;
 use slipload_motion::Units;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
-use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
-use super::scene_args::MethodArg;
 use slipload_sim::kind::Expected;
+use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
 

@@ -681,7 +681,9 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
 
 fn print_table(figs: &[Figure], clock_note: &str) {
     outln!("slipload bench — single thread unless stated; times are {clock_note}, medians");
-    outln!("targets: met, NOT MET, withdrawn or pending; what each status means and why: {TARGETS_EXPLAINED}");
+    outln!(
+        "targets: met, NOT MET, withdrawn or pending; what each status means and why: {TARGETS_EXPLAINED}"
+    );
     let mut last = "";
     for f in figs {
         if f.case != last {

@@ -146,10 +146,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     .context("refining")?;
     pb.finish_and_clear();
     let designs = standard_designs(&study, &r.optimum_loads);
-    let pb = progress(
-        ((designs.len() * 3 + 1) * nr) as u64,
-        "design table",
-    );
+    let pb = progress(((designs.len() * 3 + 1) * nr) as u64, "design table");
     let (table, runs) =
         DesignTable::build_with_runs(&study, &designs, &|| pb.inc(1)).context("design table")?;
     pb.finish_and_clear();
@@ -247,7 +244,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let refined = (r.log.len() - r.replayed) * nr;
     let checked = r.simulations - refined;
     let tabled = runs.iter().map(Vec::len).sum::<usize>();
-    let mapped = if args.map { args.map_grid * args.map_grid * nr } else { 0 };
+    let mapped = if args.map {
+        args.map_grid * args.map_grid * nr
+    } else {
+        0
+    };
     outln!(
         "sweep: {} designs × {} records, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
         report.manifest.designs.len(),

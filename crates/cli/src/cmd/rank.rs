@@ -45,10 +45,7 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     );
     slipload_opt::rank::to_newtons(&study, &designs)
         .with_context(|| format!("checking {}", args.designs.display()))?;
-    let pb = progress(
-        ((designs.len() + 1) * study.records.len()) as u64,
-        "rank",
-    );
+    let pb = progress(((designs.len() + 1) * study.records.len()) as u64, "rank");
     let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
     pb.finish_and_clear();
     write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
