@@ -94,7 +94,7 @@ fn withdrawn_and_pending_targets_are_marked() {
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.contains("withdrawn (see results/performance/README.md)"),
+        text.contains("withdrawn: see results/performance/README.md"),
         "{text}"
     );
 }

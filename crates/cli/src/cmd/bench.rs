@@ -692,7 +692,7 @@ fn print_table(figs: &[Figure], clock_note: &str) {
         }
         let target = f.target.as_deref().unwrap_or("");
         let status = match (&f.status, &f.note) {
-            (Some(s), Some(n)) => format!("{s} ({n})"),
+            (Some(s), Some(n)) => format!("{s}: {n}"),
             (Some(s), None) => s.clone(),
             (None, _) => String::new(),
         };
