@@ -75,6 +75,22 @@ fn a_building_or_a_scene_given_to_a_study_command_says_what_to_run() {
         "{}",
         stderr(&o)
     );
+    // a study given as the candidates of rank says so
+    let o = slipload(&[
+        "rank",
+        "configs/study-benchmark.json",
+        "--designs",
+        "configs/study-benchmark.json",
+        "--out",
+        s(&dir.join("r")),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o)
+            .contains("configs/study-benchmark.json is a study, not a list of candidate designs"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

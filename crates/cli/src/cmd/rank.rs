@@ -5,6 +5,7 @@ use super::study_args::{load_study, progress};
 use anyhow::Context;
 use slipload_opt::journal::write_atomic;
 use slipload_opt::rank::{NamedDesign, rank};
+use slipload_sim::FileKind;
 use std::path::PathBuf;
 
 /// Arguments of `slipload rank`.
@@ -32,12 +33,26 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let study = load_study(Some(&args.study))?;
     let text = std::fs::read_to_string(&args.designs)
         .with_context(|| format!("reading {}", args.designs.display()))?;
-    let designs: Vec<NamedDesign> = serde_json::from_str(&text).with_context(|| {
-        format!(
-            "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
-            args.designs.display()
-        )
-    })?;
+    let designs: Vec<NamedDesign> = match serde_json::from_str(&text) {
+        Ok(d) => d,
+        Err(e) => match FileKind::of_json(&text) {
+            // A study, scene or building given as the candidates: say what it is.
+            Some(kind) if kind != FileKind::Designs => anyhow::bail!(
+                "{} is {}, not a list of candidate designs ([{{\"name\", \"slip_loads_kn\"}}, …], as optimize writes in candidates.json): {}",
+                args.designs.display(),
+                kind.article(),
+                kind.advice(&args.designs)
+            ),
+            _ => {
+                return Err(e).with_context(|| {
+                    format!(
+                        "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
+                        args.designs.display()
+                    )
+                });
+            }
+        },
+    };
     anyhow::ensure!(
         !designs.is_empty(),
         "{}: no designs",
