@@ -128,7 +128,7 @@ def import_opensees():
 # Inputs: the building config and the records.
 # ---------------------------------------------------------------------------------------
 
-UNIT = {"kg": 1.0, "t": 1e3, "N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "N": 1.0, "kN": 1e3, "MN": 1e6, "m": 1.0, "s": 1.0}
+UNIT = {"kg": 1.0, "t": 1e3, "N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "GN/m": 1e9, "N": 1.0, "kN": 1e3, "MN": 1e6, "m": 1.0, "s": 1.0}
 
 
 def quantity(value, what: str) -> float:
@@ -143,12 +143,36 @@ def quantity(value, what: str) -> float:
     raise SystemExit(f"{BUILDING}: {what}: cannot read the quantity {value!r}")
 
 
+def frame_matrix(cfg: dict, path: Path, n: int) -> list[list[float]]:
+    """The bare frame's stiffness matrix K (N/m, n x n), the model's source of truth: either
+    `stiffness_matrix` (the full condensed matrix, symmetric) or `storey_stiffness` (a shear
+    building: springs between consecutive floors, the chain matrix)."""
+    if ("stiffness_matrix" in cfg) == ("storey_stiffness" in cfg):
+        raise SystemExit(f"{path}: give exactly one of stiffness_matrix and storey_stiffness")
+    if "storey_stiffness" in cfg:
+        k = [quantity(v, "storey_stiffness") for v in cfg["storey_stiffness"]]
+        if len(k) != n:
+            raise SystemExit(f"{path}: {len(k)} storey stiffnesses for {n} floors")
+        return storey_matrix(k).tolist()
+    rows = cfg["stiffness_matrix"]
+    if len(rows) != n or any(len(r) != n for r in rows):
+        raise SystemExit(f"{path}: stiffness_matrix must be {n} x {n} (one row and column per floor)")
+    K = [[quantity(v, f"stiffness_matrix[{i}][{j}]") for j, v in enumerate(r)] for i, r in enumerate(rows)]
+    scale = max(abs(x) for r in K for x in r)
+    for i in range(n):
+        for j in range(i + 1, n):
+            if abs(K[i][j] - K[j][i]) > 1e-12 * scale:
+                raise SystemExit(f"{path}: stiffness_matrix is not symmetric: [{i}][{j}] = {K[i][j]} N/m, [{j}][{i}] = {K[j][i]} N/m")
+            K[j][i] = K[i][j]
+    return K
+
+
 def load_building(path: Path) -> dict:
     cfg = json.loads(path.read_text())
     masses = [quantity(m, "floor_masses") for m in cfg["floor_masses"]]
-    k = [quantity(v, "storey_stiffness") for v in cfg["storey_stiffness"]]
-    ray = cfg["damping"]["rayleigh"]
     n = len(masses)
+    K = frame_matrix(cfg, path, n)
+    ray = cfg["damping"]["rayleigh"]
     kp = [0.0] * n
     fy = [0.0] * n
     for d in cfg["dissipators"]:
@@ -161,7 +185,7 @@ def load_building(path: Path) -> dict:
         fy[i] = quantity(d["slip_load"], "dissipators.slip_load")
     if any(v == 0.0 for v in kp):
         raise SystemExit(f"{path}: every floor needs a dissipator for this comparison")
-    return {"name": cfg["name"], "m": masses, "k": k, "alpha": float(ray["alpha"]), "beta": float(ray["beta"]), "kp": kp, "fy": fy}
+    return {"name": cfg["name"], "m": masses, "K": K, "alpha": float(ray["alpha"]), "beta": float(ray["beta"]), "kp": kp, "fy": fy}
 
 
 def storey_matrix(k: list[float]):
@@ -225,6 +249,14 @@ def ground_accel(dt_rec: float, acc: list[float], t: float) -> float:
 
 
 def slipload_bin() -> Path:
+    """$SLIPLOAD_BIN when set (an existing binary, used as is), else target/release/slipload
+    after `cargo build --release -p slipload`."""
+    given = os.environ.get("SLIPLOAD_BIN")
+    if given:
+        path = Path(given).resolve()
+        if not (path.is_file() and os.access(path, os.X_OK)):
+            raise SystemExit(f"SLIPLOAD_BIN={given}: not an executable file")
+        return path
     subprocess.run(["cargo", "build", "--release", "--quiet", "-p", "slipload"], cwd=ROOT, check=True)
     return ROOT / "target" / "release" / "slipload"
 
@@ -261,13 +293,38 @@ def read_history(path: Path) -> dict[str, list[float]]:
 # OpenSees
 # ---------------------------------------------------------------------------------------
 
-FRAME_TAG = 1  # frame springs: elements 1..n; EPP elements: 101..100+n
-EPP_TAG = 101
+FRAME_TAG = 1  # frame springs: elements (and materials) 1..n(n+1)/2 at most
+EPP_TAG = 1001  # brace + damper of storey i (floor i-1 to floor i): element 1001 + i, i = 0..n-1
 
 
-def build_model(ops, b: dict, dt_rec: float, acc: list[float]) -> None:
-    """Floors as nodes with their masses on a fixed ground node 0; frame and EPP elements as
-    zeroLength springs between consecutive floors; the record as a uniform excitation."""
+def frame_springs(K: list[list[float]]) -> list[tuple[int, int, float]]:
+    """Springs (node a, node b, stiffness) that assemble exactly the frame matrix K, node 0
+    the ground and node i + 1 floor i: one between every pair of floors i < j of stiffness
+    -K[i][j] (negative where the off-diagonal term is positive), and one from each floor to
+    the ground of stiffness sum_j K[i][j] (the row sum, negative if the row sums below 0).
+    A spring of stiffness k between nodes a, b adds k to [a][a], [b][b] and -k to [a][b],
+    so the pairs give the off-diagonal terms and the diagonal K[i][i] = ground_i +
+    sum_{j != i} (-K[i][j]). Zero springs (to round-off, e.g. the rows of a shear building
+    that sum to 0 and the pairs of floors that are not consecutive there) are left out."""
+    n = len(K)
+    scale = max(abs(x) for r in K for x in r)
+    springs = []
+    for i in range(n):
+        ground = math.fsum(K[i])
+        if abs(ground) > 1e-12 * scale:
+            springs.append((0, i + 1, ground))
+    for i in range(n):
+        for j in range(i + 1, n):
+            if K[i][j] != 0.0:
+                springs.append((i + 1, j + 1, -K[i][j]))
+    return springs
+
+
+def build_model(ops, b: dict, dt_rec: float, acc: list[float], braces: bool = True) -> None:
+    """Floors as nodes with their masses on a fixed ground node 0; the frame as zeroLength
+    Elastic springs that assemble its matrix K (`frame_springs`); each brace + damper a
+    zeroLength ElasticPP element between floors i-1 and i; the record as a uniform
+    excitation. `braces = False`: the bare frame (model checks only)."""
     n = len(b["m"])
     ops.wipe()
     ops.model("basic", "-ndm", 1, "-ndf", 1)
@@ -276,16 +333,17 @@ def build_model(ops, b: dict, dt_rec: float, acc: list[float]) -> None:
     for i in range(n):
         ops.node(i + 1, 0.0)
         ops.mass(i + 1, b["m"][i])
-    for i in range(n):
-        # Frame storey spring: takes part in Rayleigh damping.
-        ops.uniaxialMaterial("Elastic", FRAME_TAG + i, b["k"][i])
-        ops.element("zeroLength", FRAME_TAG + i, i, i + 1, "-mat", FRAME_TAG + i, "-dir", 1, "-doRayleigh", 1)
+    for tag, (na, nb, k) in enumerate(frame_springs(b["K"]), start=FRAME_TAG):
+        # Frame spring (OpenSees's Elastic takes a negative E): takes part in Rayleigh damping.
+        ops.uniaxialMaterial("Elastic", tag, k)
+        ops.element("zeroLength", tag, na, nb, "-mat", tag, "-dir", 1, "-doRayleigh", 1)
+    for i in range(n if braces else 0):
         # Brace + damper: elastic-perfectly plastic, stiffness k', yield displacement muN/k';
-        # no Rayleigh damping (c' = 0 in the config).
+        # no Rayleigh damping (c' = 0 in the config). Its deformation is the storey drift.
         ops.uniaxialMaterial("ElasticPP", EPP_TAG + i, b["kp"][i], b["fy"][i] / b["kp"][i])
         ops.element("zeroLength", EPP_TAG + i, i, i + 1, "-mat", EPP_TAG + i, "-dir", 1, "-doRayleigh", 0)
     # alpha*M on the nodes, beta*K_initial on the elements that take Rayleigh damping: the
-    # frame springs only. K_initial = K for the linear frame.
+    # frame springs only, whose initial stiffnesses sum to K (linear frame).
     ops.rayleigh(b["alpha"], 0.0, b["beta"], 0.0)
     # -useLast: OpenSees accumulates time by adding dt, so the last step may land a few ulps
     # past the last sample, where a Path series is otherwise 0; slipload (and the references
@@ -314,7 +372,10 @@ def opensees_timed(ops, b, dt_rec, acc, dt, steps, algorithm, system, tmp: Path)
     build_model(ops, b, dt_rec, acc)
     env = tmp / "envelope-drift.out"
     n = len(b["m"])
-    ops.recorder("EnvelopeElement", "-file", str(env), "-precision", 17, "-ele", *range(FRAME_TAG, FRAME_TAG + n), "deformation")
+    # The storey drifts: the deformations of the EPP elements, element EPP_TAG + i spanning
+    # exactly storey i (node i to node i + 1: u_{i+1} - u_i). The frame springs do not map
+    # to storeys (one per pair of floors and one per floor to the ground).
+    ops.recorder("EnvelopeElement", "-file", str(env), "-precision", 17, "-ele", *range(EPP_TAG, EPP_TAG + n), "deformation")
     t1 = time.perf_counter()
     analysis(ops, algorithm, system)
     ok = ops.analyze(steps, dt)
@@ -323,7 +384,7 @@ def opensees_timed(ops, b, dt_rec, acc, dt, steps, algorithm, system, tmp: Path)
     if ok != 0:
         raise SystemExit(f"OpenSees analyze({steps}, {dt}) failed (code {ok}) with {algorithm}: see the step-by-step run")
     rows = [[float(v) for v in line.split()] for line in env.read_text().splitlines() if line.strip()]
-    # rows: min, max, absmax over time, one column per element.
+    # rows: min, max, absmax over time, one column per element (storey).
     return {"build_s": t1 - t0, "run_s": t2 - t1, "peak_drift": rows[2]}
 
 

@@ -24,15 +24,21 @@ use clap::Parser;
 #[derive(Debug, Parser)]
 #[command(version, about, long_about = None)]
 struct Cli {
-    /// Worker threads (default: all cores).
+    /// Worker threads of the parallel sweeps of sweep, optimize, rank and table (default:
+    /// all cores); the other commands run one simulation at a time
     #[arg(long, global = true)]
     threads: Option<usize>,
+    /// No progress: hides progress bars and accuracy's per-scene lines (summaries, results
+    /// and errors still print)
+    #[arg(long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: cmd::Command,
 }
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
+    output::set_quiet(cli.quiet);
     if let Some(n) = cli.threads
         && let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -102,6 +108,41 @@ mod tests {
             assert!(Cli::try_parse_from(&args).is_ok(), "{args:?}");
         }
         assert!(Cli::try_parse_from(["slipload", "optimize", "--refine", "gradient"]).is_err());
+        assert!(Cli::try_parse_from(["slipload", "simulate", "--method", "verlet"]).is_err());
+    }
+
+    /// `--quiet` and `--threads` are taken by every command, before or after its name.
+    #[test]
+    fn quiet_and_threads_are_global() {
+        let commands: [&[&str]; 13] = [
+            &["simulate"],
+            &["explain"],
+            &["record", "info", "a.AT2"],
+            &["record", "spectrum", "a.AT2"],
+            &["accuracy", "s.json"],
+            &["sweep", "s.json"],
+            &["merge", "a", "--out", "m"],
+            &["optimize"],
+            &["rank", "s.json", "--designs", "d.json"],
+            &["table"],
+            &["bench"],
+            &["report", "d"],
+            &["record", "synth", "--out", "r.csv"],
+        ];
+        for c in commands {
+            let after: Vec<&str> = std::iter::once("slipload")
+                .chain(c.iter().copied())
+                .chain(["--quiet", "--threads", "1"])
+                .collect();
+            let cli = Cli::try_parse_from(&after).unwrap_or_else(|e| panic!("{after:?}: {e}"));
+            assert!(cli.quiet && cli.threads == Some(1), "{after:?}");
+            let before: Vec<&str> = ["slipload", "--quiet", "--threads", "2"]
+                .into_iter()
+                .chain(c.iter().copied())
+                .collect();
+            let cli = Cli::try_parse_from(&before).unwrap_or_else(|e| panic!("{before:?}: {e}"));
+            assert!(cli.quiet && cli.threads == Some(2), "{before:?}");
+        }
         assert!(Cli::try_parse_from(["slipload", "merge", "--out", "m"]).is_err());
     }
 }

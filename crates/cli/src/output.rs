@@ -4,6 +4,20 @@
 use anyhow::Context;
 use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// `--quiet`: no progress output on stderr.
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Sets `--quiet` for the whole process (once, from the parsed command line).
+pub fn set_quiet(quiet: bool) {
+    QUIET.store(quiet, Ordering::Relaxed);
+}
+
+/// Whether `--quiet` was given: progress bars and progress lines are hidden.
+pub fn quiet() -> bool {
+    QUIET.load(Ordering::Relaxed)
+}
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, `sync_all`,
 /// rename). Creates the parent folder when missing.

@@ -365,12 +365,20 @@ impl StudyFigures {
             put("convergence", convergence_csv(&self.convergence), fig)?;
         }
         if !self.profiles.is_empty() {
+            let storeys = self
+                .profiles
+                .iter()
+                .map(|p| p.mean.len())
+                .max()
+                .unwrap_or(1);
             let mut panel = Panel::new("peak drift ratio (%)", "storey (-)")
                 .title(format!(
                     "solid: mean, dashed: 84th percentile; {}",
                     self.fidelity
                 ))
                 .x_from_zero()
+                .y_range(0.5, storeys as f64 + 0.5)
+                .y_integer()
                 .legend(Legend::UpperRight);
             for (k, p) in self.profiles.iter().enumerate() {
                 let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();

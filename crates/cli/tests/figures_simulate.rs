@@ -110,6 +110,13 @@ fn benchmark_figures_match_their_csv() {
     let p = &m.panels[0];
     assert_eq!(p.series.len(), 2);
     assert_inside(p);
+    // Storeys are labelled at whole numbers only.
+    let storeys: Vec<f64> = (1..=floors).map(|i| i as f64).collect();
+    assert!(
+        p.y.ticks.iter().all(|t| storeys.contains(t)) && !p.y.ticks.is_empty(),
+        "storey ticks {:?}",
+        p.y.ticks
+    );
     for (s, c) in p
         .series
         .iter()

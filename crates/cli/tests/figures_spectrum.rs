@@ -1,5 +1,5 @@
 //! Contract: `slipload record spectrum … --plot FILE` writes FILE.svg and FILE.png (non-empty)
-//! and FILE.csv; the SVG holds one series per record, the mean (with several records) and
+//! and FILE.csv, and prints the data on stdout only when `--format` asks for them; the SVG holds one series per record, the mean (with several records) and
 //! the target (when given), each matching its CSV column; the period axis is logarithmic.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
@@ -35,6 +35,14 @@ fn suite_with_mean_and_target() {
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
+    );
+    // With --plot and no --format the data go to the CSV only: stdout is one line that
+    // names the files.
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.lines().count(), 1, "{text}");
+    assert!(
+        text.contains("spectra.svg") && text.contains("spectra.csv"),
+        "{text}"
     );
     let m = figure(&stem);
     let csv = Csv::read(&dir.join("spectra.csv"));
@@ -89,13 +97,15 @@ fn record_files_without_target() {
         "0.1,0.3,1,3",
         "--plot",
         stem.to_str().unwrap(),
+        "--format",
+        "csv",
     ]);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    // stdout: long CSV with a record column, 4 periods per record
+    // stdout, asked for with --format: long CSV with a record column, 4 periods per record
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.starts_with("record,period_s,"));
     assert_eq!(text.lines().count(), 1 + 2 * 4);

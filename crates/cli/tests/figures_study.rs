@@ -244,6 +244,8 @@ fn optimize_figure_data_is_the_studys_own() {
         .collect();
     within(&p.x, &pct, "drift profiles");
     within(&p.y, &[1.0, 3.0], "storeys");
+    // The storey axis is labelled at the storeys only: 1, 2, 3, no 1.5 or 2.5.
+    assert_eq!(p.y.ticks, [1.0, 2.0, 3.0], "storey ticks");
     let (_, sc) = csv(&out.join("records-scatter.csv"));
     let p = figure(&out, "records-scatter");
     assert_eq!(p.series.len(), 2, "records and the 1:1 line");
@@ -347,6 +349,11 @@ fn sweep_figure_data_comes_from_its_responses() {
     }
     let p = figure(&out, "drift-profiles");
     assert_eq!(p.series.len(), 2 * 5);
+    assert!(
+        !p.y.ticks.is_empty() && p.y.ticks.iter().all(|t| t.fract() == 0.0),
+        "storey ticks {:?}",
+        p.y.ticks
+    );
     assert_eq!(figure(&out, "records-scatter").series[0].points, bare.len());
     let _ = std::fs::remove_dir_all(&dir);
 }

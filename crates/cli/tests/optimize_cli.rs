@@ -53,6 +53,43 @@ fn default_optimize_runs_the_embedded_benchmark() {
             .iter()
             .all(|x| (0.0..=2000.0).contains(&x.as_f64().unwrap()))
     );
+    // A floor is listed on a bound of the space (0–2000 kN) exactly when its slip load is
+    // there, and the summary names it.
+    let on_bound = v["on_bound"].as_array().unwrap();
+    for (i, x) in loads.iter().enumerate() {
+        let kn = x.as_f64().unwrap();
+        let at = if kn <= 2000.0 * 1e-6 {
+            Some("lower")
+        } else if kn >= 2000.0 * (1.0 - 1e-6) {
+            Some("upper")
+        } else {
+            None
+        };
+        let listed = on_bound
+            .iter()
+            .find(|b| b["floors"] == serde_json::json!([i + 1]));
+        assert_eq!(listed.map(|b| b["bound"].as_str().unwrap()), at, "{v:#}");
+        if let Some(bound) = at {
+            assert!(
+                text.contains(&format!("floor {} at its {bound} bound", i + 1)),
+                "{text}"
+            );
+        }
+    }
+    if on_bound.is_empty() {
+        assert!(!text.contains("on a bound"), "{text}");
+    }
+    // The first run ran every sweep task and reused none.
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(res.join("manifest.json")).unwrap()).unwrap();
+    let designs = manifest["designs"].as_array().unwrap().len();
+    assert!(
+        text.contains(&format!(
+            "sweep: {designs} designs × 10 records, {} simulations run (0 reused from journal.jsonl)",
+            designs * 10
+        )),
+        "{text}"
+    );
     // interrupted refinement: keep 30 journalled points and a torn line; the second run
     // reuses the finished sweep, replays those 30 points and gives the same files
     let rj = res.join("refine-trust-region.jsonl");
@@ -69,8 +106,21 @@ fn default_optimize_runs_the_embedded_benchmark() {
     let again = run_in(&dir, &["optimize", "--quiet"]);
     assert!(again.status.success());
     let msg = String::from_utf8_lossy(&again.stdout);
+    // What was reused and what ran: no sweep task, only the refinement points after the
+    // 30 replayed ones (10 records each), then the check and the design table.
+    let n = lines.len();
     assert!(
-        msg.contains("(30 replayed from the refine journal)"),
+        msg.contains(&format!(
+            "0 simulations run ({} reused from journal.jsonl)",
+            designs * 10
+        )) && msg.contains(&format!(
+            "{n} designs, {} run (30 replayed from refine-trust-region.jsonl)",
+            n - 30
+        )),
+        "{msg}"
+    );
+    assert!(
+        msg.contains(&format!("sweep 0, refine {}, check ", (n - 30) * 10)),
         "{msg}"
     );
     assert_eq!(
@@ -163,6 +213,13 @@ fn rank_reads_the_candidates_of_optimize() {
         ],
     );
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // rank.md says which study and objective it ranks by (the study is named by its stem)
+    let md = std::fs::read_to_string(dir.join("rank/rank.md")).unwrap();
+    assert!(
+        md.starts_with("# Ranking of 5 designs: study\n")
+            && md.contains("Objective: p84 peak_drift_ratio"),
+        "{md}"
+    );
     let csv = std::fs::read_to_string(dir.join("rank/rank.csv")).unwrap();
     // 5 candidates × (2 suites + all)
     assert_eq!(csv.lines().count(), 1 + 5 * 3);

@@ -1,5 +1,5 @@
 //! slipload-opt: the per-floor slip loads μᵢNᵢ of friction dissipators that minimise a
-//! drift or energy objective over whole ground-motion suites (DESIGN.md § Optimisation).
+//! drift or energy objective over whole ground-motion suites (docs/MODEL.md § Optimisation).
 //!
 //! A [`Study`] (JSON, validated before anything runs) names a building, record suites, a
 //! [`DesignSpace`] and an [`Objective`]. A sweep runs a sample of designs × every record
@@ -28,5 +28,5 @@ pub use error::OptError;
 pub use metrics::RecordMetrics;
 pub use objective::{Metric, Objective, Statistic, Term};
 pub use shard::Shard;
-pub use space::{DesignSpace, Shape};
+pub use space::{Bound, DesignSpace, OnBound, Shape};
 pub use study::{Study, StudyConfig};

@@ -51,8 +51,8 @@ pub struct OptimizeReport {
     pub bare_objective: f64,
     /// Objective of the building file's slip loads.
     pub file_objective: f64,
-    /// Simulations run by refinement and check (the sweep's not included; replayed
-    /// refinement points included).
+    /// Simulations run by refinement and check in this run (the sweep's not included,
+    /// nor refinement points replayed from the journal of an earlier run).
     pub simulations: usize,
     /// Refinement evaluations replayed from the journal of an earlier run.
     pub replayed: usize,
@@ -193,7 +193,7 @@ pub fn optimize(
     let sweep_order: Vec<Vec<f64>> = finalists.iter().map(|f| f.z.clone()).collect();
     finalists.sort_by(|a, b| a.f_check.total_cmp(&b.f_check));
     let ranking_held = finalists.iter().map(|f| &f.z).eq(sweep_order.iter());
-    let simulations = (log.len() + 1 + finalists.len()) * nr;
+    let simulations = (log.len() - replayed + 1 + finalists.len()) * nr;
     Ok(OptimizeReport {
         method,
         sweep_designs,

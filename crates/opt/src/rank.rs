@@ -39,6 +39,12 @@ pub struct SuiteRanking {
 /// The ranking of a set of designs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Ranking {
+    /// The study's name.
+    #[serde(default)]
+    pub study: String,
+    /// The study's objective, as a label.
+    #[serde(default)]
+    pub objective: String,
     /// Design names.
     pub designs: Vec<String>,
     /// Bootstrap resamples per suite.
@@ -169,6 +175,8 @@ pub fn rank(
         });
     }
     Ok(Ranking {
+        study: study.name.clone(),
+        objective: study.objective.label(),
         designs: designs.iter().map(|d| d.name.clone()).collect(),
         bootstrap,
         suites: out,
@@ -191,13 +199,19 @@ impl Ranking {
         s
     }
 
-    /// Markdown, one table per suite, designs by rank.
+    /// Markdown: a header naming the study and its objective, then one table per suite,
+    /// designs by rank.
     pub fn to_markdown(&self) -> String {
-        let mut s = String::new();
+        let mut s = format!(
+            "# Ranking of {} designs: {}\n\nObjective: {} (lower is better); rank 1 is the best design of a suite.\n\n",
+            self.designs.len(),
+            self.study,
+            self.objective
+        );
         for su in &self.suites {
             let _ = writeln!(
                 s,
-                "### {}\n\nWhole order kept in {:.0} % of {} bootstrap resamples of the records.\n\n| rank | design | objective | rank kept |\n|---:|---|---:|---:|",
+                "## {}\n\nWhole order kept in {:.0} % of {} bootstrap resamples of the records.\n\n| rank | design | objective | rank kept |\n|---:|---|---:|---:|",
                 su.suite,
                 100.0 * su.order_kept,
                 self.bootstrap

@@ -99,6 +99,40 @@ pub struct DesignSpace {
 /// Relative slack on constraint checks (round-off of the affine map).
 const FEAS_TOL: f64 = 1e-9;
 
+/// A scaled variable within this of 0 or 1 (a millionth of its range) is on its bound.
+pub const BOUND_TOL: f64 = 1e-6;
+
+/// Which bound of a design variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Bound {
+    /// The lower bound (z = 0).
+    Lower,
+    /// The upper bound (z = 1).
+    Upper,
+}
+
+impl Bound {
+    /// `lower` or `upper`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Bound::Lower => "lower",
+            Bound::Upper => "upper",
+        }
+    }
+}
+
+/// A design variable sitting on a bound of the design space.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OnBound {
+    /// The variable (`floor1`, …; `scale` for a profile).
+    pub variable: String,
+    /// The floors (from 1) whose slip loads it sets.
+    pub floors: Vec<usize>,
+    /// Which bound.
+    pub bound: Bound,
+}
+
 impl DesignSpace {
     /// Builds and checks a space; errors name the study field.
     pub fn new(
@@ -307,6 +341,31 @@ impl DesignSpace {
             let scale = self.b[i].abs().max(self.a.row(i).abs().sum()).max(1.0);
             lhs <= self.b[i] + FEAS_TOL * scale
         })
+    }
+
+    /// The variables of `z` that sit on a bound of the space (within [`BOUND_TOL`]): a
+    /// design there may want to go further than the space allows.
+    pub fn on_bounds(&self, z: &[f64]) -> Vec<OnBound> {
+        let mut out = Vec::new();
+        for (j, &v) in z.iter().enumerate() {
+            let bound = if v <= BOUND_TOL {
+                Bound::Lower
+            } else if v >= 1.0 - BOUND_TOL {
+                Bound::Upper
+            } else {
+                continue;
+            };
+            let floors = (0..self.basis.nrows())
+                .filter(|&i| self.basis[(i, j)] != 0.0)
+                .map(|i| self.dampers[i] + 1)
+                .collect();
+            out.push(OnBound {
+                variable: self.names[j].clone(),
+                floors,
+                bound,
+            });
+        }
+        out
     }
 
     /// Per-floor slip loads for [`Building::with_slip_loads`] (`None` where no dissipator).

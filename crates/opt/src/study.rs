@@ -461,9 +461,15 @@ fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
 impl StudyConfig {
     /// Parses a study from JSON text; `path` names it in errors.
     pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
-        serde_json::from_str(text).map_err(|source| OptError::Json {
-            path: path.to_path_buf(),
-            source,
+        serde_json::from_str(text).map_err(|source| {
+            // A building or scene given as a study: say so, and what to run.
+            match slipload_sim::kind::wrong_kind(text, path, slipload_sim::kind::Expected::Study) {
+                Some(e) => OptError::from(e),
+                None => OptError::Json {
+                    path: path.to_path_buf(),
+                    source,
+                },
+            }
         })
     }
 

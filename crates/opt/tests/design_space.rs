@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::sampler;
-use slipload_opt::{Shape, Study};
+use slipload_opt::{Bound, Shape, Study};
 use std::path::{Path, PathBuf};
 
 fn configs() -> PathBuf {
@@ -119,4 +119,39 @@ fn family_scaling_scales_periods_and_records() {
     assert!((c - &s.building.damping).abs().max() <= 1e-12 * s.building.damping.abs().max());
     assert_eq!(t.records[0].pga(), 2.0 * s.records[0].pga());
     assert!(slipload_opt::family::scaled_study(&s, 0.0, 1.0).is_err());
+}
+
+#[test]
+fn variables_on_a_bound_are_named_with_their_floors() {
+    let free = benchmark(|_| {});
+    let on = free.space.on_bounds(&[1.0, 0.4, 0.0]);
+    let named: Vec<(&str, &[usize], Bound)> = on
+        .iter()
+        .map(|b| (b.variable.as_str(), b.floors.as_slice(), b.bound))
+        .collect();
+    assert_eq!(
+        named,
+        [
+            ("floor1", &[1][..], Bound::Upper),
+            ("floor3", &[3][..], Bound::Lower)
+        ]
+    );
+    // Within a millionth of the range is on the bound; a thousandth inside is not.
+    assert_eq!(free.space.on_bounds(&[1.0 - 1e-7, 0.5, 0.5]).len(), 1);
+    assert!(free.space.on_bounds(&[0.999, 0.5, 0.001]).is_empty());
+    // A profile has one variable, the scale, which sets every floor with a damper.
+    let profile = benchmark(|v| {
+        v["space"] =
+            serde_json::json!({ "profile": { "shape": "uniform", "scale_kn": [0, 1500] } });
+    });
+    let on = profile.space.on_bounds(&[1.0]);
+    assert_eq!(on.len(), 1);
+    assert_eq!(
+        (
+            on[0].variable.as_str(),
+            on[0].floors.as_slice(),
+            on[0].bound
+        ),
+        ("scale", &[1, 2, 3][..], Bound::Upper)
+    );
 }

@@ -1,5 +1,5 @@
 //! The building model: floor masses, frame stiffness and damping, storey heights, and at
-//! most one friction dissipator per floor (DESIGN.md § The model).
+//! most one friction dissipator per floor (docs/MODEL.md § The model).
 //!
 //! A [`BuildingConfig`] is what a JSON file says (unknown fields rejected, units accepted
 //! as strings); [`Building::from_config`] validates it into SI matrices with errors that
@@ -284,10 +284,7 @@ impl Building {
             path: path.to_path_buf(),
             source,
         })?;
-        let cfg: BuildingConfig = serde_json::from_str(&text).map_err(|source| SimError::Json {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let cfg: BuildingConfig = crate::kind::parse(&text, path, crate::kind::Expected::Building)?;
         Building::from_config(&cfg, path)
     }
 

@@ -22,6 +22,23 @@ pub enum SimError {
         /// serde_json's message, with line and column.
         source: serde_json::Error,
     },
+    /// The file is another kind of slipload input than the command reads (a study given
+    /// to `simulate`, a building given to `optimize`): says which, and what to run.
+    #[error(
+        "{} is {}, not {}: {}",
+        .path.display(),
+        .found.article(),
+        .expected.describe(),
+        .found.advice(.path)
+    )]
+    WrongKind {
+        /// The file.
+        path: PathBuf,
+        /// What it is.
+        found: crate::kind::FileKind,
+        /// What the command reads.
+        expected: crate::kind::Expected,
+    },
     /// A value is out of its valid range or inconsistent with others.
     #[error("{path}: field `{field}`: {message}")]
     Invalid {

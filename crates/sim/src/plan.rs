@@ -1,9 +1,9 @@
-//! Plans: a scene compiled into only the effects that matter (DESIGN.md § Scenes and plans).
+//! Plans: a scene compiled into only the effects that matter (docs/MODEL.md § Scenes and plans).
 //!
 //! Degrees of freedom are the floors (0..N) followed by the dissipators that keep one.
 //! With `reduce` on:
 //! - a floor without a dissipator, or whose slip load is zero, has no dissipator DOF and
-//!   no brace (a bare storey: DESIGN.md's μN = 0 limit);
+//!   no brace (a bare storey: the μN = 0 limit of docs/MODEL.md § The model);
 //! - a locked dissipator (μN = ∞) is merged into its floor: its mass is added to the
 //!   floor and its brace joins floors i−1 and i directly (a braced storey);
 //! - a massless dissipator (m′ = 0) becomes an elastic–perfectly plastic element between

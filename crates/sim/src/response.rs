@@ -1,4 +1,4 @@
-//! Responses of one simulation (DESIGN.md § Outputs of a simulation) and the recorder
+//! Responses of one simulation (docs/MODEL.md § Outputs of a simulation) and the recorder
 //! that accumulates them in place while stepping.
 //!
 //! Peaks are taken at the integration steps ("sampled peaks"); between steps the

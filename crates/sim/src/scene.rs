@@ -7,6 +7,7 @@
 
 use crate::building::{Building, BuildingConfig};
 use crate::error::SimError;
+use crate::kind::Expected;
 use crate::units::{Force, Length, Time, is_positive};
 use serde::{Deserialize, Serialize};
 use slipload_motion::{G, Record, Units};
@@ -507,16 +508,9 @@ impl Scene {
             .as_object()
             .is_some_and(|o| o.contains_key("building"));
         let cfg = if is_scene {
-            serde_json::from_str::<SceneConfig>(text).map_err(|source| SimError::Json {
-                path: path.to_path_buf(),
-                source,
-            })?
+            crate::kind::parse::<SceneConfig>(text, path, Expected::SceneOrBuilding)?
         } else {
-            let b: BuildingConfig =
-                serde_json::from_str(text).map_err(|source| SimError::Json {
-                    path: path.to_path_buf(),
-                    source,
-                })?;
+            let b: BuildingConfig = crate::kind::parse(text, path, Expected::SceneOrBuilding)?;
             SceneConfig {
                 name: b.name.clone(),
                 description: None,

@@ -1,4 +1,4 @@
-//! Closed forms and linear limits (DESIGN.md § The model, "Limits that must come out right").
+//! Closed forms and linear limits (docs/MODEL.md § The model, "Limits that must come out right").
 //!
 //! - Coulomb-damped free vibration: a rigid-plastic friction damper on an undamped
 //!   oscillator loses 4F/k of amplitude per cycle and stops inside |x| ≤ F/k.

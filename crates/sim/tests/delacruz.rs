@@ -157,8 +157,8 @@ fn converges_to_newmark_on_the_benchmark() {
         })
         .collect();
     let p = observed_order(&errors);
-    // Hundreds of chattering stick/slip events (DESIGN.md: ~170 per second) make single
-    // halvings noisy; the fitted order over the ladder must be that of a first-order
+    // Hundreds of chattering stick/slip events (~170 per second: docs/MODEL.md § What the
+    // physics does to the numerics) make single halvings noisy; the fitted order over the ladder must be that of a first-order
     // scheme (0.6 to 2.2), and the finest error below a quarter of the coarsest (3 halvings
     // of a first-order method give 1/8).
     assert!((0.6..2.2).contains(&p), "order {p}, errors {errors:?}");

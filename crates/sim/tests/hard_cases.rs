@@ -330,7 +330,8 @@ fn all_converge() -> Vec<MethodName> {
 #[cfg_attr(debug_assertions, ignore = "release-mode test: run by .ci/run")]
 fn dissipator_mass_1e_minus_6_of_the_papers() {
     // m′ = 3.5e-4 kg rings at 1.1e6 rad/s: exact refuses (documented substep cap); the
-    // others converge to the massless (EPP) answer (DESIGN.md: responses converge as m′ → 0).
+    // others converge to the massless (EPP) answer (docs/MODEL.md § What the physics does
+    // to the numerics).
     let scene = syl_scene(&paper_building(350.11e-6, 448.12e6), 5.0, 1.0, DT);
     let limit = syl_scene(&paper_building(0.0, 448.12e6), 5.0, 1.0, DT);
     let errs = check(

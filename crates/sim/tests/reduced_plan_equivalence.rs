@@ -1,4 +1,4 @@
-//! A reduced plan gives the same answers as the full 2N model (DESIGN.md § Scenes and
+//! A reduced plan gives the same answers as the full 2N model (docs/MODEL.md § Scenes and
 //! plans), to round-off:
 //! - massless dissipators condensed into elastic–perfectly plastic elements vs the
 //!   same dissipators kept as zero-mass DOFs;
@@ -34,7 +34,7 @@ fn assert_same(a: &Response, b: &Response) {
     ] {
         assert!((p - q).abs() <= 1e-9 * ea.input.abs(), "energy {p} vs {q}");
     }
-    // Transition counts are fragile (DESIGN.md): a grazing stick may flip in round-off.
+    // Transition counts are fragile (docs/MODEL.md): a grazing stick may flip in round-off.
     for (p, q) in a.transitions.iter().zip(&b.transitions) {
         assert!(p.abs_diff(*q) <= 2, "transitions {p} vs {q}");
     }

@@ -4,10 +4,12 @@
 //! error vs Δt (`NAME-work-precision`, `NAME-error-vs-dt`, SVG + PNG) for the median (or
 //! the one record).
 
+use super::scene_args::MethodArg;
 use crate::output::write_atomic;
 use anyhow::Context;
 use slipload_motion::Units;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
+use slipload_sim::kind::Expected;
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
@@ -35,10 +37,11 @@ pub struct AccuracyArgs {
     /// Methods to compare, comma-separated
     #[arg(
         long,
+        value_enum,
         value_delimiter = ',',
         default_value = "delacruz,newmark,hht,bilinear,exact"
     )]
-    pub methods: Vec<MethodName>,
+    pub methods: Vec<MethodArg>,
     /// Time steps, comma-separated: seconds or T1/k
     #[arg(
         long,
@@ -49,8 +52,8 @@ pub struct AccuracyArgs {
     /// Timed repeats per entry (the median is reported, after one warm-up run)
     #[arg(long, default_value_t = 5)]
     pub repeats: usize,
-    /// Output folder
-    #[arg(long, default_value = "results/accuracy")]
+    /// Output folder (created if missing)
+    #[arg(long, default_value = "out/accuracy")]
     pub out: PathBuf,
     /// Base name of the output files (default: the scene file's stem)
     #[arg(long)]
@@ -75,10 +78,9 @@ fn synthetic_scene(args: &AccuracyArgs, index: usize) -> anyhow::Result<Scene> {
     let value: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("parsing scene {}", path.display()))?;
     let mut cfg: SceneConfig = if value.get("building").is_some() {
-        serde_json::from_value(value).with_context(|| format!("scene {}", path.display()))?
+        slipload_sim::kind::parse(&text, path, Expected::SceneOrBuilding)?
     } else {
-        let b: BuildingConfig = serde_json::from_value(value)
-            .with_context(|| format!("building {}", path.display()))?;
+        let b: BuildingConfig = slipload_sim::kind::parse(&text, path, Expected::SceneOrBuilding)?;
         SceneConfig {
             name: b.name.clone(),
             description: None,
@@ -141,13 +143,15 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         }
     }
     let settings = StudySettings {
-        methods: args.methods.clone(),
+        methods: args.methods.iter().map(|&m| MethodName::from(m)).collect(),
         dts: args.dts.clone(),
         repeats: args.repeats.max(1),
     };
     let mut reports: Vec<StudyReport> = Vec::new();
     for s in &scenes {
-        eprintln!("accuracy: {} ...", s.name);
+        if !crate::output::quiet() {
+            eprintln!("accuracy: {} ...", s.name);
+        }
         reports.push(
             run_study(s, &settings).with_context(|| format!("accuracy study of {}", s.name))?,
         );

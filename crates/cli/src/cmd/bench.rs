@@ -42,10 +42,16 @@ pub struct BenchArgs {
     pub memory_probe: Option<f64>,
 }
 
+/// Where each target's status (met, withdrawn, pending) is explained.
+pub const TARGETS_EXPLAINED: &str = "results/performance/README.md";
+
+/// The issue under which the `exact` integrator's targets are pending.
+const EXACT_TARGETS_ISSUE: &str = "issue 17";
+
 /// Output formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Format {
-    /// A list of `{case, metric, value, unit, target, met}` objects
+    /// A list of `{case, metric, value, unit, target, met, status, note}` objects
     Json,
     /// A table for people
     Table,
@@ -64,8 +70,14 @@ pub struct Figure {
     pub unit: String,
     /// The target, e.g. ">= 5000" (`null`: reported, no target).
     pub target: Option<String>,
-    /// Whether the target is met (`null` without a target).
+    /// Whether a target in force is met (`null` without a target, or when the target is
+    /// withdrawn or pending).
     pub met: Option<bool>,
+    /// The target's status: `met`, `NOT MET`, `withdrawn` or `pending (issue N)`
+    /// (`null` without a target).
+    pub status: Option<String>,
+    /// Where the status is explained, for every status but `met` (`null` otherwise).
+    pub note: Option<String>,
 }
 
 impl Figure {
@@ -77,21 +89,42 @@ impl Figure {
             unit: unit.into(),
             target: None,
             met: None,
+            status: None,
+            note: None,
         }
     }
-    fn at_least(mut self, t: f64) -> Figure {
-        self.target = Some(format!(">= {}", fmt(t)));
-        self.met = Some(self.value >= t);
+    /// A target in force: its status is `met` or `NOT MET` (with a pointer to why).
+    fn judged(mut self, target: String, met: bool) -> Figure {
+        self.target = Some(target);
+        self.met = Some(met);
+        self.status = Some(if met { "met" } else { "NOT MET" }.into());
+        self.note = (!met).then(|| format!("see {TARGETS_EXPLAINED}"));
         self
     }
-    fn at_most(mut self, t: f64) -> Figure {
-        self.target = Some(format!("<= {}", fmt(t)));
-        self.met = Some(self.value <= t);
+    fn at_least(self, t: f64) -> Figure {
+        let met = self.value >= t;
+        self.judged(format!(">= {}", fmt(t)), met)
+    }
+    fn at_most(self, t: f64) -> Figure {
+        let met = self.value <= t;
+        self.judged(format!("<= {}", fmt(t)), met)
+    }
+    fn between(self, lo: f64, hi: f64) -> Figure {
+        let met = self.value >= lo && self.value <= hi;
+        self.judged(format!("{} .. {}", fmt(lo), fmt(hi)), met)
+    }
+    /// The target no longer holds the figure: reported beside it, not judged.
+    fn withdrawn(mut self) -> Figure {
+        self.met = None;
+        self.status = Some("withdrawn".into());
+        self.note = Some(format!("see {TARGETS_EXPLAINED}"));
         self
     }
-    fn between(mut self, lo: f64, hi: f64) -> Figure {
-        self.target = Some(format!("{} .. {}", fmt(lo), fmt(hi)));
-        self.met = Some(self.value >= lo && self.value <= hi);
+    /// The target is set but the work to meet it is open under `issue`: not judged yet.
+    fn pending(mut self, issue: &str) -> Figure {
+        self.met = None;
+        self.status = Some(format!("pending ({issue})"));
+        self.note = Some(format!("see {TARGETS_EXPLAINED}"));
         self
     }
 }
@@ -286,8 +319,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let b3 = BENCHMARK_BUILDING;
     let b10 = TEN_STORY_BUILDING;
 
-    // Accuracy of the defaults, then throughput.
-    for (name, building, target) in [("benchmark-3story", b3, 5000.0), ("ten-story", b10, 500.0)] {
+    // Accuracy of the defaults, then throughput. The benchmark's 5000/s target is
+    // withdrawn; 3500/s guards against regressions (results/performance/README.md).
+    for (name, building, target, withdrawn) in [
+        ("benchmark-3story", b3, 3500.0, Some(5000.0)),
+        ("ten-story", b10, 500.0, None),
+    ] {
         let case = format!("{name}, 15 s synthetic, newmark default dt");
         if want(&case) {
             let p = plan(building, SceneOpts::new(MethodName::Newmark))?;
@@ -303,6 +340,13 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 Figure::new(&case, "simulations per second per core", 1.0 / s, "1/s")
                     .at_least(target),
             );
+            if let Some(t) = withdrawn {
+                figs.push(
+                    Figure::new(&case, "simulations per second per core", 1.0 / s, "1/s")
+                        .at_least(t)
+                        .withdrawn(),
+                );
+            }
             figs.push(Figure::new(
                 &case,
                 "time per step",
@@ -358,9 +402,19 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         }
     }
 
-    let case = "benchmark-3story, 15 s synthetic, exact";
-    if want(case) {
-        let p = plan(b3, SceneOpts::new(MethodName::Exact))?;
+    // `exact` against the targets of issue 17, "reference accuracy at sweep speed"
+    // (pending): simulations per second, and its cost relative to `newmark` at the default
+    // step on the same scene.
+    for (name, building, rate, ratio) in [
+        ("benchmark-3story", b3.to_string(), Some(1000.0), 5.0),
+        ("benchmark-3story m'=0", massless(b3)?, Some(5000.0), 1.5),
+        ("ten-story", b10.to_string(), None, 2.0),
+    ] {
+        let case = format!("{name}, 15 s synthetic, exact");
+        if !want(&case) {
+            continue;
+        }
+        let p = plan(&building, SceneOpts::new(MethodName::Exact))?;
         let s = seconds_per_run(
             &p,
             &clock,
@@ -369,31 +423,33 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 ..budget
             },
         )?;
-        figs.push(
-            Figure::new(case, "simulations per second per core", 1.0 / s, "1/s").at_least(2000.0),
-        );
+        let f = Figure::new(&case, "simulations per second per core", 1.0 / s, "1/s");
+        figs.push(match rate {
+            Some(t) => f.at_least(t).pending(EXACT_TARGETS_ISSUE),
+            None => f,
+        });
         let out = run_plan(&p)?;
         figs.push(Figure::new(
-            case,
+            &case,
             "stick-slip events",
             out.response.transitions.iter().sum::<u64>() as f64,
             "-",
         ));
-        let p0 = plan(&massless(b3)?, SceneOpts::new(MethodName::Exact))?;
-        let s0 = seconds_per_run(
-            &p0,
+        let newmark = seconds_per_run(
+            &plan(&building, SceneOpts::new(MethodName::Newmark))?,
             &clock,
-            Budget {
-                repeats: 3,
-                ..budget
-            },
+            budget,
         )?;
-        figs.push(Figure::new(
-            "benchmark-3story m'=0, 15 s synthetic, exact",
-            "simulations per second per core",
-            1.0 / s0,
-            "1/s",
-        ));
+        figs.push(
+            Figure::new(
+                &case,
+                "time per simulation / newmark's at its default dt",
+                s / newmark,
+                "x",
+            )
+            .at_most(ratio)
+            .pending(EXACT_TARGETS_ISSUE),
+        );
     }
 
     // The plan reductions pay: same answers, less time.
@@ -625,6 +681,9 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
 
 fn print_table(figs: &[Figure], clock_note: &str) {
     outln!("slipload bench — single thread unless stated; times are {clock_note}, medians");
+    outln!(
+        "targets: met, NOT MET, withdrawn or pending; what each status means and why: {TARGETS_EXPLAINED}"
+    );
     let mut last = "";
     for f in figs {
         if f.case != last {
@@ -632,10 +691,10 @@ fn print_table(figs: &[Figure], clock_note: &str) {
             last = &f.case;
         }
         let target = f.target.as_deref().unwrap_or("");
-        let met = match f.met {
-            Some(true) => "met",
-            Some(false) => "NOT MET",
-            None => "",
+        let status = match (&f.status, &f.note) {
+            (Some(s), Some(n)) => format!("{s}: {n}"),
+            (Some(s), None) => s.clone(),
+            (None, _) => String::new(),
         };
         outln!(
             "  {:<52} {:>12} {:<4} {:>12} {}",
@@ -643,7 +702,7 @@ fn print_table(figs: &[Figure], clock_note: &str) {
             fmt(f.value),
             f.unit,
             target,
-            met
+            status
         );
     }
 }

@@ -11,7 +11,7 @@ use slipload_opt::journal::write_atomic;
 use slipload_opt::optimize::{OptimizeReport, optimize};
 use slipload_opt::study::RefineMethod;
 use slipload_opt::table::{DesignTable, standard_designs};
-use slipload_opt::{Shard, Study, sweep};
+use slipload_opt::{OnBound, Shard, Study, sweep};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -27,9 +27,6 @@ pub struct OptimizeArgs {
     /// Refiner: trust-region, nelder-mead or random (default: the study's)
     #[arg(long)]
     pub refine: Option<RefineMethod>,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
     /// Also draw the objective map over two floors' slip loads (the others at the
     /// optimum): GRID × GRID designs × every record, at the sweep fidelity
     #[arg(long)]
@@ -47,6 +44,45 @@ fn kn(v: &[f64]) -> String {
         .map(|x| format!("{:.1}", x / 1e3))
         .collect::<Vec<_>>()
         .join(" / ")
+}
+
+/// The design variables of the optimum that sit on a bound of the study's space, said
+/// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
+fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
+    let load_of = |floor: usize| {
+        study
+            .space
+            .dampers
+            .iter()
+            .position(|&f| f + 1 == floor)
+            .map_or(f64::NAN, |k| loads[k] / 1e3)
+    };
+    on.iter()
+        .map(|b| {
+            let floors: Vec<String> = b.floors.iter().map(usize::to_string).collect();
+            if study.space.shape.is_some() {
+                format!(
+                    "the profile's {} (floors {}) at its {} bound, {} kN",
+                    b.variable,
+                    floors.join(", "),
+                    b.bound.as_str(),
+                    b.floors
+                        .iter()
+                        .map(|&f| format!("{:.1}", load_of(f)))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                )
+            } else {
+                format!(
+                    "floor {} at its {} bound, {:.1} kN",
+                    floors.join(", "),
+                    b.bound.as_str(),
+                    b.floors.first().map_or(f64::NAN, |&f| load_of(f))
+                )
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// `refine.csv`: every refinement evaluation with the best objective so far.
@@ -89,7 +125,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         map_dampers(&study, map_floors, args.map_grid)?;
     }
     let manifest = sweep::Manifest::of(&study);
-    let pb = progress(manifest.tasks() as u64, args.quiet, "sweep");
+    let pb = progress(manifest.tasks() as u64, "sweep");
     let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
         .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
     pb.finish_and_clear();
@@ -98,7 +134,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let rc = study.config.refine;
     // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
     let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
-    let pb = progress(est as u64, args.quiet, "refine");
+    let pb = progress(est as u64, "refine");
     let r = optimize(
         &study,
         &report.manifest,
@@ -110,17 +146,13 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     .context("refining")?;
     pb.finish_and_clear();
     let designs = standard_designs(&study, &r.optimum_loads);
-    let pb = progress(
-        ((designs.len() * 3 + 1) * nr) as u64,
-        args.quiet,
-        "design table",
-    );
+    let pb = progress(((designs.len() * 3 + 1) * nr) as u64, "design table");
     let (table, runs) =
         DesignTable::build_with_runs(&study, &designs, &|| pb.inc(1)).context("design table")?;
     pb.finish_and_clear();
     let map = if args.map {
         let grid = args.map_grid;
-        let pb = progress((grid * grid * nr) as u64, args.quiet, "objective map");
+        let pb = progress((grid * grid * nr) as u64, "objective map");
         let floors = [args.map_floors[0], args.map_floors[1]];
         let m = objective_map(&study, &r.optimum_loads, &rows[..nr], floors, grid, &|| {
             pb.inc(1)
@@ -134,12 +166,15 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         &args.out.join("refine.csv"),
         refine_csv(&study, &r).as_bytes(),
     )?;
+    // A variable on a bound of the space: the optimum may lie beyond it.
+    let on_bound = study.space.on_bounds(&r.optimum.z);
     let optimum = serde_json::json!({
         "study": study.name,
         "objective": study.objective.label(),
         "refiner": method.as_str(),
         "damper_floors": study.space.dampers.iter().map(|f| f + 1).collect::<Vec<_>>(),
         "slip_loads_kN": r.optimum_loads.iter().map(|v| v / 1e3).collect::<Vec<_>>(),
+        "on_bound": on_bound,
         "objective_value": r.optimum.f,
         "bare_objective": r.bare_objective,
         "file_objective": r.file_objective,
@@ -209,20 +244,52 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         study.objective.label(),
         nr
     );
+    // What ran now, and what was taken from the journals of an earlier run.
+    let refined = (r.log.len() - r.replayed) * nr;
+    let checked = r.simulations - refined;
+    let tabled = runs.iter().map(Vec::len).sum::<usize>();
+    let mapped = if args.map {
+        args.map_grid * args.map_grid * nr
+    } else {
+        0
+    };
     outln!(
-        "sweep: {} designs; refine ({}): {} designs ({} replayed from the refine journal); {} simulations in {:.1} s",
-        r.sweep_designs,
+        "sweep: {} designs × {} records, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
+        report.manifest.designs.len(),
+        nr,
+        report.ran,
+        report.resumed,
         method.as_str(),
         r.log.len(),
+        r.log.len() - r.replayed,
         r.replayed,
-        report.manifest.tasks() + r.simulations,
-        started.elapsed().as_secs_f64()
+        method.as_str()
+    );
+    outln!(
+        "{} simulations run in {:.1} s: sweep {}, refine {}, check {}, design table {}{}",
+        report.ran + r.simulations + tabled + mapped,
+        started.elapsed().as_secs_f64(),
+        report.ran,
+        refined,
+        checked,
+        tabled,
+        if args.map {
+            format!(", objective map {mapped}")
+        } else {
+            String::new()
+        }
     );
     outln!(
         "optimal slip loads, floors {} (kN): {}",
         floors.join(" / "),
         kn(&r.optimum_loads)
     );
+    if !on_bound.is_empty() {
+        outln!(
+            "on a bound of the design space (the optimum may lie beyond it: widen the bound to see): {}",
+            on_bound_text(&study, &r.optimum_loads, &on_bound)
+        );
+    }
     let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
     outln!(
         "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",

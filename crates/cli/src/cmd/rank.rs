@@ -5,6 +5,7 @@ use super::study_args::{load_study, progress};
 use anyhow::Context;
 use slipload_opt::journal::write_atomic;
 use slipload_opt::rank::{NamedDesign, rank};
+use slipload_sim::FileKind;
 use std::path::PathBuf;
 
 /// Arguments of `slipload rank`.
@@ -25,9 +26,6 @@ pub struct RankArgs {
     /// Bootstrap seed
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
 }
 
 /// Runs `slipload rank`.
@@ -35,12 +33,26 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let study = load_study(Some(&args.study))?;
     let text = std::fs::read_to_string(&args.designs)
         .with_context(|| format!("reading {}", args.designs.display()))?;
-    let designs: Vec<NamedDesign> = serde_json::from_str(&text).with_context(|| {
-        format!(
-            "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
-            args.designs.display()
-        )
-    })?;
+    let designs: Vec<NamedDesign> = match serde_json::from_str(&text) {
+        Ok(d) => d,
+        Err(e) => match FileKind::of_json(&text) {
+            // A study, scene or building given as the candidates: say what it is.
+            Some(kind) if kind != FileKind::Designs => anyhow::bail!(
+                "{} is {}, not a list of candidate designs ([{{\"name\", \"slip_loads_kn\"}}, …], as optimize writes in candidates.json): {}",
+                args.designs.display(),
+                kind.article(),
+                kind.advice(&args.designs)
+            ),
+            _ => {
+                return Err(e).with_context(|| {
+                    format!(
+                        "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
+                        args.designs.display()
+                    )
+                });
+            }
+        },
+    };
     anyhow::ensure!(
         !designs.is_empty(),
         "{}: no designs",
@@ -48,11 +60,7 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     );
     slipload_opt::rank::to_newtons(&study, &designs)
         .with_context(|| format!("checking {}", args.designs.display()))?;
-    let pb = progress(
-        ((designs.len() + 1) * study.records.len()) as u64,
-        args.quiet,
-        "rank",
-    );
+    let pb = progress(((designs.len() + 1) * study.records.len()) as u64, "rank");
     let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
     pb.finish_and_clear();
     write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
@@ -61,7 +69,7 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let mut json = serde_json::to_string_pretty(&r)?;
     json.push('\n');
     write_atomic(&args.out.join("rank.json"), json.as_bytes())?;
-    out!("{}: {}\n\n{md}", study.name, study.objective.label());
+    out!("{md}");
     outln!(
         "wrote {}/{{rank.csv,rank.md,rank.json}}",
         args.out.display()

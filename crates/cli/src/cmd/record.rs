@@ -1,6 +1,7 @@
 //! `slipload record …`: read, measure and synthesise ground-motion records.
 //!
 //! * `info FILE…` — samples, time step, duration and intensity measures of each record;
+//!   a folder stands for its `.AT2` files (extension in any case), by name;
 //! * `spectrum FILE…` — elastic response spectra (pseudo-acceleration, pseudo-velocity,
 //!   displacement); `--plot` draws the suite's spectra, their mean and a design target;
 //! * `synth` — Clough–Penzien synthetic records as `time_s,accel_m_s2` CSV.
@@ -10,8 +11,8 @@
 use anyhow::{Context, bail};
 use slipload_motion::{
     DEFAULT_DAMPING, DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DesignSpectrum, G, Intensity, Record,
-    Spectrum, SuiteTarget, Synthetic, Units, default_periods, default_suite, format_csv,
-    read_record, synthetic_suite,
+    RecordFormat, Spectrum, SuiteTarget, Synthetic, Units, default_periods, default_suite,
+    format_csv, read_record, synthetic_suite,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -51,6 +52,36 @@ impl ReadOptions {
     }
 }
 
+/// The record files `paths` name: a file as given, a folder as its `.AT2` files (the
+/// extension in any case: `ARL360.at2` as well as `SYL090.AT2`), sorted by name.
+fn expand_records(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for p in paths {
+        if !p.is_dir() {
+            out.push(p.clone());
+            continue;
+        }
+        let mut found = Vec::new();
+        for e in std::fs::read_dir(p).with_context(|| format!("reading folder {}", p.display()))? {
+            let path = e
+                .with_context(|| format!("reading folder {}", p.display()))?
+                .path();
+            if path.is_file() && RecordFormat::of_path(&path) == RecordFormat::At2 {
+                found.push(path);
+            }
+        }
+        if found.is_empty() {
+            bail!(
+                "folder {} holds no .AT2 record (name CSV/text records one by one)",
+                p.display()
+            );
+        }
+        found.sort();
+        out.extend(found);
+    }
+    Ok(out)
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum InfoFormat {
     Table,
@@ -59,7 +90,8 @@ enum InfoFormat {
 
 #[derive(Debug, clap::Args)]
 struct InfoArgs {
-    /// Record files (.AT2, any case, or CSV/text)
+    /// Record files (.AT2, any case, or CSV/text), or folders: every .AT2 file in them
+    /// (extension in any case)
     #[arg(required = true)]
     files: Vec<PathBuf>,
     #[command(flatten)]
@@ -77,8 +109,9 @@ enum SpectrumFormat {
 
 #[derive(Debug, clap::Args)]
 struct SpectrumArgs {
-    /// Record files (.AT2, any case, or CSV/text); with several, the CSV gains a leading
-    /// `record` column and the JSON is a list
+    /// Record files (.AT2, any case, or CSV/text), or folders (every .AT2 file in them,
+    /// extension in any case); with several, the CSV gains a leading `record` column and
+    /// the JSON is a list
     #[arg(required_unless_present = "synthetic")]
     files: Vec<PathBuf>,
     /// Use the first N records of the embedded synthetic suite (seed 2007, 0.4 g)
@@ -92,9 +125,10 @@ struct SpectrumArgs {
     /// Periods, s, comma-separated [default: 60 log-spaced from 0.02 to 5 s]
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     periods: Option<Vec<f64>>,
-    /// Output format
-    #[arg(long, value_enum, default_value_t = SpectrumFormat::Csv)]
-    format: SpectrumFormat,
+    /// Print the spectra on stdout in this format [default: csv; with --plot: none, only
+    /// a one-line summary]
+    #[arg(long, value_enum)]
+    format: Option<SpectrumFormat>,
     /// Draw the pseudo-acceleration spectra, their mean and the target (if given) into
     /// FILE.svg and FILE.png, with the data in FILE.csv (FILE is a stem; .svg/.png dropped)
     #[arg(long, value_name = "FILE")]
@@ -157,8 +191,9 @@ struct InfoRow {
 }
 
 fn info(args: &InfoArgs) -> anyhow::Result<()> {
-    let mut rows = Vec::with_capacity(args.files.len());
-    for path in &args.files {
+    let files = expand_records(&args.files)?;
+    let mut rows = Vec::with_capacity(files.len());
+    for path in &files {
         let r = args.read.read(path)?;
         let m = Intensity::of(&r);
         rows.push(InfoRow {
@@ -248,8 +283,7 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
                 .map(|r| (r.name().to_string(), r))
                 .collect()
         }
-        None => args
-            .files
+        None => expand_records(&args.files)?
             .iter()
             .map(|p| Ok((p.display().to_string(), args.read.read(p)?)))
             .collect::<anyhow::Result<_>>()?,
@@ -262,8 +296,15 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
         })
         .collect::<anyhow::Result<_>>()?;
     let several = records.len() > 1;
-    let text = match args.format {
-        SpectrumFormat::Json => {
+    // With --plot the data go to FILE.csv: stdout gets them only when asked for.
+    let format = match (args.format, &args.plot) {
+        (Some(f), _) => Some(f),
+        (None, None) => Some(SpectrumFormat::Csv),
+        (None, Some(_)) => None,
+    };
+    let text = match format {
+        None => String::new(),
+        Some(SpectrumFormat::Json) => {
             #[derive(serde::Serialize)]
             struct Out<'a> {
                 file: String,
@@ -284,7 +325,7 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
                 serde_json::to_string_pretty(&outs[0]).context("formatting JSON")? + "\n"
             }
         }
-        SpectrumFormat::Csv => {
+        Some(SpectrumFormat::Csv) => {
             let mut t = String::from(if several { "record," } else { "" });
             t.push_str("period_s,sd_m,psv_m_s,psa_m_s2,psa_g\n");
             for ((name, _), s) in records.iter().zip(&spectra) {
@@ -308,7 +349,18 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
     };
     if let Some(stem) = &args.plot {
         let names: Vec<String> = records.iter().map(|(n, _)| short_name(n)).collect();
-        crate::figures::spectra::write(stem, &names, &spectra, args.damping, target.as_ref())?;
+        let stem =
+            crate::figures::spectra::write(stem, &names, &spectra, args.damping, target.as_ref())?;
+        if format.is_none() {
+            let s = stem.display();
+            outln!(
+                "{} spectra at {} periods{}{}: {s}.svg, {s}.png, data in {s}.csv",
+                spectra.len(),
+                periods.len(),
+                if several { " and their mean" } else { "" },
+                if target.is_some() { ", target" } else { "" },
+            );
+        }
     }
     out!("{text}");
     Ok(())
@@ -420,7 +472,7 @@ mod tests {
         };
         assert_eq!(s.periods, Some(vec![0.1, 0.5, 1.0]));
         assert_eq!(s.files.len(), 1);
-        assert_eq!(s.format, SpectrumFormat::Csv);
+        assert_eq!(s.format, None, "csv unless --plot");
         assert!(parse(&["spectrum", "a.AT2", "--periods", "0.1,x"]).is_err());
         assert!(parse(&["spectrum"]).is_err(), "records are required");
         assert!(parse(&["spectrum", "--synthetic", "3", "--plot", "s"]).is_ok());

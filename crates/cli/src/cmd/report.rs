@@ -42,6 +42,17 @@ pub enum FolderKind {
 }
 
 impl FolderKind {
+    /// What the folder holds, in a sentence ("the design study").
+    pub fn noun(self) -> &'static str {
+        match self {
+            Self::Optimize => "design study",
+            Self::Sweep => "design sweep",
+            Self::Accuracy => "accuracy study",
+            Self::Simulation => "simulation",
+            Self::Figures => "figures",
+        }
+    }
+
     /// A description for the page.
     pub fn describe(self) -> &'static str {
         match self {
@@ -559,7 +570,12 @@ pub fn run(args: ReportArgs) -> anyhow::Result<()> {
     let (kind, html) = build(&args.dir, args.max_rows.max(1))?;
     let out = args.out.unwrap_or_else(|| args.dir.join("report.html"));
     write_atomic(&out, html.as_bytes())?;
-    eprintln!("report ({}) written to {}", kind.describe(), out.display());
+    eprintln!(
+        "report of the {} in {} written to {}",
+        kind.noun(),
+        args.dir.display(),
+        out.display()
+    );
     Ok(())
 }
 

@@ -30,14 +30,41 @@ pub struct SceneArgs {
     #[arg(long, value_parser = parse_window)]
     pub window: Option<(f64, f64)>,
     /// Integration method
-    #[arg(long)]
-    pub method: Option<MethodName>,
+    #[arg(long, value_enum)]
+    pub method: Option<MethodArg>,
     /// Time step, s (default: T1/400, delacruz T1/200, rounded to divide the record's dt)
     #[arg(long)]
     pub dt: Option<f64>,
     /// Simulated time, s (default: the record's duration)
     #[arg(long)]
     pub duration: Option<f64>,
+}
+
+/// The integration methods as command-line values (help lists them with what they are).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MethodArg {
+    /// Newmark average acceleration, friction solved exactly each step (the default)
+    Newmark,
+    /// HHT-α (α = −0.05) with the same friction solve: damps the high modes
+    Hht,
+    /// Brace + damper as one elastic–perfectly plastic spring, dissipator mass ignored
+    Bilinear,
+    /// The paper's method: three nested fixed-point loops, conditionally stable
+    Delacruz,
+    /// Event-driven reference: each stick/slip mode integrated exactly
+    Exact,
+}
+
+impl From<MethodArg> for MethodName {
+    fn from(m: MethodArg) -> MethodName {
+        match m {
+            MethodArg::Newmark => MethodName::Newmark,
+            MethodArg::Hht => MethodName::Hht,
+            MethodArg::Bilinear => MethodName::Bilinear,
+            MethodArg::Delacruz => MethodName::Delacruz,
+            MethodArg::Exact => MethodName::Exact,
+        }
+    }
 }
 
 fn parse_window(s: &str) -> Result<(f64, f64), String> {
@@ -68,7 +95,7 @@ impl SceneArgs {
             units: self.units,
             scale_pga_g: self.scale_pga_g,
             window: self.window,
-            method: self.method,
+            method: self.method.map(MethodName::from),
             dt: self.dt,
             duration: self.duration,
             histories: Some(histories),

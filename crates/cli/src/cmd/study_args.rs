@@ -28,11 +28,11 @@ pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
     }
 }
 
-/// A progress bar of `len` steps on stderr; hidden with `quiet` (and by indicatif when
+/// A progress bar of `len` steps on stderr; hidden with `--quiet` (and by indicatif when
 /// stderr is not a terminal).
-pub fn progress(len: u64, quiet: bool, what: &str) -> ProgressBar {
+pub fn progress(len: u64, what: &str) -> ProgressBar {
     let pb = ProgressBar::new(len);
-    if quiet {
+    if crate::output::quiet() {
         pb.set_draw_target(ProgressDrawTarget::hidden());
     }
     pb.set_style(

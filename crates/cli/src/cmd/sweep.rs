@@ -16,9 +16,6 @@ pub struct SweepArgs {
     /// Output folder: manifest.json, responses.csv, designs.csv, journal.jsonl
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
     /// Run one slice of the task list: I/N (from 0), or `auto` (job-array environment)
     #[arg(long)]
     pub shard: Option<String>,
@@ -39,7 +36,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
     };
     let manifest = sweep::Manifest::of(&study);
     let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
-    let pb = progress(mine as u64, args.quiet, "sweep");
+    let pb = progress(mine as u64, "sweep");
     let start = std::time::Instant::now();
     let report = sweep::run(&study, &args.out, shard, args.resume, &|| pb.inc(1))
         .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;

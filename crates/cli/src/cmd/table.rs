@@ -24,16 +24,13 @@ pub struct TableArgs {
     /// Output folder
     #[arg(long, default_value = "out/table")]
     pub out: PathBuf,
-    /// No progress bar
-    #[arg(long)]
-    pub quiet: bool,
 }
 
 /// Runs `slipload table`.
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
-    let pb = progress(0, args.quiet, "family");
+    let pb = progress(0, "family");
     let cells = family(
         &study,
         &args.period_scales,

@@ -7,7 +7,7 @@ use crate::plot::{
 };
 use slipload_motion::{DesignSpectrum, G, Spectrum};
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Records are drawn thin and grey so the mean and the target stand out.
 const RECORD_GREY: RGBColor = RGBColor(165, 165, 165);
@@ -22,14 +22,14 @@ pub fn mean_psa_g(spectra: &[Spectrum]) -> Vec<f64> {
 }
 
 /// Writes `STEM.svg`, `STEM.png` and `STEM.csv` (period_s, one psa_g column per record,
-/// mean_psa_g, target_psa_g when a target is given).
+/// mean_psa_g, target_psa_g when a target is given); returns STEM.
 pub fn write(
     stem: &Path,
     names: &[String],
     spectra: &[Spectrum],
     damping: f64,
     target: Option<&DesignSpectrum>,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<PathBuf> {
     anyhow::ensure!(!spectra.is_empty(), "no spectrum to plot");
     let stem = strip_image_extension(stem);
     let periods = spectra[0].periods_s.clone();
@@ -122,5 +122,5 @@ pub fn write(
     }
     fig.save(&stem)?;
     write_atomic(&with_suffix(&stem, "csv"), csv.as_bytes())?;
-    Ok(())
+    Ok(stem)
 }

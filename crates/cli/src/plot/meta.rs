@@ -50,6 +50,10 @@ pub struct AxisMeta {
     pub min: f64,
     /// Shown range, data units.
     pub max: f64,
+    /// Labelled (major) ticks, data units (empty in figures drawn before they were
+    /// recorded).
+    #[serde(default)]
+    pub ticks: Vec<f64>,
 }
 
 /// One series.

@@ -232,7 +232,9 @@ impl Figure {
 /// `stem` without a trailing `.svg` or `.png`.
 pub fn strip_image_extension(stem: &Path) -> PathBuf {
     match stem.extension().and_then(|e| e.to_str()) {
-        Some("svg" | "png" | "SVG" | "PNG") => stem.with_extension(""),
+        Some(e) if e.eq_ignore_ascii_case("svg") || e.eq_ignore_ascii_case("png") => {
+            stem.with_extension("")
+        }
         _ => stem.to_path_buf(),
     }
 }

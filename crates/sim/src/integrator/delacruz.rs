@@ -1,5 +1,5 @@
 //! `delacruz` — the paper's algorithm (De la Cruz, López-Almansa & Oller 2007, Comput.
-//! Struct. 85:30–42, §4), reconstructed from its structure; DESIGN.md § Integrators.
+//! Struct. 85:30–42, §4), reconstructed from its structure; docs/MODEL.md § Integrators.
 //!
 //! # What is implemented
 //!

@@ -1,4 +1,4 @@
-//! `exact` — the event-driven reference integrator (DESIGN.md § Integrators).
+//! `exact` — the event-driven reference integrator (docs/MODEL.md § Integrators).
 //!
 //! Between stick↔slip events the plan is linear and time-invariant, driven by a ground
 //! acceleration that is linear between record samples, a harmonic force and constant slip

@@ -1,4 +1,4 @@
-//! Integrators: one trait, several methods (DESIGN.md § Integrators).
+//! Integrators: one trait, several methods (docs/MODEL.md § Integrators).
 
 pub mod delacruz;
 pub mod exact;

@@ -1,5 +1,5 @@
 //! `newmark` — Newmark/HHT-α with the friction forces of each step solved exactly and
-//! implicitly (DESIGN.md § Integrators).
+//! implicitly (docs/MODEL.md § Integrators).
 //!
 //! With A = M + (1+α)(γΔt C + βΔt² K) factorised once, the step's accelerations are
 //! a = a_free − G F with G = (1+α)A⁻¹B, and the slip rates at the end of the step are
