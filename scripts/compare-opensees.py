@@ -6,10 +6,13 @@ elastic-perfectly plastic element) in OpenSees through openseespy, runs the same
 at the same time step with Newmark average acceleration (gamma = 1/2, beta = 1/4) in both
 programs, and reports:
 
-* model checks: the frame stiffness matrix assembled here from the storey stiffnesses,
-  its periods against slipload's bare T1 and the config's 1.01/0.33/0.17 s, the periods
-  of the OpenSees model, and the damping matrix OpenSees actually uses (read back from its
-  system matrix) against alpha*M + beta*K_frame (the EPP elements must carry none);
+* model checks: the bare frame's stiffness matrix K of the config (`stiffness_matrix`, the
+  paper's full condensed matrix, or `storey_stiffness`, a shear building's chain matrix),
+  its periods against slipload's bare T1 and the paper's 1.01/0.33/0.17 s, the stiffness
+  matrix OpenSees assembles (read back from its system matrix) against K, the periods of
+  the OpenSees model (bare and braced), and the damping matrix OpenSees actually uses (read
+  back from its system matrix) against alpha*M + beta*K_frame (the EPP elements must carry
+  none);
 * physics: peak drifts per storey, peak base shear and the drift / damper-force histories
   of slipload `newmark` against OpenSees, plus both against slipload `exact` (the
   event-located reference) and against an independent return-mapping Newmark written
@@ -22,18 +25,25 @@ Timing scope, the same for both programs: the time-stepping only, from a built m
 the peaks. slipload: `cpu_seconds` of `slipload simulate --format json` (wall-clock of the
 integrator run, plan compiled and record read beforehand; peaks only, no energies or
 histories), run as target/release/slipload after `cargo build --release -p slipload` (the
-binary `cargo run --release --` runs), one process per repeat that runs the simulation
+binary `cargo run --release --` runs; or the binary $SLIPLOAD_BIN names, not rebuilt), one process per repeat that runs the simulation
 SLIPLOAD_REPEAT times and reports the median (`simulate --repeat`: a warm process, as
 OpenSees is timed in its warm interpreter; a fresh process started right after an
 OpenSees analysis runs with cold caches). OpenSees: wall-clock of the
 analysis set-up commands (constraints, numberer, system, test, algorithm, integrator,
 analysis) plus one `analyze(steps, dt)` call, with an EnvelopeElement recorder of the
-storey drifts (its peaks); the model (nodes, materials, elements, the record as a Path
+storey drifts (the deformations of the EPP elements, each spanning one storey; its peaks); the model (nodes, materials, elements, the record as a Path
 time series) is built beforehand and reported separately.
+
+The OpenSees model: the floors as nodes with their masses over a fixed ground node; the
+frame as zeroLength Elastic springs that assemble its matrix K exactly: one between every
+pair of floors i < j of stiffness -K[i][j] (negative where the off-diagonal term is
+positive: OpenSees's Elastic takes a negative E) and one from each floor to the ground of
+stiffness sum_j K[i][j] (the row sum), all with Rayleigh damping; each brace + damper a
+zeroLength ElasticPP element between floors i-1 and i, without.
 
 Writes results/performance/opensees.json and results/performance/opensees.md atomically.
 
-Usage: scripts/compare-opensees.py [--repeats R] [--dt DT] [--record FILE|synthetic ...]
+Usage: [SLIPLOAD_BIN=path] scripts/compare-opensees.py [--repeats R] [--dt DT] [--record FILE|synthetic ...]
 Creates scripts/.venv with openseespy + numpy on first use and re-runs itself inside it.
 """
 
@@ -74,6 +84,9 @@ GAMMA, BETA = 0.5, 0.25
 # displacements of ~0.1 m); 1e-12 m (1e-11 of the peak drifts) stops there and no later.
 TEST_TOL = 1e-12
 TEST_MAX_ITER = 100
+# The bare-frame periods the paper prints for the benchmark (De la Cruz, Lopez-Almansa & Oller
+# 2007); its matrix gives 1.008 / 0.327 / 0.172 s.
+PAPER_BARE_PERIODS = (1.01, 0.33, 0.17)
 
 
 # ---------------------------------------------------------------------------------------
@@ -333,7 +346,10 @@ def build_model(ops, b: dict, dt_rec: float, acc: list[float], braces: bool = Tr
     for i in range(n):
         ops.node(i + 1, 0.0)
         ops.mass(i + 1, b["m"][i])
-    for tag, (na, nb, k) in enumerate(frame_springs(b["K"]), start=FRAME_TAG):
+    springs = frame_springs(b["K"])
+    if FRAME_TAG + len(springs) > EPP_TAG:
+        raise SystemExit(f"{len(springs)} frame springs: their element tags would reach the EPP elements' {EPP_TAG}")
+    for tag, (na, nb, k) in enumerate(springs, start=FRAME_TAG):
         # Frame spring (OpenSees's Elastic takes a negative E): takes part in Rayleigh damping.
         ops.uniaxialMaterial("Elastic", tag, k)
         ops.element("zeroLength", tag, na, nb, "-mat", tag, "-dir", 1, "-doRayleigh", 1)
@@ -456,7 +472,7 @@ def newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal: bool) -> dict:
 
     n = len(b["m"])
     M = np.diag(b["m"])
-    K = storey_matrix(b["k"])
+    K = np.array(b["K"])  # the full frame matrix; the EPP elements are storey elements
     C = b["alpha"] * M + b["beta"] * K
     kp, fy = b["kp"], b["fy"]
     c_a = 1.0 / (BETA * dt * dt)
@@ -509,12 +525,12 @@ def newmark_epp_reference(b, dt_rec, acc, dt, steps, trapezoidal: bool) -> dict:
 
 
 def model_checks(ops, b: dict, dt: float, slipload_t1: float | None) -> dict:
-    """Periods and damping of the OpenSees model against the matrices assembled here."""
+    """Periods, stiffness and damping of the OpenSees model against the matrices of the config."""
     import numpy as np
 
     n = len(b["m"])
     M = np.diag(b["m"])
-    K = storey_matrix(b["k"])
+    K = np.array(b["K"])
     Kb = K + storey_matrix(b["kp"])
     C = b["alpha"] * M + b["beta"] * K
 
@@ -522,32 +538,61 @@ def model_checks(ops, b: dict, dt: float, slipload_t1: float | None) -> dict:
         w2 = np.sort(np.linalg.eigvals(np.linalg.solve(M, Km)).real)
         return (2.0 * math.pi / np.sqrt(w2)).tolist()
 
+    def rel_matrix(A, B) -> float:
+        return float(np.max(np.abs(A - B)) / np.max(np.abs(B)))
+
     bare = periods(K)
     braced = periods(Kb)
     zeta = [b["alpha"] / (2.0 * (2.0 * math.pi / T)) + b["beta"] * (2.0 * math.pi / T) / 2.0 for T in bare]
-    # OpenSees: braced periods (initial tangent) by eigen, the damping matrix read back
-    # from the Newmark system matrix A = K_t + gamma/(beta dt) C + 1/(beta dt^2) M after a
-    # first (elastic) step of a tiny pulse.
+
+    def opensees_model(braces: bool):
+        """Eigen periods (initial tangent) and the stiffness matrix OpenSees assembles: the
+        system matrix of one static step with no load (Newton: the tangent at rest)."""
+        build_model(ops, b, 1.0, [0.0, 0.0, 0.0], braces=braces)
+        w2 = sorted(ops.eigen("-fullGenLapack", n))
+        T = [2.0 * math.pi / math.sqrt(x) for x in w2]
+        ops.constraints("Plain")
+        ops.numberer("Plain")
+        ops.system("FullGeneral")
+        ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
+        ops.algorithm("Newton")
+        ops.integrator("LoadControl", 1.0)
+        ops.analysis("Static")
+        if ops.analyze(1) != 0:
+            raise SystemExit("OpenSees: model check static step failed")
+        Ks = np.array(ops.printA("-ret")).reshape(n, n)
+        ops.wipe()
+        return T, Ks
+
+    os_bare, K_os = opensees_model(braces=False)
+    os_braced, Kb_os = opensees_model(braces=True)
+    # The damping matrix read back from the Newmark system matrix
+    # A = K_t + gamma/(beta dt) C + 1/(beta dt^2) M after a first (elastic) step of a tiny
+    # pulse, K_t the braced stiffness OpenSees assembled (read back above).
     build_model(ops, b, 1.0, [0.0, 1e-6, 0.0])
-    w2 = sorted(ops.eigen("-fullGenLapack", n))
-    os_braced = [2.0 * math.pi / math.sqrt(x) for x in w2]
     analysis(ops, "Newton", "FullGeneral")
     if ops.analyze(1, dt) != 0:
         raise SystemExit("OpenSees: model check step failed")
     A = np.array(ops.printA("-ret")).reshape(n, n)
     ops.wipe()
-    C_os = (A - Kb - M / (BETA * dt * dt)) * (BETA * dt / GAMMA)
-    c_err = float(np.max(np.abs(C_os - C)) / np.max(np.abs(C)))
+    C_os = (A - Kb_os - M / (BETA * dt * dt)) * (BETA * dt / GAMMA)
     return {
         "frame_stiffness_N_m": K.tolist(),
+        "frame_springs": [{"nodes": [na, nb], "stiffness_N_m": k} for na, nb, k in frame_springs(b["K"])],
         "bare_periods_s": bare,
+        "bare_periods_paper_s": list(PAPER_BARE_PERIODS),
         "bare_T1_slipload_s": slipload_t1,
         "bare_damping_ratios": zeta,
+        "bare_periods_opensees_s": os_bare,
+        "bare_period_max_rel_diff": max(abs(x - y) / y for x, y in zip(os_bare, bare)),
+        "frame_stiffness_opensees_N_m": K_os.tolist(),
+        "frame_stiffness_max_rel_diff": rel_matrix(K_os, K),
+        "braced_stiffness_max_rel_diff": rel_matrix(Kb_os, Kb),
         "braced_periods_s": braced,
         "braced_periods_opensees_s": os_braced,
         "braced_period_max_rel_diff": max(abs(x - y) / y for x, y in zip(os_braced, braced)),
         "damping_matrix_opensees_N_s_m": C_os.tolist(),
-        "damping_matrix_max_rel_diff": c_err,
+        "damping_matrix_max_rel_diff": rel_matrix(C_os, C),
     }
 
 
@@ -772,11 +817,16 @@ def markdown(report: dict) -> str:
         )
     lines += [
         "",
-        "Model checks: bare-frame periods from the storey stiffnesses "
+        "Model checks: bare-frame periods from the frame matrix "
         + ", ".join(f"{t:.4f}" for t in chk["bare_periods_s"])
-        + f" s (slipload's bare T1: {chk['bare_T1_slipload_s']} s; the config states 1.01 / 0.33 / 0.17 s), "
+        + f" s (slipload's bare T1: {chk['bare_T1_slipload_s']} s; the paper prints "
+        + " / ".join(f"{t:g}" for t in chk["bare_periods_paper_s"]) + " s), "
         + "damping ratios " + ", ".join(f"{100 * z:.2f} %" for z in chk["bare_damping_ratios"])
-        + "; braced periods " + ", ".join(f"{t:.4f}" for t in chk["braced_periods_s"])
+        + f"; OpenSees's frame springs ({len(chk['frame_springs'])}: a spring between every pair of floors and one to the ground per floor,"
+        + " negative where an off-diagonal term is positive or a row sums below zero) assemble the condensed frame matrix:"
+        + f" its stiffness matrix (read back from its system matrix) equals K within {chk['frame_stiffness_max_rel_diff']:.1e}"
+        + f" (braced: K + the braces' chain matrix within {chk['braced_stiffness_max_rel_diff']:.1e}), its bare eigen periods"
+        + f" within {chk['bare_period_max_rel_diff']:.1e}; braced periods " + ", ".join(f"{t:.4f}" for t in chk["braced_periods_s"])
         + f" s, OpenSees eigen within {chk['braced_period_max_rel_diff']:.1e}; the damping matrix OpenSees uses (read back from"
         + f" its system matrix) equals α M + β K_frame within {chk['damping_matrix_max_rel_diff']:.1e} (relative), so the EPP elements carry no damping.",
         "",
@@ -809,7 +859,25 @@ def main() -> None:
     explain = subprocess.run([str(binary), "explain", str(BUILDING), "--duration", "1"], cwd=ROOT, capture_output=True, text=True, check=True).stdout
     mt = re.search(r"bare T1 = ([0-9.]+) s", explain)
     checks = model_checks(ops, b, args.dt, float(mt.group(1)) if mt else None)
-    print(f"model checks: bare periods {checks['bare_periods_s']}, slipload bare T1 {checks['bare_T1_slipload_s']}; damping matrix rel. diff {checks['damping_matrix_max_rel_diff']:.1e}; braced periods rel. diff {checks['braced_period_max_rel_diff']:.1e}", file=sys.stderr)
+    print(
+        f"model checks: bare periods {checks['bare_periods_s']} (paper {checks['bare_periods_paper_s']}), slipload bare T1 {checks['bare_T1_slipload_s']}; "
+        f"OpenSees: stiffness matrix rel. diff {checks['frame_stiffness_max_rel_diff']:.1e} (braced {checks['braced_stiffness_max_rel_diff']:.1e}), "
+        f"bare periods {checks['bare_period_max_rel_diff']:.1e}, braced periods {checks['braced_period_max_rel_diff']:.1e}, damping matrix {checks['damping_matrix_max_rel_diff']:.1e}",
+        file=sys.stderr,
+    )
+    # The comparison means nothing on a model that is not the config's: stop here.
+    failed = [
+        what
+        for what, bad in (
+            ("OpenSees's stiffness matrix is not K", checks["frame_stiffness_max_rel_diff"] > 1e-12 or checks["braced_stiffness_max_rel_diff"] > 1e-12),
+            ("OpenSees's eigen periods are not those of K", max(checks["bare_period_max_rel_diff"], checks["braced_period_max_rel_diff"]) > 1e-12),
+            ("OpenSees's damping matrix is not alpha M + beta K_frame", checks["damping_matrix_max_rel_diff"] > 1e-9),
+            ("slipload's bare T1 (4 digits) is not K's", checks["bare_T1_slipload_s"] is None or abs(checks["bare_T1_slipload_s"] - checks["bare_periods_s"][0]) > 5e-5 * 1.0001),
+        )
+        if bad
+    ]
+    if failed:
+        raise SystemExit("model checks failed: " + "; ".join(failed))
     cases = []
     with tempfile.TemporaryDirectory(prefix="slipload-opensees-") as td:
         tmp = Path(td)
@@ -841,9 +909,9 @@ def main() -> None:
             "dt_s": args.dt,
             "repeats": args.repeats,
             "integrator": f"Newmark gamma = {GAMMA}, beta = {BETA}",
-            "opensees_model": "floors as nodes with their masses, storey springs (zeroLength, Elastic) for the frame, zeroLength ElasticPP (k', yield μN/k') for each brace + damper, rayleigh α on the masses and β K_initial on the frame springs only (-doRayleigh 0 on the EPP elements), the record as a Path series in a UniformExcitation, initial accelerations -a_g(0)",
+            "opensees_model": "floors as nodes with their masses, the frame as zeroLength Elastic springs, a spring between every pair of floors (−K[i][j]) and one to the ground per floor (the row sum Σⱼ K[i][j]), assembling the condensed frame matrix exactly (negative springs where an off-diagonal term is positive or a row sums below zero), zeroLength ElasticPP (k', yield μN/k') for each brace + damper between floors i−1 and i, rayleigh α on the masses and β K_initial on the frame springs only (-doRayleigh 0 on the EPP elements), the record as a Path series in a UniformExcitation, initial accelerations -a_g(0)",
             "opensees_solution": f"Newton (current tangent: exact for the piecewise-linear EPP response, so it ends in a finite number of steps once the yielding pattern is right), test NormDispIncr {TEST_TOL:g} m, at most {TEST_MAX_ITER} iterations, system {args.system}; ModifiedNewton timed as a variant",
-            "timing": f"wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json --repeat {SLIPLOAD_REPEAT}` (the integrator run, median of that many runs in one process: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
+            "timing": f"wall-clock of the time-stepping only, median of the repeats after one warm-up run, the two programs interleaved in one run. OpenSees: analysis set-up + one analyze(steps, dt) call with an EnvelopeElement recorder of the storey drifts, the EPP elements' deformations (model build, including the record as a Path series, excluded and reported apart as model_build_median_s). slipload: cpu_seconds of `slipload simulate --format json --repeat {SLIPLOAD_REPEAT}` (the integrator run, median of that many runs in one process: plan compiled and record read beforehand), newmark, peaks only (no energies, no histories).",
         },
         "model_checks": checks,
         "cases": cases,

@@ -114,7 +114,7 @@ fn comparable(summary: &str) -> Vec<String> {
     summary
         .lines()
         .filter(|l| {
-            !l.contains(" simulations in ")
+            !l.contains(" simulations run in ")
                 && !l.starts_with("wrote ")
                 && !l.starts_with("figures ")
         })
@@ -148,9 +148,9 @@ fn readme_quotes_what_the_commands_print() {
             let printed_count = printed
                 .lines()
                 .find_map(|l| {
-                    l.split(" simulations in ")
+                    l.split(" simulations run in ")
                         .next()
-                        .filter(|_| l.contains(" simulations in "))
+                        .filter(|_| l.contains(" simulations run in "))
                 })
                 .and_then(|head| head.rsplit(' ').next())
                 .unwrap_or_else(|| panic!("the main job prints its simulation count:\n{printed}"));
