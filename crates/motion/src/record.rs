@@ -11,6 +11,22 @@ use crate::MotionError;
 /// Standard gravity, m/s² per g (the value used by PEER and by ASCE 7).
 pub const G: f64 = 9.80665;
 
+/// The largest |ground acceleration| a reader accepts and a scaling may produce, in g.
+/// The largest recorded ground accelerations are about 4–5 g; a value beyond this bound
+/// means wrong units, a corrupt file or a typo, and would give responses that are
+/// numbers but not answers.
+pub const MAX_ABS_ACCEL_G: f64 = 20.0;
+
+/// The shortest sample interval a reader accepts, s: accelerographs sample at a few
+/// hundred to a few thousand hertz, so a step below a microsecond is a units slip (or
+/// a typo) that would make every default time step as short.
+pub const MIN_RECORD_DT_S: f64 = 1e-6;
+
+/// [`MAX_ABS_ACCEL_G`] in m/s².
+pub fn max_abs_accel_m_s2() -> f64 {
+    MAX_ABS_ACCEL_G * G
+}
+
 /// A uniformly sampled ground-acceleration history.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Record {
@@ -152,6 +168,20 @@ impl Record {
         self.accel_m_s2.iter().fold(0.0, |m, a| m.max(a.abs()))
     }
 
+    /// [`MotionError::ImplausibleScale`] when the record's PGA exceeds
+    /// [`MAX_ABS_ACCEL_G`] (a scaled record must stay physical).
+    pub fn check_plausible(&self) -> Result<(), MotionError> {
+        let pga = self.pga();
+        if pga > max_abs_accel_m_s2() {
+            return Err(MotionError::ImplausibleScale {
+                file: self.name.clone(),
+                pga_g: pga / G,
+                limit_g: MAX_ABS_ACCEL_G,
+            });
+        }
+        Ok(())
+    }
+
     /// The record with every sample multiplied by `factor` (name and provenance kept,
     /// provenance notes the factor).
     ///
@@ -177,6 +207,7 @@ impl Record {
         }
         let samples = self.accel_m_s2.iter().map(|a| a * factor).collect();
         let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        r.check_plausible()?;
         Ok(r.with_provenance(self.note(&format!("scaled by {factor}"))))
     }
 
@@ -193,6 +224,13 @@ impl Record {
                 what: "target PGA (m/s2)",
                 value: pga_m_s2,
                 expected: "finite and >= 0",
+            });
+        }
+        if pga_m_s2 > max_abs_accel_m_s2() {
+            return Err(MotionError::ImplausibleScale {
+                file: self.name.clone(),
+                pga_g: pga_m_s2 / G,
+                limit_g: MAX_ABS_ACCEL_G,
             });
         }
         let pga = self.pga();
