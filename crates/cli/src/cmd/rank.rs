@@ -19,9 +19,10 @@ pub struct RankArgs {
     /// Output folder (rank.csv, rank.md, rank.json)
     #[arg(long, default_value = "out/rank")]
     pub out: PathBuf,
-    /// Bootstrap resamples of the records
-    #[arg(long, default_value_t = 200)]
-    pub bootstrap: usize,
+    /// Bootstrap resamples of the records (1 to 1000000)
+    #[arg(long, default_value_t = 200,
+          value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub bootstrap: u32,
     /// Bootstrap seed
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -53,7 +54,13 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
         args.quiet,
         "rank",
     );
-    let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
+    let r = rank(
+        &study,
+        &designs,
+        args.bootstrap as usize,
+        args.seed,
+        &|| pb.inc(1),
+    )?;
     pb.finish_and_clear();
     write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
     let md = r.to_markdown();
