@@ -35,7 +35,7 @@ fn refused(args: &[&str], needles: &[&str]) -> String {
 fn a_tiny_step_is_refused_with_the_estimate_and_the_override() {
     refused(
         &["simulate", B, "--dt", "1e-12", "--duration", "2"],
-        &["2.000e12 steps", "limit", "--allow-large"],
+        &["2.000e12 integration steps", "limit", "--allow-large"],
     );
     // and through the environment override the limit is lifted (not run here: the
     // message names it)

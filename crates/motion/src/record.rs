@@ -186,8 +186,9 @@ impl Record {
     /// provenance notes the factor).
     ///
     /// # Panics
-    /// If `factor` is not finite or the product overflows (a scaled record must stay
-    /// finite); use [`Record::try_scaled`] for a `Result`.
+    /// If `factor` is not finite or the product overflows or exceeds
+    /// [`MAX_ABS_ACCEL_G`] (a scaled record must stay finite and physical); use
+    /// [`Record::try_scaled`] for a `Result`.
     pub fn scaled(&self, factor: f64) -> Record {
         match self.try_scaled(factor) {
             Ok(r) => r,
@@ -196,7 +197,8 @@ impl Record {
     }
 
     /// Like [`Record::scaled`], but returns [`MotionError::InvalidArgument`] for a
-    /// non-finite factor and [`MotionError::NonFiniteSample`] on overflow.
+    /// non-finite factor, [`MotionError::NonFiniteSample`] on overflow and
+    /// [`MotionError::ImplausibleScale`] beyond [`MAX_ABS_ACCEL_G`].
     pub fn try_scaled(&self, factor: f64) -> Result<Record, MotionError> {
         if !factor.is_finite() {
             return Err(MotionError::InvalidArgument {
@@ -217,6 +219,7 @@ impl Record {
     /// old peak are set to ±x and others clamped to [−x, x] (a change of at most one ulp).
     ///
     /// Errors: [`MotionError::InvalidArgument`] for a negative or non-finite target,
+    /// [`MotionError::ImplausibleScale`] beyond [`MAX_ABS_ACCEL_G`],
     /// [`MotionError::ZeroMeasure`] for an all-zero record.
     pub fn scaled_to_pga(&self, pga_m_s2: f64) -> Result<Record, MotionError> {
         if !(pga_m_s2.is_finite() && pga_m_s2 >= 0.0) {
