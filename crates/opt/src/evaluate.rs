@@ -266,7 +266,13 @@ pub fn run_designs_journalled(
         .enumerate()
         .flat_map(|(d, s)| {
             (0..nr).map(move |r| Task {
-                label: format!("#{d}"),
+                label: format!(
+                    "#{d} (slip loads {} kN)",
+                    s.iter()
+                        .map(|v| format!("{:.1}", v / 1e3))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                ),
                 slip_loads: s.clone(),
                 record: r,
             })

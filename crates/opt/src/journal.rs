@@ -339,8 +339,8 @@ pub fn check_folder(dir: &Path, fp: &Fingerprint) -> Result<(), OptError> {
     Ok(())
 }
 
-/// `--fresh`: removes the journals of `dir` (and the sweep tables built from them, which
-/// would describe the discarded run). Returns the names removed.
+/// `--fresh`: removes the journals of `dir` (and the tables `sweep` and `optimize` built
+/// from them, which would describe the discarded run). Returns the names removed.
 pub fn discard_journals(dir: &Path) -> Result<Vec<String>, OptError> {
     let listing = match std::fs::read_dir(dir) {
         Ok(l) => l,
@@ -357,7 +357,15 @@ pub fn discard_journals(dir: &Path) -> Result<Vec<String>, OptError> {
         let name = e.file_name().to_string_lossy().into_owned();
         let table = matches!(
             name.as_str(),
-            "responses.csv" | "designs.csv" | "manifest.json"
+            "responses.csv"
+                | "designs.csv"
+                | "manifest.json"
+                | "refine.csv"
+                | "optimum.json"
+                | "candidates.json"
+                | "design-table.csv"
+                | "design-table.md"
+                | "design-table.json"
         );
         if (is_journal_name(&name) || table) && e.file_type().is_ok_and(|t| t.is_file()) {
             std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
