@@ -19,6 +19,9 @@ fn study_with(edit: impl Fn(&mut serde_json::Value)) -> Study {
     Study::from_json(&v.to_string(), &path).unwrap()
 }
 
+/// An edit of the study's JSON.
+type Edit = dyn Fn(&mut serde_json::Value);
+
 fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("slipload-badj-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -30,7 +33,7 @@ fn scratch(name: &str) -> PathBuf {
 fn the_fingerprint_is_stable_and_names_what_changed() {
     let a = Manifest::of(&study_with(|_| {})).fingerprint;
     assert_eq!(a, Manifest::of(&study_with(|_| {})).fingerprint);
-    let cases: [(&str, Box<dyn Fn(&mut serde_json::Value)>); 4] = [
+    let cases: [(&str, Box<Edit>); 4] = [
         (
             "method/step",
             Box::new(|v| v["fidelity"]["method"] = "hht".into()),
