@@ -32,25 +32,66 @@ struct Cli {
     /// and errors still print)
     #[arg(long, global = true)]
     quiet: bool,
+    /// Lift the work and memory limits no real study needs (steps per simulation, memory
+    /// of histories, sweep size, threads); also SLIPLOAD_ALLOW_LARGE=1
+    #[arg(long, global = true)]
+    allow_large: bool,
     #[command(subcommand)]
     command: cmd::Command,
+}
+
+/// Most worker threads without `--allow-large`: 8 per core, at least 256 (more only adds
+/// overhead; 100 000 threads take minutes to start).
+fn max_threads() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    (8 * cores).max(256)
+}
+
+/// An error and its causes on one line, each cause once: a cause whose text the message
+/// already holds (a library error that prints its source, then the source itself) is
+/// not repeated.
+fn message(e: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in e.chain() {
+        let s = cause.to_string();
+        if s.is_empty() || out.contains(&s) {
+            continue;
+        }
+        if !out.is_empty() {
+            out.push_str(": ");
+        }
+        out.push_str(&s);
+    }
+    out
 }
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     output::set_quiet(cli.quiet);
-    if let Some(n) = cli.threads
-        && let Err(e) = rayon::ThreadPoolBuilder::new()
+    if cli.allow_large {
+        slipload_sim::limits::set_allow_large(true);
+    }
+    if let Some(n) = cli.threads {
+        let limit = max_threads();
+        if n > limit && !slipload_sim::limits::allow_large() {
+            eprintln!(
+                "error: --threads {n}: more than {limit} worker threads ({} cores here) only adds overhead and takes long to start; give at most {limit}, or pass --allow-large",
+                std::thread::available_parallelism().map_or(1, |c| c.get())
+            );
+            return std::process::ExitCode::FAILURE;
+        }
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()
-    {
-        eprintln!("error: cannot start {n} worker threads: {e}");
-        return std::process::ExitCode::FAILURE;
+        {
+            eprintln!("error: cannot start {n} worker threads: {e}");
+            return std::process::ExitCode::FAILURE;
+        }
     }
     match cmd::run(cli.command) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", message(&e));
             std::process::ExitCode::FAILURE
         }
     }

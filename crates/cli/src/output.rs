@@ -20,27 +20,13 @@ pub fn quiet() -> bool {
 }
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, `sync_all`,
-/// rename). Creates the parent folder when missing.
+/// rename). Creates the parent folder when missing. A symbolic link is written through
+/// (its target replaced, the link kept); anything else that is not a regular file (a
+/// FIFO, a device, a folder) is refused. The same rules as the library's
+/// [`slipload_opt::journal::write_atomic`], which this calls.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(dir).with_context(|| format!("creating folder {}", dir.display()))?;
-    let name = path
-        .file_name()
-        .with_context(|| format!("{} is not a file path", path.display()))?;
-    let tmp = dir.join(format!(".{}.tmp", name.to_string_lossy()));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.with_context(|| format!("writing {}", path.display()))
+    slipload_opt::journal::write_atomic(path, bytes)
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 /// Writes to standard output; a closed pipe ends the process with success (everything the

@@ -166,7 +166,7 @@ pub fn convergence(
     names.sort();
     let mut out = Vec::new();
     for (refiner, path) in names {
-        let (points, _) = slipload_opt::journal::read_lines::<Point>(&path)
+        let points = slipload_opt::journal::read_entries::<Point>(&path)
             .with_context(|| format!("reading refine journal {}", path.display()))?;
         if points.is_empty() {
             continue;

@@ -100,7 +100,8 @@ fn default_optimize_runs_the_embedded_benchmark() {
         "{} refinement points journalled",
         lines.len()
     );
-    std::fs::write(&rj, lines[..30].join("\n") + "\n{\"z\":[0.1,").unwrap();
+    // (line 1 is the header: the study's fingerprint)
+    std::fs::write(&rj, lines[..31].join("\n") + "\n{\"z\":[0.1,").unwrap();
     let refine_csv = std::fs::read(res.join("refine.csv")).unwrap();
     let table = std::fs::read(res.join("design-table.csv")).unwrap();
     let again = run_in(&dir, &["optimize", "--quiet"]);

@@ -8,7 +8,9 @@
 //! * `2999    0.0100    NPTS, DT` (early NGA).
 //!
 //! The lines before it are free text (no fixed count). Exactly NPTS values are read from
-//! the lines after it, any number per line; anything after the NPTS-th value is ignored.
+//! the lines after it, any number per line; more values than NPTS is an error
+//! ([`MotionError::NptsMismatch`]), text after the NPTS-th value is ignored. A value beyond
+//! [`crate::MAX_ABS_ACCEL_G`] is an error ([`MotionError::Implausible`]).
 //! Values are in g and are converted with [`crate::G`]. Numbers may lack a leading zero
 //! (`-.64E-02`) or use a `D` exponent. A line whose blank-separated tokens are not all
 //! numbers is read as fixed-width columns (the width taken from the first data line,
@@ -37,6 +39,13 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
             dt_s: header.dt_s,
         });
     }
+    if header.dt_s < crate::MIN_RECORD_DT_S {
+        return Err(MotionError::ImplausibleTimeStep {
+            file: name.to_string(),
+            dt_s: header.dt_s,
+            min_s: crate::MIN_RECORD_DT_S,
+        });
+    }
     if header.npts == 0 {
         return Err(MotionError::Empty {
             file: name.to_string(),
@@ -46,18 +55,32 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
     // Never trust NPTS for an allocation: a value takes at least two bytes.
     let mut values = Vec::with_capacity(header.npts.min(text.len() / 2 + 1));
     let mut width: Option<usize> = None;
-    'lines: for (index, line) in lines.iter().enumerate().skip(header.line_index + 1) {
+    let limit = crate::max_abs_accel_m_s2();
+    // values beyond NPTS: counted (a header that disagrees with its data is an error)
+    let mut extra = 0usize;
+    for (index, line) in lines.iter().enumerate().skip(header.line_index + 1) {
         let line_no = index + 1;
-        let tokens = split_line(line, width).map_err(|token| MotionError::NotANumber {
-            file: name.to_string(),
-            line: line_no,
-            token: snippet(token),
-            expected: "an acceleration value in g",
-        })?;
+        let tokens = match split_line(line, width) {
+            Ok(t) => t,
+            // text after the NPTS-th value (an end marker, a note) is not data
+            Err(_) if values.len() == header.npts => break,
+            Err(token) => {
+                return Err(MotionError::NotANumber {
+                    file: name.to_string(),
+                    line: line_no,
+                    token: snippet(token),
+                    expected: "an acceleration value in g",
+                });
+            }
+        };
         if width.is_none() && !tokens.is_empty() {
             width = column_width(line, tokens.len());
         }
         for (token, value) in tokens {
+            if values.len() == header.npts {
+                extra += 1;
+                continue;
+            }
             let a = value * factor;
             if !a.is_finite() {
                 return Err(MotionError::NonFinite {
@@ -66,11 +89,25 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
                     token: snippet(token),
                 });
             }
-            values.push(a);
-            if values.len() == header.npts {
-                break 'lines;
+            if a.abs() > limit {
+                return Err(MotionError::Implausible {
+                    file: name.to_string(),
+                    line: line_no,
+                    token: snippet(token),
+                    accel_g: a / crate::G,
+                    limit_g: crate::MAX_ABS_ACCEL_G,
+                    units: units.to_string(),
+                });
             }
+            values.push(a);
         }
+    }
+    if extra > 0 {
+        return Err(MotionError::NptsMismatch {
+            file: name.to_string(),
+            npts: header.npts,
+            found: header.npts + extra,
+        });
     }
     if values.len() < header.npts {
         return Err(MotionError::Truncated {

@@ -71,6 +71,61 @@ pub enum MotionError {
         /// The offending text (at most 40 characters).
         token: String,
     },
+    /// A value read from a file is beyond any physical ground acceleration
+    /// ([`crate::MAX_ABS_ACCEL_G`]): wrong units, a corrupt file, or not a record.
+    #[error(
+        "{file}:{line}: acceleration `{token}` = {accel_g:.4e} g is beyond any physical record: the largest recorded ground accelerations are about 4-5 g and slipload refuses more than {limit_g} g (values read in {units}: wrong units?)"
+    )]
+    Implausible {
+        /// The file or record name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The offending text (at most 40 characters).
+        token: String,
+        /// The value in g.
+        accel_g: f64,
+        /// The bound, g.
+        limit_g: f64,
+        /// The units the values were read in.
+        units: String,
+    },
+    /// A scaled record's peak ground acceleration would be beyond any physical record.
+    #[error(
+        "{file}: scaling gives a PGA of {pga_g:.4e} g, beyond any physical record: the largest recorded ground accelerations are about 4-5 g and slipload refuses more than {limit_g} g"
+    )]
+    ImplausibleScale {
+        /// The record name.
+        file: String,
+        /// The PGA the scaling would give, g.
+        pga_g: f64,
+        /// The bound, g.
+        limit_g: f64,
+    },
+    /// A file's sample interval is shorter than any accelerograph's.
+    #[error(
+        "{file}: sample interval {dt_s} s is shorter than any accelerograph's ({min_s} s, i.e. more than a megahertz): check the header's or time column's units"
+    )]
+    ImplausibleTimeStep {
+        /// The file or record name.
+        file: String,
+        /// The sample interval, s.
+        dt_s: f64,
+        /// The bound, s.
+        min_s: f64,
+    },
+    /// An AT2 file holds more values than its header announces.
+    #[error(
+        "{file}: the header announces NPTS = {npts} values but the file holds {found}: the header or the data is wrong (refusing to guess which values are the record)"
+    )]
+    NptsMismatch {
+        /// The file or record name.
+        file: String,
+        /// NPTS from the header.
+        npts: usize,
+        /// Values found after the header.
+        found: usize,
+    },
     /// A sample given to [`crate::Record::new`] is NaN or infinite.
     #[error("{file}: sample {index} is not finite ({value})")]
     NonFiniteSample {

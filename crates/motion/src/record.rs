@@ -11,6 +11,22 @@ use crate::MotionError;
 /// Standard gravity, m/s² per g (the value used by PEER and by ASCE 7).
 pub const G: f64 = 9.80665;
 
+/// The largest |ground acceleration| a reader accepts and a scaling may produce, in g.
+/// The largest recorded ground accelerations are about 4–5 g; a value beyond this bound
+/// means wrong units, a corrupt file or a typo, and would give responses that are
+/// numbers but not answers.
+pub const MAX_ABS_ACCEL_G: f64 = 20.0;
+
+/// The shortest sample interval a reader accepts, s: accelerographs sample at a few
+/// hundred to a few thousand hertz, so a step below a microsecond is a units slip (or
+/// a typo) that would make every default time step as short.
+pub const MIN_RECORD_DT_S: f64 = 1e-6;
+
+/// [`MAX_ABS_ACCEL_G`] in m/s².
+pub fn max_abs_accel_m_s2() -> f64 {
+    MAX_ABS_ACCEL_G * G
+}
+
 /// A uniformly sampled ground-acceleration history.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Record {
@@ -152,12 +168,27 @@ impl Record {
         self.accel_m_s2.iter().fold(0.0, |m, a| m.max(a.abs()))
     }
 
+    /// [`MotionError::ImplausibleScale`] when the record's PGA exceeds
+    /// [`MAX_ABS_ACCEL_G`] (a scaled record must stay physical).
+    pub fn check_plausible(&self) -> Result<(), MotionError> {
+        let pga = self.pga();
+        if pga > max_abs_accel_m_s2() {
+            return Err(MotionError::ImplausibleScale {
+                file: self.name.clone(),
+                pga_g: pga / G,
+                limit_g: MAX_ABS_ACCEL_G,
+            });
+        }
+        Ok(())
+    }
+
     /// The record with every sample multiplied by `factor` (name and provenance kept,
     /// provenance notes the factor).
     ///
     /// # Panics
-    /// If `factor` is not finite or the product overflows (a scaled record must stay
-    /// finite); use [`Record::try_scaled`] for a `Result`.
+    /// If `factor` is not finite or the product overflows or exceeds
+    /// [`MAX_ABS_ACCEL_G`] (a scaled record must stay finite and physical); use
+    /// [`Record::try_scaled`] for a `Result`.
     pub fn scaled(&self, factor: f64) -> Record {
         match self.try_scaled(factor) {
             Ok(r) => r,
@@ -166,7 +197,8 @@ impl Record {
     }
 
     /// Like [`Record::scaled`], but returns [`MotionError::InvalidArgument`] for a
-    /// non-finite factor and [`MotionError::NonFiniteSample`] on overflow.
+    /// non-finite factor, [`MotionError::NonFiniteSample`] on overflow and
+    /// [`MotionError::ImplausibleScale`] beyond [`MAX_ABS_ACCEL_G`].
     pub fn try_scaled(&self, factor: f64) -> Result<Record, MotionError> {
         if !factor.is_finite() {
             return Err(MotionError::InvalidArgument {
@@ -177,6 +209,7 @@ impl Record {
         }
         let samples = self.accel_m_s2.iter().map(|a| a * factor).collect();
         let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        r.check_plausible()?;
         Ok(r.with_provenance(self.note(&format!("scaled by {factor}"))))
     }
 
@@ -186,6 +219,7 @@ impl Record {
     /// old peak are set to ±x and others clamped to [−x, x] (a change of at most one ulp).
     ///
     /// Errors: [`MotionError::InvalidArgument`] for a negative or non-finite target,
+    /// [`MotionError::ImplausibleScale`] beyond [`MAX_ABS_ACCEL_G`],
     /// [`MotionError::ZeroMeasure`] for an all-zero record.
     pub fn scaled_to_pga(&self, pga_m_s2: f64) -> Result<Record, MotionError> {
         if !(pga_m_s2.is_finite() && pga_m_s2 >= 0.0) {
@@ -193,6 +227,13 @@ impl Record {
                 what: "target PGA (m/s2)",
                 value: pga_m_s2,
                 expected: "finite and >= 0",
+            });
+        }
+        if pga_m_s2 > max_abs_accel_m_s2() {
+            return Err(MotionError::ImplausibleScale {
+                file: self.name.clone(),
+                pga_g: pga_m_s2 / G,
+                limit_g: MAX_ABS_ACCEL_G,
             });
         }
         let pga = self.pga();

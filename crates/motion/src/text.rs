@@ -9,7 +9,8 @@
 //! (printed time columns carry rounding; a larger deviation means a non-uniform grid,
 //! which a [`Record`] cannot represent). The record starts at its first sample: a time
 //! column that starts at t₀ ≠ 0 is shifted to 0 (noted in the provenance). Values are
-//! converted from `units` to m/s². Malformed input gives a [`MotionError`]; the reader
+//! converted from `units` to m/s²; a value beyond [`crate::MAX_ABS_ACCEL_G`] is an error.
+//! Malformed input gives a [`MotionError`]; the reader
 //! never panics. [`format_csv`] writes `time_s,accel_m_s2` that reads back bit for bit.
 
 use crate::error::snippet;
@@ -86,6 +87,16 @@ pub fn parse_text(
                 token: snippet(fields[fields.len() - 1]),
             });
         }
+        if a.abs() > crate::max_abs_accel_m_s2() {
+            return Err(MotionError::Implausible {
+                file: file(),
+                line: line_no,
+                token: snippet(fields[fields.len() - 1]),
+                accel_g: a / crate::G,
+                limit_g: crate::MAX_ABS_ACCEL_G,
+                units: units.to_string(),
+            });
+        }
         if expected == 2 {
             times.push((line_no, values[0]));
         }
@@ -126,6 +137,13 @@ pub fn parse_text(
         notes.push(format!("two columns, dt = {dt} s"));
         dt
     };
+    if dt.is_finite() && dt > 0.0 && dt < crate::MIN_RECORD_DT_S {
+        return Err(MotionError::ImplausibleTimeStep {
+            file: file(),
+            dt_s: dt,
+            min_s: crate::MIN_RECORD_DT_S,
+        });
+    }
     notes.push(format!("values in {units} converted to m/s2"));
     Ok(Record::new(name, dt, accel)?.with_provenance(notes.join("; ")))
 }

@@ -40,8 +40,21 @@ fn truncated_at2_reports_counts() {
 }
 
 #[test]
-fn extra_values_after_npts_are_ignored() {
-    let r = parse_at2(&at2(".1 .2 .3\n.4 .0\ngarbage here", 4), "x").unwrap();
+fn extra_values_after_npts_are_refused_trailing_text_is_ignored() {
+    // issue 16: more values than NPTS was read silently as the first NPTS
+    let e = parse_at2(&at2(".1 .2 .3\n.4 .0\ngarbage here", 4), "x").unwrap_err();
+    assert!(
+        matches!(
+            e,
+            MotionError::NptsMismatch {
+                npts: 4,
+                found: 5,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let r = parse_at2(&at2(".1 .2 .3\n.4\ngarbage here", 4), "x").unwrap();
     assert_eq!(r.len(), 4);
 }
 

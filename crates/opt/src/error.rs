@@ -58,6 +58,44 @@ pub enum OptError {
         /// The cause (boxed: a simulation error is large).
         source: Box<slipload_sim::SimError>,
     },
+    /// A response or an objective came out NaN or infinite.
+    #[error(
+        "design {design}, record {record}: {quantity} is not finite: the response overflowed; check the record's units and the building's values"
+    )]
+    NonFinite {
+        /// Design label.
+        design: String,
+        /// Record name (or the records an objective pools).
+        record: String,
+        /// Which value, with its value.
+        quantity: String,
+    },
+    /// A study or a command asks for more work or memory than any real study needs.
+    #[error(
+        "{what}: {estimate} exceeds the limit of {limit} that no real study needs; {}",
+        slipload_sim::limits::OVERRIDE_HINT
+    )]
+    TooLarge {
+        /// What was estimated.
+        what: String,
+        /// The estimate, for people.
+        estimate: String,
+        /// The limit, for people.
+        limit: String,
+    },
+    /// An output path is not a regular file (a FIFO, a device, a folder, a dangling link).
+    #[error(
+        "{path} is {kind}: refusing to replace it with an output file; give the path of a regular file"
+    )]
+    NotRegular {
+        /// The path given.
+        path: PathBuf,
+        /// What it is.
+        kind: String,
+    },
+    /// A command's argument is out of range.
+    #[error("{0}")]
+    Argument(String),
     /// A record could not be read or scaled.
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),

@@ -3,13 +3,19 @@
 //! bits do not depend on the thread count.
 
 use crate::error::OptError;
+use crate::fingerprint::Fingerprint;
+use crate::journal::{Appender, Reuse, open_journal};
 use crate::metrics::RecordMetrics;
 use crate::study::Study;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use slipload_sim::scene::{
     InitialState, MethodName, MethodSettings, OutputsConfig, Scene, default_dt,
 };
 use slipload_sim::{Plan, run_plan};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Method and accuracy of a batch of simulations.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,11 +69,7 @@ pub fn run_one(
         .dt_s
         .unwrap_or_else(|| default_dt(fid.method, study.building.t1(), Some(rec.dt()), duration))
         * fid.dt_factor;
-    let alpha = if fid.method == MethodName::Hht {
-        -0.05
-    } else {
-        0.0
-    };
+    let alpha = hht_alpha(fid.method);
     let scene = Scene {
         name: label.to_string(),
         building,
@@ -102,13 +104,23 @@ pub fn run_one(
         .as_deref()
         .expect("a study's building has storey heights (checked when loading)");
     let m = RecordMetrics::from_outcome(&out, heights);
-    if !m.is_finite() {
-        return Err(OptError::Missing(format!(
-            "design {label}, record {}: a response is not finite",
-            rec.name()
-        )));
+    if let Some(quantity) = m.first_non_finite() {
+        return Err(OptError::NonFinite {
+            design: label.to_string(),
+            record: rec.name().to_string(),
+            quantity,
+        });
     }
     Ok(m)
+}
+
+/// HHT α of a study's runs: −0.05 for `hht`, 0 otherwise.
+pub fn hht_alpha(method: MethodName) -> f64 {
+    if method == MethodName::Hht {
+        -0.05
+    } else {
+        0.0
+    }
 }
 
 /// One task: slip loads (N per dissipator) and a record index.
@@ -147,11 +159,105 @@ pub fn run_tasks(
         .collect()
 }
 
+/// One finished task of a [`TaskJournal`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TaskEntry {
+    /// The fidelity it ran at ([`Fidelity::tag`]).
+    pub fidelity: String,
+    /// Record index.
+    pub record: usize,
+    /// The record's name.
+    pub record_name: String,
+    /// Slip loads, N per dissipator.
+    pub slip_loads_n: Vec<f64>,
+    /// The responses.
+    pub metrics: RecordMetrics,
+}
+
+type TaskKey = (String, Vec<u64>, usize);
+
+/// A journal of (design, record) tasks outside the sweep (`check.jsonl`: `optimize`'s
+/// finalist check and design table): tasks found there are not run again, tasks run are
+/// appended. Keys are the exact bits of the slip loads, the record and the fidelity.
+#[derive(Debug)]
+pub struct TaskJournal {
+    appender: Appender,
+    known: HashMap<TaskKey, RecordMetrics>,
+    reused: AtomicUsize,
+}
+
+impl Fidelity {
+    /// A text that tells fidelities apart (method, step bits, factor bits, energies).
+    pub fn tag(&self) -> String {
+        format!(
+            "{} dt={} x{:016x} energies={}",
+            self.method.as_str(),
+            self.dt_s.map_or_else(
+                || "default".to_string(),
+                |d| format!("{:016x}", d.to_bits())
+            ),
+            self.dt_factor.to_bits(),
+            self.energies
+        )
+    }
+}
+
+impl TaskJournal {
+    /// Opens (or starts) the task journal `path` of `study` (fingerprint `fp`); a journal
+    /// of another study is refused ([`crate::journal::open_journal`]).
+    pub fn open(study: &Study, path: &Path, fp: &Fingerprint) -> Result<TaskJournal, OptError> {
+        let (appender, entries) = open_journal::<TaskEntry>(path, "check", fp, Reuse::Resume)?;
+        let mut known = HashMap::new();
+        for (i, e) in entries.into_iter().enumerate() {
+            let name = study.records.get(e.record).map(|r| r.name());
+            if name != Some(e.record_name.as_str()) {
+                return Err(OptError::Journal {
+                    path: path.to_path_buf(),
+                    line: i + 2,
+                    message: format!(
+                        "record {} is {:?} in the journal but {:?} in the study: the study changed; pass --fresh",
+                        e.record, e.record_name, name
+                    ),
+                });
+            }
+            known
+                .entry((e.fidelity, key(&e.slip_loads_n), e.record))
+                .or_insert(e.metrics);
+        }
+        Ok(TaskJournal {
+            appender,
+            known,
+            reused: AtomicUsize::new(0),
+        })
+    }
+
+    /// Tasks taken from the journal so far.
+    pub fn reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
+    }
+}
+
+fn key(loads: &[f64]) -> Vec<u64> {
+    loads.iter().map(|v| v.to_bits()).collect()
+}
+
 /// Responses of several designs over every record: `result[d][r]`.
 pub fn run_designs(
     study: &Study,
     designs: &[Vec<f64>],
     fid: &Fidelity,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<Vec<RecordMetrics>>, OptError> {
+    run_designs_journalled(study, designs, fid, None, tick)
+}
+
+/// As [`run_designs`], taking finished tasks from `journal` and appending the others.
+pub fn run_designs_journalled(
+    study: &Study,
+    designs: &[Vec<f64>],
+    fid: &Fidelity,
+    journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<Vec<RecordMetrics>>, OptError> {
     let nr = study.records.len();
@@ -160,16 +266,56 @@ pub fn run_designs(
         .enumerate()
         .flat_map(|(d, s)| {
             (0..nr).map(move |r| Task {
-                label: format!("#{d}"),
+                label: format!(
+                    "#{d} (slip loads {} kN)",
+                    s.iter()
+                        .map(|v| format!("{:.1}", v / 1e3))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                ),
                 slip_loads: s.clone(),
                 record: r,
             })
         })
         .collect();
-    let flat = run_tasks(study, &tasks, fid, &|_, _| {
+    let tag = fid.tag();
+    let mut flat: Vec<Option<RecordMetrics>> = tasks
+        .iter()
+        .map(|t| {
+            journal.and_then(|j| {
+                j.known
+                    .get(&(tag.clone(), key(&t.slip_loads), t.record))
+                    .cloned()
+            })
+        })
+        .collect();
+    let todo: Vec<usize> = (0..tasks.len()).filter(|&k| flat[k].is_none()).collect();
+    if let Some(j) = journal {
+        j.reused
+            .fetch_add(tasks.len() - todo.len(), Ordering::Relaxed);
+    }
+    for _ in 0..tasks.len() - todo.len() {
+        tick();
+    }
+    let run: Vec<Task> = todo.iter().map(|&k| tasks[k].clone()).collect();
+    let ran = run_tasks(study, &run, fid, &|i, m| {
+        if let Some(j) = journal {
+            let t = &run[i];
+            j.appender.append(&TaskEntry {
+                fidelity: tag.clone(),
+                record: t.record,
+                record_name: study.records[t.record].name().to_string(),
+                slip_loads_n: t.slip_loads.clone(),
+                metrics: m.clone(),
+            })?;
+        }
         tick();
         Ok(())
     })?;
+    for (k, m) in todo.into_iter().zip(ran) {
+        flat[k] = Some(m);
+    }
+    let flat: Vec<RecordMetrics> = flat.into_iter().flatten().collect();
     let mut out = Vec::with_capacity(designs.len());
     let mut it = flat.into_iter();
     for _ in designs {

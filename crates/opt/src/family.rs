@@ -66,8 +66,8 @@ pub fn scaled_study(
     s.records = study
         .records
         .iter()
-        .map(|r| Arc::new(r.scaled(intensity_scale)))
-        .collect();
+        .map(|r| r.try_scaled(intensity_scale).map(Arc::new))
+        .collect::<Result<_, _>>()?;
     Ok(s)
 }
 
@@ -89,7 +89,7 @@ pub fn family(
                 .into_iter()
                 .flatten()
                 .collect();
-            let r = optimize(&s, &m, &rows, method, None, tick)?;
+            let r = optimize(&s, &m, &rows, method, None, None, tick)?;
             out.push(FamilyCell {
                 period_scale: p,
                 intensity_scale: a,

@@ -1,12 +1,17 @@
-//! The append-only journal of finished (design, record) tasks (`journal.jsonl`, one JSON
-//! object per line) and atomic output files.
+//! Append-only journals (`journal.jsonl` of finished (design, record) tasks,
+//! `refine-METHOD.jsonl`, `check.jsonl`; one JSON object per line) and atomic output
+//! files.
 //!
-//! A run appends each task as it finishes; `--resume` reads the finished keys and runs
+//! The first line of a journal is its [`Header`]: its kind and the fingerprint of the
+//! study that wrote it ([`crate::fingerprint`]). A journal is continued only by a study
+//! with the same fingerprint; any other is refused with the components that changed. A
+//! run appends each task as it finishes; `--resume` reads the finished keys and runs
 //! only the rest. A torn last line (a crash mid-write) is ignored and cut off before new
-//! lines are appended. Each line carries the design's slip loads and the record's name,
-//! so a journal from a changed study is recognised instead of silently mixed in.
+//! lines are appended. Each sweep line also carries the design's slip loads and the
+//! record's name, checked against the manifest.
 
 use crate::error::OptError;
+use crate::fingerprint::Fingerprint;
 use crate::metrics::RecordMetrics;
 use serde::{Deserialize, Serialize};
 use std::fs::{File, OpenOptions};
@@ -30,17 +35,117 @@ pub struct Entry {
     pub metrics: RecordMetrics,
 }
 
+/// The first line of every journal: what kind it is and the fingerprint of the study
+/// that wrote it ([`crate::fingerprint`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Header {
+    /// `sweep`, `refine` or `check`.
+    pub journal: String,
+    /// The writing study's fingerprint.
+    pub fingerprint: Fingerprint,
+}
+
+/// What to do with a journal of the same study found in place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reuse {
+    /// Continue it (`--resume`; `optimize` always).
+    Resume,
+    /// Refuse it: a run without `--resume` must not mix into an earlier one.
+    Refuse,
+}
+
 /// An open journal, appended to from worker threads.
 #[derive(Debug)]
-pub struct Journal {
+pub struct Appender {
     path: PathBuf,
     writer: Mutex<LineWriter<File>>,
 }
 
-/// Reads a journal; a last line that does not parse (torn write) is dropped. Returns the
-/// entries and the byte length of the intact part.
+impl Appender {
+    /// Appends one value as one line (written whole before the call returns).
+    pub fn append<T: Serialize>(&self, value: &T) -> Result<(), OptError> {
+        let mut line = serde_json::to_string(value).map_err(|source| OptError::Json {
+            path: self.path.clone(),
+            source,
+        })?;
+        line.push('\n');
+        let mut w = self
+            .writer
+            .lock()
+            .map_err(|_| OptError::Shard("journal lock poisoned by a failed worker".into()))?;
+        w.write_all(line.as_bytes()).map_err(|source| OptError::Io {
+            path: self.path.clone(),
+            source,
+        })
+    }
+
+    /// The journal's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// An open sweep journal (`journal.jsonl`).
+#[derive(Debug)]
+pub struct Journal(Appender);
+
+/// Reads a sweep journal: its entries (the header line skipped) and the byte length of
+/// the intact part. A missing file has none.
 pub fn read(path: &Path) -> Result<(Vec<Entry>, u64), OptError> {
-    read_lines(path)
+    Ok(match read_journal::<Entry>(path)? {
+        Some((_, entries, good)) => (entries, good),
+        None => (Vec::new(), 0),
+    })
+}
+
+/// The message for a journal that cannot be checked or belongs to another study.
+fn refuse(path: &Path, line: usize, why: String) -> OptError {
+    OptError::Journal {
+        path: path.to_path_buf(),
+        line,
+        message: format!(
+            "{why}; its results cannot be reused: pass --fresh to discard this folder's journals and start afresh, or choose another --out"
+        ),
+    }
+}
+
+/// Reads a journal with its header: `None` for a missing or empty file (or one whose
+/// only line, the header, is torn), else the header, the entries and the byte length of
+/// the intact part (a torn last line is dropped).
+pub fn read_journal<T: serde::de::DeserializeOwned>(
+    path: &Path,
+) -> Result<Option<(Header, Vec<T>, u64)>, OptError> {
+    let text = match std::fs::read(path) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(source) => {
+            return Err(OptError::Io {
+                path: path.to_path_buf(),
+                source,
+            });
+        }
+    };
+    let Some(nl) = text.iter().position(|&b| b == b'\n') else {
+        // empty, or a header torn by a crash before anything else was written
+        if text.is_empty() || text.starts_with(b"{\"journal\"") {
+            return Ok(None);
+        }
+        return Err(refuse(
+            path,
+            1,
+            "has no study fingerprint (written by an older slipload, or not a journal)".into(),
+        ));
+    };
+    let header: Header = serde_json::from_slice(&text[..nl]).map_err(|_| {
+        refuse(
+            path,
+            1,
+            "has no study fingerprint on its first line (written by an older slipload, or not a journal)".into(),
+        )
+    })?;
+    let (entries, good) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
+    Ok(Some((header, entries, good + nl as u64 + 1)))
 }
 
 /// Reads a file of one JSON `T` per line; a last line that does not parse (torn write)
@@ -56,10 +161,26 @@ pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>
             });
         }
     };
+    parse_lines(&text, path, 0)
+}
+
+/// Entries of a journal with a header (the header skipped); none for a missing file.
+pub fn read_entries<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Vec<T>, OptError> {
+    Ok(read_journal::<T>(path)?
+        .map(|(_, e, _)| e)
+        .unwrap_or_default())
+}
+
+/// One JSON `T` per line of `text`, whose first line is line `skipped + 1` of the file.
+fn parse_lines<T: serde::de::DeserializeOwned>(
+    text: &[u8],
+    path: &Path,
+    skipped: usize,
+) -> Result<(Vec<T>, u64), OptError> {
     let mut entries = Vec::new();
     let mut good = 0u64;
     let mut pos = 0usize;
-    let mut line_no = 0usize;
+    let mut line_no = skipped;
     while pos < text.len() {
         line_no += 1;
         let end = text[pos..]
@@ -92,90 +213,295 @@ pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>
     Ok((entries, good))
 }
 
-impl Journal {
-    /// Opens `path` for appending. Without `resume` an existing non-empty journal is an
-    /// error (its results would be mixed with a new run's); with `resume` its entries are
-    /// returned and a torn last line is cut off.
-    pub fn open(path: &Path, resume: bool) -> Result<(Journal, Vec<Entry>), OptError> {
-        let io = |source| OptError::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let (entries, good) = if resume {
-            read(path)?
-        } else {
-            if std::fs::metadata(path)
-                .map(|m| m.len() > 0)
-                .unwrap_or(false)
-            {
-                return Err(OptError::Journal {
-                    path: path.to_path_buf(),
-                    line: 1,
-                    message: "a journal of an earlier run is here: pass --resume to continue it, or choose another --out".into(),
-                });
-            }
-            (Vec::new(), 0)
-        };
-        if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(io)?;
-        }
-        let file = OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(path)
-            .map_err(io)?;
-        file.set_len(good).map_err(io)?;
-        let file = OpenOptions::new().append(true).open(path).map_err(io)?;
-        Ok((
-            Journal {
-                path: path.to_path_buf(),
-                writer: Mutex::new(LineWriter::new(file)),
-            },
-            entries,
-        ))
-    }
-
-    /// Appends one entry as one line (written whole before the call returns).
-    pub fn append(&self, e: &Entry) -> Result<(), OptError> {
-        let mut line = serde_json::to_string(e).map_err(|source| OptError::Json {
-            path: self.path.clone(),
-            source,
-        })?;
-        line.push('\n');
-        let mut w = self
-            .writer
-            .lock()
-            .map_err(|_| OptError::Shard("journal lock poisoned by a failed worker".into()))?;
-        w.write_all(line.as_bytes()).map_err(|source| OptError::Io {
-            path: self.path.clone(),
-            source,
-        })
-    }
-}
-
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder, `sync_all`,
-/// rename. An interrupted run never leaves a partial file under the final name.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OptError> {
+/// Opens the journal `path` of kind `kind` for a study of fingerprint `fp`. A missing
+/// or empty journal is started with its header. An existing one must carry the same
+/// kind and fingerprint — otherwise it is refused, naming what changed — and is then
+/// continued (`Reuse::Resume`: its entries are returned, a torn last line cut off) or
+/// refused (`Reuse::Refuse`).
+pub fn open_journal<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    kind: &str,
+    fp: &Fingerprint,
+    reuse: Reuse,
+) -> Result<(Appender, Vec<T>), OptError> {
     let io = |source| OptError::Io {
         path: path.to_path_buf(),
         source,
     };
+    let found = read_journal::<T>(path)?;
+    let (entries, good) = match found {
+        None => (Vec::new(), 0),
+        Some((header, entries, good)) => {
+            if header.journal != kind {
+                return Err(refuse(
+                    path,
+                    1,
+                    format!("is a {} journal, not a {kind} journal", header.journal),
+                ));
+            }
+            if header.fingerprint != *fp {
+                return Err(refuse(
+                    path,
+                    1,
+                    format!(
+                        "was written for another study (fingerprint {}, this study's {}): the study changed since: {}",
+                        header.fingerprint.hash,
+                        fp.hash,
+                        fp.describe_changes(&header.fingerprint)
+                    ),
+                ));
+            }
+            if reuse == Reuse::Refuse && !entries.is_empty() {
+                return Err(OptError::Journal {
+                    path: path.to_path_buf(),
+                    line: 1,
+                    message: "a journal of an earlier run of this study is here: pass --resume to continue it, --fresh to start afresh, or choose another --out".into(),
+                });
+            }
+            (entries, good)
+        }
+    };
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    let file = OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(path)
+        .map_err(io)?;
+    file.set_len(good).map_err(io)?;
+    let file = OpenOptions::new().append(true).open(path).map_err(io)?;
+    let appender = Appender {
+        path: path.to_path_buf(),
+        writer: Mutex::new(LineWriter::new(file)),
+    };
+    if good == 0 {
+        appender.append(&Header {
+            journal: kind.to_string(),
+            fingerprint: fp.clone(),
+        })?;
+    }
+    Ok((appender, entries))
+}
+
+/// The text of a whole journal: header line, then one line per value.
+pub fn journal_text<T: Serialize>(kind: &str, fp: &Fingerprint, values: &[T]) -> String {
+    let header = Header {
+        journal: kind.to_string(),
+        fingerprint: fp.clone(),
+    };
+    let mut s = serde_json::to_string(&header).expect("a header serialises");
+    s.push('\n');
+    for v in values {
+        s.push_str(&serde_json::to_string(v).expect("an entry serialises"));
+        s.push('\n');
+    }
+    s
+}
+
+/// The journals `slipload` keeps in an output folder: `journal.jsonl` (sweep),
+/// `refine-METHOD.jsonl`, `check.jsonl`.
+pub fn is_journal_name(name: &str) -> bool {
+    name == "journal.jsonl"
+        || name == "check.jsonl"
+        || (name.starts_with("refine-") && name.ends_with(".jsonl"))
+}
+
+/// Checks every journal of `dir` against the study's fingerprint `fp`: one written for
+/// another study (or without a fingerprint) is refused, naming what changed.
+pub fn check_folder(dir: &Path, fp: &Fingerprint) -> Result<(), OptError> {
+    let Ok(listing) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut paths: Vec<PathBuf> = listing
+        .flatten()
+        .filter(|e| is_journal_name(&e.file_name().to_string_lossy()))
+        .map(|e| e.path())
+        .collect();
+    paths.sort();
+    for path in paths {
+        if let Some((header, _, _)) = read_journal::<serde::de::IgnoredAny>(&path)?
+            && header.fingerprint != *fp
+        {
+            return Err(refuse(
+                &path,
+                1,
+                format!(
+                    "was written for another study (fingerprint {}, this study's {}): the study changed since: {}",
+                    header.fingerprint.hash,
+                    fp.hash,
+                    fp.describe_changes(&header.fingerprint)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `--fresh`: removes the journals of `dir` (and the tables `sweep` and `optimize` built
+/// from them, which would describe the discarded run). Returns the names removed.
+pub fn discard_journals(dir: &Path) -> Result<Vec<String>, OptError> {
+    let listing = match std::fs::read_dir(dir) {
+        Ok(l) => l,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(source) => {
+            return Err(OptError::Io {
+                path: dir.to_path_buf(),
+                source,
+            });
+        }
+    };
+    let mut removed = Vec::new();
+    for e in listing.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let table = matches!(
+            name.as_str(),
+            "responses.csv"
+                | "designs.csv"
+                | "manifest.json"
+                | "refine.csv"
+                | "optimum.json"
+                | "candidates.json"
+                | "design-table.csv"
+                | "design-table.md"
+                | "design-table.json"
+        );
+        if (is_journal_name(&name) || table) && e.file_type().is_ok_and(|t| t.is_file()) {
+            std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
+                path: e.path(),
+                source,
+            })?;
+            removed.push(name);
+        }
+    }
+    removed.sort();
+    Ok(removed)
+}
+
+impl Journal {
+    /// Opens the sweep journal `path` for a study of fingerprint `fp` (see
+    /// [`open_journal`]): without `resume` an existing journal of the same study is an
+    /// error (its results would be mixed with a new run's); a journal of another study is
+    /// always an error.
+    pub fn open(
+        path: &Path,
+        fp: &Fingerprint,
+        resume: bool,
+    ) -> Result<(Journal, Vec<Entry>), OptError> {
+        let reuse = if resume { Reuse::Resume } else { Reuse::Refuse };
+        let (a, entries) = open_journal(path, "sweep", fp, reuse)?;
+        Ok((Journal(a), entries))
+    }
+
+    /// Appends one entry as one line (written whole before the call returns).
+    pub fn append(&self, e: &Entry) -> Result<(), OptError> {
+        self.0.append(e)
+    }
+}
+
+/// Where an atomic write of `path` goes: `path` itself when it is missing or a regular
+/// file, the final target of a symbolic link (written through: the link is kept), and an
+/// error for anything else (a FIFO, a device node, a socket, a folder), which a rename
+/// would replace — the write must reach a file or not happen.
+pub fn write_target(path: &Path) -> Result<PathBuf, OptError> {
+    let meta = match std::fs::symlink_metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(path.to_path_buf()),
+        Err(source) => {
+            return Err(OptError::Io {
+                path: path.to_path_buf(),
+                source,
+            });
+        }
+    };
+    let target = if meta.file_type().is_symlink() {
+        let resolved = std::fs::canonicalize(path).map_err(|_| OptError::NotRegular {
+            path: path.to_path_buf(),
+            kind: "a symbolic link whose target does not exist".into(),
+        })?;
+        let m = std::fs::metadata(&resolved).map_err(|source| OptError::Io {
+            path: resolved.clone(),
+            source,
+        })?;
+        if !m.file_type().is_file() {
+            return Err(OptError::NotRegular {
+                path: path.to_path_buf(),
+                kind: format!(
+                    "a symbolic link to {}, {}",
+                    resolved.display(),
+                    kind_of(&m.file_type())
+                ),
+            });
+        }
+        resolved
+    } else if meta.file_type().is_file() {
+        path.to_path_buf()
+    } else {
+        return Err(OptError::NotRegular {
+            path: path.to_path_buf(),
+            kind: kind_of(&meta.file_type()),
+        });
+    };
+    Ok(target)
+}
+
+fn kind_of(t: &std::fs::FileType) -> String {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)".into();
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device node".into();
+        }
+        if t.is_socket() {
+            return "a socket".into();
+        }
+    }
+    if t.is_dir() {
+        "a folder".into()
+    } else {
+        "not a regular file".into()
+    }
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder, `sync_all`,
+/// rename. An interrupted run never leaves a partial file under the final name. A
+/// symbolic link is written through; a FIFO, device or folder is refused
+/// ([`write_target`]).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OptError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    std::fs::create_dir_all(dir).map_err(io)?;
-    let name = path
+    std::fs::create_dir_all(dir).map_err(|source| OptError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let target = write_target(path)?;
+    let io = |source| OptError::Io {
+        path: target.clone(),
+        source,
+    };
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
+        .ok_or_else(|| OptError::NotRegular {
+            path: path.to_path_buf(),
+            kind: "not a file path".into(),
+        })?;
     let tmp = dir.join(format!(".{name}.tmp"));
     let result = (|| -> std::io::Result<()> {
         let mut f = File::create(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        std::fs::rename(&tmp, &target)
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);

@@ -69,6 +69,39 @@ impl RecordMetrics {
             .fold(0.0, f64::max)
     }
 
+    /// The first value that is NaN or infinite, by name; `None` when all are finite.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let vecs = [
+            ("drift_ratio", &self.drift_ratio),
+            ("residual_drift_ratio", &self.residual_drift_ratio),
+            ("stroke", &self.stroke),
+        ];
+        for (name, v) in vecs {
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Some(format!("{name}[storey {}] = {}", i + 1, v[i]));
+            }
+        }
+        let scalars = [
+            (
+                "peak_floor_acceleration",
+                Some(self.peak_floor_acceleration),
+            ),
+            ("peak_base_shear", Some(self.peak_base_shear)),
+            ("peak_displacement", Some(self.peak_displacement)),
+            ("energy_input", self.energy_input),
+            ("energy_friction", self.energy_friction),
+            ("strain_energy_area", self.strain_energy_area),
+        ];
+        for (name, v) in scalars {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return Some(format!("{name} = {v}"));
+            }
+        }
+        None
+    }
+
     /// Every value is finite.
     pub fn is_finite(&self) -> bool {
         let opt = |o: Option<f64>| o.is_none_or(f64::is_finite);

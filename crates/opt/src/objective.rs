@@ -181,6 +181,13 @@ impl Objective {
         for t in &self.terms {
             f += t.weight * Objective::term_value(t, records, bare, suites)?;
         }
+        if !f.is_finite() {
+            return Err(OptError::NonFinite {
+                design: "(the design evaluated)".into(),
+                record: format!("{} records", records.len()),
+                quantity: format!("objective {} = {f}", self.label()),
+            });
+        }
         Ok(f)
     }
 

@@ -3,12 +3,11 @@
 //! their ranking held.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs, suite_ranges};
+use crate::evaluate::{Fidelity, TaskJournal, run_designs, run_designs_journalled, suite_ranges};
 use crate::metrics::RecordMetrics;
 use crate::refine::{Evaluations, Point, refine};
 use crate::study::{RefineMethod, Study};
 use crate::sweep::Manifest;
-use std::io::{LineWriter, Write};
 use std::path::Path;
 
 /// Finalists differ by at least this much in some scaled variable (5 % of its range), so
@@ -75,14 +74,17 @@ pub fn objectives(
 
 /// Refines from the sweep (`manifest`, its complete `rows`) with `method`. With a
 /// `journal` path every refinement evaluation is appended there (one JSON point per
-/// line), and the points of an earlier, interrupted run found there are replayed instead
-/// of simulated again — the refiners then take the same path, so the answer is the same.
+/// line after the study's fingerprint), and the points of an earlier, interrupted run
+/// found there are replayed instead of simulated again — the refiners then take the same
+/// path, so the answer is the same. With a `check` journal the finalists' check takes
+/// the tasks it holds and appends the others. A journal of another study is refused.
 pub fn optimize(
     study: &Study,
     manifest: &Manifest,
     rows: &[RecordMetrics],
     method: RefineMethod,
     journal: Option<&Path>,
+    check_journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<OptimizeReport, OptError> {
     let cfg = study.config.refine;
@@ -116,35 +118,13 @@ pub fn optimize(
     };
     let mut ev = Evaluations::new(Box::new(oracle), known.clone());
     if let Some(path) = journal {
-        let io = |source| OptError::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let (replay, good) = crate::journal::read_lines::<Point>(path)?;
-        let file = std::fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(path)
-            .map_err(io)?;
-        file.set_len(good).map_err(io)?; // cut a torn last line
-        let file = std::fs::OpenOptions::new()
-            .append(true)
-            .open(path)
-            .map_err(io)?;
-        let mut w = LineWriter::new(file);
-        let owned = path.to_path_buf();
-        ev = ev.with_journal(
-            replay,
-            Box::new(move |p: &Point| {
-                let mut line = serde_json::to_string(p).expect("a point serialises");
-                line.push('\n');
-                w.write_all(line.as_bytes()).map_err(|source| OptError::Io {
-                    path: owned.clone(),
-                    source,
-                })
-            }),
-        );
+        let (appender, replay) = crate::journal::open_journal::<Point>(
+            path,
+            "refine",
+            &manifest.fingerprint,
+            crate::journal::Reuse::Resume,
+        )?;
+        ev = ev.with_journal(replay, Box::new(move |p: &Point| appender.append(p)));
     }
     let mut budget = 0;
     for &s in order.iter().take(cfg.starts) {
@@ -175,10 +155,16 @@ pub fn optimize(
     }
     let all = picked;
     let check = Fidelity::check(study);
-    let bare_check =
-        run_designs(study, &[vec![0.0; study.space.dampers.len()]], &check, tick)?.remove(0);
     let loads: Vec<Vec<f64>> = all.iter().map(|p| study.space.slip_loads(&p.z)).collect();
-    let fc = objectives(study, &loads, &bare_check, &check, tick)?;
+    let mut designs = vec![vec![0.0; study.space.dampers.len()]];
+    designs.extend(loads.iter().cloned());
+    let mut runs = run_designs_journalled(study, &designs, &check, check_journal, tick)?;
+    let bare_check = runs.remove(0);
+    let ranges = suite_ranges(study);
+    let fc = runs
+        .iter()
+        .map(|rows| study.objective.value(rows, Some(&bare_check), &ranges))
+        .collect::<Result<Vec<f64>, OptError>>()?;
     let mut finalists: Vec<Finalist> = all
         .iter()
         .zip(loads)

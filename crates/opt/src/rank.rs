@@ -99,6 +99,11 @@ pub fn rank(
     seed: u64,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Ranking, OptError> {
+    if bootstrap == 0 {
+        return Err(OptError::Argument(
+            "the bootstrap needs at least 1 resample (the share of resamples keeping a rank is undefined for 0)".into(),
+        ));
+    }
     let loads = to_newtons(study, designs)?;
     let mut all = vec![vec![0.0; study.space.dampers.len()]];
     all.extend(loads);
@@ -159,13 +164,8 @@ pub fn rank(
                 order_kept += 1;
             }
         }
-        let share = |c: usize| {
-            if bootstrap > 0 {
-                c as f64 / bootstrap as f64
-            } else {
-                f64::NAN
-            }
-        };
+        // bootstrap >= 1 (checked above)
+        let share = |c: usize| c as f64 / bootstrap as f64;
         out.push(SuiteRanking {
             suite: name,
             objective: obj,

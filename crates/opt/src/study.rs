@@ -458,6 +458,109 @@ fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
     }
 }
 
+/// Most designs of a sweep (grid levels^variables, or points), bare and file included.
+pub const MAX_DESIGNS: f64 = 1e6;
+/// Most (design, record) tasks of a sweep (each keeps a row of responses in memory).
+pub const MAX_TASKS: f64 = 5e6;
+/// Most integration steps of a whole sweep (about half a day of one core on a small
+/// building).
+pub const MAX_SWEEP_STEPS: f64 = 1e12;
+
+fn too_large(what: String, estimate: f64, limit: f64, unit: &str) -> Result<(), OptError> {
+    if estimate <= limit || slipload_sim::limits::allow_large() {
+        return Ok(());
+    }
+    let c = slipload_sim::limits::count;
+    Err(OptError::TooLarge {
+        what,
+        estimate: format!("{} {unit}", c(estimate)),
+        limit: format!("{} {unit}", c(limit)),
+    })
+}
+
+/// Estimates the sweep's designs, tasks and steps and each record's run before anything
+/// is sampled or simulated; refuses a time step that would skip record samples or
+/// outlast a record.
+fn check_work(
+    cfg: &StudyConfig,
+    path: &Path,
+    building: &Building,
+    space: &DesignSpace,
+    records: &[Arc<Record>],
+) -> Result<(), OptError> {
+    let p = path.display();
+    let sw = &cfg.sweep;
+    let designs = 2.0
+        + match sw.sampler {
+            SamplerKind::Grid => (sw.levels as f64).powi(space.dim() as i32),
+            SamplerKind::Lhs | SamplerKind::Halton => sw.points as f64,
+        };
+    let field = match sw.sampler {
+        SamplerKind::Grid => "sweep.levels",
+        _ => "sweep.points",
+    };
+    too_large(
+        format!("{p}: field `{field}`: the sweep's designs"),
+        designs,
+        MAX_DESIGNS,
+        "designs",
+    )?;
+    let tasks = designs * records.len() as f64;
+    too_large(
+        format!("{p}: the sweep's (design, record) tasks"),
+        tasks,
+        MAX_TASKS,
+        "tasks",
+    )?;
+    let fid = &cfg.fidelity;
+    let t1 = building.t1();
+    let mut steps = 0.0;
+    for r in records {
+        let duration = r.duration();
+        let dt = match fid.dt_s {
+            Some(dt) => {
+                slipload_sim::scene::check_step_against_record(fid.method, dt, r)
+                    .map_err(|e| OptError::invalid(path, "fidelity.dt_s", e.to_string()))?;
+                dt
+            }
+            None => slipload_sim::scene::default_dt(fid.method, t1, Some(r.dt()), duration),
+        };
+        if dt > duration * (1.0 + 1e-9) {
+            return Err(OptError::invalid(
+                path,
+                "fidelity.dt_s",
+                format!(
+                    "time step {dt} s is longer than record {} ({duration} s): the run would be one step past its end",
+                    r.name()
+                ),
+            ));
+        }
+        let run = duration / dt;
+        let check = duration / (dt * fid.check_dt_factor);
+        too_large(
+            format!(
+                "{p}: field `fidelity.dt_s`: record {} ({duration} s) at the check's dt = {} s needs",
+                r.name(),
+                dt * fid.check_dt_factor
+            ),
+            check,
+            slipload_sim::limits::MAX_STEPS,
+            "steps",
+        )?;
+        steps += run;
+    }
+    too_large(
+        format!(
+            "{p}: the whole sweep ({} designs x {} records)",
+            designs,
+            records.len()
+        ),
+        steps * designs,
+        MAX_SWEEP_STEPS,
+        "integration steps",
+    )
+}
+
 impl StudyConfig {
     /// Parses a study from JSON text; `path` names it in errors.
     pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
@@ -704,6 +807,7 @@ impl Study {
                 range: start..records.len(),
             });
         }
+        check_work(&cfg, path, &building, &space, &records)?;
         let name = cfg.name.clone().unwrap_or_else(|| {
             path.file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

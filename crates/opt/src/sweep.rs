@@ -9,6 +9,7 @@
 
 use crate::error::OptError;
 use crate::evaluate::{Fidelity, Task, run_tasks};
+use crate::fingerprint::Fingerprint;
 use crate::journal::{Entry, Journal, write_atomic};
 use crate::metrics::RecordMetrics;
 use crate::objective::Objective;
@@ -57,6 +58,9 @@ pub struct Manifest {
     pub records: Vec<String>,
     /// Designs.
     pub designs: Vec<Design>,
+    /// The study's fingerprint: every journal of the folder must carry the same
+    /// ([`crate::fingerprint`]).
+    pub fingerprint: Fingerprint,
 }
 
 impl Manifest {
@@ -86,6 +90,7 @@ impl Manifest {
             });
         }
         let fid = Fidelity::sweep(study);
+        let fingerprint = crate::fingerprint::of_study(study, &designs);
         Manifest {
             study: study.name.clone(),
             objective: study.objective.clone(),
@@ -97,6 +102,7 @@ impl Manifest {
             suites: study.suites.clone(),
             records: study.records.iter().map(|r| r.name().to_string()).collect(),
             designs,
+            fingerprint,
         }
     }
 
@@ -220,7 +226,17 @@ impl Manifest {
                     .iter()
                     .map(|t| Objective::term_value(t, rec, Some(bare), &ranges))
                     .collect::<Result<Vec<_>, _>>()?;
-                let f = self.objective.value(rec, Some(bare), &ranges)?;
+                let f = self
+                    .objective
+                    .value(rec, Some(bare), &ranges)
+                    .map_err(|e| match e {
+                        OptError::NonFinite { quantity, .. } => OptError::NonFinite {
+                            design: format!("{d} ({})", self.designs[d].label),
+                            record: format!("the {nr} records of the study"),
+                            quantity,
+                        },
+                        e => e,
+                    })?;
                 Ok((f, terms))
             })
             .collect()
@@ -337,7 +353,7 @@ pub fn run(
 ) -> Result<SweepReport, OptError> {
     let manifest = Manifest::of(study);
     let jpath = out.join("journal.jsonl");
-    let (journal, entries) = Journal::open(&jpath, resume)?;
+    let (journal, entries) = Journal::open(&jpath, &manifest.fingerprint, resume)?;
     let total = manifest.tasks();
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; total];
     place(&manifest, entries, &jpath, &mut rows)?;
@@ -412,6 +428,16 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         })?;
         match &manifest {
             None => manifest = Some((m, dir)),
+            Some((first, fd)) if first.fingerprint != m.fingerprint => {
+                return Err(OptError::Shard(format!(
+                    "{} and {} hold sweeps of different studies (fingerprints {} and {}; changed: {}): merge only shards of one study",
+                    fd.display(),
+                    dir.display(),
+                    first.fingerprint.hash,
+                    m.fingerprint.hash,
+                    m.fingerprint.describe_changes(&first.fingerprint)
+                )));
+            }
             Some((first, fd)) if *first != m => {
                 return Err(OptError::Shard(format!(
                     "{} and {} hold sweeps of different studies",
@@ -424,10 +450,21 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
     }
     let (manifest, _) = manifest.ok_or_else(|| OptError::Shard("no folders to merge".into()))?;
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; manifest.tasks()];
-    let mut journal_text = String::new();
     for dir in dirs {
         let jpath = dir.join("journal.jsonl");
-        let (entries, _) = crate::journal::read(&jpath)?;
+        let Some((header, entries, _)) = crate::journal::read_journal::<Entry>(&jpath)? else {
+            continue;
+        };
+        if header.journal != "sweep" || header.fingerprint != manifest.fingerprint {
+            return Err(OptError::Journal {
+                path: jpath.clone(),
+                line: 1,
+                message: format!(
+                    "was written for another study than the shards' manifest (changed: {}): merge only shards of one study",
+                    manifest.fingerprint.describe_changes(&header.fingerprint)
+                ),
+            });
+        }
         place(&manifest, entries, &jpath, &mut rows)?;
     }
     let missing = rows.iter().filter(|r| r.is_none()).count();
@@ -440,18 +477,18 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         )));
     }
     // the merged journal, sorted by key: `--resume` in `out` finds every task done
+    let mut entries = Vec::with_capacity(rows.len());
     for (k, m) in rows.iter().enumerate() {
         let (d, r) = manifest.task(k);
-        let e = Entry {
+        entries.push(Entry {
             design: d,
             record: r,
             record_name: manifest.records[r].clone(),
             slip_loads_n: manifest.designs[d].slip_loads_n.clone(),
             metrics: m.clone().expect("checked complete above"),
-        };
-        journal_text.push_str(&serde_json::to_string(&e).expect("an entry serialises"));
-        journal_text.push('\n');
+        });
     }
+    let journal_text = crate::journal::journal_text("sweep", &manifest.fingerprint, &entries);
     let full = write_outputs(out, &manifest, &rows)?.expect("checked complete above");
     let jout = out.join("journal.jsonl");
     if !dirs.iter().any(|d| d.join("journal.jsonl") == jout) {

@@ -6,7 +6,7 @@
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs, suite_ranges};
+use crate::evaluate::{Fidelity, TaskJournal, run_designs_journalled, suite_ranges};
 use crate::metrics::RecordMetrics;
 use crate::objective::{Metric, Statistic};
 use crate::study::Study;
@@ -110,6 +110,17 @@ impl DesignTable {
         designs: &[(String, Vec<f64>)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
+        Self::build_journalled(study, designs, None, tick)
+    }
+
+    /// As [`DesignTable::build_with_runs`], taking finished runs from `journal` (the
+    /// check fidelity's task journal) and appending the others.
+    pub fn build_journalled(
+        study: &Study,
+        designs: &[(String, Vec<f64>)],
+        journal: Option<&TaskJournal>,
+        tick: &(dyn Fn() + Sync),
+    ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         let fid = Fidelity::check(study);
         let m = study.space.dampers.len();
         let mut all: Vec<Vec<f64>> = vec![vec![0.0; m]];
@@ -118,7 +129,7 @@ impl DesignTable {
             all.push(s.iter().map(|v| 0.75 * v).collect());
             all.push(s.iter().map(|v| 1.25 * v).collect());
         }
-        let runs = run_designs(study, &all, &fid, tick)?;
+        let runs = run_designs_journalled(study, &all, &fid, journal, tick)?;
         let bare = &runs[0];
         let ranges = suite_ranges(study);
         let objective = |rows: &[RecordMetrics]| study.objective.value(rows, Some(bare), &ranges);

@@ -49,7 +49,7 @@ fn trust_region_matches_a_fine_grid_with_a_tenth_of_its_simulations() {
         RefineMethod::NelderMead,
         RefineMethod::Random,
     ] {
-        let r = optimize(&st, &m, &rows, method, None, &|| {}).unwrap();
+        let r = optimize(&st, &m, &rows, method, None, None, &|| {}).unwrap();
         assert!(st.space.is_feasible(&r.optimum.z));
         // evaluations (sweep designs + refinement designs) until within 1 % of the grid's best
         let target = 1.01 * grid_best;

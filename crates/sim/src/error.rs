@@ -129,6 +129,45 @@ pub enum SimError {
         /// Floor number (from 1) of the last event.
         floor: usize,
     },
+    /// A run would exceed a work or memory limit no real study needs
+    /// ([`crate::limits`]).
+    #[error(
+        "{what}: {estimate} exceeds the limit of {limit} that no real study needs; {}",
+        crate::limits::OVERRIDE_HINT
+    )]
+    TooLarge {
+        /// What was estimated (steps of a run, memory of its histories).
+        what: String,
+        /// The estimate, for people.
+        estimate: String,
+        /// The limit, for people.
+        limit: String,
+    },
+    /// The time step is longer than the span it must resolve (the duration, or the
+    /// record's sample interval for a step-by-step method): the answer would be wrong.
+    #[error("time step {dt} s is longer than {what} ({span} s): {consequence}")]
+    StepTooLong {
+        /// The step, s.
+        dt: f64,
+        /// What it exceeds.
+        what: String,
+        /// That span, s.
+        span: f64,
+        /// What would go wrong, and what to do.
+        consequence: String,
+    },
+    /// A response came out NaN, infinite or beyond any physical magnitude.
+    #[error(
+        "{quantity} is not finite ({value}) under {record}: the response overflowed; check the record's units and the building's values"
+    )]
+    NonFiniteResponse {
+        /// Which response.
+        quantity: String,
+        /// Its value.
+        value: f64,
+        /// The excitation (record name, or `no record`).
+        record: String,
+    },
     /// A ground-motion error (reading or scaling a record).
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),

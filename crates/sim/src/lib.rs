@@ -11,6 +11,7 @@ pub mod error;
 pub mod friction;
 pub mod integrator;
 pub mod kind;
+pub mod limits;
 pub mod modes;
 pub mod plan;
 pub mod response;
@@ -26,3 +27,8 @@ pub use plan::Plan;
 pub use response::{Energy, History, LoopIterations, Outcome, Response};
 pub use scene::{MethodName, Scene, SceneOverrides};
 pub use simulate::{run_plan, simulate};
+
+/// Version of the integrators' numerics: part of every study journal's fingerprint, so a
+/// journal written by other numerics is not mixed with new results. Bump it whenever a
+/// change moves any output bit of any method (a change that keeps every bit does not).
+pub const NUMERICS_VERSION: u32 = 1;

@@ -116,6 +116,35 @@ impl GroundSteps<'_> {
     }
 }
 
+/// The step and duration are usable and the run is within [`crate::limits`]: checked
+/// before anything is allocated.
+fn check_steps(scene: &Scene) -> Result<(), SimError> {
+    let (dt, duration) = (scene.method.dt, scene.duration);
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(SimError::BadTimeStep { dt });
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(SimError::Scene(format!(
+            "duration {duration} s must be positive and finite"
+        )));
+    }
+    if dt > duration * (1.0 + 1e-9) {
+        return Err(SimError::StepTooLong {
+            dt,
+            what: "the simulated duration".into(),
+            span: duration,
+            consequence: "the run would be one step that ends past the duration, and its peaks would miss the response in between; give a step of at most the duration (the default is T1/400)".into(),
+        });
+    }
+    let steps = duration / dt;
+    crate::limits::check(
+        &format!("{duration} s at dt = {dt:e} s"),
+        steps,
+        crate::limits::MAX_STEPS,
+        &|v| format!("{} integration steps", crate::limits::count(v)),
+    )
+}
+
 fn add_spring(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
     m[(i, i)] += k;
     if let Some(j) = j {
@@ -128,6 +157,7 @@ fn add_spring(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
 impl Plan {
     /// Compiles a scene.
     pub fn compile(scene: &Scene) -> Result<Plan, SimError> {
+        check_steps(scene)?;
         let b: &Building = &scene.building;
         let n = b.floors();
         let reduce = scene.reduce;
@@ -260,6 +290,20 @@ impl Plan {
             });
         }
         let steps = scene.steps();
+        if scene.outputs.histories {
+            // t, a_g, x and drift per floor, x′, F and w per contact, five energies
+            let cols = 2 + 2 * n + 3 * contacts.len() + if scene.outputs.energies { 5 } else { 0 };
+            let values = (steps as f64 + 1.0) * cols as f64;
+            crate::limits::check(
+                &format!(
+                    "time histories of {} steps x {cols} columns",
+                    crate::limits::count(steps as f64 + 1.0)
+                ),
+                values * crate::limits::HISTORY_BYTES_PER_VALUE,
+                crate::limits::MAX_HISTORY_BYTES,
+                &crate::limits::bytes,
+            )?;
+        }
         notes.push(format!(
             "{} DOFs ({} floors + {} dissipators), {} friction contacts ({} with DOF, {} elastic-perfectly plastic)",
             n_dof,

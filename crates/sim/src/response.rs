@@ -56,6 +56,46 @@ pub struct Response {
     pub energy: Option<Energy>,
 }
 
+impl Response {
+    /// The first response that is NaN or infinite, by name (`peak_drift[2]`,
+    /// `energy.input`), with its value; `None` when every value is finite.
+    pub fn first_non_finite(&self) -> Option<(String, f64)> {
+        let vecs: [(&str, Option<&[f64]>); 6] = [
+            ("peak_drift", Some(&self.peak_drift)),
+            ("peak_drift_ratio", self.peak_drift_ratio.as_deref()),
+            ("peak_displacement", Some(&self.peak_displacement)),
+            ("peak_abs_acceleration", Some(&self.peak_abs_acceleration)),
+            ("residual_drift", Some(&self.residual_drift)),
+            ("peak_slip", Some(&self.peak_slip)),
+        ];
+        for (name, v) in vecs {
+            if let Some(v) = v
+                && let Some(i) = v.iter().position(|x| !x.is_finite())
+            {
+                return Some((format!("{name}[storey {}]", i + 1), v[i]));
+            }
+        }
+        if !self.peak_base_shear.is_finite() {
+            return Some(("peak_base_shear".into(), self.peak_base_shear));
+        }
+        if let Some(e) = &self.energy {
+            for (name, v) in [
+                ("input", e.input),
+                ("kinetic", e.kinetic),
+                ("strain", e.strain),
+                ("viscous", e.viscous),
+                ("friction", e.friction),
+                ("balance_error", e.balance_error),
+            ] {
+                if !v.is_finite() {
+                    return Some((format!("energy.{name}"), v));
+                }
+            }
+        }
+        None
+    }
+}
+
 /// Extra figures of a run that are not in the output contract.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Diagnostics {

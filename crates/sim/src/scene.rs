@@ -393,6 +393,31 @@ pub fn default_dt(method: MethodName, t1: f64, record_dt: Option<f64>, duration:
     }
 }
 
+/// A step-by-step method (every method but `exact`) samples the ground motion once per
+/// step: a step longer than the record's sample interval skips samples, and with them
+/// the peaks of the input, so it is refused ([`SimError::StepTooLong`]). `exact`
+/// integrates every sample whatever its output step. (The accuracy study sets coarser
+/// steps on purpose, on compiled scenes, to measure exactly that error.)
+pub fn check_step_against_record(
+    method: MethodName,
+    dt: f64,
+    record: &Record,
+) -> Result<(), SimError> {
+    let rdt = record.dt();
+    if method != MethodName::Exact && dt > rdt * (1.0 + 1e-9) {
+        return Err(SimError::StepTooLong {
+            dt,
+            what: format!("the sample interval of record {}", record.name()),
+            span: rdt,
+            consequence: format!(
+                "{} samples the ground motion once per step and would skip record samples (and the peaks among them); give a step of at most {rdt} s, or none for the default (T1/400 rounded down to divide the sample interval); `exact` integrates every sample at any step",
+                method.as_str()
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// Steps per bare-frame fundamental period of the default time step ([`default_dt`]).
 pub const DEFAULT_STEPS_PER_PERIOD: f64 = 400.0;
 
@@ -531,6 +556,13 @@ impl Scene {
         path: &Path,
         over: &SceneOverrides,
     ) -> Result<Scene, SimError> {
+        if let Some(pga) = over.scale_pga_g
+            && !is_positive(pga)
+        {
+            return Err(SimError::Scene(format!(
+                "--scale-pga-g must be positive and finite, got {pga}"
+            )));
+        }
         let base = path.parent().unwrap_or(Path::new("."));
         let building = match &cfg.building {
             BuildingRef::Path(p) => Building::load(&base.join(p))?,
@@ -576,7 +608,7 @@ impl Scene {
                         "must be finite",
                     ));
                 }
-                r = r.scaled(f);
+                r = r.try_scaled(f)?;
             }
             match over.scale_pga_g.or(rc.scale_pga_g) {
                 Some(pga) if !is_positive(pga) => {
@@ -695,6 +727,9 @@ impl Scene {
         });
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
+        }
+        if let Some(r) = &record {
+            check_step_against_record(name, dt, r)?;
         }
         for (field, v) in [
             ("method.eps_a", cfg.method.eps_a),

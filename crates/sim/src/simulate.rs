@@ -26,5 +26,21 @@ pub fn run_plan(plan: &Plan) -> Result<Outcome, SimError> {
     let start = std::time::Instant::now();
     let mut out = integrator(plan.method.name).run(plan)?;
     out.response.cpu_seconds = start.elapsed().as_secs_f64();
+    // every method, every response: a non-finite number is an error, never an output
+    let area = out.diagnostics.strain_energy_area;
+    let bad = out
+        .response
+        .first_non_finite()
+        .or_else(|| (!area.is_finite()).then(|| ("strain_energy_area".to_string(), area)));
+    if let Some((quantity, value)) = bad {
+        return Err(SimError::NonFiniteResponse {
+            quantity,
+            value,
+            record: plan.record.as_ref().map_or_else(
+                || "no record".to_string(),
+                |r| format!("record {}", r.name()),
+            ),
+        });
+    }
     Ok(out)
 }

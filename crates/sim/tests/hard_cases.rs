@@ -684,7 +684,10 @@ fn all_dampers_switch_at_the_same_instant() {
 #[test]
 #[cfg_attr(debug_assertions, ignore = "release-mode test: run by .ci/run")]
 fn coarse_step_t1_over_20() {
-    let scene = syl_scene(&paper_building(350.11, 448.12e6), 5.0, 1.0, 0.05);
+    // a step beyond the record's 0.02 s is refused by scene files (issue 16); the
+    // compiled scene may still take one, as the accuracy study does
+    let mut scene = syl_scene(&paper_building(350.11, 448.12e6), 5.0, 1.0, DT);
+    scene.method.dt = 0.05;
     check(
         "dt=T1/20",
         &scene,

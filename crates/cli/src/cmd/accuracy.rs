@@ -29,10 +29,10 @@ pub struct AccuracyArgs {
     #[arg(long)]
     pub units: Option<Units>,
     /// Scale every record to this peak ground acceleration, in g
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub scale_pga_g: Option<f64>,
     /// Simulated time, s (default: the record's duration)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub duration: Option<f64>,
     /// Methods to compare, comma-separated
     #[arg(

@@ -7,6 +7,7 @@ use crate::study_figures::{
     RecordScatter, StudyFigures, convergence, drift_profiles, map_dampers, objective_map,
 };
 use anyhow::Context;
+use slipload_opt::evaluate::TaskJournal;
 use slipload_opt::journal::write_atomic;
 use slipload_opt::optimize::{OptimizeReport, optimize};
 use slipload_opt::study::RefineMethod;
@@ -37,6 +38,11 @@ pub struct OptimizeArgs {
     /// Grid points per axis of the objective map
     #[arg(long, default_value_t = 11)]
     pub map_grid: usize,
+    /// Discard the output folder's journals (sweep, refine, check) and start afresh;
+    /// without it the journals of the same study (by fingerprint) are continued and those
+    /// of another study refused
+    #[arg(long)]
+    pub fresh: bool,
 }
 
 fn kn(v: &[f64]) -> String {
@@ -123,8 +129,30 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     };
     if args.map {
         map_dampers(&study, map_floors, args.map_grid)?;
+        let designs = (args.map_grid as f64).powi(2);
+        if designs > slipload_opt::study::MAX_DESIGNS && !slipload_sim::limits::allow_large() {
+            anyhow::bail!(
+                "--map-grid {}: {designs:.3e} designs exceed the limit of {:.0e} that no real study needs; {}",
+                args.map_grid,
+                slipload_opt::study::MAX_DESIGNS,
+                slipload_sim::limits::OVERRIDE_HINT
+            );
+        }
+    }
+    if args.fresh {
+        let removed = slipload_opt::journal::discard_journals(&args.out)?;
+        if !removed.is_empty() {
+            eprintln!(
+                "--fresh: removed {} from {}",
+                removed.join(", "),
+                args.out.display()
+            );
+        }
     }
     let manifest = sweep::Manifest::of(&study);
+    // every journal of the folder must be this study's: never mix another study's numbers
+    slipload_opt::journal::check_folder(&args.out, &manifest.fingerprint)
+        .with_context(|| format!("optimizing {} into {}", study.name, args.out.display()))?;
     let pb = progress(manifest.tasks() as u64, "sweep");
     let report = sweep::run(&study, &args.out, Shard::ALL, true, &|| pb.inc(1))
         .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
@@ -135,12 +163,19 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     // an estimate: refiners may stop before their budget, the trust region's stencil may pass it by a few
     let est = (rc.starts * rc.max_evaluations + rc.finalists + 1) * nr;
     let pb = progress(est as u64, "refine");
+    // the check fidelity's runs (finalists, design table) are journalled too
+    let check_journal = TaskJournal::open(
+        &study,
+        &args.out.join("check.jsonl"),
+        &report.manifest.fingerprint,
+    )?;
     let r = optimize(
         &study,
         &report.manifest,
         &rows,
         method,
         Some(&args.out.join(format!("refine-{}.jsonl", method.as_str()))),
+        Some(&check_journal),
         &|| pb.inc(1),
     )
     .context("refining")?;
@@ -148,8 +183,16 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let designs = standard_designs(&study, &r.optimum_loads);
     let pb = progress(((designs.len() * 3 + 1) * nr) as u64, "design table");
     let (table, runs) =
-        DesignTable::build_with_runs(&study, &designs, &|| pb.inc(1)).context("design table")?;
+        DesignTable::build_journalled(&study, &designs, Some(&check_journal), &|| pb.inc(1))
+            .context("design table")?;
     pb.finish_and_clear();
+    if check_journal.reused() > 0 {
+        eprintln!(
+            "check and design table: {} runs taken from the check journal ({})",
+            check_journal.reused(),
+            args.out.join("check.jsonl").display()
+        );
+    }
     let map = if args.map {
         let grid = args.map_grid;
         let pb = progress((grid * grid * nr) as u64, "objective map");

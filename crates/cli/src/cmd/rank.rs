@@ -20,9 +20,10 @@ pub struct RankArgs {
     /// Output folder (rank.csv, rank.md, rank.json)
     #[arg(long, default_value = "out/rank")]
     pub out: PathBuf,
-    /// Bootstrap resamples of the records
-    #[arg(long, default_value_t = 200)]
-    pub bootstrap: usize,
+    /// Bootstrap resamples of the records (1 to 1000000)
+    #[arg(long, default_value_t = 200,
+          value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub bootstrap: u32,
     /// Bootstrap seed
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -61,7 +62,13 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     slipload_opt::rank::to_newtons(&study, &designs)
         .with_context(|| format!("checking {}", args.designs.display()))?;
     let pb = progress(((designs.len() + 1) * study.records.len()) as u64, "rank");
-    let r = rank(&study, &designs, args.bootstrap, args.seed, &|| pb.inc(1))?;
+    let r = rank(
+        &study,
+        &designs,
+        args.bootstrap as usize,
+        args.seed,
+        &|| pb.inc(1),
+    )?;
     pb.finish_and_clear();
     write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
     let md = r.to_markdown();

@@ -134,13 +134,28 @@ struct SpectrumArgs {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// Target: ASCE 7-16 design spectrum with this S_DS, g (needs --target-sd1)
-    #[arg(long, requires = "target_sd1", value_name = "G")]
+    #[arg(
+        long,
+        requires = "target_sd1",
+        value_name = "G",
+        allow_negative_numbers = true
+    )]
     target_sds: Option<f64>,
     /// Target: S_D1, g (needs --target-sds)
-    #[arg(long, requires = "target_sds", value_name = "G")]
+    #[arg(
+        long,
+        requires = "target_sds",
+        value_name = "G",
+        allow_negative_numbers = true
+    )]
     target_sd1: Option<f64>,
     /// Target: long-period transition T_L, s
-    #[arg(long, default_value_t = 8.0, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 8.0,
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
     target_tl: f64,
 }
 

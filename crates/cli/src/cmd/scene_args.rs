@@ -24,19 +24,19 @@ pub struct SceneArgs {
     #[arg(long)]
     pub units: Option<Units>,
     /// Scale the record to this peak ground acceleration, in g
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub scale_pga_g: Option<f64>,
     /// Use only the window START,DURATION of the record (seconds)
-    #[arg(long, value_parser = parse_window)]
+    #[arg(long, value_parser = parse_window, allow_hyphen_values = true)]
     pub window: Option<(f64, f64)>,
     /// Integration method
     #[arg(long, value_enum)]
     pub method: Option<MethodArg>,
     /// Time step, s (default: T1/400, delacruz T1/200, rounded to divide the record's dt)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Simulated time, s (default: the record's duration)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub duration: Option<f64>,
 }
 

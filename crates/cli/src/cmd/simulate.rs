@@ -53,6 +53,11 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     if args.plot.is_some() {
         crate::plot::raster::check_fonts()?;
     }
+    if let Some(path) = &args.history {
+        // refuse a FIFO or device before the run, not after it
+        slipload_opt::journal::write_target(path)
+            .with_context(|| format!("--history {}", path.display()))?;
+    }
     let mut scene = args
         .scene
         .load(args.history.is_some() || args.plot.is_some())?;

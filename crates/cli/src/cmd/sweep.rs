@@ -22,9 +22,14 @@ pub struct SweepArgs {
     /// Number of shards for `--shard auto` when the scheduler does not say
     #[arg(long)]
     pub shards: Option<usize>,
-    /// Continue the journal in the output folder: finished tasks are not run again
-    #[arg(long)]
+    /// Continue the journal in the output folder: finished tasks are not run again (only
+    /// a journal of the same study, by its fingerprint)
+    #[arg(long, conflicts_with = "fresh")]
     pub resume: bool,
+    /// Discard the output folder's journals (and the tables built from them) and start
+    /// afresh
+    #[arg(long)]
+    pub fresh: bool,
 }
 
 /// Runs `slipload sweep`.
@@ -34,6 +39,16 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
     };
+    if args.fresh {
+        let removed = slipload_opt::journal::discard_journals(&args.out)?;
+        if !removed.is_empty() {
+            eprintln!(
+                "--fresh: removed {} from {}",
+                removed.join(", "),
+                args.out.display()
+            );
+        }
+    }
     let manifest = sweep::Manifest::of(&study);
     let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
     let pb = progress(mine as u64, "sweep");

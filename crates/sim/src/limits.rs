@@ -1,0 +1,79 @@
+//! Work and memory limits: a run is estimated before anything is allocated or stepped,
+//! and refused beyond limits no real study needs (a typo such as `--dt 1e-12` would
+//! otherwise run for days or abort on an allocation). The limits can be lifted for one
+//! process with [`set_allow_large`] (the CLI's `--allow-large`) or the environment
+//! variable [`ALLOW_LARGE_ENV`]`=1`.
+
+use crate::error::SimError;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Most integration steps of one simulation (10⁸: a 100 s record at Δt = 1 µs).
+pub const MAX_STEPS: f64 = 1e8;
+
+/// Most memory for one simulation's time histories (values and their CSV text), bytes.
+pub const MAX_HISTORY_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// Bytes per history value: 8 stored, about 17 in the CSV text written from them.
+pub const HISTORY_BYTES_PER_VALUE: f64 = 25.0;
+
+/// The environment variable that lifts the limits (`1`, `true` or `yes`).
+pub const ALLOW_LARGE_ENV: &str = "SLIPLOAD_ALLOW_LARGE";
+
+/// How to go beyond a limit, for error messages.
+pub const OVERRIDE_HINT: &str =
+    "pass --allow-large (or set SLIPLOAD_ALLOW_LARGE=1) to run it anyway";
+
+static ALLOW_LARGE: AtomicBool = AtomicBool::new(false);
+
+/// Lifts (or restores) the limits for this process.
+pub fn set_allow_large(on: bool) {
+    ALLOW_LARGE.store(on, Ordering::Relaxed);
+}
+
+/// Whether the limits are lifted (by [`set_allow_large`] or [`ALLOW_LARGE_ENV`]).
+pub fn allow_large() -> bool {
+    ALLOW_LARGE.load(Ordering::Relaxed)
+        || std::env::var(ALLOW_LARGE_ENV).is_ok_and(|v| matches!(v.trim(), "1" | "true" | "yes"))
+}
+
+/// A number of bytes for people (KiB … TiB).
+pub fn bytes(b: f64) -> String {
+    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut v = b;
+    let mut u = 0;
+    while v >= 1024.0 && u + 1 < units.len() {
+        v /= 1024.0;
+        u += 1;
+    }
+    if u == 0 {
+        format!("{v:.0} B")
+    } else {
+        format!("{v:.1} {}", units[u])
+    }
+}
+
+/// [`SimError::TooLarge`] unless `estimate <= limit` or the limits are lifted.
+pub fn check(
+    what: &str,
+    estimate: f64,
+    limit: f64,
+    shown: &dyn Fn(f64) -> String,
+) -> Result<(), SimError> {
+    if estimate <= limit || allow_large() {
+        return Ok(());
+    }
+    Err(SimError::TooLarge {
+        what: what.to_string(),
+        estimate: shown(estimate),
+        limit: shown(limit),
+    })
+}
+
+/// Steps as a count for people.
+pub fn count(v: f64) -> String {
+    if v < 1e6 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
