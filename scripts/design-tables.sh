@@ -17,7 +17,7 @@ for pair in "benchmark-3story:configs/study-benchmark.json" "ten-story:configs/s
     "$bin" rank "$study" --designs "$out/candidates.json" --out "$out" --quiet > /dev/null
     mv "$out.summary.txt" "$out/summary.txt"
     # the journals are working state (resume), not results
-    rm -f "$out/journal.jsonl" "$out"/refine-*.jsonl
+    rm -f "$out/journal.jsonl" "$out"/refine-*.jsonl "$out/check.jsonl"
 done
 # the benchmark optimum over a family: periods × 0.8/1/1.25, records × 0.5/1/1.5
 "$bin" table configs/study-benchmark.json --out results/benchmark-3story --quiet > /dev/null
