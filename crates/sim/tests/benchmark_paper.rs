@@ -32,14 +32,13 @@ fn benchmark() -> Building {
 #[test]
 fn frame_is_the_printed_condensed_matrix() {
     let b = benchmark();
-    for i in 0..3 {
-        for j in 0..3 {
+    for (i, row) in PRINTED_K_MN.iter().enumerate() {
+        for (j, &printed) in row.iter().enumerate() {
             let k = b.stiffness[(i, j)];
             // The file gives the entries with units ("436.575 MN/m"): exact to the digit.
             assert!(
-                (k - PRINTED_K_MN[i][j] * 1e6).abs() <= 1e-9 * PRINTED_K_MN[i][j].abs() * 1e6,
-                "K[{i}][{j}] = {k} N/m, printed {} MN/m",
-                PRINTED_K_MN[i][j]
+                (k - printed * 1e6).abs() <= 1e-9 * printed.abs() * 1e6,
+                "K[{i}][{j}] = {k} N/m, printed {printed} MN/m"
             );
         }
     }
@@ -70,10 +69,9 @@ fn bare_periods_are_the_printed_ones() {
 #[test]
 fn rayleigh_damping_reproduces_the_printed_matrix() {
     let b = benchmark();
-    for i in 0..3 {
-        for j in 0..3 {
+    for (i, row) in PRINTED_C_KNS.iter().enumerate() {
+        for (j, &printed) in row.iter().enumerate() {
             let c = b.damping[(i, j)] / 1e3;
-            let printed = PRINTED_C_KNS[i][j];
             let rel = (c - printed).abs() / printed.abs();
             assert!(
                 rel <= 5e-4,

@@ -2,7 +2,7 @@
 //! reference accuracy, write the design table. With no study it runs the embedded
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
-use super::study_args::{load_study, progress};
+use super::study_args::{discard_journals, load_study, progress};
 use crate::study_figures::{
     RecordScatter, StudyFigures, convergence, drift_profiles, map_dampers, objective_map,
 };
@@ -140,14 +140,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         }
     }
     if args.fresh {
-        let removed = slipload_opt::journal::discard_journals(&args.out)?;
-        if !removed.is_empty() {
-            eprintln!(
-                "--fresh: removed {} from {}",
-                removed.join(", "),
-                args.out.display()
-            );
-        }
+        discard_journals(&args.out)?;
     }
     let manifest = sweep::Manifest::of(&study);
     // every journal of the folder must be this study's: never mix another study's numbers

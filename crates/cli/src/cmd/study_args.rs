@@ -44,3 +44,17 @@ pub fn progress(len: u64, what: &str) -> ProgressBar {
     pb.set_message(what.to_string());
     pb
 }
+
+/// `--fresh`: removes the journals of `out` (and the tables built from them), saying what
+/// went.
+pub fn discard_journals(out: &Path) -> anyhow::Result<()> {
+    let removed = slipload_opt::journal::discard_journals(out)?;
+    if !removed.is_empty() {
+        eprintln!(
+            "--fresh: removed {} from {}",
+            removed.join(", "),
+            out.display()
+        );
+    }
+    Ok(())
+}

@@ -1,7 +1,7 @@
 //! `slipload sweep`: a sample of designs × every record of a study, journalled in the
 //! output folder (`--resume` continues it), optionally one shard of a job array.
 
-use super::study_args::{load_study, progress};
+use super::study_args::{discard_journals, load_study, progress};
 use crate::study_figures::sweep_figures;
 use anyhow::Context;
 use slipload_opt::Shard;
@@ -40,14 +40,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
     };
     if args.fresh {
-        let removed = slipload_opt::journal::discard_journals(&args.out)?;
-        if !removed.is_empty() {
-            eprintln!(
-                "--fresh: removed {} from {}",
-                removed.join(", "),
-                args.out.display()
-            );
-        }
+        discard_journals(&args.out)?;
     }
     let manifest = sweep::Manifest::of(&study);
     let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
