@@ -35,7 +35,8 @@ const FRAME: &str = r#""floor_masses": [4.78e5, 4.78e5, 5.18e5],
     "damping": { "rayleigh": { "alpha": 0.213, "beta": 9.33e-4 } },
     "storey_heights": [3.96, 3.96, 3.96]"#;
 
-/// Benchmark-like building with dissipators `d` (JSON objects for floors 1..3, or null).
+/// A shear building with the benchmark's masses (storey springs fitted to its periods)
+/// and dissipators `d` (JSON objects for floors 1..3, or null).
 fn building(d: [&str; 3]) -> String {
     let ds: Vec<String> = d
         .iter()

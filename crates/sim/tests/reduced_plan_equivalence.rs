@@ -57,7 +57,8 @@ fn massless_dissipators_as_epp_elements_equal_zero_mass_dofs() {
 
 #[test]
 fn zero_slip_loads_drop_the_brace_exactly() {
-    // Benchmark frame, massless dampers: floor 2 with μN = 0, floors 1 and 3 active.
+    // A shear-building version of the benchmark frame (storey springs fitted to its
+    // periods), massless dampers: floor 2 with μN = 0, floors 1 and 3 active.
     let building = r#"{ "floor_masses": [4.78e5, 4.78e5, 5.18e5],
       "storey_stiffness": [6.8913163e7, 2.71262264e8, 1.21340205e8],
       "damping": { "rayleigh": { "alpha": 0.213, "beta": 9.33e-4 } },
