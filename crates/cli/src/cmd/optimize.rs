@@ -173,19 +173,15 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     )
     .context("refining")?;
     pb.finish_and_clear();
+    // runs of the finalist check taken from the check journal, not run
+    let check_reused = check_journal.reused();
     let designs = standard_designs(&study, &r.optimum_loads);
     let pb = progress(((designs.len() * 3 + 1) * nr) as u64, "design table");
     let (table, runs) =
         DesignTable::build_journalled(&study, &designs, Some(&check_journal), &|| pb.inc(1))
             .context("design table")?;
     pb.finish_and_clear();
-    if check_journal.reused() > 0 {
-        eprintln!(
-            "check and design table: {} runs taken from the check journal ({})",
-            check_journal.reused(),
-            args.out.join("check.jsonl").display()
-        );
-    }
+    let table_reused = check_journal.reused() - check_reused;
     let map = if args.map {
         let grid = args.map_grid;
         let pb = progress((grid * grid * nr) as u64, "objective map");
@@ -282,8 +278,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     );
     // What ran now, and what was taken from the journals of an earlier run.
     let refined = (r.log.len() - r.replayed) * nr;
-    let checked = r.simulations - refined;
-    let tabled = runs.iter().map(Vec::len).sum::<usize>();
+    let checked = r.simulations - refined - check_reused;
+    let tabled = runs.iter().map(Vec::len).sum::<usize>() - table_reused;
     let mapped = if args.map {
         args.map_grid * args.map_grid * nr
     } else {
@@ -302,8 +298,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         method.as_str()
     );
     outln!(
-        "{} simulations run in {:.1} s: sweep {}, refine {}, check {}, design table {}{}",
-        report.ran + r.simulations + tabled + mapped,
+        "{} simulations run in {:.1} s: sweep {}, refine {}, check {}, design table {}{}{}",
+        report.ran + refined + checked + tabled + mapped,
         started.elapsed().as_secs_f64(),
         report.ran,
         refined,
@@ -311,6 +307,14 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         tabled,
         if args.map {
             format!(", objective map {mapped}")
+        } else {
+            String::new()
+        },
+        if check_reused + table_reused > 0 {
+            format!(
+                " ({} check and {} design-table runs reused from check.jsonl)",
+                check_reused, table_reused
+            )
         } else {
             String::new()
         }
