@@ -221,8 +221,8 @@ fn optimize_into_another_studys_folder_is_refused_and_its_check_is_journalled() 
         .collect();
     std::fs::write(&check, keep + "{\"fidelity\":\"exa").unwrap();
     let o = ok(&["optimize", s(&a), "--out", s(&out), "--quiet"]);
-    let msg = stderr(&o);
-    assert!(msg.contains("from the check journal"), "{msg}");
+    let msg = String::from_utf8_lossy(&o.stdout);
+    assert!(msg.contains("reused from check.jsonl)"), "{msg}");
     for (f, bytes) in OPT_FILES.iter().zip(&first) {
         assert!(
             std::fs::read(out.join(f)).unwrap() == *bytes,
