@@ -31,6 +31,18 @@ fn refused(args: &[&str], needles: &[&str]) -> String {
     err
 }
 
+/// `simulate` of the benchmark under a record file `name` holding `text` (written to a
+/// scratch folder), with `extra` arguments: refused, its message holding `needles`.
+fn record_refused(name: &str, text: &str, extra: &[&str], needles: &[&str]) {
+    let dir = scratch("bad-sim", name);
+    let f = dir.join(name);
+    std::fs::write(&f, text).unwrap();
+    let mut args = vec!["simulate", B, "--record", s(&f)];
+    args.extend_from_slice(extra);
+    refused(&args, needles);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_tiny_step_is_refused_with_the_estimate_and_the_override() {
     refused(
@@ -51,18 +63,16 @@ fn a_huge_duration_is_refused() {
 
 #[test]
 fn a_record_sampled_at_1e_12_s_is_refused() {
-    let dir = scratch("bad-sim", "dt12");
-    let f = dir.join("fast.AT2");
     let mut text = String::from("TITLE\nNPTS= 4000, DT= 1e-12 SEC\n");
     for k in 0..4000 {
         text.push_str(&format!("{}\n", 0.1 * (k as f64 * 0.01).sin()));
     }
-    std::fs::write(&f, text).unwrap();
-    refused(
-        &["simulate", B, "--record", s(&f), "--duration", "2"],
+    record_refused(
+        "fast.AT2",
+        &text,
+        &["--duration", "2"],
         &["fast.AT2", "shorter than any accelerograph"],
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -165,20 +175,14 @@ fn negative_numbers_reach_validation() {
 
 #[test]
 fn a_sample_of_1e300_is_refused_naming_file_line_and_physics() {
-    let dir = scratch("bad-sim", "huge");
-    let f = dir.join("huge.AT2");
-    std::fs::write(
-        &f,
-        "TITLE\nNPTS= 5, DT= .0100 SEC\n0.0 0.1 1e300\n0.1 0.0\n",
-    )
-    .unwrap();
     for format in ["json", "table"] {
-        refused(
-            &["simulate", B, "--record", s(&f), "--format", format],
+        record_refused(
+            "huge.AT2",
+            "TITLE\nNPTS= 5, DT= .0100 SEC\n0.0 0.1 1e300\n0.1 0.0\n",
+            &["--format", format],
             &["huge.AT2:3", "beyond any physical record", "4-5 g"],
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -220,18 +224,12 @@ fn an_overflowing_response_is_an_error_not_null() {
 
 #[test]
 fn an_at2_whose_npts_disagrees_with_its_values_is_refused() {
-    let dir = scratch("bad-sim", "npts");
-    let f = dir.join("n.AT2");
-    std::fs::write(
-        &f,
+    record_refused(
+        "n.AT2",
         "TITLE\nNPTS= 4, DT= .0100 SEC\n0.1 0.2 0.3\n0.1 0.2 0.3\n",
-    )
-    .unwrap();
-    refused(
-        &["simulate", B, "--record", s(&f)],
+        &[],
         &["NPTS = 4", "holds 6"],
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[cfg(unix)]

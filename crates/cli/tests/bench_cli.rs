@@ -12,6 +12,20 @@ use common::{root, slipload};
 
 /// A figure's target has a status, its status agrees with `met`, and every status but
 /// `met` points to a file of the repository that explains it.
+/// `slipload bench --quick ARGS --format json`, parsed (the run must succeed).
+fn bench_json(args: &[&str]) -> serde_json::Value {
+    let mut argv = vec!["bench", "--quick"];
+    argv.extend_from_slice(args);
+    argv.extend_from_slice(&["--format", "json"]);
+    let out = slipload(&argv);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
 fn check_status(f: &serde_json::Value) {
     let status = f["status"].as_str();
     if f["target"].is_null() {
@@ -38,22 +52,12 @@ fn check_status(f: &serde_json::Value) {
 /// guard) and the `exact` targets are pending: each says so, and where it is explained.
 #[test]
 fn withdrawn_and_pending_targets_are_marked() {
-    let out = slipload(&[
-        "bench",
-        "--quick",
+    let v = bench_json(&[
         "--only",
         "benchmark-3story, 15 s synthetic",
         "--only",
         "benchmark-3story m'=0, 15 s synthetic, exact",
-        "--format",
-        "json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let figs = v.as_array().unwrap();
     for f in figs {
         check_status(f);
@@ -101,24 +105,14 @@ fn withdrawn_and_pending_targets_are_marked() {
 
 #[test]
 fn json_lists_figures_and_reductions_keep_answers() {
-    let out = slipload(&[
-        "bench",
-        "--quick",
+    let v = bench_json(&[
         "--only",
         "reductions",
         "--only",
         "memory",
         "--only",
         "outputs",
-        "--format",
-        "json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let figs = v.as_array().unwrap();
     assert!(figs.len() >= 8, "{v:#}");
     for f in figs {
