@@ -1,0 +1,768 @@
+//! `exact` — the event-driven reference integrator (docs/MODEL.md § Integrators).
+//!
+//! Between stick↔slip events the plan is linear and time-invariant, driven by a ground
+//! acceleration that is linear between record samples, a harmonic force and constant slip
+//! forces. The state is augmented with the generators of those inputs,
+//! y = (u, v, x′ of the elastic–perfectly plastic contacts, a_g, ȧ_g, sin, cos, 1), so that
+//! each mode set (which contacts stick, which slide and which way) is one autonomous linear
+//! system ẏ = A y, and y(t + τ) = exp(Aτ) y(t) exactly (Van Loan 1978). The exponential is
+//! applied as its Taylor series p_k = Aᵏy/k!, truncated at [`TAYLOR_TERMS`] terms on
+//! substeps with ρτ ≤ [`SUBSTEP_PHASE`], where ρ bounds the spectral radius of the current
+//! mode set's A (|λ| ≤ ν_max + ω_max for the quadratic eigenproblem, ν and ω² the extreme
+//! Rayleigh quotients of C and K over M on the subspace the stuck dissipators leave free,
+//! plus k′/c′ of sliding damped massless dissipators and the harmonic ω): the remainder is
+//! below (ρτ)²²/22! ≈ 2e-28 of the state, i.e. the series is exact to round-off. The bound
+//! is per mode set because a stuck dissipator with mass moves with its floor: the
+//! dissipator's own fast mode (k′/m′ on a stiff brace, hundreds of rad/s) rings only while
+//! it slides, and the substeps of the stuck phases follow the frame's modes. The same
+//! polynomial gives every quantity inside the substep as a scalar polynomial in τ, which is
+//! where events and peaks are located. Mode matrices are cached per mode set
+//! ([`MODE_CACHE`] entries, cleared when full).
+//!
+//! Map of the module, by concept:
+//! - `modes`: contacts and mode sets — the augmented state's layout, each mode set's
+//!   operators (mode matrix, force and slip-rate rows, event functions, spectral bound ρ),
+//!   their cache, and the box QP that decides contacts at an event;
+//! - `propagate`: the truncated series per substep and the cached grid propagators;
+//! - `search`: event and extremum search inside a substep (scan, Illinois);
+//! - `energy`: the powers as quadratic forms, their quadrature, the stored energies;
+//! - this file: the run itself (inputs per record piece, substeps, events, peaks, outputs).
+//!
+//! Whole output steps run on the mode set's grid h = Δt/m (m = ⌈Δt ρ/[`SUBSTEP_PHASE`]⌉).
+//! Once a mode set has lasted as many grid substeps as forming them costs, it caches the
+//! same truncated series as a matrix, exp(A h) (and, when energies are asked for, the work
+//! over h as quadratic forms of the starting state, below), and each scanned function's
+//! Taylor rows r Aᵏ/k!; a grid
+//! substep is then one matrix–vector product, and a scan starts from the bound
+//! |g(τ) − g(0)| ≤ Σ_j |y_j| Σ_{k≥1} |r Aᵏ/k!|_j hᵏ, which rules out most of them; failing
+//! that, from the same bound on the terms past the first [`LEAD_TERMS`] coefficients,
+//! which are formed exactly (their negative parts at their largest). That second test
+//! rules out functions that are near zero but moving away from it, which the first
+//! cannot (on the benchmark it saves about 7 % of the run time). Substeps
+//! off the grid (after an event, or where record samples cut an output step) sum the
+//! series for their own length.
+//!
+//! Contacts:
+//! - a dissipator with mass that sticks is the constraint w = 0, imposed by a Lagrange
+//!   multiplier λ = W_S⁻¹B_SᵀM⁻¹f (W_S = B_SᵀM⁻¹B_S): the dissipator moves with its floor and
+//!   its brace acts between floors i−1 and i; the multiplier is the stuck friction force;
+//! - a sliding contact applies its constant bound F⁺ or F⁻;
+//! - a massless dissipator (plan `ContactKind::Epp`) carries its position x′ as a state:
+//!   stuck, ẋ′ = ẋᵢ and its force is k′(x′ − xᵢ₋₁) + c′(ẋᵢ − ẋᵢ₋₁) (an elastic brace between
+//!   the floors); sliding, its force is the bound and the brace follows
+//!   k′(x′ − xᵢ₋₁) + c′(ẋ′ − ẋᵢ₋₁) = F±, i.e. ẋ′ = ẋᵢ₋₁ for c′ = 0 and the first-order law
+//!   ẋ′ = ẋᵢ₋₁ + (F± − k′(x′ − xᵢ₋₁))/c′ for c′ > 0 (a Maxwell element, exact as well; its
+//!   rate k′/c′ enters ρ, so a tiny c′ costs substeps).
+//! - a dissipator with zero mass that keeps a DOF (unreduced plan) is rejected: compile
+//!   with `reduce` on, which turns it into the equivalent elastic–perfectly plastic element.
+//!
+//! Events: a stuck contact's force reaching a bound, a sliding contact's slip rate reaching
+//! zero. Each event function g (positive while the mode is consistent) is scanned at
+//! [`SCAN_POINTS`] points per substep together with ġ; a sign change, or a local minimum
+//! (ġ from − to +) below −ε, brackets the first crossing, which the Illinois method locates
+//! to about 1e-14 s. ε is the grazing threshold: [`GRAZE_REL`] times the force bound (force
+//! functions) or the largest floor velocity so far (slip-rate functions). A function that
+//! touches zero without going below −ε is a grazing contact and no event. At an event:
+//! - a stuck contact whose force reached a bound slides toward it (forces are continuous
+//!   there, so no other contact changes);
+//! - a massless dissipator whose slip rate reached zero sticks;
+//! - a dissipator with mass whose slip rate reached zero, together with every stuck one,
+//!   is decided at once by the box QP at the acceleration level (Delassus B_UᵀM⁻¹B_U, as
+//!   `newmark`'s initial state): Free = stick, a bound = slide that way (reversal). The
+//!   velocities are then projected M-orthogonally onto B_Sᵀv = 0 (the residual of the
+//!   located root, ~1e-11 m/s; its kinetic energy goes to friction). The same projection
+//!   is repeated at every output step, so round-off drift of the stuck constraints cannot
+//!   accumulate over many substeps (it matters on very stiff braces, k′ ~ 1e12 N/m);
+//! - a contact with F⁻ = F⁺ (μN = 0 in an unreduced plan) applies that force and has no
+//!   events.
+//!
+//! Chattering rule: a run whose substep estimate duration·ρ/[`SUBSTEP_PHASE`] exceeds
+//! [`MAX_SUBSTEPS`], or whose events exceed [`MAX_EVENTS`], stops with
+//! [`SimError::ExactBudget`] (light, stiff dissipators ring too fast for an event-driven
+//! reference: use `newmark`, or the massless limit). More than 4·contacts + 16 events at one
+//! instant (less than 1e-14 s apart) is Zeno behaviour: [`SimError::ExactZeno`].
+//!
+//! Peaks: drift peaks are those of the continuous solution (each storey's drift extremum
+//! located inside its substep by the same root finding on the drift rate); the peaks at
+//! the output steps are reported beside them (`Diagnostics::sampled_peak_drift`). Other
+//! peaks (displacement, acceleration, base shear, slip) are taken at the output steps.
+//! Energies: input, viscous and friction powers integrated by 6-point Gauss–Legendre on
+//! every substep (exact to degree 11; with phase 2ρτ ≤ 1 the rule's error term is below
+//! 2e-16 of the powers' scale: Davis & Rabinowitz 1984, §2.7).
+//! Each power is a quadratic form p(y) = yᵀ Q_p y of the augmented state, so on the grid
+//! substeps of a lasting mode set the rule is summed once, W_p = h Σ_g w_g Φ_gᵀ Q_p Φ_g
+//! (Φ_g = exp(A x_g h)), and a substep's work is yᵀ W_p y: the same quadrature, three
+//! matrix–vector products instead of six states and their powers.
+
+mod energy;
+mod modes;
+mod propagate;
+mod search;
+
+use crate::error::SimError;
+use crate::integrator::Integrator;
+use crate::integrator::state::{base_shear, history_columns};
+use crate::plan::{ContactKind, Plan};
+use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
+use crate::units::is_positive;
+use energy::{GAUSS, Integrals};
+use modes::{Cache, Mode, ModeOps, Model, Scale, row_dot};
+use nalgebra::DVector;
+use propagate::{lead_terms, quadratic, taylor};
+use search::{first_crossing, illinois, poly, tail_and_degree};
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// Event-driven integrator, exact between events.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Exact;
+
+/// Terms of the exponential's Taylor series kept on a substep.
+pub const TAYLOR_TERMS: usize = 22;
+/// Largest ρ·τ of a substep (ρ bounds the spectral radius of the mode matrices).
+pub const SUBSTEP_PHASE: f64 = 0.5;
+/// Scan intervals per substep for event and extremum detection.
+pub const SCAN_POINTS: usize = 8;
+/// Cap on the substeps of one run.
+pub const MAX_SUBSTEPS: u64 = 4_000_000;
+/// Cap on the events of one run.
+pub const MAX_EVENTS: u64 = 5_000_000;
+/// Mode sets kept in the cache.
+pub const MODE_CACHE: usize = 4096;
+/// Leading Taylor coefficients of a scanned function formed exactly on a grid substep
+/// before its full series is (the second exclusion test).
+pub const LEAD_TERMS: usize = 4;
+/// Grazing threshold, relative to the force bound or the velocity scale.
+pub const GRAZE_REL: f64 = 1e-10;
+
+/// Adds the history row of state `y` at time `t`.
+fn history_row(
+    model: &Model,
+    ops: &ModeOps,
+    h: &mut History,
+    t: f64,
+    y: &DVector<f64>,
+    e: Option<[f64; 5]>,
+) {
+    let plan = model.plan;
+    let lay = &model.lay;
+    let nf = plan.floors;
+    h.rows.push(t);
+    h.rows.push(y[lay.i_ag]);
+    h.rows.extend(y.rows(0, nf).iter());
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        h.rows.push(match (ct.kind, lay.epp_slot[c]) {
+            (ContactKind::Dof { dof }, _) => y[dof],
+            (_, Some(s)) => y[s],
+            (ContactKind::Epp, None) => 0.0,
+        });
+    }
+    let mut below = 0.0;
+    for i in 0..nf {
+        h.rows.push(y[i] - below);
+        below = y[i];
+    }
+    for c in 0..plan.contacts.len() {
+        h.rows.push(row_dot(&ops.force, c, y));
+    }
+    for c in 0..plan.contacts.len() {
+        h.rows.push(row_dot(&ops.slip_rate, c, y));
+    }
+    if let Some(e) = e {
+        h.rows.extend_from_slice(&e);
+    }
+}
+
+/// Ground acceleration at the start of [ta, tb] and its slope on it (0 after the record).
+fn ground_segment(plan: &Plan, ta: f64, tb: f64) -> (f64, f64) {
+    match &plan.record {
+        Some(r) => {
+            let dur = r.duration();
+            if ta >= dur - 1e-12 * r.dt() {
+                return (0.0, 0.0);
+            }
+            let a0 = r.accel_at(ta);
+            let a1 = r.accel_at(tb.min(dur));
+            (a0, (a1 - a0) / (tb - ta))
+        }
+        None => (0.0, 0.0),
+    }
+}
+
+/// End of the piece starting at `ta` (next record sample or record end, else `t_end`).
+fn piece_end(plan: &Plan, ta: f64, t_end: f64) -> f64 {
+    match &plan.record {
+        Some(r) => {
+            let rdt = r.dt();
+            let dur = r.duration();
+            if ta >= dur - 1e-12 * rdt {
+                return t_end;
+            }
+            let mut k = (ta / rdt).floor() + 1.0;
+            if k * rdt - ta <= 1e-9 * rdt {
+                k += 1.0;
+            }
+            let ts = (k * rdt).min(dur);
+            if ts < t_end - 1e-9 * rdt { ts } else { t_end }
+        }
+        None => t_end,
+    }
+}
+
+impl Integrator for Exact {
+    fn name(&self) -> &'static str {
+        "exact"
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn run(&self, plan: &Plan) -> Result<Outcome, SimError> {
+        let dt = plan.method.dt;
+        if !is_positive(dt) {
+            return Err(SimError::BadTimeStep { dt });
+        }
+        let model = Model::new(plan)?;
+        let lay = &model.lay;
+        let (n, dim) = (lay.n, lay.dim);
+        let nf = plan.floors;
+        let nc = plan.contacts.len();
+        let rho = model.spectral_bound();
+        let delta_max = if rho > 0.0 {
+            SUBSTEP_PHASE / rho
+        } else {
+            f64::INFINITY
+        };
+        let duration = plan.steps as f64 * dt;
+        let needed = (duration / delta_max).ceil();
+        if needed > MAX_SUBSTEPS as f64 {
+            return Err(SimError::ExactBudget {
+                what: "substeps".into(),
+                t: 0.0,
+                needed: needed as u64,
+                limit: MAX_SUBSTEPS,
+                hint: format!(
+                    "the fastest mode rings at {rho:.3e} rad/s (very light or very stiff dissipators); use newmark, or the massless limit (mass 0)"
+                ),
+            });
+        }
+        let energies = plan.outputs.energies;
+
+        // Initial state.
+        let mut y = DVector::zeros(dim);
+        y.rows_mut(0, n).copy_from_slice(&plan.u0);
+        y.rows_mut(n, n).copy_from_slice(&plan.v0);
+        y[lay.i_one] = 1.0;
+        for (c, s) in lay.epp_slot.iter().enumerate() {
+            if let Some(s) = s {
+                y[*s] = plan.contact_x0[c].0;
+            }
+        }
+        let set_inputs = |y: &mut DVector<f64>, ta: f64, tb: f64| {
+            let (a0, slope) = ground_segment(plan, ta, tb);
+            y[lay.i_ag] = a0;
+            y[lay.i_slope] = slope;
+            if let Some(h) = &plan.harmonic {
+                let ph = h.omega * ta + h.phase;
+                y[lay.i_sin] = ph.sin();
+                y[lay.i_cos] = ph.cos();
+            }
+        };
+        let first_end = piece_end(plan, 0.0, dt.min(duration.max(dt)));
+        set_inputs(&mut y, 0.0, first_end);
+        let mut v_ref = plan.v0[..n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut modes = vec![Mode::Stuck; nc];
+        let mut to_decide = Vec::new();
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            match ct.kind {
+                ContactKind::Epp => {
+                    let s = lay.epp_slot[c].expect("EPP contacts have a slot");
+                    let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (y[j], y[n + j]));
+                    let vd = plan.contact_x0[c].1;
+                    let force = ct.brace_stiffness * (y[s] - uj) + ct.brace_damping * (vd - vj);
+                    let tol = 1e-12
+                        * (ct.upper.abs().min(1e300) + ct.lower.abs().min(1e300) + force.abs());
+                    if force > ct.upper + tol || force < ct.lower - tol {
+                        return Err(SimError::Scene(format!(
+                            "initial state: the massless dissipator of floor {} carries a brace force of {force:.6e} N, outside its friction bounds [{:.6e}, {:.6e}] N",
+                            ct.floor + 1,
+                            ct.lower,
+                            ct.upper
+                        )));
+                    }
+                    let w = y[n + ct.floor] - vd;
+                    modes[c] = if force >= ct.upper - tol && w > 0.0 {
+                        Mode::Upper
+                    } else if force <= ct.lower + tol && w < 0.0 {
+                        Mode::Lower
+                    } else {
+                        Mode::Stuck
+                    };
+                }
+                ContactKind::Dof { .. } if ct.lower == ct.upper => modes[c] = Mode::Upper,
+                ContactKind::Dof { dof } => {
+                    let w0 = y[n + ct.floor] - y[n + dof];
+                    let tol = 1e-12 * (y[n + ct.floor].abs() + y[n + dof].abs());
+                    if w0.abs() > tol {
+                        let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
+                        if !bound.is_finite() {
+                            return Err(SimError::Scene(format!(
+                                "initial state: the locked dissipator of floor {} cannot slip, but its initial slip rate is {w0:.6e} m/s",
+                                ct.floor + 1
+                            )));
+                        }
+                        modes[c] = if w0 > 0.0 { Mode::Upper } else { Mode::Lower };
+                    } else {
+                        to_decide.push(c);
+                    }
+                }
+            }
+        }
+        let mut cache = Cache {
+            modes: HashMap::new(),
+        };
+        model.decide(&mut cache, &y, &mut modes, &to_decide, 0.0)?;
+        let mut ops = cache.get(&model, &modes);
+        let mut integ = Integrals::default();
+        let (k0, s0) = model.stored(&y);
+        let initial_energy = k0 + s0;
+        // ∫ E_strain dt by the trapezoid rule at the output steps (as the step methods do).
+        let mut strain_area = 0.0;
+        let mut strain_prev = s0;
+        // Project the initial velocities onto the stuck constraints (a no-op for
+        // consistent initial states).
+        let scratch = RefCell::new(DVector::zeros(n));
+        let project = |y: &mut DVector<f64>, ops: &ModeOps| {
+            if let Some(p) = &ops.proj {
+                let mut v = scratch.borrow_mut();
+                v.gemv(1.0, p, &y.rows(n, n), 0.0);
+                y.rows_mut(n, n).copy_from(&*v);
+            }
+        };
+        project(&mut y, &ops);
+        // The same during the run, the kinetic energy it removes booked as friction work
+        // (when energies are asked for).
+        let project_counted = |y: &mut DVector<f64>, ops: &ModeOps, integ: &mut Integrals| {
+            if energies {
+                let (ke_before, _) = model.stored(y);
+                project(y, ops);
+                let (ke_after, _) = model.stored(y);
+                integ.friction += ke_before - ke_after;
+            } else {
+                project(y, ops);
+            }
+        };
+
+        let mut peaks = Peaks::new(nf);
+        let mut cont_drift = vec![0.0; nf];
+        let msum: f64 = model.mr.iter().sum();
+        let mut acc = DVector::zeros(dim);
+        let observe =
+            |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>| {
+                acc.gemv(1.0, &ops.a, y, 0.0);
+                let ag = y[lay.i_ag];
+                let p = plan
+                    .harmonic
+                    .as_ref()
+                    .map_or(0.0, |h| h.amplitude * y[lay.i_sin]);
+                peaks.observe_floors(y.as_slice(), &acc.as_slice()[n..2 * n], ag);
+                peaks.observe_base_shear(base_shear(
+                    model.mr.as_slice(),
+                    msum,
+                    &acc.as_slice()[n..2 * n],
+                    ag,
+                    p,
+                ));
+                for (c, ct) in plan.contacts.iter().enumerate() {
+                    let other = match (ct.kind, lay.epp_slot[c]) {
+                        (ContactKind::Dof { dof }, _) => y[dof],
+                        (_, Some(s)) => y[s],
+                        (ContactKind::Epp, None) => 0.0,
+                    };
+                    peaks.observe_slip(ct.floor, y[ct.floor] - other);
+                }
+            };
+        observe(&mut peaks, &ops, &y, &mut acc);
+        cont_drift.copy_from_slice(&peaks.drift);
+
+        let mut history = plan
+            .outputs
+            .histories
+            .then(|| history_columns(plan, energies));
+        if let Some(h) = history.as_mut() {
+            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+            history_row(&model, &ops, h, 0.0, &y, e);
+        }
+
+        // Work buffers.
+        let mut p: Vec<DVector<f64>> = vec![DVector::zeros(dim); TAYLOR_TERMS];
+        let mut coef = vec![0.0; TAYLOR_TERMS];
+        let mut dcoef = [0.0; TAYLOR_TERMS];
+        let mut ynode = DVector::zeros(dim);
+        let mut yabs = DVector::zeros(dim);
+        let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
+            out.copy_from(&p[TAYLOR_TERMS - 1]);
+            for k in (0..TAYLOR_TERMS - 1).rev() {
+                *out *= t;
+                *out += &p[k];
+            }
+        };
+        let mut events: u64 = 0;
+        let mut same_instant: u32 = 0;
+        let mut last_event_t = f64::NEG_INFINITY;
+        let mut balance_max_rel: f64 = 0.0;
+
+        for step in 0..plan.steps {
+            let t_step_end = (step + 1) as f64 * dt;
+            let mut ta = step as f64 * dt;
+            let step_start = ta;
+            while ta < t_step_end {
+                let tb = piece_end(plan, ta, t_step_end);
+                set_inputs(&mut y, ta, tb);
+                // A piece that is a whole output step runs on its mode set's grid
+                // ta + j·h (h = Δt/m): a substep from one grid point to the next is one
+                // product with the cached exp(A h), and its scans start with a bound that
+                // rules most of them out. Substeps off the grid (after an event, or in
+                // pieces cut by record samples) sum the Taylor series for their length.
+                let whole = ta == step_start && tb == t_step_end;
+                let mut t = ta;
+                let mut on_grid = whole.then_some(0usize);
+                while t < tb {
+                    let rem = tb - t;
+                    // (length, grid index reached, whether it starts on the grid)
+                    let (len, reach, regular) = if whole {
+                        let m = ops.per_step;
+                        match on_grid {
+                            Some(j) => (ops.h, Some(j + 1), true),
+                            None => {
+                                let j = (((t - ta) / ops.h).floor() as usize + 1).min(m);
+                                let tn = if j >= m { tb } else { ta + j as f64 * ops.h };
+                                if tn <= t {
+                                    // Already at that grid point (to round-off).
+                                    on_grid = Some(j);
+                                    t = tn;
+                                    continue;
+                                }
+                                (tn - t, Some(j), false)
+                            }
+                        }
+                    } else {
+                        let len = if rem <= ops.delta_max * (1.0 + 1e-12) {
+                            rem
+                        } else {
+                            rem / (rem / ops.delta_max).ceil()
+                        };
+                        (len, None, false)
+                    };
+                    // A grid substep of a mode set that has lasted uses its propagators;
+                    // any other substep sums the Taylor coefficients p_k = Aᵏ y / k!.
+                    if regular && ops.stepping.get().is_none() {
+                        let u = ops.uses.get() + 1;
+                        ops.uses.set(u);
+                        if u > ops.prepare_after {
+                            let _ = ops.stepping.set(model.stepping(&ops));
+                        }
+                    }
+                    let fast = if regular { ops.stepping.get() } else { None };
+                    if fast.is_some() {
+                        for (a, b) in yabs.iter_mut().zip(y.iter()) {
+                            *a = b.abs();
+                        }
+                    } else {
+                        taylor(&ops.a, &y, &mut p);
+                    }
+                    let nev = ops.events.len();
+                    let coefs =
+                        |f: usize, y: &DVector<f64>, p: &[DVector<f64>], coef: &mut [f64]| {
+                            if let Some(st) = fast {
+                                for (k, c) in coef.iter_mut().enumerate() {
+                                    *c = st.rows.column(f * TAYLOR_TERMS + k).dot(y);
+                                }
+                            } else if f < nev {
+                                let row = &ops.events[f].row;
+                                for (c, pk) in coef.iter_mut().zip(p) {
+                                    *c = row.dot(pk);
+                                }
+                            } else {
+                                let i = f - nev;
+                                for (c, pk) in coef.iter_mut().zip(p) {
+                                    *c = pk[i] - if i == 0 { 0.0 } else { pk[i - 1] };
+                                }
+                            }
+                        };
+                    // Earliest event.
+                    let mut tau_end = len;
+                    let mut fired: Option<usize> = None;
+                    for (e, ef) in ops.events.iter().enumerate() {
+                        if let Some(st) = fast {
+                            let g0 = ef.row.dot(&y);
+                            if g0 >= st.tails.column(e).dot(&yabs) {
+                                // g(τ) ≥ g(0) − Σ|y_j|·tail_j ≥ 0 on the whole substep.
+                                continue;
+                            }
+                            if g0 >= 0.0
+                                && lead_terms(st, e, &y, ops.h)
+                                    .iter()
+                                    .fold(g0, |low, t| low + t.min(0.0))
+                                    >= st.tails_far.column(e).dot(&yabs)
+                            {
+                                // g(τ) ≥ Σ_{k<L} min(0, c_k hᵏ) − Σ|y_j|·tail_far_j ≥ 0
+                                // (the leading terms formed exactly).
+                                continue;
+                            }
+                        }
+                        coefs(e, &y, &p, &mut coef);
+                        let thr = match ef.scale {
+                            Scale::Force(b) => GRAZE_REL * b,
+                            Scale::Velocity => GRAZE_REL * v_ref,
+                        };
+                        if let Some(te) = first_crossing(&coef, tau_end, thr)
+                            && te <= tau_end
+                        {
+                            tau_end = te;
+                            fired = Some(e);
+                        }
+                    }
+                    // Drift extrema inside (0, tau_end].
+                    for i in 0..nf {
+                        if let Some(st) = fast {
+                            let d0 = y[i] - if i == 0 { 0.0 } else { y[i - 1] };
+                            if d0.abs() + st.tails.column(nev + i).dot(&yabs) <= cont_drift[i] {
+                                continue;
+                            }
+                            if lead_terms(st, nev + i, &y, ops.h)
+                                .iter()
+                                .fold(d0.abs(), |high, t| high + t.abs())
+                                + st.tails_far.column(nev + i).dot(&yabs)
+                                <= cont_drift[i]
+                            {
+                                continue;
+                            }
+                        }
+                        coefs(nev + i, &y, &p, &mut coef);
+                        let (tail, degree) = tail_and_degree(&coef, tau_end);
+                        if coef[0].abs() + tail <= cont_drift[i] {
+                            continue;
+                        }
+                        let coef = &coef[..=degree];
+                        for k in 1..=degree {
+                            dcoef[k - 1] = coef[k] * k as f64;
+                        }
+                        let dcoef = &dcoef[..degree];
+                        let mut prev = (0.0, poly(dcoef, 0.0).0);
+                        for j in 1..=SCAN_POINTS {
+                            let tj = tau_end * j as f64 / SCAN_POINTS as f64;
+                            let dj = poly(dcoef, tj).0;
+                            if (prev.1 > 0.0 && dj < 0.0) || (prev.1 < 0.0 && dj > 0.0) {
+                                let tm = illinois(|t| poly(dcoef, t).0, prev.0, tj);
+                                cont_drift[i] = cont_drift[i].max(poly(coef, tm).0.abs());
+                            }
+                            prev = (tj, dj);
+                        }
+                        cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
+                    }
+                    if let (Some(st), None) = (fast, fired) {
+                        if let Some([wi, wv, wf]) = &st.work {
+                            // One grid interval: its work is a quadratic form of y.
+                            integ.input += quadratic(wi, &y, &mut ynode);
+                            integ.viscous += quadratic(wv, &y, &mut ynode);
+                            integ.friction += quadratic(wf, &y, &mut ynode);
+                        }
+                        ynode.gemv(1.0, &st.phi, &y, 0.0);
+                        std::mem::swap(&mut y, &mut ynode);
+                    } else {
+                        if fast.is_some() {
+                            // A grid substep cut by an event.
+                            taylor(&ops.a, &y, &mut p);
+                        }
+                        if energies {
+                            model.integrate_powers(
+                                &ops,
+                                &mut integ,
+                                tau_end,
+                                &mut ynode,
+                                |g, out| {
+                                    eval(&p, GAUSS[g].0 * tau_end, out);
+                                },
+                            );
+                        }
+                        eval(&p, tau_end, &mut y);
+                    }
+                    match (fired, reach) {
+                        (None, Some(j)) => {
+                            t = if j >= ops.per_step {
+                                tb
+                            } else {
+                                ta + j as f64 * ops.h
+                            };
+                            on_grid = Some(j);
+                        }
+                        (None, None) if len == rem => t = tb,
+                        _ => {
+                            t += tau_end;
+                            on_grid = None;
+                        }
+                    }
+                    for i in 0..nf {
+                        v_ref = v_ref.max(y[n + i].abs());
+                    }
+                    if !y.iter().all(|x| x.is_finite()) {
+                        return Err(SimError::NonFinite {
+                            step: step + 1,
+                            t,
+                            hint: "exact: the state became non-finite".into(),
+                        });
+                    }
+                    let Some(e) = fired else { continue };
+                    // Event: decide the new modes.
+                    events += 1;
+                    if events > MAX_EVENTS {
+                        return Err(SimError::ExactBudget {
+                            what: "stick-slip events".into(),
+                            t,
+                            needed: events,
+                            limit: MAX_EVENTS,
+                            hint: "the dissipators chatter; use newmark, or the massless limit"
+                                .into(),
+                        });
+                    }
+                    let c_fired = ops.events[e].contact;
+                    if t - last_event_t <= 1e-14 * t.max(1.0) {
+                        same_instant += 1;
+                        if same_instant > 4 * nc as u32 + 16 {
+                            return Err(SimError::ExactZeno {
+                                t,
+                                events: same_instant,
+                                floor: plan.contacts[c_fired].floor + 1,
+                            });
+                        }
+                    } else {
+                        same_instant = 0;
+                    }
+                    last_event_t = t;
+                    let old = modes.clone();
+                    // Every function at (or past) zero and heading down fires with it.
+                    acc.gemv(1.0, &ops.a, &y, 0.0);
+                    let mut decide: Vec<usize> = Vec::new();
+                    for (k, ef) in ops.events.iter().enumerate() {
+                        let g = ef.row.dot(&y);
+                        let gd = ef.row.dot(&acc);
+                        let thr = match ef.scale {
+                            Scale::Force(b) => GRAZE_REL * b,
+                            Scale::Velocity => GRAZE_REL * v_ref,
+                        };
+                        let fires = k == e || (g <= thr && gd < 0.0);
+                        if !fires {
+                            continue;
+                        }
+                        let c = ef.contact;
+                        let ct = &plan.contacts[c];
+                        match old[c] {
+                            Mode::Stuck => {
+                                // Which bound: the force row sign tells.
+                                let fc = row_dot(&ops.force, c, &y);
+                                modes[c] = if (fc - ct.upper).abs() <= (fc - ct.lower).abs() {
+                                    Mode::Upper
+                                } else {
+                                    Mode::Lower
+                                };
+                                if let (Some(s), true) = (lay.epp_slot[c], ct.brace_damping == 0.0)
+                                {
+                                    // Snap the brace onto the bound (a root-finding residual).
+                                    let bound = if modes[c] == Mode::Upper {
+                                        ct.upper
+                                    } else {
+                                        ct.lower
+                                    };
+                                    let uj = ct.below.map_or(0.0, |j| y[j]);
+                                    let e_old = y[s] - uj;
+                                    let e_new = bound / ct.brace_stiffness;
+                                    integ.friction +=
+                                        0.5 * ct.brace_stiffness * (e_old * e_old - e_new * e_new);
+                                    y[s] = uj + e_new;
+                                }
+                            }
+                            Mode::Upper | Mode::Lower => match ct.kind {
+                                ContactKind::Epp => modes[c] = Mode::Stuck,
+                                ContactKind::Dof { .. } => {
+                                    if !decide.contains(&c) {
+                                        decide.push(c);
+                                    }
+                                }
+                            },
+                        }
+                    }
+                    if !decide.is_empty() {
+                        for (c, ct) in plan.contacts.iter().enumerate() {
+                            if matches!(ct.kind, ContactKind::Dof { .. })
+                                && modes[c] == Mode::Stuck
+                                && old[c] == Mode::Stuck
+                                && !decide.contains(&c)
+                            {
+                                decide.push(c);
+                            }
+                        }
+                        decide.sort_unstable();
+                        model.decide(&mut cache, &y, &mut modes, &decide, t)?;
+                    }
+                    for c in 0..nc {
+                        if (modes[c] == Mode::Stuck) != (old[c] == Mode::Stuck) {
+                            peaks.transitions[plan.contacts[c].floor] += 1;
+                        }
+                    }
+                    ops = cache.get(&model, &modes);
+                    project_counted(&mut y, &ops, &mut integ);
+                }
+                ta = tb;
+            }
+            // Output step. Re-impose B_Sᵀv = 0 on the stuck contacts: the projected
+            // dynamics keep it only to round-off, which accumulates over many substeps on
+            // very stiff braces (the kinetic energy removed, ~ε², goes to friction).
+            if ops.proj.is_some() {
+                project_counted(&mut y, &ops, &mut integ);
+            }
+            observe(&mut peaks, &ops, &y, &mut acc);
+            let mut e_row = None;
+            if energies {
+                let (ek, es) = model.stored(&y);
+                strain_area += 0.5 * dt * (strain_prev + es);
+                strain_prev = es;
+                let bal = integ.input + initial_energy - (ek + es + integ.viscous + integ.friction);
+                let scale = (integ.input.abs() + initial_energy).max(f64::MIN_POSITIVE);
+                balance_max_rel = balance_max_rel.max(bal.abs() / scale);
+                e_row = Some([integ.input, ek, es, integ.viscous, integ.friction]);
+            }
+            if let Some(h) = history.as_mut() {
+                history_row(&model, &ops, h, t_step_end, &y, e_row);
+            }
+        }
+        for (c, s) in cont_drift.iter_mut().zip(&peaks.drift) {
+            *c = c.max(*s);
+        }
+        let energy = energies.then(|| {
+            let (ek, es) = model.stored(&y);
+            Energy {
+                input: integ.input,
+                kinetic: ek,
+                strain: es,
+                viscous: integ.viscous,
+                friction: integ.friction,
+                balance_error: integ.input + initial_energy
+                    - (ek + es + integ.viscous + integ.friction),
+            }
+        });
+        let sampled = peaks.drift.clone();
+        peaks.drift = cont_drift;
+        let response = peaks.into_plan_response(plan, energy);
+        Ok(Outcome {
+            response,
+            diagnostics: Diagnostics {
+                balance_error_max_relative: balance_max_rel,
+                initial_energy,
+                sampled_peak_drift: Some(sampled),
+                events,
+                strain_energy_area: strain_area,
+                ..Default::default()
+            },
+            history,
+        })
+    }
+}

@@ -1,0 +1,502 @@
+//! Contacts and mode sets: the augmented state's layout, each mode set's operators
+//! (mode matrix, force and slip-rate rows, event functions, spectral bound), their cache,
+//! and the acceleration-level box QP that decides contacts at an event.
+
+use super::propagate::Stepping;
+use super::{MODE_CACHE, SUBSTEP_PHASE};
+use crate::error::SimError;
+use crate::friction::BoxQp;
+use crate::friction::box_qp::Bound;
+use crate::plan::{ContactKind, Plan};
+use nalgebra::{DMatrix, DVector};
+use std::cell::{Cell, OnceCell};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// State of one contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum Mode {
+    Stuck,
+    Upper,
+    Lower,
+}
+
+/// Positions in the augmented state.
+pub(super) struct Layout {
+    pub(super) n: usize,
+    /// State index of x′ for elastic–perfectly plastic contacts.
+    pub(super) epp_slot: Vec<Option<usize>>,
+    pub(super) i_ag: usize,
+    pub(super) i_slope: usize,
+    pub(super) i_sin: usize,
+    pub(super) i_cos: usize,
+    pub(super) i_one: usize,
+    pub(super) dim: usize,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+pub(super) enum Scale {
+    Force(f64),
+    Velocity,
+}
+
+/// g(y) = row·y ≥ 0 while the mode is consistent.
+pub(super) struct EventFn {
+    pub(super) contact: usize,
+    pub(super) row: DVector<f64>,
+    pub(super) scale: Scale,
+}
+
+/// Everything fixed for one mode set.
+pub(super) struct ModeOps {
+    pub(super) a: DMatrix<f64>,
+    /// Friction force of each contact as a row on y, stored transposed (dim × contacts:
+    /// column c is contact c's row, contiguous for [`row_dot`]).
+    pub(super) force: DMatrix<f64>,
+    /// Slip rate of each contact as a row on y, transposed likewise.
+    pub(super) slip_rate: DMatrix<f64>,
+    /// ẋ′ rows of elastic–perfectly plastic contacts (zero rows for others), transposed
+    /// likewise.
+    pub(super) xdot: DMatrix<f64>,
+    pub(super) events: Vec<EventFn>,
+    /// The M-orthogonal projector of the velocities onto B_Sᵀv = 0 for the stuck contacts
+    /// with a DOF, I − M⁻¹B_S W_S⁻¹B_Sᵀ (n × n); `None` when none sticks.
+    pub(super) proj: Option<DMatrix<f64>>,
+    /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
+    pub(super) delta_max: f64,
+    /// Substeps per output step, m = ⌈Δt/δ_max⌉, and the grid interval h = Δt/m.
+    pub(super) per_step: usize,
+    pub(super) h: f64,
+    /// Grid substeps taken with the Taylor sums so far, and how many make the mode set
+    /// worth its propagators (forming them costs about dim + scanned functions substeps).
+    pub(super) uses: Cell<usize>,
+    pub(super) prepare_after: usize,
+    /// The grid propagators ([`Model::stepping`]), formed once the mode set has lasted.
+    pub(super) stepping: OnceCell<Stepping>,
+}
+
+/// Run-wide model data.
+pub(super) struct Model<'a> {
+    pub(super) plan: &'a Plan,
+    pub(super) lay: Layout,
+    pub(super) minv: DMatrix<f64>,
+    /// L⁻¹ of the mass matrix's Cholesky factor M = LLᵀ.
+    pub(super) linv: DMatrix<f64>,
+    pub(super) mr: DVector<f64>,
+    /// Contact columns of B.
+    pub(super) bcols: Vec<DVector<f64>>,
+    /// Forces without contacts as rows on y (n × dim).
+    pub(super) f0: DMatrix<f64>,
+    pub(super) omega_h: f64,
+}
+
+impl<'a> Model<'a> {
+    pub(super) fn new(plan: &'a Plan) -> Result<Model<'a>, SimError> {
+        let n = plan.dofs();
+        let mut epp_slot = vec![None; plan.contacts.len()];
+        let mut next = 2 * n;
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            match ct.kind {
+                ContactKind::Epp => {
+                    epp_slot[c] = Some(next);
+                    next += 1;
+                }
+                ContactKind::Dof { dof } => {
+                    if plan.mass[(dof, dof)] <= 0.0 {
+                        return Err(SimError::Scene(format!(
+                            "exact: the dissipator of floor {} has zero mass but keeps a DOF (unreduced plan); compile the scene with \"reduce\": true so it becomes the equivalent elastic-perfectly plastic element",
+                            ct.floor + 1
+                        )));
+                    }
+                }
+            }
+        }
+        let lay = Layout {
+            n,
+            epp_slot,
+            i_ag: next,
+            i_slope: next + 1,
+            i_sin: next + 2,
+            i_cos: next + 3,
+            i_one: next + 4,
+            dim: next + 5,
+        };
+        let chol = plan
+            .mass
+            .clone()
+            .cholesky()
+            .ok_or_else(|| SimError::NotPositiveDefinite {
+                what: "mass matrix".into(),
+                hint: " (exact needs every DOF to carry mass)".into(),
+            })?;
+        let minv = chol.inverse();
+        let linv = chol
+            .l()
+            .try_inverse()
+            .expect("the Cholesky factor of an SPD matrix is invertible");
+        let mr = plan.mass_influence();
+        let bm = plan.contact_matrix();
+        let bcols = (0..plan.contacts.len())
+            .map(|c| bm.column(c).into_owned())
+            .collect();
+        let dim = lay.dim;
+        let mut f0 = DMatrix::zeros(n, dim);
+        f0.view_mut((0, 0), (n, n)).copy_from(&(-&plan.stiffness));
+        f0.view_mut((0, n), (n, n)).copy_from(&(-&plan.damping));
+        for i in 0..n {
+            f0[(i, lay.i_ag)] = -mr[i];
+        }
+        let mut omega_h = 0.0;
+        if let Some(h) = &plan.harmonic {
+            f0[(h.floor, lay.i_sin)] = h.amplitude;
+            omega_h = h.omega;
+        }
+        Ok(Model {
+            plan,
+            lay,
+            minv,
+            linv,
+            mr,
+            bcols,
+            f0,
+            omega_h,
+        })
+    }
+
+    /// Bound ρ on |λ(A)| for every mode set: ν_max + ω_max over all-stuck elastic
+    /// braces (constraints only lower both), k′/c′ of sliding damped massless
+    /// dissipators, and the harmonic frequency. Used for the run's substep budget.
+    pub(super) fn spectral_bound(&self) -> f64 {
+        self.bound(None)
+    }
+
+    /// Bound ρ on |λ(A)| of one mode set. A nonzero eigenvalue λ of the mode matrix has
+    /// an eigenvector u in null(B_Sᵀ) (the stuck dissipators with mass move with their
+    /// floors) with λ²uᴴMu + λuᴴC_mu + uᴴK_mu = 0, so |λ| ≤ ν + ω with ν, ω² the largest
+    /// Rayleigh quotients of C_m and K_m over M on that subspace (M-orthogonal projection
+    /// keeps the quotients of the unconstrained matrices there). K_m, C_m carry the braces
+    /// of stuck massless dissipators; a sliding damped one adds its rate k′/c′. `None`:
+    /// the bound over every mode set (no constraints, every brace, every rate).
+    pub(super) fn bound(&self, modes: Option<&[Mode]>) -> f64 {
+        let plan = self.plan;
+        let mut k = plan.stiffness.clone();
+        let mut c = plan.damping.clone();
+        let mut maxwell: f64 = 0.0;
+        let mut stuck_cols = Vec::new();
+        for (i, ct) in plan.contacts.iter().enumerate() {
+            let mode = modes.map(|m| m[i]);
+            match ct.kind {
+                ContactKind::Epp => {
+                    if matches!(mode, None | Some(Mode::Stuck)) {
+                        add_link(&mut k, ct.floor, ct.below, ct.brace_stiffness);
+                        add_link(&mut c, ct.floor, ct.below, ct.brace_damping);
+                    }
+                    if !matches!(mode, Some(Mode::Stuck)) && ct.brace_damping > 0.0 {
+                        maxwell = maxwell.max(ct.brace_stiffness / ct.brace_damping);
+                    }
+                }
+                ContactKind::Dof { .. } => {
+                    // A contact with F⁻ = F⁺ never sticks (its force is fixed).
+                    if mode == Some(Mode::Stuck) && ct.lower != ct.upper {
+                        stuck_cols.push(&self.linv * &self.bcols[i]);
+                    }
+                }
+            }
+        }
+        let n = self.lay.n;
+        // Orthogonal projector onto the complement of L⁻¹B_S (y = Lᵀu coordinates).
+        let proj = if stuck_cols.is_empty() {
+            None
+        } else {
+            let d = DMatrix::from_columns(&stuck_cols);
+            let dtd = d.transpose() * &d;
+            dtd.cholesky()
+                .map(|ch| DMatrix::identity(n, n) - &d * ch.solve(&d.transpose()))
+        };
+        let top = |m: &DMatrix<f64>| -> f64 {
+            let mut s = &self.linv * m * self.linv.transpose();
+            if let Some(p) = &proj {
+                s = p * s * p;
+            }
+            let s = (&s + s.transpose()) * 0.5;
+            s.symmetric_eigenvalues()
+                .iter()
+                .fold(0.0f64, |a, &x| a.max(x.abs()))
+        };
+        top(&k).sqrt() + top(&c) + maxwell + self.omega_h
+    }
+
+    pub(super) fn build(&self, modes: &[Mode]) -> ModeOps {
+        let plan = self.plan;
+        let lay = &self.lay;
+        let (n, dim) = (lay.n, lay.dim);
+        let nc = plan.contacts.len();
+        let mut f = self.f0.clone();
+        let mut force = DMatrix::zeros(nc, dim);
+        let mut xdot = DMatrix::zeros(nc, dim);
+        let mut stuck = Vec::new();
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            match (modes[c], ct.kind) {
+                (Mode::Upper, _) => force[(c, lay.i_one)] = ct.upper,
+                (Mode::Lower, _) => force[(c, lay.i_one)] = ct.lower,
+                (Mode::Stuck, ContactKind::Dof { .. }) => stuck.push(c),
+                (Mode::Stuck, ContactKind::Epp) => {
+                    let s = lay.epp_slot[c].expect("EPP contacts have a slot");
+                    force[(c, s)] += ct.brace_stiffness;
+                    force[(c, n + ct.floor)] += ct.brace_damping;
+                    if let Some(j) = ct.below {
+                        force[(c, j)] -= ct.brace_stiffness;
+                        force[(c, n + j)] -= ct.brace_damping;
+                    }
+                }
+            }
+            if let Some(s) = lay.epp_slot[c] {
+                match modes[c] {
+                    Mode::Stuck => xdot[(c, n + ct.floor)] = 1.0,
+                    Mode::Upper | Mode::Lower => {
+                        if let Some(j) = ct.below {
+                            xdot[(c, n + j)] = 1.0;
+                        }
+                        if ct.brace_damping > 0.0 {
+                            let bound = force[(c, lay.i_one)];
+                            let r = 1.0 / ct.brace_damping;
+                            xdot[(c, lay.i_one)] += bound * r;
+                            xdot[(c, s)] -= ct.brace_stiffness * r;
+                            if let Some(j) = ct.below {
+                                xdot[(c, j)] += ct.brace_stiffness * r;
+                            }
+                        }
+                    }
+                }
+            }
+            if !(modes[c] == Mode::Stuck && matches!(ct.kind, ContactKind::Dof { .. })) {
+                // f −= b_c ⊗ force_c
+                let row = force.row(c).into_owned();
+                for i in 0..n {
+                    let b = self.bcols[c][i];
+                    if b != 0.0 {
+                        for j in 0..dim {
+                            f[(i, j)] -= b * row[j];
+                        }
+                    }
+                }
+            }
+        }
+        let minv_f = &self.minv * &f;
+        let (acc, proj) = if stuck.is_empty() {
+            (minv_f, None)
+        } else {
+            let s = stuck.len();
+            let mut bs = DMatrix::zeros(n, s);
+            for (k, &c) in stuck.iter().enumerate() {
+                bs.set_column(k, &self.bcols[c]);
+            }
+            let y = &self.minv * &bs;
+            let ws = bs.transpose() * &y;
+            let ws = (&ws + ws.transpose()) * 0.5;
+            let wsinv = ws
+                .cholesky()
+                .expect("B_SᵀM⁻¹B_S is SPD: contact columns are independent")
+                .inverse();
+            let lam = &wsinv * (bs.transpose() * &minv_f);
+            for (k, &c) in stuck.iter().enumerate() {
+                force.set_row(c, &lam.row(k));
+            }
+            let proj = DMatrix::identity(n, n) - &y * &wsinv * bs.transpose();
+            (minv_f - &y * &lam, Some(proj))
+        };
+        let mut a = DMatrix::zeros(dim, dim);
+        for i in 0..n {
+            a[(i, n + i)] = 1.0;
+        }
+        a.view_mut((n, 0), (n, dim)).copy_from(&acc);
+        let mut slip_rate = DMatrix::zeros(nc, dim);
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            slip_rate[(c, n + ct.floor)] = 1.0;
+            match (ct.kind, lay.epp_slot[c]) {
+                (ContactKind::Dof { dof }, _) => slip_rate[(c, n + dof)] -= 1.0,
+                (ContactKind::Epp, Some(s)) => {
+                    a.set_row(s, &xdot.row(c));
+                    let r = slip_rate.row(c) - xdot.row(c);
+                    slip_rate.set_row(c, &r);
+                }
+                (ContactKind::Epp, None) => unreachable!("EPP contacts have a slot"),
+            }
+        }
+        a[(lay.i_ag, lay.i_slope)] = 1.0;
+        a[(lay.i_sin, lay.i_cos)] = self.omega_h;
+        a[(lay.i_cos, lay.i_sin)] = -self.omega_h;
+        let mut events = Vec::new();
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            if ct.lower == ct.upper {
+                // Zero-width bounds (μN = 0 kept in an unreduced plan): the force is that
+                // value whatever the contact does; no events.
+                continue;
+            }
+            let bound_scale = Scale::Force(
+                [ct.upper, ct.lower]
+                    .iter()
+                    .filter(|b| b.is_finite())
+                    .fold(0.0f64, |m, b| m.max(b.abs())),
+            );
+            match modes[c] {
+                Mode::Stuck => {
+                    if ct.upper.is_finite() {
+                        let mut row = -force.row(c).transpose();
+                        row[lay.i_one] += ct.upper;
+                        events.push(EventFn {
+                            contact: c,
+                            row,
+                            scale: bound_scale,
+                        });
+                    }
+                    if ct.lower.is_finite() {
+                        let mut row = force.row(c).transpose();
+                        row[lay.i_one] -= ct.lower;
+                        events.push(EventFn {
+                            contact: c,
+                            row,
+                            scale: bound_scale,
+                        });
+                    }
+                }
+                Mode::Upper => events.push(EventFn {
+                    contact: c,
+                    row: slip_rate.row(c).transpose(),
+                    scale: Scale::Velocity,
+                }),
+                Mode::Lower => events.push(EventFn {
+                    contact: c,
+                    row: -slip_rate.row(c).transpose(),
+                    scale: Scale::Velocity,
+                }),
+            }
+        }
+        let dt = plan.method.dt;
+        let rho = self.bound(Some(modes));
+        let delta_max = if rho > 0.0 {
+            SUBSTEP_PHASE / rho
+        } else {
+            f64::INFINITY
+        };
+        let per_step = if delta_max.is_finite() {
+            ((dt / delta_max) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+        } else {
+            1
+        };
+        let prepare_after = dim + events.len() + plan.floors;
+        ModeOps {
+            a,
+            force: force.transpose(),
+            slip_rate: slip_rate.transpose(),
+            xdot: xdot.transpose(),
+            events,
+            proj,
+            delta_max,
+            per_step,
+            h: dt / per_step as f64,
+            uses: Cell::new(0),
+            prepare_after,
+            stepping: OnceCell::new(),
+        }
+    }
+}
+
+pub(super) fn add_link(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
+    m[(i, i)] += k;
+    if let Some(j) = j {
+        m[(j, j)] += k;
+        m[(i, j)] -= k;
+        m[(j, i)] -= k;
+    }
+}
+
+/// Contact `r`'s row on y, stored as column `r` of `m` (a [`ModeOps`] row set), times `y`,
+/// summed in order without allocating.
+#[inline]
+pub(super) fn row_dot(m: &DMatrix<f64>, r: usize, y: &DVector<f64>) -> f64 {
+    let mut s = 0.0;
+    let rows = m.nrows();
+    for (mj, yj) in m.as_slice()[r * rows..(r + 1) * rows]
+        .iter()
+        .zip(y.as_slice())
+    {
+        s += mj * yj;
+    }
+    s
+}
+
+pub(super) struct Cache {
+    pub(super) modes: HashMap<Vec<Mode>, Rc<ModeOps>>,
+}
+
+impl Cache {
+    pub(super) fn get(&mut self, model: &Model, key: &[Mode]) -> Rc<ModeOps> {
+        if let Some(m) = self.modes.get(key) {
+            return Rc::clone(m);
+        }
+        if self.modes.len() >= MODE_CACHE {
+            self.modes.clear();
+        }
+        let ops = Rc::new(model.build(key));
+        self.modes.insert(key.to_vec(), Rc::clone(&ops));
+        ops
+    }
+}
+
+impl Model<'_> {
+    /// Modes decided by the acceleration-level box QP for the contacts in `decide`
+    /// (all other contacts keep `modes`).
+    pub(super) fn decide(
+        &self,
+        cache: &mut Cache,
+        y: &DVector<f64>,
+        modes: &mut [Mode],
+        decide: &[usize],
+        t: f64,
+    ) -> Result<(), SimError> {
+        if decide.is_empty() {
+            return Ok(());
+        }
+        let plan = self.plan;
+        let lay = &self.lay;
+        let n = lay.n;
+        // Forces of all non-decided contacts from the current modes.
+        let mut tmp: Vec<Mode> = modes.to_vec();
+        for &c in decide {
+            tmp[c] = Mode::Upper; // placeholder: its force is excluded below
+        }
+        let ops = cache.get(self, &tmp);
+        let mut g = &self.f0 * y;
+        for (c, _) in plan.contacts.iter().enumerate() {
+            if decide.contains(&c) {
+                continue;
+            }
+            let fc = row_dot(&ops.force, c, y);
+            g.axpy(-fc, &self.bcols[c], 1.0);
+        }
+        let m = decide.len();
+        let mut bu = DMatrix::zeros(n, m);
+        for (k, &c) in decide.iter().enumerate() {
+            bu.set_column(k, &self.bcols[c]);
+        }
+        let wa = bu.transpose() * &self.minv * &bu;
+        let wa = (&wa + wa.transpose()) * 0.5;
+        let b = bu.transpose() * (&self.minv * g);
+        let lo: Vec<f64> = decide.iter().map(|&c| plan.contacts[c].lower).collect();
+        let hi: Vec<f64> = decide.iter().map(|&c| plan.contacts[c].upper).collect();
+        let mut f = vec![0.0; m];
+        let mut qp =
+            BoxQp::new(wa.as_slice(), m).map_err(|source| SimError::Friction { t, source })?;
+        qp.solve(b.as_slice(), &lo, &hi, &mut f)
+            .map_err(|source| SimError::Friction { t, source })?;
+        for (k, &c) in decide.iter().enumerate() {
+            modes[c] = match qp.status(k) {
+                Bound::Free => Mode::Stuck,
+                Bound::Upper => Mode::Upper,
+                Bound::Lower => Mode::Lower,
+            };
+        }
+        Ok(())
+    }
+}

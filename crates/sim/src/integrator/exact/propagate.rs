@@ -1,0 +1,138 @@
+//! Propagation: the truncated exponential series of a mode set, summed per substep
+//! ([`taylor`]) or cached as grid propagators ([`Stepping`]) once the mode set has lasted.
+
+use super::energy::GAUSS;
+use super::modes::{ModeOps, Model};
+use super::{LEAD_TERMS, TAYLOR_TERMS};
+use nalgebra::{DMatrix, DVector};
+
+/// What the grid substeps of one long-lived mode set reuse: the propagator over one grid
+/// interval, and every scanned function (events, then storey drifts) as Taylor rows so its
+/// coefficients are one product with y.
+pub(super) struct Stepping {
+    /// exp(A h) (its Taylor polynomial, exact to round-off as above), dim × dim.
+    pub(super) phi: DMatrix<f64>,
+    /// The input, viscous and friction work over one grid interval as quadratic forms of
+    /// its starting state, h Σ_g w_g exp(A x_g h)ᵀ Q_p exp(A x_g h) for each power
+    /// p(y) = yᵀ Q_p y: the same 6-point Gauss–Legendre rule as [`Model::integrate_powers`],
+    /// summed once per mode set instead of once per substep. `None` when energies are off.
+    pub(super) work: Option<[DMatrix<f64>; 3]>,
+    /// Column f·K + k: the k-th Taylor row r Aᵏ/k! of scanned function f, so that its
+    /// coefficient on τᵏ over a substep from y is that column · y.
+    pub(super) rows: DMatrix<f64>,
+    /// Column f: Σ_{k≥1} |r Aᵏ/k!| hᵏ componentwise, so that |g(τ) − g(0)| ≤ Σ_j |y_j|·tail_j
+    /// for τ ≤ h (every term is nonnegative and grows with τ).
+    pub(super) tails: DMatrix<f64>,
+    /// Column f: Σ_{k≥LEAD_TERMS} |r Aᵏ/k!| hᵏ componentwise, the part of the tail past the
+    /// leading coefficients, which the second test forms exactly.
+    pub(super) tails_far: DMatrix<f64>,
+}
+
+impl Model<'_> {
+    /// The grid propagators of a mode set.
+    pub(super) fn stepping(&self, ops: &ModeOps) -> Stepping {
+        let dim = self.lay.dim;
+        let nf = self.plan.floors;
+        let h = ops.h;
+        // exp(A τ) = Σ_k (Aᵏ/k!) τᵏ, the powers formed once for every τ.
+        let mut powers = Vec::with_capacity(TAYLOR_TERMS);
+        powers.push(DMatrix::identity(dim, dim));
+        for k in 1..TAYLOR_TERMS {
+            let next = &ops.a * &powers[k - 1] / k as f64;
+            powers.push(next);
+        }
+        let expm = |tau: f64| {
+            let mut phi = powers[TAYLOR_TERMS - 1].clone();
+            for pk in powers[..TAYLOR_TERMS - 1].iter().rev() {
+                phi *= tau;
+                phi += pk;
+            }
+            phi
+        };
+        let phi = expm(h);
+        let work = self.plan.outputs.energies.then(|| {
+            let forms = self.power_forms(ops);
+            let mut work = [(); 3].map(|_| DMatrix::zeros(dim, dim));
+            for (x, w) in GAUSS {
+                let phi_g = expm(x * h);
+                for (wp, q) in work.iter_mut().zip(&forms) {
+                    let qphi = q * &phi_g;
+                    wp.gemm_tr(w * h, &phi_g, &qphi, 1.0);
+                }
+            }
+            work
+        });
+        let nfun = ops.events.len() + nf;
+        let mut rows = DMatrix::zeros(dim, nfun * TAYLOR_TERMS);
+        let mut tails = DMatrix::zeros(dim, nfun);
+        let mut tails_far = DMatrix::zeros(dim, nfun);
+        let at = ops.a.transpose();
+        for f in 0..nfun {
+            let mut r = if f < ops.events.len() {
+                ops.events[f].row.clone()
+            } else {
+                let i = f - ops.events.len();
+                let mut d = DVector::zeros(dim);
+                d[i] = 1.0;
+                if i > 0 {
+                    d[i - 1] = -1.0;
+                }
+                d
+            };
+            let mut hk = 1.0;
+            for k in 0..TAYLOR_TERMS {
+                if k > 0 {
+                    r = &at * r / k as f64;
+                    hk *= h;
+                    for j in 0..dim {
+                        tails[(j, f)] += r[j].abs() * hk;
+                        if k >= LEAD_TERMS {
+                            tails_far[(j, f)] += r[j].abs() * hk;
+                        }
+                    }
+                }
+                rows.set_column(f * TAYLOR_TERMS + k, &r);
+            }
+        }
+        Stepping {
+            phi,
+            work,
+            rows,
+            tails,
+            tails_far,
+        }
+    }
+}
+
+/// The leading terms c_k hᵏ, 1 ≤ k < [`LEAD_TERMS`], of scanned function `f` over a grid
+/// substep from `y` (c_k = its Taylor row · y), each the largest |c_k τᵏ| on [0, h]: so
+/// g(0) + Σ min(0, ·) bounds g(0) + Σ c_k τᵏ from below there, |g(0)| + Σ |·| from above.
+#[inline]
+pub(super) fn lead_terms(
+    st: &Stepping,
+    f: usize,
+    y: &DVector<f64>,
+    h: f64,
+) -> [f64; LEAD_TERMS - 1] {
+    let mut hk = 1.0;
+    std::array::from_fn(|i| {
+        hk *= h;
+        st.rows.column(f * TAYLOR_TERMS + i + 1).dot(y) * hk
+    })
+}
+
+/// yᵀ Q y, with `scratch` for Q y.
+#[inline]
+pub(super) fn quadratic(q: &DMatrix<f64>, y: &DVector<f64>, scratch: &mut DVector<f64>) -> f64 {
+    scratch.gemv(1.0, q, y, 0.0);
+    y.dot(scratch)
+}
+
+/// The Taylor coefficients p_k = Aᵏ y / k! of exp(Aτ) y.
+pub(super) fn taylor(a: &DMatrix<f64>, y: &DVector<f64>, p: &mut [DVector<f64>]) {
+    p[0].copy_from(y);
+    for k in 1..p.len() {
+        let (lo, hi) = p.split_at_mut(k);
+        hi[0].gemv(1.0 / k as f64, a, &lo[k - 1], 0.0);
+    }
+}
