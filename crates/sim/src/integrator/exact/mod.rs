@@ -108,7 +108,7 @@ use crate::units::is_positive;
 use energy::{GAUSS, Integrals};
 use modes::{Cache, Mode, ModeOps, Model, Scale, row_dot};
 use nalgebra::DVector;
-use propagate::{lead_terms, quadratic, taylor};
+use propagate::{col, dot, lead_coefs, lead_terms, monotone, quadratic, taylor};
 use search::{first_crossing, illinois, poly, tail_and_degree};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -357,7 +357,10 @@ impl Integrator for Exact {
         let mut acc = DVector::zeros(dim);
         let observe =
             |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>| {
-                acc.gemv(1.0, &ops.a, y, 0.0);
+                // Only the accelerations (rows n..2n of A y) are observed.
+                for (i, ai) in acc.as_mut_slice()[n..2 * n].iter_mut().enumerate() {
+                    *ai = dot(col(&ops.acc_rows, i), y.as_slice());
+                }
                 let ag = y[lay.i_ag];
                 let p = plan
                     .harmonic
@@ -398,6 +401,7 @@ impl Integrator for Exact {
         let mut dcoef = [0.0; TAYLOR_TERMS];
         let mut ynode = DVector::zeros(dim);
         let mut yabs = DVector::zeros(dim);
+        let mut at_end = vec![false; nf];
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
             out.copy_from(&p[TAYLOR_TERMS - 1]);
             for k in (0..TAYLOR_TERMS - 1).rev() {
@@ -461,20 +465,30 @@ impl Integrator for Exact {
                             let _ = ops.stepping.set(model.stepping(&ops));
                         }
                     }
-                    let fast = if regular { ops.stepping.get() } else { None };
-                    if fast.is_some() {
+                    // Bounds: a prepared mode set's tails hold for any substep no longer
+                    // than its grid interval (every term grows with τ), so substeps off
+                    // the grid (after an event) are ruled out by the same tests.
+                    let bounds = ops.stepping.get().filter(|_| len <= ops.h * (1.0 + 1e-12));
+                    // The propagator itself only on a whole grid interval.
+                    let fast = if regular { bounds } else { None };
+                    if bounds.is_some() {
                         for (a, b) in yabs.iter_mut().zip(y.iter()) {
                             *a = b.abs();
                         }
-                    } else {
+                    }
+                    // The Taylor coefficients p_k = Aᵏ y / k! of the substep, formed when
+                    // its end is not one product with the propagator (or when a scan
+                    // needs them and there are no Taylor rows).
+                    let mut summed = fast.is_none();
+                    if summed {
                         taylor(&ops.a, &y, &mut p);
                     }
                     let nev = ops.events.len();
                     let coefs =
                         |f: usize, y: &DVector<f64>, p: &[DVector<f64>], coef: &mut [f64]| {
-                            if let Some(st) = fast {
+                            if let Some(st) = bounds {
                                 for (k, c) in coef.iter_mut().enumerate() {
-                                    *c = st.rows.column(f * TAYLOR_TERMS + k).dot(y);
+                                    *c = dot(col(&st.rows, f * TAYLOR_TERMS + k), y.as_slice());
                                 }
                             } else if f < nev {
                                 let row = &ops.events[f].row;
@@ -492,19 +506,19 @@ impl Integrator for Exact {
                     let mut tau_end = len;
                     let mut fired: Option<usize> = None;
                     for (e, ef) in ops.events.iter().enumerate() {
-                        if let Some(st) = fast {
-                            let g0 = ef.row.dot(&y);
-                            if g0 >= st.tails.column(e).dot(&yabs) {
+                        if let Some(st) = bounds {
+                            let g0 = dot(ef.row.as_slice(), y.as_slice());
+                            if g0 >= dot(col(&st.tails, e), yabs.as_slice()) {
                                 // g(τ) ≥ g(0) − Σ|y_j|·tail_j ≥ 0 on the whole substep.
                                 continue;
                             }
                             if g0 >= 0.0
-                                && lead_terms(st, e, &y, ops.h)
+                                && lead_terms(&lead_coefs(st, e, &y), len)
                                     .iter()
                                     .fold(g0, |low, t| low + t.min(0.0))
-                                    >= st.tails_far.column(e).dot(&yabs)
+                                    >= dot(col(&st.tails_far, e), yabs.as_slice())
                             {
-                                // g(τ) ≥ Σ_{k<L} min(0, c_k hᵏ) − Σ|y_j|·tail_far_j ≥ 0
+                                // g(τ) ≥ Σ_{k<L} min(0, c_k lenᵏ) − Σ|y_j|·tail_far_j ≥ 0
                                 // (the leading terms formed exactly).
                                 continue;
                             }
@@ -521,19 +535,32 @@ impl Integrator for Exact {
                             fired = Some(e);
                         }
                     }
-                    // Drift extrema inside (0, tau_end].
+                    // Drift extrema inside (0, tau_end]; a drift that is monotone there
+                    // has its peak at the end, taken once the end state is known.
+                    at_end.fill(false);
                     for i in 0..nf {
-                        if let Some(st) = fast {
+                        if let Some(st) = bounds {
                             let d0 = y[i] - if i == 0 { 0.0 } else { y[i - 1] };
-                            if d0.abs() + st.tails.column(nev + i).dot(&yabs) <= cont_drift[i] {
-                                continue;
-                            }
-                            if lead_terms(st, nev + i, &y, ops.h)
-                                .iter()
-                                .fold(d0.abs(), |high, t| high + t.abs())
-                                + st.tails_far.column(nev + i).dot(&yabs)
+                            if d0.abs() + dot(col(&st.tails, nev + i), yabs.as_slice())
                                 <= cont_drift[i]
                             {
+                                continue;
+                            }
+                            let lead = lead_coefs(st, nev + i, &y);
+                            if lead_terms(&lead, len)
+                                .iter()
+                                .fold(d0.abs(), |high, t| high + t.abs())
+                                + dot(col(&st.tails_far, nev + i), yabs.as_slice())
+                                <= cont_drift[i]
+                            {
+                                continue;
+                            }
+                            if monotone(
+                                &lead,
+                                len,
+                                dot(col(&st.rate_tails_far, nev + i), yabs.as_slice()),
+                            ) {
+                                at_end[i] = true;
                                 continue;
                             }
                         }
@@ -569,9 +596,10 @@ impl Integrator for Exact {
                         ynode.gemv(1.0, &st.phi, &y, 0.0);
                         std::mem::swap(&mut y, &mut ynode);
                     } else {
-                        if fast.is_some() {
+                        if !summed {
                             // A grid substep cut by an event.
                             taylor(&ops.a, &y, &mut p);
+                            summed = true;
                         }
                         if energies {
                             model.integrate_powers(
@@ -585,6 +613,15 @@ impl Integrator for Exact {
                             );
                         }
                         eval(&p, tau_end, &mut y);
+                    }
+                    debug_assert!(summed || fast.is_some());
+                    // The monotone drifts' peaks, at the end of the substep.
+                    let mut below = 0.0;
+                    for (i, c) in cont_drift.iter_mut().enumerate() {
+                        if at_end[i] {
+                            *c = c.max((y[i] - below).abs());
+                        }
+                        below = y[i];
                     }
                     match (fired, reach) {
                         (None, Some(j)) => {

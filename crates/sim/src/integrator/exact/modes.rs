@@ -50,6 +50,9 @@ pub(super) struct EventFn {
 /// Everything fixed for one mode set.
 pub(super) struct ModeOps {
     pub(super) a: DMatrix<f64>,
+    /// The acceleration rows n..2n of `a`, stored transposed (dim × n: column i is the
+    /// acceleration of DOF i as a row on y), for the peaks at every output step.
+    pub(super) acc_rows: DMatrix<f64>,
     /// Friction force of each contact as a row on y, stored transposed (dim × contacts:
     /// column c is contact c's row, contiguous for [`row_dot`]).
     pub(super) force: DMatrix<f64>,
@@ -385,8 +388,10 @@ impl<'a> Model<'a> {
             1
         };
         let prepare_after = dim + events.len() + plan.floors;
+        let acc_rows = a.rows(n, n).transpose();
         ModeOps {
             a,
+            acc_rows,
             force: force.transpose(),
             slip_rate: slip_rate.transpose(),
             xdot: xdot.transpose(),

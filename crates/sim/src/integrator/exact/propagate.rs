@@ -26,6 +26,11 @@ pub(super) struct Stepping {
     /// Column f: Σ_{k≥LEAD_TERMS} |r Aᵏ/k!| hᵏ componentwise, the part of the tail past the
     /// leading coefficients, which the second test forms exactly.
     pub(super) tails_far: DMatrix<f64>,
+    /// Column f: Σ_{k≥LEAD_TERMS} k |r Aᵏ/k!| hᵏ⁻¹ componentwise, the same bound on the
+    /// rate g′(τ) past its leading terms: where the leading part of g′ keeps one sign by
+    /// more than Σ|y_j|·rate_tail_j, g is monotone on the substep (a drift's peak there is
+    /// at an end).
+    pub(super) rate_tails_far: DMatrix<f64>,
 }
 
 impl Model<'_> {
@@ -66,6 +71,7 @@ impl Model<'_> {
         let mut rows = DMatrix::zeros(dim, nfun * TAYLOR_TERMS);
         let mut tails = DMatrix::zeros(dim, nfun);
         let mut tails_far = DMatrix::zeros(dim, nfun);
+        let mut rate_tails_far = DMatrix::zeros(dim, nfun);
         let at = ops.a.transpose();
         for f in 0..nfun {
             let mut r = if f < ops.events.len() {
@@ -80,14 +86,19 @@ impl Model<'_> {
                 d
             };
             let mut hk = 1.0;
+            let mut hk1 = 1.0;
             for k in 0..TAYLOR_TERMS {
                 if k > 0 {
                     r = &at * r / k as f64;
+                    if k > 1 {
+                        hk1 *= h;
+                    }
                     hk *= h;
                     for j in 0..dim {
                         tails[(j, f)] += r[j].abs() * hk;
                         if k >= LEAD_TERMS {
                             tails_far[(j, f)] += r[j].abs() * hk;
+                            rate_tails_far[(j, f)] += k as f64 * r[j].abs() * hk1;
                         }
                     }
                 }
@@ -100,25 +111,78 @@ impl Model<'_> {
             rows,
             tails,
             tails_far,
+            rate_tails_far,
         }
     }
 }
 
-/// The leading terms c_k hᵏ, 1 ≤ k < [`LEAD_TERMS`], of scanned function `f` over a grid
-/// substep from `y` (c_k = its Taylor row · y), each the largest |c_k τᵏ| on [0, h]: so
-/// g(0) + Σ min(0, ·) bounds g(0) + Σ c_k τᵏ from below there, |g(0)| + Σ |·| from above.
+/// The leading Taylor coefficients c_k, 1 ≤ k < [`LEAD_TERMS`], of scanned function `f`
+/// from `y` (c_k = its Taylor row · y).
 #[inline]
-pub(super) fn lead_terms(
-    st: &Stepping,
-    f: usize,
-    y: &DVector<f64>,
-    h: f64,
-) -> [f64; LEAD_TERMS - 1] {
-    let mut hk = 1.0;
+pub(super) fn lead_coefs(st: &Stepping, f: usize, y: &DVector<f64>) -> [f64; LEAD_TERMS - 1] {
+    std::array::from_fn(|i| dot(col(&st.rows, f * TAYLOR_TERMS + i + 1), y.as_slice()))
+}
+
+/// Column `j` of a column-major matrix, as a slice.
+#[inline]
+pub(super) fn col(m: &DMatrix<f64>, j: usize) -> &[f64] {
+    let r = m.nrows();
+    &m.as_slice()[j * r..(j + 1) * r]
+}
+
+/// Σ a_i b_i over slices of equal length, in four interleaved partial sums (the step
+/// loop's scalar products: no views, no shape checks, vectorisable).
+#[inline]
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut s = [0.0f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        s[0] += x[0] * y[0];
+        s[1] += x[1] * y[1];
+        s[2] += x[2] * y[2];
+        s[3] += x[3] * y[3];
+    }
+    let mut t = (s[0] + s[1]) + (s[2] + s[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        t += x * y;
+    }
+    t
+}
+
+/// The leading terms c_k lenᵏ of [`lead_coefs`], each the largest |c_k τᵏ| on [0, len]:
+/// so g(0) + Σ min(0, ·) bounds g(0) + Σ c_k τᵏ from below there, |g(0)| + Σ |·| from
+/// above.
+#[inline]
+pub(super) fn lead_terms(c: &[f64; LEAD_TERMS - 1], len: f64) -> [f64; LEAD_TERMS - 1] {
+    let mut lk = 1.0;
     std::array::from_fn(|i| {
-        hk *= h;
-        st.rows.column(f * TAYLOR_TERMS + i + 1).dot(y) * hk
+        lk *= len;
+        c[i] * lk
     })
+}
+
+/// Whether Σ_{1≤k<L} k c_k τᵏ⁻¹ (the leading part of g′) keeps one sign on [0, len] by a
+/// margin above `rest` (a bound on the other terms of g′ there): then g is monotone on
+/// [0, len]. The leading part is the quadratic c₁ + 2c₂τ + 3c₃τ², whose extremes on the
+/// interval are at its ends or its vertex.
+#[inline]
+pub(super) fn monotone(c: &[f64; LEAD_TERMS - 1], len: f64, rest: f64) -> bool {
+    let [c1, c2, c3] = *c;
+    let q = |t: f64| c1 + t * (2.0 * c2 + t * 3.0 * c3);
+    let (a, b) = (q(0.0), q(len));
+    let (mut lo, mut hi) = (a.min(b), a.max(b));
+    if c3 != 0.0 {
+        let tv = -c2 / (3.0 * c3);
+        if tv > 0.0 && tv < len {
+            let v = q(tv);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    lo > rest || hi < -rest
 }
 
 /// yᵀ Q y, with `scratch` for Q y.
