@@ -44,6 +44,80 @@ pub struct BuildingConfig {
     /// The dissipators, at most one per floor.
     #[serde(default)]
     pub dissipators: Vec<DissipatorConfig>,
+    /// Storeys whose shear–drift law yields (bilinear, kinematic hardening); storeys not
+    /// listed stay elastic.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub storey_yield: Vec<StoreyYieldConfig>,
+    /// Linearised P-Δ: a geometric stiffness −Pᵢ/hᵢ per storey (needs `storey_heights`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub p_delta: Option<PDeltaConfig>,
+    /// Storey drift ratio (drift / storey height) past which a run stops and reports the
+    /// storey as collapsed. Default 0.10 when a storey yields or P-Δ acts and storey
+    /// heights are given. Exclusive with `collapse_drift`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse_drift_ratio: Option<f64>,
+    /// The same limit as a drift (m), for every storey. Exclusive with
+    /// `collapse_drift_ratio`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse_drift: Option<Length>,
+}
+
+/// Default collapse limit: storey drift ratio past which a yielding or P-Δ frame is taken
+/// to have collapsed.
+pub const DEFAULT_COLLAPSE_DRIFT_RATIO: f64 = 0.10;
+
+/// A yielding storey, as written: initial stiffness k, yield shear Fy (or yield drift
+/// Fy/k) and post-yield ratio α (0 = elastic–perfectly plastic).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StoreyYieldConfig {
+    /// Storey number, 1 = between the ground and the first floor.
+    pub storey: usize,
+    /// Yield shear Fy (N), > 0. Exclusive with `yield_drift`.
+    #[serde(default)]
+    pub yield_shear: Option<Force>,
+    /// Yield drift Fy/k (m), > 0. Exclusive with `yield_shear`.
+    #[serde(default)]
+    pub yield_drift: Option<Length>,
+    /// Post-yield stiffness ratio α in [0, 1); default 0 (elastic–perfectly plastic).
+    #[serde(default)]
+    pub post_yield_ratio: Option<f64>,
+    /// Initial stiffness k of the storey spring that yields (N/m): by default the storey's
+    /// `storey_stiffness`; required when the frame is given as `stiffness_matrix` (the
+    /// spring between floors i−1 and i that is part of that matrix).
+    #[serde(default)]
+    pub stiffness: Option<Stiffness>,
+}
+
+/// P-Δ, as written.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PDeltaConfig {
+    /// Gravity load carried by each storey, bottom to top (N); by default g times the
+    /// floor masses at and above the storey.
+    #[serde(default)]
+    pub gravity_loads: Option<Vec<Force>>,
+}
+
+/// Standard gravity (m/s²), for the default P-Δ loads.
+pub const STANDARD_GRAVITY: f64 = 9.806_65;
+
+/// A validated yielding storey, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StoreyYield {
+    /// Initial stiffness k of the storey spring, N/m.
+    pub stiffness: f64,
+    /// Yield shear Fy, N.
+    pub yield_shear: f64,
+    /// Post-yield stiffness ratio α in [0, 1).
+    pub post_yield_ratio: f64,
+}
+
+impl StoreyYield {
+    /// Yield drift Fy/k, m.
+    pub fn yield_drift(&self) -> f64 {
+        self.yield_shear / self.stiffness
+    }
 }
 
 /// How the frame damping matrix Cˢˢ is given.
@@ -166,6 +240,12 @@ pub struct Building {
     pub storey_heights: Option<Vec<f64>>,
     /// Dissipator of each floor, if any.
     pub dissipators: Vec<Option<Dissipator>>,
+    /// Yield law of each storey, if it yields (`None`: elastic).
+    pub storey_yield: Vec<Option<StoreyYield>>,
+    /// P-Δ gravity load Pᵢ of each storey (N), when P-Δ is on.
+    pub gravity_loads: Option<Vec<f64>>,
+    /// Drift of each storey (m) past which a run stops with a collapse, when set.
+    pub collapse_drift: Option<Vec<f64>>,
     /// Modes of the bare frame.
     pub modes: Modes,
 }
@@ -260,6 +340,159 @@ fn per_floor(
             format!("must be {what}, got {}", values[i]),
         )),
         None => Ok(values.to_vec()),
+    }
+}
+
+/// Validates `storey_yield` against the frame: one entry per listed storey, Fy or the
+/// yield drift, α in [0, 1), and the spring's stiffness (from `storey_stiffness`, or given
+/// for a matrix frame, where it must not exceed the matrix's own coupling of the storey).
+fn storey_yield(
+    cfg: &BuildingConfig,
+    path: &Path,
+    n: usize,
+    stiffness: &DMatrix<f64>,
+) -> Result<Vec<Option<StoreyYield>>, SimError> {
+    let mut out = vec![None; n];
+    for (idx, y) in cfg.storey_yield.iter().enumerate() {
+        let f = |name: &str| format!("storey_yield[{idx}].{name}");
+        if y.storey == 0 || y.storey > n {
+            return Err(SimError::invalid(
+                path,
+                f("storey"),
+                format!("must be a storey number from 1 to {n}, got {}", y.storey),
+            ));
+        }
+        let i = y.storey - 1;
+        if out[i].is_some() {
+            return Err(SimError::invalid(
+                path,
+                f("storey"),
+                format!(
+                    "storey {} already has a yield law (one per storey)",
+                    y.storey
+                ),
+            ));
+        }
+        let k = match (&y.stiffness, &cfg.storey_stiffness) {
+            (Some(k), _) => k.0,
+            (None, Some(ks)) => ks[i].0,
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("stiffness"),
+                    "missing: a frame given as stiffness_matrix must say the stiffness of the storey spring that yields (N/m)",
+                ));
+            }
+        };
+        if !is_positive(k) {
+            return Err(SimError::invalid(
+                path,
+                f("stiffness"),
+                format!("must be positive and finite, got {k}"),
+            ));
+        }
+        // The spring is part of the frame: its coupling of floors i−1 and i (or, for the
+        // first storey, the first floor's diagonal) must hold it.
+        let coupling = if i == 0 {
+            stiffness[(0, 0)]
+        } else {
+            -stiffness[(i, i - 1)]
+        };
+        if k > coupling * (1.0 + 1e-9) {
+            return Err(SimError::invalid(
+                path,
+                f("stiffness"),
+                format!(
+                    "{k:.6e} N/m is more than the frame matrix couples storey {} with ({coupling:.6e} N/m)",
+                    y.storey
+                ),
+            ));
+        }
+        let fy = match (&y.yield_shear, &y.yield_drift) {
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("yield_drift"),
+                    "give either yield_shear or yield_drift, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("yield_shear"),
+                    "missing: give yield_shear (N) or yield_drift (m)",
+                ));
+            }
+            (Some(v), None) => v.0,
+            (None, Some(d)) => d.0 * k,
+        };
+        if !is_positive(fy) {
+            let name = if y.yield_shear.is_some() {
+                "yield_shear"
+            } else {
+                "yield_drift"
+            };
+            return Err(SimError::invalid(
+                path,
+                f(name),
+                format!("must be positive and finite, got {fy}"),
+            ));
+        }
+        let alpha = y.post_yield_ratio.unwrap_or(0.0);
+        if !(alpha.is_finite() && (0.0..1.0).contains(&alpha)) {
+            return Err(SimError::invalid(
+                path,
+                f("post_yield_ratio"),
+                format!("must be in [0, 1), got {alpha}"),
+            ));
+        }
+        out[i] = Some(StoreyYield {
+            stiffness: k,
+            yield_shear: fy,
+            post_yield_ratio: alpha,
+        });
+    }
+    Ok(out)
+}
+
+/// The P-Δ gravity load of each storey: given, or g times the floor masses (row sums of
+/// the mass matrix) at and above it.
+fn gravity_loads(
+    pd: &PDeltaConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+    heights: Option<&[f64]>,
+) -> Result<Vec<f64>, SimError> {
+    let n = mass.nrows();
+    if heights.is_none() {
+        return Err(SimError::invalid(
+            path,
+            "p_delta",
+            "needs storey_heights (the geometric stiffness of storey i is -P_i/h_i)",
+        ));
+    }
+    match &pd.gravity_loads {
+        Some(ps) => {
+            let ps: Vec<f64> = ps.iter().map(|p| p.0).collect();
+            per_floor(
+                path,
+                "p_delta.gravity_loads",
+                &ps,
+                Some(n),
+                is_non_negative,
+                "a finite load ≥ 0",
+            )
+        }
+        None => {
+            let floor_mass: Vec<f64> = (0..n).map(|i| mass.row(i).sum()).collect();
+            let mut p = vec![0.0; n];
+            let mut above = 0.0;
+            for i in (0..n).rev() {
+                above += floor_mass[i];
+                p[i] = STANDARD_GRAVITY * above;
+            }
+            Ok(p)
+        }
     }
 }
 
@@ -536,6 +769,52 @@ impl Building {
                 upper,
             });
         }
+        let storey_yield = storey_yield(cfg, path, n, &stiffness)?;
+        let gravity_loads = match &cfg.p_delta {
+            None => None,
+            Some(pd) => Some(gravity_loads(pd, path, &mass, storey_heights.as_deref())?),
+        };
+        let nonlinear = storey_yield.iter().any(Option::is_some) || gravity_loads.is_some();
+        let collapse_drift = match (cfg.collapse_drift_ratio, &cfg.collapse_drift) {
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    "collapse_drift",
+                    "give either collapse_drift_ratio or collapse_drift, not both",
+                ));
+            }
+            (Some(r), None) => {
+                if !is_positive(r) {
+                    return Err(SimError::invalid(
+                        path,
+                        "collapse_drift_ratio",
+                        format!("must be positive and finite, got {r}"),
+                    ));
+                }
+                let Some(h) = &storey_heights else {
+                    return Err(SimError::invalid(
+                        path,
+                        "collapse_drift_ratio",
+                        "needs storey_heights (or give collapse_drift in m)",
+                    ));
+                };
+                Some(h.iter().map(|h| r * h).collect())
+            }
+            (None, Some(d)) => {
+                if !is_positive(d.0) {
+                    return Err(SimError::invalid(
+                        path,
+                        "collapse_drift",
+                        format!("must be positive and finite, got {}", d.0),
+                    ));
+                }
+                Some(vec![d.0; n])
+            }
+            (None, None) if nonlinear => storey_heights
+                .as_ref()
+                .map(|h| h.iter().map(|h| DEFAULT_COLLAPSE_DRIFT_RATIO * h).collect()),
+            (None, None) => None,
+        };
         Ok(Building {
             name: cfg.name.clone().unwrap_or_else(|| {
                 path.file_stem()
@@ -546,8 +825,16 @@ impl Building {
             damping,
             storey_heights,
             dissipators,
+            storey_yield,
+            gravity_loads,
+            collapse_drift,
             modes,
         })
+    }
+
+    /// Whether any storey yields or P-Δ acts (effects beyond the linear frame).
+    pub fn is_nonlinear_frame(&self) -> bool {
+        self.storey_yield.iter().any(Option::is_some) || self.gravity_loads.is_some()
     }
 
     /// Number of floors.

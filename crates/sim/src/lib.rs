@@ -19,12 +19,12 @@ pub mod scene;
 pub mod simulate;
 pub mod units;
 
-pub use building::{Building, BuildingConfig, Dissipator};
+pub use building::{Building, BuildingConfig, Dissipator, StoreyYield};
 pub use error::SimError;
 pub use integrator::{DelaCruz, Exact, Integrator, Newmark};
 pub use kind::FileKind;
 pub use plan::Plan;
-pub use response::{Energy, History, LoopIterations, Outcome, Response};
+pub use response::{Collapse, Energy, History, LoopIterations, Outcome, Response};
 pub use scene::{MethodName, Scene, SceneOverrides};
 pub use simulate::{run_plan, simulate};
 

@@ -33,9 +33,22 @@ pub enum ContactKind {
     Epp,
 }
 
-/// One friction contact between floor `floor` and its dissipator.
+/// What a contact models.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactRole {
+    /// A friction dissipator on its brace.
+    Damper,
+    /// The elastic–perfectly plastic part (1−α)k, yielding at (1−α)Fy, of a storey whose
+    /// shear–drift law is bilinear: `floor` is the storey's top floor, `below` its bottom.
+    Storey,
+}
+
+/// One friction contact between floor `floor` and its dissipator (or, for a
+/// [`ContactRole::Storey`] contact, the plastic element of storey `floor + 1`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
+    /// What the contact models.
+    pub role: ContactRole,
     /// Floor index (DOF) the contact acts on.
     pub floor: usize,
     /// Floor the brace starts from (`None` = the ground).
@@ -100,6 +113,10 @@ pub struct Plan {
     pub outputs: OutputsConfig,
     /// Fundamental period of the bare frame, s.
     pub t1: f64,
+    /// Yield drift Fy/k of each storey that yields.
+    pub yield_drift: Vec<Option<f64>>,
+    /// Drift of each storey (m) past which the run stops with a collapse, when set.
+    pub collapse_drift: Option<Vec<f64>>,
     /// One line per decision, for `slipload explain`.
     pub notes: Vec<String>,
 }
@@ -272,6 +289,7 @@ impl Plan {
             }
             contact_x0.push((xd0, vd0));
             contacts.push(Contact {
+                role: ContactRole::Damper,
                 floor: f,
                 below,
                 kind,
@@ -281,12 +299,85 @@ impl Plan {
                 brace_damping: d.brace_damping,
             });
         }
-        // Assembled stiffness must be positive definite (it is for valid buildings; a
-        // check here turns a modelling slip into an error instead of a wrong answer).
-        if stiffness.clone().cholesky().is_none() {
+        // Yielding storeys: the spring k of storey i splits into an elastic αk, which stays
+        // in K, and an elastic–perfectly plastic (1−α)k yielding at (1−α)Fy, which is a
+        // contact between floors i−1 and i like a massless dissipator. Appended after the
+        // dissipators, so a building without them compiles to the same contacts.
+        for (f, y) in b.storey_yield.iter().enumerate() {
+            let Some(y) = y else { continue };
+            let storey = f + 1;
+            let below = f.checked_sub(1);
+            let kp = (1.0 - y.post_yield_ratio) * y.stiffness;
+            let fp = (1.0 - y.post_yield_ratio) * y.yield_shear;
+            add_spring(&mut stiffness, f, below, -kp);
+            // Unstressed plastic element: it starts stuck with the storey's elastic force;
+            // a storey displaced beyond yield at rest has yielded to its bound.
+            let uj = below.map_or(0.0, |j| u0[j]);
+            let force = kp * (u0[f] - uj);
+            let clamped = force.clamp(-fp, fp);
+            let x0 = uj + clamped / kp;
+            if clamped != force {
+                notes.push(format!(
+                    "storey {storey}: initial drift {:.6e} m is beyond yield ({:.6e} m): starts yielded, plastic drift {:.6e} m",
+                    u0[f] - uj,
+                    y.yield_drift(),
+                    u0[f] - x0
+                ));
+            }
+            notes.push(format!(
+                "storey {storey}: yields (k = {:.6e} N/m, Fy = {:.6e} N, yield drift {:.6e} m, alpha = {}) -> elastic {:.6e} N/m in K + elastic-perfectly plastic element between floors {f} and {storey} (k = {kp:.6e} N/m, bounds +-{fp:.6e} N), no DOF",
+                y.stiffness,
+                y.yield_shear,
+                y.yield_drift(),
+                y.post_yield_ratio,
+                y.post_yield_ratio * y.stiffness,
+            ));
+            contact_x0.push((x0, v0[f]));
+            contacts.push(Contact {
+                role: ContactRole::Storey,
+                floor: f,
+                below,
+                kind: ContactKind::Epp,
+                lower: -fp,
+                upper: fp,
+                brace_stiffness: kp,
+                brace_damping: 0.0,
+            });
+        }
+        // P-Δ: the linearised geometric stiffness −Pᵢ/hᵢ of every storey.
+        if let (Some(p), Some(h)) = (&b.gravity_loads, &b.storey_heights) {
+            for (f, (pi, hi)) in p.iter().zip(h).enumerate() {
+                add_spring(&mut stiffness, f, f.checked_sub(1), -pi / hi);
+            }
+            notes.push(format!(
+                "P-Delta: geometric stiffness -P/h per storey, P = [{}] N over h = [{}] m",
+                p.iter()
+                    .map(|v| format!("{v:.6e}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                h.iter()
+                    .map(|v| format!("{v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        // The initial stiffness (every contact stuck, its brace or plastic element
+        // elastic) must be positive definite (it is for valid buildings; a check here
+        // turns a modelling slip into an error instead of a wrong answer). Yielded, a
+        // storey with P-Δ may lose stiffness: that is the instability the run reports.
+        let mut initial = stiffness.clone();
+        for ct in contacts.iter().filter(|c| c.kind == ContactKind::Epp) {
+            add_spring(&mut initial, ct.floor, ct.below, ct.brace_stiffness);
+        }
+        if initial.cholesky().is_none() {
             return Err(SimError::NotPositiveDefinite {
                 what: "assembled stiffness matrix".into(),
-                hint: " (check the frame stiffness and the brace stiffnesses)".into(),
+                hint: if b.gravity_loads.is_some() {
+                    " (with P-Delta: the gravity loads exceed what the elastic frame carries)"
+                        .into()
+                } else {
+                    " (check the frame stiffness and the brace stiffnesses)".into()
+                },
             });
         }
         let steps = scene.steps();
@@ -309,10 +400,22 @@ impl Plan {
             n_dof,
             n,
             n_dof - n,
-            contacts.len(),
+            contacts.iter().filter(|c| c.role == ContactRole::Damper).count(),
             contacts.iter().filter(|c| matches!(c.kind, ContactKind::Dof { .. })).count(),
-            contacts.iter().filter(|c| c.kind == ContactKind::Epp).count()
+            contacts
+                .iter()
+                .filter(|c| c.kind == ContactKind::Epp && c.role == ContactRole::Damper)
+                .count()
         ));
+        let storeys = contacts
+            .iter()
+            .filter(|c| c.role == ContactRole::Storey)
+            .count();
+        if storeys > 0 {
+            notes.push(format!(
+                "{storeys} yielding storeys as elastic-perfectly plastic elements (no DOF)"
+            ));
+        }
         notes.push(format!(
             "method {} (alpha = {}), dt = {:.6e} s (T1/{:.1}, bare T1 = {:.4} s), {} steps over {:.4} s",
             scene.method.name.as_str(),
@@ -372,8 +475,19 @@ impl Plan {
             steps,
             outputs: scene.outputs,
             t1: b.t1(),
+            yield_drift: b
+                .storey_yield
+                .iter()
+                .map(|y| y.map(|y| y.yield_drift()))
+                .collect(),
+            collapse_drift: b.collapse_drift.clone(),
             notes,
         })
+    }
+
+    /// Whether a storey yields (its plastic element is a [`ContactRole::Storey`] contact).
+    pub fn has_yielding_storeys(&self) -> bool {
+        self.contacts.iter().any(|c| c.role == ContactRole::Storey)
     }
 
     /// Number of DOFs.

@@ -19,10 +19,38 @@ pub struct Energy {
     pub strain: f64,
     /// Viscous dissipation ∫ u̇ᵀ C u̇ dt.
     pub viscous: f64,
-    /// Friction dissipation ∫ Fᵀ w dt.
+    /// Friction dissipation ∫ Fᵀ w dt (the dissipators).
     pub friction: f64,
-    /// input + initial (kinetic + strain) − (kinetic + strain + viscous + friction).
+    /// input + initial (kinetic + strain) − (kinetic + strain + viscous + friction
+    /// [+ plastic]).
     pub balance_error: f64,
+    /// Plastic (hysteretic) dissipation of the yielding storeys, ∫ Fₚ ẇₚ dt over their
+    /// elastic–perfectly plastic parts; absent when no storey yields.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plastic: Option<f64>,
+}
+
+impl Energy {
+    /// Friction dissipation over friction plus plastic dissipation (1 without yielding
+    /// storeys, `None` when nothing was dissipated by either).
+    pub fn friction_share(&self) -> Option<f64> {
+        let total = self.friction + self.plastic.unwrap_or(0.0);
+        (total > 0.0).then(|| self.friction / total)
+    }
+}
+
+/// A run stopped because a storey's drift passed the collapse limit (a yielding storey,
+/// often with P-Δ, ratcheting away): the peaks are those up to that instant.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Collapse {
+    /// Storey, 1 = the first.
+    pub storey: usize,
+    /// Time the limit was passed, s.
+    pub time: f64,
+    /// The storey's drift then, m (signed).
+    pub drift: f64,
+    /// The limit, m.
+    pub limit: f64,
 }
 
 /// The output contract of `simulate --format json` (SI units, arrays by storey).
@@ -54,6 +82,17 @@ pub struct Response {
     pub transitions: Vec<u64>,
     /// Energies, when asked for.
     pub energy: Option<Energy>,
+    /// Peak ductility per storey, peak drift / yield drift (`null` for a storey that does
+    /// not yield); absent when no storey yields.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_ductility: Option<Vec<Option<f64>>>,
+    /// Peak |plastic drift| per storey (the slip of its plastic element), m; absent when no
+    /// storey yields.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_plastic_drift: Option<Vec<f64>>,
+    /// The collapse that stopped the run, if one did.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse: Option<Collapse>,
 }
 
 impl Response {
@@ -86,6 +125,7 @@ impl Response {
                 ("viscous", e.viscous),
                 ("friction", e.friction),
                 ("balance_error", e.balance_error),
+                ("plastic", e.plastic.unwrap_or(0.0)),
             ] {
                 if !v.is_finite() {
                     return Some((format!("energy.{name}"), v));
@@ -203,6 +243,12 @@ pub struct Peaks {
     pub slip: Vec<f64>,
     /// Stick↔slip transitions per floor.
     pub transitions: Vec<u64>,
+    /// Peak |plastic drift| per storey (yielding storeys).
+    pub plastic: Vec<f64>,
+    /// Collapse drift per storey, when the plan sets one.
+    pub collapse_limit: Option<Vec<f64>>,
+    /// The first storey past its collapse limit.
+    pub collapse: Option<Collapse>,
 }
 
 impl Peaks {
@@ -216,6 +262,50 @@ impl Peaks {
             base_shear: 0.0,
             slip: vec![0.0; n],
             transitions: vec![0; n],
+            plastic: vec![0.0; n],
+            collapse_limit: None,
+            collapse: None,
+        }
+    }
+
+    /// Zeroed peaks for the floors of `plan`, with its collapse limit.
+    pub fn for_plan(plan: &crate::plan::Plan) -> Self {
+        Peaks {
+            collapse_limit: plan.collapse_drift.clone(),
+            ..Peaks::new(plan.floors)
+        }
+    }
+
+    /// After [`Peaks::observe_floors`] at time `t`: whether a storey's drift has passed the
+    /// collapse limit (the first such storey is recorded). Without a limit, false at the
+    /// cost of one branch.
+    #[inline]
+    pub fn collapsed(&mut self, t: f64) -> bool {
+        let Some(limit) = &self.collapse_limit else {
+            return false;
+        };
+        if self.collapse.is_some() {
+            return true;
+        }
+        for (i, (d, l)) in self.last_drift.iter().zip(limit).enumerate() {
+            if d.abs() > *l {
+                self.collapse = Some(Collapse {
+                    storey: i + 1,
+                    time: t,
+                    drift: *d,
+                    limit: *l,
+                });
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Keeps the larger |plastic drift| (m) of storey `floor + 1`.
+    #[inline]
+    pub fn observe_plastic(&mut self, floor: usize, s: f64) {
+        if s.abs() > self.plastic[floor] {
+            self.plastic[floor] = s.abs();
         }
     }
 
@@ -269,13 +359,27 @@ impl Peaks {
     /// Builds the contract's response of a run of `plan` (method, step, step count and
     /// storey heights come from the plan).
     pub fn into_plan_response(self, plan: &crate::plan::Plan, energy: Option<Energy>) -> Response {
-        self.into_response(
+        let yields = plan.yield_drift.iter().any(Option::is_some);
+        let ductility = yields.then(|| {
+            self.drift
+                .iter()
+                .zip(&plan.yield_drift)
+                .map(|(d, y)| y.map(|y| d / y))
+                .collect()
+        });
+        let plastic = yields.then(|| self.plastic.clone());
+        let collapse = self.collapse;
+        let mut r = self.into_response(
             plan.method.name.as_str(),
             plan.method.dt,
             plan.steps,
             plan.storey_heights.as_deref(),
             energy,
-        )
+        );
+        r.peak_ductility = ductility;
+        r.peak_plastic_drift = plastic;
+        r.collapse = collapse;
+        r
     }
 
     /// Builds the contract's response.
@@ -302,6 +406,9 @@ impl Peaks {
             peak_slip: self.slip,
             transitions: self.transitions,
             energy,
+            peak_ductility: None,
+            peak_plastic_drift: None,
+            collapse: None,
         }
     }
 }

@@ -557,6 +557,13 @@ impl Integrator for DelaCruz {
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
+        if plan.has_yielding_storeys() {
+            // Its three-level iteration is written for dissipators on braces; a storey's
+            // own plastic element is not among the cases it resolves.
+            return Err(SimError::Scene(
+                "delacruz does not model yielding storeys; use exact (the reference) or newmark, which treat a storey's plastic element like a massless dissipator".into(),
+            ));
+        }
         let start = initial_state(plan)?;
         let s = Setup::build(plan, &start.a)?;
         let (n, nf, nc) = (s.n, s.nf, plan.contacts.len());
@@ -621,7 +628,8 @@ impl Integrator for DelaCruz {
         let hf = plan.harmonic.map(|h| h.floor);
         let base_shear =
             |a: &[f64], ag: f64, p: f64| state::base_shear(s.mr.as_slice(), msum, a, ag, p);
-        let mut peaks = Peaks::new(nf);
+        let mut peaks = Peaks::for_plan(plan);
+        debug_assert_eq!(peaks.drift.len(), nf);
         let mut ag0 = plan.ground_accel(0.0);
         let mut p0 = plan.force(0.0);
         peaks.observe_floors(&u, &a, ag0);
@@ -787,6 +795,9 @@ impl Integrator for DelaCruz {
             st.e0.copy_from_slice(&st.e1);
             ag0 = ag1;
             p0 = p1;
+            if peaks.collapsed(t1) {
+                break;
+            }
         }
         let energy = energies.then(|| acc.finish(plan, &u, &v, &epp));
         let response = peaks.into_plan_response(plan, energy);

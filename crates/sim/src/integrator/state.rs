@@ -5,7 +5,7 @@
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
-use crate::plan::{ContactKind, Plan};
+use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Energy, History};
 use nalgebra::{DMatrix, DVector};
 
@@ -257,14 +257,16 @@ pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
     let nf = plan.floors;
     let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
     cols.extend((1..=nf).map(|i| format!("x{i}_m")));
-    cols.extend(plan.contacts.iter().map(|c| format!("xd{}_m", c.floor + 1)));
+    // A yielding storey's plastic element: its position, force and slip rate (the
+    // plastic drift rate), named xp, Fp, wp beside the dissipators' xd, F, w.
+    let tag = |c: &crate::plan::Contact, damper: &str, storey: &str| match c.role {
+        ContactRole::Damper => format!("{damper}{}", c.floor + 1),
+        ContactRole::Storey => format!("{storey}{}", c.floor + 1),
+    };
+    cols.extend(plan.contacts.iter().map(|c| tag(c, "xd", "xp") + "_m"));
     cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
-    cols.extend(plan.contacts.iter().map(|c| format!("F{}_N", c.floor + 1)));
-    cols.extend(
-        plan.contacts
-            .iter()
-            .map(|c| format!("w{}_m_s", c.floor + 1)),
-    );
+    cols.extend(plan.contacts.iter().map(|c| tag(c, "F", "Fp") + "_N"));
+    cols.extend(plan.contacts.iter().map(|c| tag(c, "w", "wp") + "_m_s"));
     if energies {
         cols.extend(
             [
@@ -276,6 +278,9 @@ pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
             ]
             .map(String::from),
         );
+        if plan.has_yielding_storeys() {
+            cols.push("E_plastic_J".into());
+        }
     }
     let mut h = History {
         columns: cols,
@@ -296,7 +301,7 @@ pub(crate) fn record_row(
     f: &[f64],
     w: &[f64],
     epp: &[EppState],
-    e: Option<[f64; 5]>,
+    e: Option<EnergyRow>,
 ) {
     let nf = plan.floors;
     h.rows.push(t);
@@ -316,8 +321,18 @@ pub(crate) fn record_row(
     h.rows.extend_from_slice(f);
     h.rows.extend_from_slice(w);
     if let Some(e) = e {
-        h.rows.extend_from_slice(&e);
+        push_energies(plan, h, &e);
     }
+}
+
+/// The energies of one history row: input, kinetic, strain, viscous, friction and plastic
+/// dissipation (J).
+pub(crate) type EnergyRow = [f64; 6];
+
+/// Appends the energy columns of a history row (plastic only when a storey yields).
+pub(crate) fn push_energies(plan: &Plan, h: &mut History, e: &EnergyRow) {
+    let n = if plan.has_yielding_storeys() { 6 } else { 5 };
+    h.rows.extend_from_slice(&e[..n]);
 }
 
 /// Energies accumulated step by step with step-averaged forces and velocities
@@ -331,6 +346,8 @@ pub(crate) struct EnergyAccumulator {
     pub(crate) viscous: f64,
     /// Friction dissipation so far, J.
     pub(crate) friction: f64,
+    /// Plastic dissipation of the yielding storeys so far, J.
+    pub(crate) plastic: f64,
     /// Largest |balance error| / (|input| + initial) seen.
     pub(crate) balance_max_rel: f64,
     /// Area under the strain-energy history ∫ E_strain dt so far, J·s (trapezoidal).
@@ -401,7 +418,8 @@ impl EnergyAccumulator {
             viscous: self.viscous,
             friction: self.friction,
             balance_error: self.input + self.initial_energy()
-                - (ek + es + self.viscous + self.friction),
+                - (ek + es + self.viscous + self.friction + self.plastic),
+            plastic: plan.has_yielding_storeys().then_some(self.plastic),
         }
     }
 
@@ -422,8 +440,8 @@ impl EnergyAccumulator {
     }
 
     /// The history row of the initial state (input, kinetic, strain, viscous, friction).
-    pub(crate) fn initial_row(&self) -> [f64; 5] {
-        [0.0, self.initial.0, self.initial.1, 0.0, 0.0]
+    pub(crate) fn initial_row(&self) -> EnergyRow {
+        [0.0, self.initial.0, self.initial.1, 0.0, 0.0, 0.0]
     }
 
     /// Adds one step's increments, its quadratic forms `q` evaluated by the caller;
@@ -437,7 +455,7 @@ impl EnergyAccumulator {
         d: &StepEnergyData<'_>,
         q: StepForms,
         epp: &[EppState],
-    ) -> [f64; 5] {
+    ) -> EnergyRow {
         let n = d.mr.len();
         let dt = d.dt;
         let (ag0, ag1) = d.ag;
@@ -458,8 +476,12 @@ impl EnergyAccumulator {
         self.input += dt * d_input;
         self.viscous += dt * cvv;
         for c in 0..f_old.len() {
-            self.friction += dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
             let ct = &plan.contacts[c];
+            let work = dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
+            match ct.role {
+                ContactRole::Damper => self.friction += work,
+                ContactRole::Storey => self.plastic += work,
+            }
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 // Brace dashpot of a condensed dissipator: ė = v′ − v_below.
                 let vj_old = ct.below.map_or(0.0, |j| v_old[j]);
@@ -473,9 +495,17 @@ impl EnergyAccumulator {
         let (ek, es) = (q.kinetic, q.strain);
         self.strain_area += 0.5 * dt * (self.strain_prev + es);
         self.strain_prev = es;
-        let bal = self.input + self.initial_energy() - (ek + es + self.viscous + self.friction);
+        let bal = self.input + self.initial_energy()
+            - (ek + es + self.viscous + self.friction + self.plastic);
         let scale = (self.input.abs() + self.initial_energy()).max(f64::MIN_POSITIVE);
         self.balance_max_rel = self.balance_max_rel.max(bal.abs() / scale);
-        [self.input, ek, es, self.viscous, self.friction]
+        [
+            self.input,
+            ek,
+            es,
+            self.viscous,
+            self.friction,
+            self.plastic,
+        ]
     }
 }

@@ -2,7 +2,7 @@
 //! state, their Gauss–Legendre work over a substep, and the stored energies.
 
 use super::modes::{ModeOps, Model, row_dot};
-use crate::plan::ContactKind;
+use crate::plan::{ContactKind, ContactRole};
 use nalgebra::{DMatrix, DVector};
 
 /// 6-point Gauss–Legendre nodes on [0, 1] and weights (sum 1). Exact to degree 11; on a
@@ -38,19 +38,27 @@ pub(super) struct Integrals {
     pub(super) input: f64,
     pub(super) viscous: f64,
     pub(super) friction: f64,
+    /// The yielding storeys' plastic work (their contacts' share of the friction power).
+    pub(super) plastic: f64,
 }
 
+/// The powers at one state: input, viscous, friction (dissipators) and plastic (yielding
+/// storeys), W.
+pub(super) type Powers = [f64; 4];
+
 impl Model<'_> {
-    /// The symmetric matrices Q_p with p(y) = yᵀ Q_p y of the input, viscous and friction
-    /// powers of [`Model::powers`] (each is a quadratic form of the augmented state: the
-    /// ground acceleration, the harmonic force and the constant slip forces are states).
-    pub(super) fn power_forms(&self, ops: &ModeOps) -> [DMatrix<f64>; 3] {
+    /// The symmetric matrices Q_p with p(y) = yᵀ Q_p y of the input, viscous, friction and
+    /// plastic powers of [`Model::powers`] (each is a quadratic form of the augmented
+    /// state: the ground acceleration, the harmonic force and the constant slip forces are
+    /// states).
+    pub(super) fn power_forms(&self, ops: &ModeOps) -> [DMatrix<f64>; 4] {
         let lay = &self.lay;
         let (n, dim) = (lay.n, lay.dim);
         let plan = self.plan;
         let mut input = DMatrix::zeros(dim, dim);
         let mut viscous = DMatrix::zeros(dim, dim);
         let mut friction = DMatrix::zeros(dim, dim);
+        let mut plastic = DMatrix::zeros(dim, dim);
         // −a_g (M r · v), and the harmonic force's F sin · v_floor.
         for i in 0..n {
             input[(lay.i_ag, n + i)] -= self.mr[i];
@@ -68,7 +76,10 @@ impl Model<'_> {
             // (force row · y)(slip-rate row · y).
             let f = ops.force.column(c);
             let w = ops.slip_rate.column(c);
-            friction.ger(1.0, &f, &w, 1.0);
+            match ct.role {
+                ContactRole::Damper => friction.ger(1.0, &f, &w, 1.0),
+                ContactRole::Storey => plastic.ger(1.0, &f, &w, 1.0),
+            }
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 // c′ (ẋ′ − v_below)².
                 let mut e = ops.xdot.column(c).into_owned();
@@ -78,10 +89,10 @@ impl Model<'_> {
                 viscous.ger(ct.brace_damping, &e, &e, 1.0);
             }
         }
-        [input, viscous, friction].map(|q| (&q + q.transpose()) * 0.5)
+        [input, viscous, friction, plastic].map(|q| (&q + q.transpose()) * 0.5)
     }
 
-    pub(super) fn powers(&self, ops: &ModeOps, y: &DVector<f64>) -> (f64, f64, f64) {
+    pub(super) fn powers(&self, ops: &ModeOps, y: &DVector<f64>) -> Powers {
         let lay = &self.lay;
         let n = lay.n;
         let plan = self.plan;
@@ -101,15 +112,20 @@ impl Model<'_> {
             input += h.amplitude * y[lay.i_sin] * v[h.floor];
         }
         let mut friction = 0.0;
+        let mut plastic = 0.0;
         for (c, ct) in plan.contacts.iter().enumerate() {
-            friction += row_dot(&ops.force, c, y) * row_dot(&ops.slip_rate, c, y);
+            let p = row_dot(&ops.force, c, y) * row_dot(&ops.slip_rate, c, y);
+            match ct.role {
+                ContactRole::Damper => friction += p,
+                ContactRole::Storey => plastic += p,
+            }
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 let vb = ct.below.map_or(0.0, |j| v[j]);
                 let ed = row_dot(&ops.xdot, c, y) - vb;
                 viscous += ct.brace_damping * ed * ed;
             }
         }
-        (input, viscous, friction)
+        [input, viscous, friction, plastic]
     }
 
     /// Adds the input, viscous and friction work over a substep of length `len` by
@@ -122,17 +138,19 @@ impl Model<'_> {
         ynode: &mut DVector<f64>,
         mut node: impl FnMut(usize, &mut DVector<f64>),
     ) {
-        let (mut di, mut dv, mut df) = (0.0, 0.0, 0.0);
+        let (mut di, mut dv, mut df, mut dp) = (0.0, 0.0, 0.0, 0.0);
         for (g, (_, w)) in GAUSS.iter().enumerate() {
             node(g, ynode);
-            let (pi, pv, pf) = self.powers(ops, ynode);
+            let [pi, pv, pf, pp] = self.powers(ops, ynode);
             di += w * pi;
             dv += w * pv;
             df += w * pf;
+            dp += w * pp;
         }
         integ.input += di * len;
         integ.viscous += dv * len;
         integ.friction += df * len;
+        integ.plastic += dp * len;
     }
 
     pub(super) fn stored(&self, y: &DVector<f64>) -> (f64, f64) {
@@ -206,11 +224,12 @@ mod tests {
             let forms = model.power_forms(&ops);
             for _ in 0..20 {
                 let y = DVector::from_fn(dim, |_, _| uniform());
-                let (pi, pv, pf) = model.powers(&ops, &y);
+                let [pi, pv, pf, pp] = model.powers(&ops, &y);
                 for (q, p, what) in [
                     (&forms[0], pi, "input"),
                     (&forms[1], pv, "viscous"),
                     (&forms[2], pf, "friction"),
+                    (&forms[3], pp, "plastic"),
                 ] {
                     let from_form = (q * &y).dot(&y);
                     let scale = (q.abs() * y.abs()).dot(&y.abs());

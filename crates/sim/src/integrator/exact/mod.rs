@@ -101,8 +101,8 @@ mod search;
 
 use crate::error::SimError;
 use crate::integrator::Integrator;
-use crate::integrator::state::{base_shear, history_columns};
-use crate::plan::{ContactKind, Plan};
+use crate::integrator::state::{EnergyRow, base_shear, history_columns, push_energies};
+use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use energy::{GAUSS, Integrals};
@@ -142,7 +142,7 @@ fn history_row(
     h: &mut History,
     t: f64,
     y: &DVector<f64>,
-    e: Option<[f64; 5]>,
+    e: Option<EnergyRow>,
 ) {
     let plan = model.plan;
     let lay = &model.lay;
@@ -169,7 +169,7 @@ fn history_row(
         h.rows.push(row_dot(&ops.slip_rate, c, y));
     }
     if let Some(e) = e {
-        h.rows.extend_from_slice(&e);
+        push_energies(plan, h, &e);
     }
 }
 
@@ -351,7 +351,7 @@ impl Integrator for Exact {
             }
         };
 
-        let mut peaks = Peaks::new(nf);
+        let mut peaks = Peaks::for_plan(plan);
         let mut cont_drift = vec![0.0; nf];
         let msum: f64 = model.mr.iter().sum();
         let mut acc = DVector::zeros(dim);
@@ -380,7 +380,12 @@ impl Integrator for Exact {
                         (_, Some(s)) => y[s],
                         (ContactKind::Epp, None) => 0.0,
                     };
-                    peaks.observe_slip(ct.floor, y[ct.floor] - other);
+                    match ct.role {
+                        ContactRole::Damper => peaks.observe_slip(ct.floor, y[ct.floor] - other),
+                        ContactRole::Storey => {
+                            peaks.observe_plastic(ct.floor, y[ct.floor] - other);
+                        }
+                    }
                 }
             };
         observe(&mut peaks, &ops, &y, &mut acc);
@@ -391,7 +396,7 @@ impl Integrator for Exact {
             .histories
             .then(|| history_columns(plan, energies));
         if let Some(h) = history.as_mut() {
-            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0]);
+            let e = energies.then_some([0.0, k0, s0, 0.0, 0.0, 0.0]);
             history_row(&model, &ops, h, 0.0, &y, e);
         }
 
@@ -587,11 +592,14 @@ impl Integrator for Exact {
                         cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
                     }
                     if let (Some(st), None) = (fast, fired) {
-                        if let Some([wi, wv, wf]) = &st.work {
+                        if let Some([wi, wv, wf, wp]) = &st.work {
                             // One grid interval: its work is a quadratic form of y.
                             integ.input += quadratic(wi, &y, &mut ynode);
                             integ.viscous += quadratic(wv, &y, &mut ynode);
                             integ.friction += quadratic(wf, &y, &mut ynode);
+                            if model.storeys {
+                                integ.plastic += quadratic(wp, &y, &mut ynode);
+                            }
                         }
                         ynode.gemv(1.0, &st.phi, &y, 0.0);
                         std::mem::swap(&mut y, &mut ynode);
@@ -712,8 +720,12 @@ impl Integrator for Exact {
                                     let uj = ct.below.map_or(0.0, |j| y[j]);
                                     let e_old = y[s] - uj;
                                     let e_new = bound / ct.brace_stiffness;
-                                    integ.friction +=
+                                    let released =
                                         0.5 * ct.brace_stiffness * (e_old * e_old - e_new * e_new);
+                                    match ct.role {
+                                        ContactRole::Damper => integ.friction += released,
+                                        ContactRole::Storey => integ.plastic += released,
+                                    }
                                     y[s] = uj + e_new;
                                 }
                             }
@@ -741,7 +753,9 @@ impl Integrator for Exact {
                         model.decide(&mut cache, &y, &mut modes, &decide, t)?;
                     }
                     for c in 0..nc {
-                        if (modes[c] == Mode::Stuck) != (old[c] == Mode::Stuck) {
+                        if (modes[c] == Mode::Stuck) != (old[c] == Mode::Stuck)
+                            && plan.contacts[c].role == ContactRole::Damper
+                        {
                             peaks.transitions[plan.contacts[c].floor] += 1;
                         }
                     }
@@ -762,13 +776,24 @@ impl Integrator for Exact {
                 let (ek, es) = model.stored(&y);
                 strain_area += 0.5 * dt * (strain_prev + es);
                 strain_prev = es;
-                let bal = integ.input + initial_energy - (ek + es + integ.viscous + integ.friction);
+                let bal = integ.input + initial_energy
+                    - (ek + es + integ.viscous + integ.friction + integ.plastic);
                 let scale = (integ.input.abs() + initial_energy).max(f64::MIN_POSITIVE);
                 balance_max_rel = balance_max_rel.max(bal.abs() / scale);
-                e_row = Some([integ.input, ek, es, integ.viscous, integ.friction]);
+                e_row = Some([
+                    integ.input,
+                    ek,
+                    es,
+                    integ.viscous,
+                    integ.friction,
+                    integ.plastic,
+                ]);
             }
             if let Some(h) = history.as_mut() {
                 history_row(&model, &ops, h, t_step_end, &y, e_row);
+            }
+            if peaks.collapsed(t_step_end) {
+                break;
             }
         }
         for (c, s) in cont_drift.iter_mut().zip(&peaks.drift) {
@@ -783,7 +808,8 @@ impl Integrator for Exact {
                 viscous: integ.viscous,
                 friction: integ.friction,
                 balance_error: integ.input + initial_energy
-                    - (ek + es + integ.viscous + integ.friction),
+                    - (ek + es + integ.viscous + integ.friction + integ.plastic),
+                plastic: model.storeys.then_some(integ.plastic),
             }
         });
         let sampled = peaks.drift.clone();

@@ -91,6 +91,8 @@ pub(super) struct Model<'a> {
     /// Forces without contacts as rows on y (n × dim).
     pub(super) f0: DMatrix<f64>,
     pub(super) omega_h: f64,
+    /// Whether a storey yields (the plastic work is then kept apart from friction).
+    pub(super) storeys: bool,
 }
 
 impl<'a> Model<'a> {
@@ -163,6 +165,7 @@ impl<'a> Model<'a> {
             bcols,
             f0,
             omega_h,
+            storeys: plan.has_yielding_storeys(),
         })
     }
 

@@ -16,7 +16,9 @@ pub(super) struct Stepping {
     /// its starting state, h Σ_g w_g exp(A x_g h)ᵀ Q_p exp(A x_g h) for each power
     /// p(y) = yᵀ Q_p y: the same 6-point Gauss–Legendre rule as [`Model::integrate_powers`],
     /// summed once per mode set instead of once per substep. `None` when energies are off.
-    pub(super) work: Option<[DMatrix<f64>; 3]>,
+    /// The plastic work's form is formed only when a storey yields (`work[3]` empty
+    /// otherwise).
+    pub(super) work: Option<[DMatrix<f64>; 4]>,
     /// Column f·K + k: the k-th Taylor row r Aᵏ/k! of scanned function f, so that its
     /// coefficient on τᵏ over a substep from y is that column · y.
     pub(super) rows: DMatrix<f64>,
@@ -57,10 +59,14 @@ impl Model<'_> {
         let phi = expm(h);
         let work = self.plan.outputs.energies.then(|| {
             let forms = self.power_forms(ops);
-            let mut work = [(); 3].map(|_| DMatrix::zeros(dim, dim));
+            let forms = &forms[..if self.storeys { 4 } else { 3 }];
+            let mut work = [(); 4].map(|_| DMatrix::zeros(dim, dim));
+            if !self.storeys {
+                work[3] = DMatrix::zeros(0, 0);
+            }
             for (x, w) in GAUSS {
                 let phi_g = expm(x * h);
-                for (wp, q) in work.iter_mut().zip(&forms) {
+                for (wp, q) in work.iter_mut().zip(forms) {
                     let qphi = q * &phi_g;
                     wp.gemm_tr(w * h, &phi_g, &qphi, 1.0);
                 }

@@ -150,6 +150,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         other: GROUND,
         epp: false,
         k_over_kappa: 0.0,
+        storey: false,
     }; NC];
     for c in 0..NC {
         lo[c] = plan.contacts[c].lower;
@@ -190,7 +191,8 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     };
     let mut pq = PatternQp::<NC>::new(ops.w.as_slice(), &lo, &hi);
 
-    let mut peaks = Peaks::new(nf);
+    let mut peaks = Peaks::for_plan(plan);
+    debug_assert_eq!(peaks.drift.len(), nf);
 
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
@@ -200,7 +202,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     for c in 0..NC {
         let l = link[c];
         let x_other = if l.epp { epp[c].u } else { u[l.other] };
-        peaks.observe_slip(l.floor, u[l.floor] - x_other);
+        l.observe_start(&u, x_other, &mut peaks);
     }
 
     let mut wfree = [0.0; NC];
@@ -324,6 +326,9 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         f_old = f_new;
         ag0 = ag1;
         p0 = p1;
+        if peaks.collapsed((step + 1) as f64 * dt) {
+            break;
+        }
     }
     let energy = energies.is_some().then(|| acc.finish(plan, &u, &v, &epp));
     Ok(outcome(

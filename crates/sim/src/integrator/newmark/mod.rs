@@ -33,7 +33,7 @@ use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
     record_row, slip, slip_rate,
 };
-use crate::plan::{ContactKind, Plan};
+use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::{DMatrix, DVector};
@@ -135,6 +135,9 @@ struct Link {
     epp: bool,
     /// k′/κ of an EPP contact.
     k_over_kappa: f64,
+    /// The plastic element of a yielding storey (its slip is plastic drift, its changes
+    /// are no dissipator's transitions).
+    storey: bool,
 }
 
 /// The Newmark constants of a run's step.
@@ -216,11 +219,27 @@ impl Link {
         } else {
             u[self.other]
         };
+        if self.storey {
+            *stuck = now_stuck;
+            peaks.observe_plastic(self.floor, u[self.floor] - x_other);
+            return;
+        }
         if now_stuck != *stuck {
             peaks.transitions[self.floor] += 1;
             *stuck = now_stuck;
         }
         peaks.observe_slip(self.floor, u[self.floor] - x_other);
+    }
+
+    /// The first observation of this contact's slip (or plastic drift), from the initial
+    /// displacements `u` and the other end `x_other`.
+    #[inline]
+    fn observe_start(&self, u: &[f64], x_other: f64, peaks: &mut Peaks) {
+        if self.storey {
+            peaks.observe_plastic(self.floor, u[self.floor] - x_other);
+        } else {
+            peaks.observe_slip(self.floor, u[self.floor] - x_other);
+        }
     }
 
     /// An EPP element's state at the end of the step, from its predictors, its floor's
@@ -290,12 +309,14 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
                 other: dof,
                 epp: false,
                 k_over_kappa: 0.0,
+                storey: ct.role == ContactRole::Storey,
             },
             ContactKind::Epp => Link {
                 floor: ct.floor,
                 other: ct.below.unwrap_or(GROUND),
                 epp: true,
                 k_over_kappa: ct.brace_stiffness / ops.kappa[c],
+                storey: ct.role == ContactRole::Storey,
             },
         })
         .collect()
@@ -415,7 +436,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let energies = plan.outputs.energies;
     let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &epp);
 
-    let mut peaks = Peaks::new(nf);
+    let mut peaks = Peaks::for_plan(plan);
+    debug_assert_eq!(peaks.drift.len(), nf);
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
     let mut p0 = plan.force(0.0);
@@ -425,7 +447,10 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
     for c in 0..nc {
         let fl = plan.contacts[c].floor;
-        peaks.observe_slip(fl, slip(plan, c, &start.u, &epp));
+        match plan.contacts[c].role {
+            ContactRole::Damper => peaks.observe_slip(fl, slip(plan, c, &start.u, &epp)),
+            ContactRole::Storey => peaks.observe_plastic(fl, slip(plan, c, &start.u, &epp)),
+        }
     }
 
     let mut history = plan
@@ -563,6 +588,9 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         std::mem::swap(&mut w_old, &mut w_new);
         ag0 = ag1;
         p0 = p1;
+        if peaks.collapsed(t1) {
+            break;
+        }
     }
     let (u_end, rest) = s.split_at(n);
     let v_end = &rest[..n];
