@@ -13,7 +13,7 @@ use anyhow::{Context, bail};
 use slipload_opt::evaluate::Fidelity;
 use slipload_opt::optimize::objectives;
 use slipload_opt::refine::Point;
-use slipload_opt::study::SpaceConfig;
+use slipload_opt::space::SpaceConfig;
 use slipload_opt::sweep::Manifest;
 use slipload_opt::{RecordMetrics, Statistic, Study};
 use std::fmt::Write as _;

@@ -29,5 +29,5 @@ pub use error::OptError;
 pub use metrics::RecordMetrics;
 pub use objective::{Metric, Objective, Statistic, Term};
 pub use shard::Shard;
-pub use space::{Bound, DesignSpace, OnBound, Shape};
+pub use space::{Bound, ConstraintsConfig, DesignSpace, OnBound, Shape, SpaceConfig};
 pub use study::{Study, StudyConfig};
