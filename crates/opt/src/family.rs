@@ -7,7 +7,8 @@
 //! The design space (kN) stays the study's.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs};
+use crate::evaluate::run_designs;
+use crate::fidelity::Fidelity;
 use crate::optimize::optimize;
 use crate::study::{RefineMethod, Study};
 use crate::sweep::Manifest;

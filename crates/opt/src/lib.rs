@@ -10,6 +10,7 @@
 pub mod error;
 pub mod evaluate;
 pub mod family;
+pub mod fidelity;
 pub mod fingerprint;
 pub mod journal;
 pub mod metrics;

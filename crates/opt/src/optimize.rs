@@ -3,7 +3,8 @@
 //! their ranking held.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, TaskJournal, run_designs, run_designs_journalled, suite_ranges};
+use crate::evaluate::{TaskJournal, run_designs, run_designs_journalled, suite_ranges};
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::refine::{Evaluations, Point, refine};
 use crate::study::{RefineMethod, Study};

@@ -4,7 +4,8 @@
 //! is unchanged, is reported.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs};
+use crate::evaluate::run_designs;
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::sampler::SplitMix;
 use crate::study::Study;

@@ -6,7 +6,8 @@
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, TaskJournal, run_designs_journalled, suite_ranges};
+use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::objective::{Metric, Statistic};
 use crate::study::Study;
