@@ -312,7 +312,7 @@ impl StudyFigures {
         use crate::plot::{Figure, HeatMap, Legend, Marker, Panel, Series, style};
         let mut names = Vec::new();
         let mut put = |stem: &str, csv: String, fig: Figure| -> anyhow::Result<()> {
-            crate::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
+            slipload_opt::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
             fig.save(&dir.join(stem))?;
             names.push(stem.to_string());
             Ok(())

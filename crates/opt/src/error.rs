@@ -14,6 +14,14 @@ pub enum OptError {
         /// The cause.
         source: std::io::Error,
     },
+    /// An output file could not be written ([`crate::output::write_atomic`]).
+    #[error("writing {path}: {source}")]
+    Write {
+        /// The file (the target, when the path given is a symbolic link).
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// A study file does not parse or does not fit the schema (unknown field, wrong type).
     #[error("{path}: {source}")]
     Json {

@@ -16,6 +16,7 @@ pub mod journal;
 pub mod metrics;
 pub mod objective;
 pub mod optimize;
+pub mod output;
 pub mod qp;
 pub mod rank;
 pub mod refine;

@@ -11,9 +11,10 @@ use crate::error::OptError;
 use crate::evaluate::{Task, run_tasks};
 use crate::fidelity::Fidelity;
 use crate::fingerprint::Fingerprint;
-use crate::journal::{Entry, Journal, write_atomic};
+use crate::journal::{Entry, Journal};
 use crate::metrics::RecordMetrics;
 use crate::objective::Objective;
+use crate::output::write_atomic;
 use crate::sampler;
 /// The designs a sweep runs, defined beside the sampler that draws them.
 pub use crate::sampler::Design;

@@ -8,8 +8,8 @@ use crate::study_figures::{
 };
 use anyhow::Context;
 use slipload_opt::evaluate::TaskJournal;
-use slipload_opt::journal::write_atomic;
 use slipload_opt::optimize::{OptimizeReport, optimize};
+use slipload_opt::output::write_atomic;
 use slipload_opt::study::RefineMethod;
 use slipload_opt::table::{DesignTable, standard_designs};
 use slipload_opt::{OnBound, Shard, Study, sweep};

@@ -3,7 +3,7 @@
 
 use super::study_args::{load_study, progress};
 use anyhow::Context;
-use slipload_opt::journal::write_atomic;
+use slipload_opt::output::write_atomic;
 use slipload_opt::rank::{NamedDesign, rank};
 use slipload_sim::FileKind;
 use std::path::PathBuf;

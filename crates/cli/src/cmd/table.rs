@@ -3,7 +3,7 @@
 
 use super::study_args::{load_study, progress};
 use slipload_opt::family::{family, to_csv, to_markdown};
-use slipload_opt::journal::write_atomic;
+use slipload_opt::output::write_atomic;
 use slipload_opt::study::RefineMethod;
 use std::path::PathBuf;
 
