@@ -101,6 +101,15 @@ pub enum OptError {
         /// What it is.
         kind: String,
     },
+    /// A step of a study run failed: what was being done (`sweeping STUDY into DIR`),
+    /// then the cause.
+    #[error("{context}")]
+    Context {
+        /// What was being done.
+        context: String,
+        /// The cause.
+        source: Box<OptError>,
+    },
     /// A command's argument is out of range.
     #[error("{0}")]
     Argument(String),
@@ -122,6 +131,14 @@ impl From<slipload_sim::SimError> for OptError {
 }
 
 impl OptError {
+    /// This error as the cause of a failed step (`sweeping STUDY into DIR`).
+    pub fn context(self, context: impl Into<String>) -> Self {
+        OptError::Context {
+            context: context.into(),
+            source: Box::new(self),
+        }
+    }
+
     /// An [`OptError::Invalid`].
     pub fn invalid(
         path: impl Into<PathBuf>,
