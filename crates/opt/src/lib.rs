@@ -5,7 +5,9 @@
 //! [`DesignSpace`] and an [`Objective`]. A sweep runs a sample of designs × every record
 //! as independent tasks ([`evaluate`]), journalled ([`journal`]) and shardable
 //! ([`Shard`]); [`refine`] improves the best sweep points; [`table`] and [`rank`] turn the
-//! results into the tables engineers hand on.
+//! results into the tables engineers hand on. [`pipeline`] runs those phases for a
+//! command — [`pipeline::optimize_study`] is the whole study — and writes its files
+//! ([`output::write_atomic`]), returning a report a caller renders.
 
 pub mod error;
 pub mod evaluate;
@@ -17,6 +19,7 @@ pub mod metrics;
 pub mod objective;
 pub mod optimize;
 pub mod output;
+pub mod pipeline;
 pub mod qp;
 pub mod rank;
 pub mod refine;
