@@ -1,6 +1,7 @@
 //! Study selection shared by `sweep`, `optimize`, `rank` and `table`: a study file, or
 //! the embedded benchmark study (`configs/study-benchmark.json` with the benchmark
-//! building inlined), plus the progress bar these commands draw on stderr.
+//! building inlined), plus the progress bars these commands draw on stderr, one per phase
+//! of the study run.
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -32,7 +33,7 @@ pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
 
 /// A progress bar of `len` steps on stderr; hidden with `--quiet` (and by indicatif when
 /// stderr is not a terminal).
-pub fn progress(len: u64, what: &str) -> ProgressBar {
+fn progress(len: u64, what: &str) -> ProgressBar {
     let pb = ProgressBar::new(len);
     if crate::output::quiet() {
         pb.set_draw_target(ProgressDrawTarget::hidden());
