@@ -14,6 +14,14 @@ pub enum OptError {
         /// The cause.
         source: std::io::Error,
     },
+    /// An output file could not be written ([`crate::output::write_atomic`]).
+    #[error("writing {path}: {source}")]
+    Write {
+        /// The file (the target, when the path given is a symbolic link).
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// A study file does not parse or does not fit the schema (unknown field, wrong type).
     #[error("{path}: {source}")]
     Json {
@@ -93,6 +101,15 @@ pub enum OptError {
         /// What it is.
         kind: String,
     },
+    /// A step of a study run failed: what was being done (`sweeping STUDY into DIR`),
+    /// then the cause.
+    #[error("{context}")]
+    Context {
+        /// What was being done.
+        context: String,
+        /// The cause.
+        source: Box<OptError>,
+    },
     /// A command's argument is out of range.
     #[error("{0}")]
     Argument(String),
@@ -114,6 +131,14 @@ impl From<slipload_sim::SimError> for OptError {
 }
 
 impl OptError {
+    /// This error as the cause of a failed step (`sweeping STUDY into DIR`).
+    pub fn context(self, context: impl Into<String>) -> Self {
+        OptError::Context {
+            context: context.into(),
+            source: Box::new(self),
+        }
+    }
+
     /// An [`OptError::Invalid`].
     pub fn invalid(
         path: impl Into<PathBuf>,

@@ -3,53 +3,19 @@
 //! bits do not depend on the thread count.
 
 use crate::error::OptError;
+/// The fidelity of a batch of runs, defined in [`crate::fidelity`].
+pub use crate::fidelity::{Fidelity, hht_alpha};
 use crate::fingerprint::Fingerprint;
 use crate::journal::{Appender, Reuse, open_journal};
 use crate::metrics::RecordMetrics;
 use crate::study::Study;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use slipload_sim::scene::{
-    InitialState, MethodName, MethodSettings, OutputsConfig, Scene, default_dt,
-};
+use slipload_sim::scene::{InitialState, MethodSettings, OutputsConfig, Scene, default_dt};
 use slipload_sim::{Plan, run_plan};
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-/// Method and accuracy of a batch of simulations.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Fidelity {
-    /// Method.
-    pub method: MethodName,
-    /// Time step, s; `None`: sim's default for each record ([`default_dt`]).
-    pub dt_s: Option<f64>,
-    /// Factor on that time step (1 for the sweep, `check_dt_factor` for the check).
-    pub dt_factor: f64,
-    /// Accumulate energies (E_friction/E_input, strain-energy area).
-    pub energies: bool,
-}
-
-impl Fidelity {
-    /// The study's sweep fidelity (energies only when the objective needs them).
-    pub fn sweep(study: &Study) -> Fidelity {
-        Fidelity {
-            method: study.config.fidelity.method,
-            dt_s: study.config.fidelity.dt_s,
-            dt_factor: 1.0,
-            energies: study.needs_energies(),
-        }
-    }
-    /// The study's reference check fidelity (energies on).
-    pub fn check(study: &Study) -> Fidelity {
-        Fidelity {
-            method: study.config.fidelity.check_method,
-            dt_s: study.config.fidelity.dt_s,
-            dt_factor: study.config.fidelity.check_dt_factor,
-            energies: true,
-        }
-    }
-}
 
 /// Simulates `slip_loads` (N per dissipator) under record `record` of the study.
 pub fn run_one(
@@ -114,15 +80,6 @@ pub fn run_one(
     Ok(m)
 }
 
-/// HHT α of a study's runs: −0.05 for `hht`, 0 otherwise.
-pub fn hht_alpha(method: MethodName) -> f64 {
-    if method == MethodName::Hht {
-        -0.05
-    } else {
-        0.0
-    }
-}
-
 /// One task: slip loads (N per dissipator) and a record index.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Task {
@@ -185,22 +142,6 @@ pub struct TaskJournal {
     appender: Appender,
     known: HashMap<TaskKey, RecordMetrics>,
     reused: AtomicUsize,
-}
-
-impl Fidelity {
-    /// A text that tells fidelities apart (method, step bits, factor bits, energies).
-    pub fn tag(&self) -> String {
-        format!(
-            "{} dt={} x{:016x} energies={}",
-            self.method.as_str(),
-            self.dt_s.map_or_else(
-                || "default".to_string(),
-                |d| format!("{:016x}", d.to_bits())
-            ),
-            self.dt_factor.to_bits(),
-            self.energies
-        )
-    }
 }
 
 impl TaskJournal {

@@ -7,13 +7,16 @@
 //! The design space (kN) stays the study's.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs};
+use crate::evaluate::run_designs;
+use crate::fidelity::Fidelity;
 use crate::optimize::optimize;
+use crate::output::write_atomic;
 use crate::study::{RefineMethod, Study};
 use crate::sweep::Manifest;
 use serde::{Deserialize, Serialize};
 use slipload_sim::modes::Modes;
 use std::fmt::Write as _;
+use std::path::Path;
 use std::sync::Arc;
 
 /// The optimum for one (period scale, intensity scale).
@@ -143,4 +146,38 @@ pub fn to_markdown(cells: &[FamilyCell], damper_floors: &[usize], objective: &st
         );
     }
     s
+}
+
+/// A study's optimum over period scale × intensity scale ([`crate::pipeline::family_study`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyReport {
+    /// The study's name.
+    pub study: String,
+    /// Its objective, as a label.
+    pub objective: String,
+    /// Floors (from 1) of the dissipators.
+    pub damper_floors: Vec<usize>,
+    /// One cell per (period scale, intensity scale), period scales outer.
+    pub cells: Vec<FamilyCell>,
+}
+
+impl FamilyReport {
+    /// The files [`FamilyReport::write_files`] writes.
+    pub const FILES: [&str; 2] = ["family.csv", "family.md"];
+
+    /// `family.csv`.
+    pub fn to_csv(&self) -> String {
+        to_csv(&self.cells, &self.damper_floors)
+    }
+
+    /// `family.md`.
+    pub fn to_markdown(&self) -> String {
+        to_markdown(&self.cells, &self.damper_floors, &self.objective)
+    }
+
+    /// Writes `family.csv` and `family.md` into `out`.
+    pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
+        write_atomic(&out.join("family.csv"), self.to_csv().as_bytes())?;
+        write_atomic(&out.join("family.md"), self.to_markdown().as_bytes())
+    }
 }

@@ -145,8 +145,8 @@ impl Fingerprint {
 }
 
 /// The fingerprint of `study` whose sweep samples `designs`.
-pub fn of_study(study: &crate::Study, designs: &[crate::sweep::Design]) -> Fingerprint {
-    use crate::evaluate::Fidelity;
+pub fn of_study(study: &crate::Study, designs: &[crate::sampler::Design]) -> Fingerprint {
+    use crate::fidelity::{Fidelity, hht_alpha};
     let mut parts: Vec<(String, String, u64)> = Vec::new();
     let mut part = |key: &str, label: String, h: &Fnv64| {
         parts.push((key.to_string(), label, h.finish()));
@@ -207,7 +207,7 @@ pub fn of_study(study: &crate::Study, designs: &[crate::sweep::Design]) -> Finge
             None => h.u64(0),
         };
         h.f64(fid.dt_factor).u64(u64::from(fid.energies));
-        h.f64(crate::evaluate::hht_alpha(fid.method));
+        h.f64(hht_alpha(fid.method));
     }
     part("method/step", "method/step".into(), &h);
 

@@ -5,16 +5,21 @@
 //! [`DesignSpace`] and an [`Objective`]. A sweep runs a sample of designs × every record
 //! as independent tasks ([`evaluate`]), journalled ([`journal`]) and shardable
 //! ([`Shard`]); [`refine`] improves the best sweep points; [`table`] and [`rank`] turn the
-//! results into the tables engineers hand on.
+//! results into the tables engineers hand on. [`pipeline`] runs those phases for a
+//! command — [`pipeline::optimize_study`] is the whole study — and writes its files
+//! ([`output::write_atomic`]), returning a report a caller renders.
 
 pub mod error;
 pub mod evaluate;
 pub mod family;
+pub mod fidelity;
 pub mod fingerprint;
 pub mod journal;
 pub mod metrics;
 pub mod objective;
 pub mod optimize;
+pub mod output;
+pub mod pipeline;
 pub mod qp;
 pub mod rank;
 pub mod refine;
@@ -29,5 +34,5 @@ pub use error::OptError;
 pub use metrics::RecordMetrics;
 pub use objective::{Metric, Objective, Statistic, Term};
 pub use shard::Shard;
-pub use space::{Bound, DesignSpace, OnBound, Shape};
+pub use space::{Bound, ConstraintsConfig, DesignSpace, OnBound, Shape, SpaceConfig};
 pub use study::{Study, StudyConfig};

@@ -3,7 +3,8 @@
 //! their ranking held.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, TaskJournal, run_designs, run_designs_journalled, suite_ranges};
+use crate::evaluate::{TaskJournal, run_designs, run_designs_journalled, suite_ranges};
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::refine::{Evaluations, Point, refine};
 use crate::study::{RefineMethod, Study};
@@ -72,12 +73,34 @@ pub fn objectives(
         .collect()
 }
 
-/// Refines from the sweep (`manifest`, its complete `rows`) with `method`. With a
-/// `journal` path every refinement evaluation is appended there (one JSON point per
-/// line after the study's fingerprint), and the points of an earlier, interrupted run
-/// found there are replayed instead of simulated again — the refiners then take the same
-/// path, so the answer is the same. With a `check` journal the finalists' check takes
-/// the tasks it holds and appends the others. A journal of another study is refused.
+/// A refinement of a sweep whose finalists are not yet checked ([`refine_sweep`]).
+#[derive(Debug, Clone)]
+pub struct Refinement {
+    /// Refiner used.
+    pub method: RefineMethod,
+    /// The sweep's sample points with their objectives (bare and file designs excluded).
+    pub known: Vec<Point>,
+    /// Best sweep point.
+    pub best_sweep: Point,
+    /// Refinement evaluations, in order.
+    pub log: Vec<Point>,
+    /// The optimum (sweep fidelity).
+    pub optimum: Point,
+    /// Refinement evaluations replayed from the journal of an earlier run.
+    pub replayed: usize,
+    /// Objective of the bare frame (sweep fidelity).
+    pub bare_objective: f64,
+    /// Objective of the building file's slip loads (sweep fidelity).
+    pub file_objective: f64,
+}
+
+/// Refines from the sweep (`manifest`, its complete `rows`) with `method`, then checks
+/// the finalists: [`refine_sweep`], then [`check_finalists`]. With a `journal` path
+/// every refinement evaluation is appended there (one JSON point per line after the
+/// study's fingerprint), and the points of an earlier, interrupted run found there are
+/// replayed instead of simulated again — the refiners then take the same path, so the
+/// answer is the same. With a `check` journal the finalists' check takes the tasks it
+/// holds and appends the others. A journal of another study is refused.
 pub fn optimize(
     study: &Study,
     manifest: &Manifest,
@@ -87,6 +110,20 @@ pub fn optimize(
     check_journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<OptimizeReport, OptError> {
+    let refinement = refine_sweep(study, manifest, rows, method, journal, tick)?;
+    check_finalists(study, refinement, check_journal, tick)
+}
+
+/// The refinement phase of [`optimize`]: from the study's best sweep points, at the
+/// sweep fidelity, journalled in `journal` (when given) and replayed from it.
+pub fn refine_sweep(
+    study: &Study,
+    manifest: &Manifest,
+    rows: &[RecordMetrics],
+    method: RefineMethod,
+    journal: Option<&Path>,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Refinement, OptError> {
     let cfg = study.config.refine;
     let nr = manifest.records.len();
     let obj = manifest.objectives(rows)?;
@@ -98,7 +135,6 @@ pub fn optimize(
         .zip(&obj)
         .filter_map(|(d, (f, _))| d.z.clone().map(|z| Point { z, f: *f }))
         .collect();
-    let sweep_designs = known.len();
     let mut order: Vec<usize> = (0..known.len()).collect();
     order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
     let best_sweep = known
@@ -135,6 +171,40 @@ pub fn optimize(
     let log = ev.log.clone();
     let replayed = ev.replayed;
     drop(ev);
+    Ok(Refinement {
+        method,
+        known,
+        best_sweep,
+        log,
+        optimum,
+        replayed,
+        bare_objective: obj[0].0,
+        file_objective: obj[1].0,
+    })
+}
+
+/// The finalist check of [`optimize`]: the best distinct points of the sweep and the
+/// refinement, run again at the check fidelity (reference accuracy), taking the tasks
+/// `check_journal` holds and appending the others.
+pub fn check_finalists(
+    study: &Study,
+    refinement: Refinement,
+    check_journal: Option<&TaskJournal>,
+    tick: &(dyn Fn() + Sync),
+) -> Result<OptimizeReport, OptError> {
+    let cfg = study.config.refine;
+    let nr = study.records.len();
+    let Refinement {
+        method,
+        known,
+        best_sweep,
+        log,
+        optimum,
+        replayed,
+        bare_objective,
+        file_objective,
+    } = refinement;
+    let sweep_designs = known.len();
     // finalists: the best distinct points of everything evaluated
     let mut all: Vec<Point> = known.iter().chain(log.iter()).cloned().collect();
     all.sort_by(|a, b| a.f.total_cmp(&b.f));
@@ -189,8 +259,8 @@ pub fn optimize(
         log,
         finalists,
         ranking_held,
-        bare_objective: obj[0].0,
-        file_objective: obj[1].0,
+        bare_objective,
+        file_objective,
         simulations,
         replayed,
     })

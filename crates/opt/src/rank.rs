@@ -4,12 +4,15 @@
 //! is unchanged, is reported.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, run_designs};
+use crate::evaluate::run_designs;
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
+use crate::output::write_atomic;
 use crate::sampler::SplitMix;
 use crate::study::Study;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
+use std::path::Path;
 
 /// A named candidate (file format of `--designs`: a JSON array of these).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -231,5 +234,23 @@ impl Ranking {
             s.push('\n');
         }
         s
+    }
+}
+
+impl Ranking {
+    /// The files [`Ranking::write_files`] writes.
+    pub const FILES: [&str; 3] = ["rank.csv", "rank.md", "rank.json"];
+
+    /// Writes `rank.csv`, `rank.md` and `rank.json` (pretty, with a final newline) into
+    /// `out`.
+    pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
+        write_atomic(&out.join("rank.csv"), self.to_csv().as_bytes())?;
+        write_atomic(&out.join("rank.md"), self.to_markdown().as_bytes())?;
+        let mut json = serde_json::to_string_pretty(self).map_err(|source| OptError::Json {
+            path: out.join("rank.json"),
+            source,
+        })?;
+        json.push('\n');
+        write_atomic(&out.join("rank.json"), json.as_bytes())
     }
 }

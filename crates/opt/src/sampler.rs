@@ -1,9 +1,23 @@
 //! Samples of the design space in scaled variables z ∈ [0, 1]^d: full grids, Latin
 //! hypercubes and shifted Halton sequences. Seeded and deterministic; points that break
 //! the linear constraints are dropped (grid) or replaced by further draws (lhs, halton).
+//! A point becomes a [`Design`] of the sweep: labelled, with its slip loads.
 
 use crate::space::DesignSpace;
 use crate::study::{SamplerKind, SweepConfig};
+use serde::{Deserialize, Serialize};
+
+/// One design of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Design {
+    /// `bare`, `file`, or `s0001`… for sample points.
+    pub label: String,
+    /// Slip loads, N per dissipator.
+    pub slip_loads_n: Vec<f64>,
+    /// Scaled variables (sample points only).
+    pub z: Option<Vec<f64>>,
+}
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a small, well-mixed, seedable generator.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -1,6 +1,8 @@
 //! Design spaces: variables z ∈ [0, 1]^d mapped affinely to per-dissipator slip loads
 //! s = offset + D z (N), with linear constraints A z ≤ b carried over from constraints on
-//! s (total budget, non-increasing with height).
+//! s (total budget, non-increasing with height). The space and its constraints as a study
+//! file writes them ([`SpaceConfig`], [`ConstraintsConfig`]) live here with the resolved
+//! [`DesignSpace`]; a study holds both and this module knows nothing of studies.
 //!
 //! Feasibility is decided before any simulation by an exact LP argument: the
 //! componentwise smallest slip-load vector that is non-increasing and above the lower
@@ -9,7 +11,6 @@
 //! vector is componentwise larger, so has a larger sum.
 
 use crate::error::OptError;
-use crate::study::{ConstraintsConfig, SpaceConfig};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 use slipload_sim::Building;
@@ -75,6 +76,38 @@ impl Shape {
             }
         }
     }
+}
+
+/// The design space, as written (slip loads in kN).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum SpaceConfig {
+    /// One free slip load per dissipator, bottom to top.
+    Free {
+        /// Lower bounds, kN.
+        lower_kn: Vec<f64>,
+        /// Upper bounds, kN.
+        upper_kn: Vec<f64>,
+    },
+    /// A fixed shape over the floors times one scale (the base storey's slip load).
+    Profile {
+        /// The shape.
+        shape: Shape,
+        /// [lower, upper] of the first dissipator's slip load, kN.
+        scale_kn: [f64; 2],
+    },
+}
+
+/// Linear constraints on the slip loads.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintsConfig {
+    /// Σ slip loads ≤ this, kN.
+    #[serde(default)]
+    pub budget_kn: Option<f64>,
+    /// Slip loads do not increase with height.
+    #[serde(default)]
+    pub non_increasing: bool,
 }
 
 /// A design space, resolved.

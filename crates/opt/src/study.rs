@@ -8,7 +8,7 @@
 
 use crate::error::OptError;
 use crate::objective::{Metric, Objective, Term};
-use crate::space::{DesignSpace, Shape};
+use crate::space::{ConstraintsConfig, DesignSpace, SpaceConfig};
 use serde::{Deserialize, Serialize};
 use slipload_motion::{G, Record, SuiteTarget, Synthetic, Units};
 use slipload_sim::Building;
@@ -113,38 +113,6 @@ fn default_pga() -> f64 {
 }
 fn default_duration() -> f64 {
     20.0
-}
-
-/// The design space, as written (slip loads in kN).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum SpaceConfig {
-    /// One free slip load per dissipator, bottom to top.
-    Free {
-        /// Lower bounds, kN.
-        lower_kn: Vec<f64>,
-        /// Upper bounds, kN.
-        upper_kn: Vec<f64>,
-    },
-    /// A fixed shape over the floors times one scale (the base storey's slip load).
-    Profile {
-        /// The shape.
-        shape: Shape,
-        /// [lower, upper] of the first dissipator's slip load, kN.
-        scale_kn: [f64; 2],
-    },
-}
-
-/// Linear constraints on the slip loads.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ConstraintsConfig {
-    /// Σ slip loads ≤ this, kN.
-    #[serde(default)]
-    pub budget_kn: Option<f64>,
-    /// Slip loads do not increase with height.
-    #[serde(default)]
-    pub non_increasing: bool,
 }
 
 /// The objective: a weighted sum of suite statistics of response metrics.

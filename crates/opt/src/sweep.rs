@@ -8,30 +8,22 @@
 //! then the sample.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, Task, run_tasks};
+use crate::evaluate::{Task, run_tasks};
+use crate::fidelity::Fidelity;
 use crate::fingerprint::Fingerprint;
-use crate::journal::{Entry, Journal, write_atomic};
+use crate::journal::{Entry, Journal};
 use crate::metrics::RecordMetrics;
 use crate::objective::Objective;
+use crate::output::write_atomic;
 use crate::sampler;
+/// The designs a sweep runs, defined beside the sampler that draws them.
+pub use crate::sampler::Design;
 use crate::shard::Shard;
 use crate::study::{Study, SuiteInfo};
 use serde::{Deserialize, Serialize};
 use slipload_sim::scene::MethodName;
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// One design of a sweep.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Design {
-    /// `bare`, `file`, or `s0001`… for sample points.
-    pub label: String,
-    /// Slip loads, N per dissipator.
-    pub slip_loads_n: Vec<f64>,
-    /// Scaled variables (sample points only).
-    pub z: Option<Vec<f64>>,
-}
 
 /// Everything the output files depend on: written by every run and every shard
 /// (identically), read by `merge`.

@@ -6,13 +6,16 @@
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
 use crate::error::OptError;
-use crate::evaluate::{Fidelity, TaskJournal, run_designs_journalled, suite_ranges};
+use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::objective::{Metric, Statistic};
+use crate::output::write_atomic;
 use crate::study::Study;
 use serde::{Deserialize, Serialize};
 use slipload_motion::G;
 use std::fmt::Write as _;
+use std::path::Path;
 
 /// One row of a design table (SI unless the name says otherwise).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -203,6 +206,13 @@ impl DesignTable {
             rows,
         };
         Ok((table, runs))
+    }
+
+    /// Writes `design-table.csv`, `design-table.md` and `design-table.json` into `out`.
+    pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
+        write_atomic(&out.join("design-table.csv"), self.to_csv().as_bytes())?;
+        write_atomic(&out.join("design-table.md"), self.to_markdown().as_bytes())?;
+        write_atomic(&out.join("design-table.json"), self.to_json().as_bytes())
     }
 
     /// CSV, full precision, one line per design.

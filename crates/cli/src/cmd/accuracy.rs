@@ -5,9 +5,9 @@
 //! the one record).
 
 use super::scene_args::MethodArg;
-use crate::output::write_atomic;
 use anyhow::Context;
 use slipload_motion::Units;
+use slipload_opt::output::write_atomic;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
 use slipload_sim::kind::Expected;
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};

@@ -1,7 +1,7 @@
 //! `slipload merge`: joins the journals of sweep shards into the files one run writes.
 
-use crate::study_figures::sweep_figures;
-use anyhow::Context;
+use crate::study_figures;
+use slipload_opt::pipeline::{SweepRun, merge_shards};
 use std::path::PathBuf;
 
 /// Arguments of `slipload merge`.
@@ -18,20 +18,22 @@ pub struct MergeArgs {
 /// Runs `slipload merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
-    let (manifest, rows) = slipload_opt::sweep::merge(&dirs, &args.out)
-        .with_context(|| format!("merging into {}", args.out.display()))?;
+    let run = merge_shards(&dirs, &args.out)?;
     eprintln!(
-        "merged {} folders, {} tasks: wrote {}/{{manifest.json,responses.csv,designs.csv,journal.jsonl}}",
+        "merged {} folders, {} tasks: wrote {}/{{{}}}",
         dirs.len(),
-        rows.len(),
-        args.out.display()
+        run.report.manifest.tasks(),
+        args.out.display(),
+        SweepRun::MERGE_FILES.join(",")
     );
     // the figures a single sweep draws, from the same manifest and rows
-    let written = sweep_figures(&manifest, &rows)?.write(&args.out)?;
-    eprintln!(
-        "figures (SVG, PNG, CSV): {}/{{{}}}",
-        args.out.display(),
-        written.join(",")
-    );
+    if let Some(figures) = &run.figures {
+        let written = study_figures::write(figures, &args.out)?;
+        eprintln!(
+            "figures (SVG, PNG, CSV): {}/{{{}}}",
+            args.out.display(),
+            written.join(",")
+        );
+    }
     Ok(())
 }

@@ -1,10 +1,10 @@
 //! `slipload rank`: candidate designs over every suite of a study, with their objective,
 //! rank and how stable the ranking is under a bootstrap over the records.
 
-use super::study_args::{load_study, progress};
+use super::study_args::{PhaseBars, load_study};
 use anyhow::Context;
-use slipload_opt::journal::write_atomic;
-use slipload_opt::rank::{NamedDesign, rank};
+use slipload_opt::pipeline::rank_study;
+use slipload_opt::rank::{NamedDesign, Ranking};
 use slipload_sim::FileKind;
 use std::path::PathBuf;
 
@@ -61,25 +61,19 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     );
     slipload_opt::rank::to_newtons(&study, &designs)
         .with_context(|| format!("checking {}", args.designs.display()))?;
-    let pb = progress(((designs.len() + 1) * study.records.len()) as u64, "rank");
-    let r = rank(
+    let r = rank_study(
         &study,
         &designs,
         args.bootstrap as usize,
         args.seed,
-        &|| pb.inc(1),
+        &args.out,
+        &PhaseBars::default(),
     )?;
-    pb.finish_and_clear();
-    write_atomic(&args.out.join("rank.csv"), r.to_csv().as_bytes())?;
-    let md = r.to_markdown();
-    write_atomic(&args.out.join("rank.md"), md.as_bytes())?;
-    let mut json = serde_json::to_string_pretty(&r)?;
-    json.push('\n');
-    write_atomic(&args.out.join("rank.json"), json.as_bytes())?;
-    out!("{md}");
+    out!("{}", r.to_markdown());
     outln!(
-        "wrote {}/{{rank.csv,rank.md,rank.json}}",
-        args.out.display()
+        "wrote {}/{{{}}}",
+        args.out.display(),
+        Ranking::FILES.join(",")
     );
     Ok(())
 }

@@ -415,7 +415,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     match args.count {
         None => {
             let r = &records[0];
-            crate::output::write_atomic(&args.out, format_csv(r).as_bytes())?;
+            slipload_opt::output::write_atomic(&args.out, format_csv(r).as_bytes())?;
             eprintln!(
                 "wrote {} ({} samples, PGA {} g)",
                 args.out.display(),
@@ -426,7 +426,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
         Some(_) => {
             for r in &records {
                 let path = args.out.join(format!("{}.csv", r.name()));
-                crate::output::write_atomic(&path, format_csv(r).as_bytes())?;
+                slipload_opt::output::write_atomic(&path, format_csv(r).as_bytes())?;
             }
             eprintln!(
                 "wrote {} records to {} ({} samples each, PGA {} g)",

@@ -7,8 +7,8 @@
 //! elsewhere (no scripts, fonts or style sheets from the network) and opens offline.
 
 use crate::html::{csv_table, escape, json_table, markdown};
-use crate::output::write_atomic;
 use anyhow::{Context, bail};
+use slipload_opt::output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

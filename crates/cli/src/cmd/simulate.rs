@@ -2,8 +2,8 @@
 //! contract (JSON) or a table.
 
 use super::scene_args::SceneArgs;
-use crate::output::write_atomic;
 use anyhow::Context;
+use slipload_opt::output::write_atomic;
 use slipload_sim::{Outcome, simulate};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -55,7 +55,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
-        slipload_opt::journal::write_target(path)
+        slipload_opt::output::write_target(path)
             .with_context(|| format!("--history {}", path.display()))?;
     }
     let mut scene = args

@@ -1,13 +1,16 @@
 //! Study selection shared by `sweep`, `optimize`, `rank` and `table`: a study file, or
 //! the embedded benchmark study (`configs/study-benchmark.json` with the benchmark
-//! building inlined), plus the progress bar these commands draw on stderr.
+//! building inlined), plus the progress bars these commands draw on stderr, one per phase
+//! of the study run.
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use slipload_opt::pipeline::{Phase, Progress};
 use slipload_opt::{Study, StudyConfig};
 use slipload_sim::BuildingConfig;
 use slipload_sim::scene::BuildingRef;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// The benchmark study, embedded so `slipload optimize` runs with no files.
 pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchmark.json");
@@ -30,7 +33,7 @@ pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
 
 /// A progress bar of `len` steps on stderr; hidden with `--quiet` (and by indicatif when
 /// stderr is not a terminal).
-pub fn progress(len: u64, what: &str) -> ProgressBar {
+fn progress(len: u64, what: &str) -> ProgressBar {
     let pb = ProgressBar::new(len);
     if crate::output::quiet() {
         pb.set_draw_target(ProgressDrawTarget::hidden());
@@ -43,6 +46,37 @@ pub fn progress(len: u64, what: &str) -> ProgressBar {
     );
     pb.set_message(what.to_string());
     pb
+}
+
+/// The progress of a study run on stderr: one bar per phase ([`progress`]), cleared when
+/// the phase ends.
+#[derive(Debug, Default)]
+pub struct PhaseBars {
+    bar: Mutex<Option<ProgressBar>>,
+}
+
+impl Progress for PhaseBars {
+    fn start(&self, phase: Phase, work: usize) {
+        if let Ok(mut bar) = self.bar.lock() {
+            *bar = Some(progress(work as u64, phase.label()));
+        }
+    }
+
+    fn tick(&self) {
+        if let Ok(bar) = self.bar.lock()
+            && let Some(bar) = bar.as_ref()
+        {
+            bar.inc(1);
+        }
+    }
+
+    fn finish(&self, _phase: Phase) {
+        if let Ok(mut bar) = self.bar.lock()
+            && let Some(bar) = bar.take()
+        {
+            bar.finish_and_clear();
+        }
+    }
 }
 
 /// `--fresh`: removes the journals of `out` (and the tables built from them), saying what

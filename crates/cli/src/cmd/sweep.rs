@@ -1,11 +1,10 @@
 //! `slipload sweep`: a sample of designs × every record of a study, journalled in the
 //! output folder (`--resume` continues it), optionally one shard of a job array.
 
-use super::study_args::{discard_journals, load_study, progress};
-use crate::study_figures::sweep_figures;
-use anyhow::Context;
+use super::study_args::{PhaseBars, discard_journals, load_study};
+use crate::study_figures;
 use slipload_opt::Shard;
-use slipload_opt::sweep;
+use slipload_opt::pipeline::{SweepRun, sweep_study};
 use std::path::PathBuf;
 
 /// Arguments of `slipload sweep`.
@@ -42,13 +41,9 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
     if args.fresh {
         discard_journals(&args.out)?;
     }
-    let manifest = sweep::Manifest::of(&study);
-    let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
-    let pb = progress(mine as u64, "sweep");
     let start = std::time::Instant::now();
-    let report = sweep::run(&study, &args.out, shard, args.resume, &|| pb.inc(1))
-        .with_context(|| format!("sweeping {} into {}", study.name, args.out.display()))?;
-    pb.finish_and_clear();
+    let run = sweep_study(&study, &args.out, shard, args.resume, &PhaseBars::default())?;
+    let report = &run.report;
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
         "{}: {} designs × {} records; shard {}/{}: {} tasks ({} from the journal, {} run in {:.2} s, {:.1} tasks/s)",
@@ -63,12 +58,13 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         secs,
         report.ran as f64 / secs.max(1e-9)
     );
-    if let Some(rows) = &report.rows {
+    if let Some(figures) = &run.figures {
         eprintln!(
-            "wrote {}/{{manifest.json,responses.csv,designs.csv}}",
-            args.out.display()
+            "wrote {}/{{{}}}",
+            args.out.display(),
+            SweepRun::FILES.join(",")
         );
-        let written = sweep_figures(&report.manifest, rows)?.write(&args.out)?;
+        let written = study_figures::write(figures, &args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),

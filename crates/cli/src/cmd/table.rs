@@ -1,9 +1,9 @@
 //! `slipload table`: the optimum of a study over a family of buildings and hazard levels
 //! (period scale × intensity scale), as `family.{csv,md}`.
 
-use super::study_args::{load_study, progress};
-use slipload_opt::family::{family, to_csv, to_markdown};
-use slipload_opt::journal::write_atomic;
+use super::study_args::{PhaseBars, load_study};
+use slipload_opt::family::FamilyReport;
+use slipload_opt::pipeline::family_study;
 use slipload_opt::study::RefineMethod;
 use std::path::PathBuf;
 
@@ -30,23 +30,19 @@ pub struct TableArgs {
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
-    let pb = progress(0, "family");
-    let cells = family(
+    let report = family_study(
         &study,
         &args.period_scales,
         &args.intensity_scales,
         method,
-        &|| pb.inc(1),
+        &args.out,
+        &PhaseBars::default(),
     )?;
-    pb.finish_and_clear();
-    let floors: Vec<usize> = study.space.dampers.iter().map(|f| f + 1).collect();
-    write_atomic(
-        &args.out.join("family.csv"),
-        to_csv(&cells, &floors).as_bytes(),
-    )?;
-    let md = to_markdown(&cells, &floors, &study.objective.label());
-    write_atomic(&args.out.join("family.md"), md.as_bytes())?;
-    out!("{}\n\n{md}", study.name);
-    outln!("wrote {}/{{family.csv,family.md}}", args.out.display());
+    out!("{}\n\n{}", report.study, report.to_markdown());
+    outln!(
+        "wrote {}/{{{}}}",
+        args.out.display(),
+        FamilyReport::FILES.join(",")
+    );
     Ok(())
 }

@@ -6,9 +6,9 @@
 //! show mm, kN, kJ), `history-bare.csv`, `drift-profile.csv`, `response.json` (the output
 //! contract) and `response-bare.json`.
 
-use crate::output::write_atomic;
 use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
 use anyhow::Context;
+use slipload_opt::output::write_atomic;
 use slipload_sim::{History, Outcome, Scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -1,11 +1,11 @@
 //! `slipload record spectrum … --plot FILE`: the pseudo-acceleration spectra of a suite,
 //! their mean and the design target, with the data in `FILE.csv`.
 
-use crate::output::write_atomic;
 use crate::plot::{
     Figure, Legend, Panel, RGBColor, Series, strip_image_extension, style, with_suffix,
 };
 use slipload_motion::{DesignSpectrum, G, Spectrum};
+use slipload_opt::output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

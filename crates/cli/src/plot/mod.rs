@@ -223,8 +223,8 @@ impl Figure {
             .with_context(|| format!("rasterising figure {}", stem.display()))?;
         let svg_path = with_suffix(&stem, "svg");
         let png_path = with_suffix(&stem, "png");
-        crate::output::write_atomic(&svg_path, svg.as_bytes())?;
-        crate::output::write_atomic(&png_path, &png)?;
+        slipload_opt::output::write_atomic(&svg_path, svg.as_bytes())?;
+        slipload_opt::output::write_atomic(&png_path, &png)?;
         Ok((svg_path, png_path))
     }
 }

@@ -1,0 +1,177 @@
+//! [`optimize_study`]: sweep, refine, check the finalists, build the design table and the
+//! candidates (and the objective map when asked), each phase journalled and resumed
+//! under the study's fingerprint; then the files.
+
+use super::figures::{FigureData, MapRequest, convergence, objective_map};
+use super::progress::{Phase, Progress, phase};
+use super::report::{PhaseWork, StudyReport, Work};
+use crate::error::OptError;
+use crate::evaluate::TaskJournal;
+use crate::optimize::{check_finalists, refine_sweep};
+use crate::rank::NamedDesign;
+use crate::shard::Shard;
+use crate::study::{RefineMethod, Study};
+use crate::sweep::{self, Manifest};
+use crate::table::{DesignTable, standard_designs};
+use std::path::Path;
+
+/// What [`optimize_study`] runs besides the study's own phases.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct OptimizeOptions {
+    /// The refiner (default: the study's).
+    pub refine: Option<RefineMethod>,
+    /// The objective map, when asked for.
+    pub map: Option<MapRequest>,
+}
+
+impl OptimizeOptions {
+    /// Checks the options against `study` before anything runs or is written: the map's
+    /// floors and size ([`MapRequest::dampers`]).
+    pub fn check(&self, study: &Study) -> Result<(), OptError> {
+        if let Some(m) = &self.map {
+            m.dampers(study)?;
+        }
+        Ok(())
+    }
+}
+
+/// Optimises `study` into the folder `out`: checks the options, refuses the folder if a
+/// journal of another study is there, then runs the phases of [`super::Phase`] in order
+/// — sweep, refine, check, design table, objective map (when asked) — each reporting to
+/// `progress`, then writes `refine.csv`, `optimum.json`, `design-table.{csv,md,json}` and
+/// `candidates.json` ([`StudyReport::write_files`]) beside the sweep's files, and returns
+/// the report.
+///
+/// Every phase that simulates is resumable: the sweep continues `journal.jsonl`, the
+/// refinement replays `refine-METHOD.jsonl`, the check and the design table take their
+/// runs from `check.jsonl`; a second run over the same folder reruns nothing and writes
+/// the same bytes. The objective map is not journalled.
+pub fn optimize_study(
+    study: &Study,
+    out: &Path,
+    options: &OptimizeOptions,
+    progress: &dyn Progress,
+) -> Result<StudyReport, OptError> {
+    options.check(study)?;
+    let method = options.refine.unwrap_or(study.config.refine.method);
+    // every journal of the folder must be this study's: never mix another study's numbers
+    let manifest = Manifest::of(study);
+    crate::journal::check_folder(out, &manifest.fingerprint)
+        .map_err(|e| e.context(format!("optimizing {} into {}", study.name, out.display())))?;
+    let nr = study.records.len();
+
+    let sweep = phase(progress, Phase::Sweep, manifest.tasks(), |tick| {
+        sweep::run(study, out, Shard::ALL, true, tick)
+            .map_err(|e| e.context(format!("sweeping {} into {}", study.name, out.display())))
+    })?;
+    let rows = sweep
+        .rows
+        .as_deref()
+        .ok_or_else(|| OptError::Missing("the sweep is incomplete".into()))?;
+
+    // the check fidelity's runs (finalists, design table) are journalled together
+    let check_journal = TaskJournal::open(study, &out.join("check.jsonl"), &manifest.fingerprint)?;
+    let rc = study.config.refine;
+    let refinement = phase(
+        progress,
+        Phase::Refine,
+        rc.starts * rc.max_evaluations * nr,
+        |tick| {
+            let journal = out.join(format!("refine-{}.jsonl", method.as_str()));
+            refine_sweep(study, &sweep.manifest, rows, method, Some(&journal), tick)
+                .map_err(|e| e.context("refining"))
+        },
+    )?;
+
+    let refined = phase(progress, Phase::Check, (rc.finalists + 1) * nr, |tick| {
+        check_finalists(study, refinement, Some(&check_journal), tick)
+            .map_err(|e| e.context("refining"))
+    })?;
+    let check_reused = check_journal.reused();
+
+    let designs = standard_designs(study, &refined.optimum_loads);
+    let (table, table_runs) = phase(
+        progress,
+        Phase::DesignTable,
+        (designs.len() * 3 + 1) * nr,
+        |tick| {
+            DesignTable::build_journalled(study, &designs, Some(&check_journal), tick)
+                .map_err(|e| e.context("design table"))
+        },
+    )?;
+    let table_reused = check_journal.reused() - check_reused;
+
+    let map = match &options.map {
+        Some(request) => Some(phase(
+            progress,
+            Phase::ObjectiveMap,
+            request.grid * request.grid * nr,
+            |tick| objective_map(study, &refined.optimum_loads, &rows[..nr], request, tick),
+        )?),
+        None => None,
+    };
+
+    let refine_run = (refined.log.len() - refined.replayed) * nr;
+    let check_total = (refined.finalists.len() + 1) * nr;
+    let table_total: usize = table_runs.iter().map(Vec::len).sum();
+    let work = Work {
+        sweep: PhaseWork {
+            run: sweep.ran,
+            reused: sweep.resumed,
+        },
+        refine: PhaseWork {
+            run: refine_run,
+            reused: refined.replayed * nr,
+        },
+        check: PhaseWork {
+            run: check_total - check_reused,
+            reused: check_reused,
+        },
+        table: PhaseWork {
+            run: table_total - table_reused,
+            reused: table_reused,
+        },
+        map: map.as_ref().map(|m| PhaseWork {
+            run: m.objective.len() * nr,
+            reused: 0,
+        }),
+    };
+    let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
+    let figures = FigureData::of_design_table(
+        &record_names,
+        &designs,
+        &table,
+        &table_runs,
+        convergence(out, sweep.manifest.tasks(), nr, refined.best_sweep.f)?,
+        map,
+    );
+    let report = StudyReport {
+        study: study.name.clone(),
+        objective: study.objective.label(),
+        damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
+        method,
+        refine_loads_n: refined
+            .log
+            .iter()
+            .map(|p| study.space.slip_loads(&p.z))
+            .collect(),
+        // a variable on a bound of the space: the optimum may lie beyond it
+        on_bound: study.space.on_bounds(&refined.optimum.z),
+        candidates: designs
+            .iter()
+            .map(|(name, loads)| NamedDesign {
+                name: name.clone(),
+                slip_loads_kn: loads.iter().map(|v| v / 1e3).collect(),
+            })
+            .collect(),
+        designs,
+        table,
+        table_runs,
+        figures,
+        work,
+        refine: refined,
+        sweep,
+    };
+    report.write_files(out)?;
+    Ok(report)
+}

@@ -1,0 +1,217 @@
+//! What [`super::optimize_study`] found, and the files made from it: `refine.csv`,
+//! `optimum.json`, `design-table.{csv,md,json}` and `candidates.json`.
+
+use super::figures::FigureData;
+use crate::error::OptError;
+use crate::metrics::RecordMetrics;
+use crate::optimize::OptimizeReport;
+use crate::output::write_atomic;
+use crate::rank::NamedDesign;
+use crate::space::OnBound;
+use crate::study::RefineMethod;
+use crate::sweep::SweepReport;
+use crate::table::DesignTable;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Simulations of one phase: run now, and taken from its journal.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PhaseWork {
+    /// Simulations run in this run.
+    pub run: usize,
+    /// Simulations taken from the journal of an earlier run.
+    pub reused: usize,
+}
+
+/// Simulations of every phase of a study run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Work {
+    /// The sweep (`journal.jsonl`).
+    pub sweep: PhaseWork,
+    /// The refinement (`refine-METHOD.jsonl`): one simulation per record and evaluation.
+    pub refine: PhaseWork,
+    /// The finalists' check (`check.jsonl`).
+    pub check: PhaseWork,
+    /// The design table (`check.jsonl`).
+    pub table: PhaseWork,
+    /// The objective map, when asked for (not journalled).
+    pub map: Option<PhaseWork>,
+}
+
+impl Work {
+    /// Simulations run in this run, over every phase.
+    pub fn run(&self) -> usize {
+        self.sweep.run
+            + self.refine.run
+            + self.check.run
+            + self.table.run
+            + self.map.map_or(0, |m| m.run)
+    }
+}
+
+/// Everything a study run found: what the files, the figures and the summary are made of.
+#[derive(Debug, Clone)]
+pub struct StudyReport {
+    /// The study's name.
+    pub study: String,
+    /// Its objective, as a label.
+    pub objective: String,
+    /// Floors (from 1) of the dissipators, bottom to top.
+    pub damper_floors: Vec<usize>,
+    /// The refiner used.
+    pub method: RefineMethod,
+    /// The sweep: its manifest, what ran and what was reused (its rows are complete).
+    pub sweep: SweepReport,
+    /// The refinement and the finalists' check.
+    pub refine: OptimizeReport,
+    /// Slip loads, N per dissipator, of each refinement evaluation (`refine.log`).
+    pub refine_loads_n: Vec<Vec<f64>>,
+    /// The optimum's variables that sit on a bound of the design space.
+    pub on_bound: Vec<OnBound>,
+    /// The design table's designs (slip loads, N): the optimum first, then uniform and
+    /// storey-shear designs of the same total, the building file's, the bare frame.
+    pub designs: Vec<(String, Vec<f64>)>,
+    /// The design table at the check fidelity.
+    pub table: DesignTable,
+    /// The table's runs: `[0]` the bare frame, then per design its slip loads, × 0.75,
+    /// × 1.25 ([`DesignTable::build_with_runs`]).
+    pub table_runs: Vec<Vec<RecordMetrics>>,
+    /// The candidates for `rank`: the designs, in kN (`candidates.json`).
+    pub candidates: Vec<NamedDesign>,
+    /// The data of the study figures.
+    pub figures: FigureData,
+    /// Simulations per phase, run now and reused.
+    pub work: Work,
+}
+
+/// A finalist as `optimum.json` lists it.
+#[derive(Debug, Clone, Serialize)]
+struct FinalistEntry {
+    #[serde(rename = "slip_loads_kN")]
+    slip_loads_kn: Vec<f64>,
+    objective_sweep: f64,
+    objective_check: f64,
+}
+
+/// `optimum.json`.
+#[derive(Debug, Clone, Serialize)]
+struct OptimumFile<'a> {
+    study: &'a str,
+    objective: &'a str,
+    refiner: &'a str,
+    damper_floors: &'a [usize],
+    #[serde(rename = "slip_loads_kN")]
+    slip_loads_kn: Vec<f64>,
+    on_bound: &'a [OnBound],
+    objective_value: f64,
+    bare_objective: f64,
+    file_objective: f64,
+    sweep_designs: usize,
+    refine_evaluations: usize,
+    finalists: Vec<FinalistEntry>,
+    ranking_held: bool,
+}
+
+/// Pretty JSON with a final newline; through a [`serde_json::Value`], so object keys are
+/// in sorted order at every level.
+fn sorted_json<T: Serialize>(value: &T, what: &str) -> Result<String, OptError> {
+    let json = |source| OptError::Json {
+        path: what.into(),
+        source,
+    };
+    let v = serde_json::to_value(value).map_err(json)?;
+    let mut s = serde_json::to_string_pretty(&v).map_err(json)?;
+    s.push('\n');
+    Ok(s)
+}
+
+impl StudyReport {
+    /// The files [`StudyReport::write_files`] writes, with the sweep's (`designs.csv`,
+    /// `responses.csv`), in the order a summary names them.
+    pub const FILES: [&str; 8] = [
+        "designs.csv",
+        "responses.csv",
+        "refine.csv",
+        "optimum.json",
+        "candidates.json",
+        "design-table.csv",
+        "design-table.md",
+        "design-table.json",
+    ];
+
+    /// `refine.csv`: every refinement evaluation with the best objective so far.
+    pub fn refine_csv(&self) -> String {
+        let mut s = String::from("evaluation,refiner,objective,best_so_far");
+        for f in &self.damper_floors {
+            let _ = write!(s, ",slip_load_kN_{f}");
+        }
+        s.push('\n');
+        let mut best = self.refine.best_sweep.f;
+        for (i, (p, loads)) in self.refine.log.iter().zip(&self.refine_loads_n).enumerate() {
+            best = best.min(p.f);
+            let _ = write!(s, "{},{},{},{}", i + 1, self.method.as_str(), p.f, best);
+            for v in loads {
+                let _ = write!(s, ",{}", v / 1e3);
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// `optimum.json`: the optimum, its objective beside the bare frame's and the
+    /// building file's, the finalists at both fidelities; keys sorted.
+    pub fn optimum_json(&self) -> Result<String, OptError> {
+        let r = &self.refine;
+        let kn = |v: &[f64]| v.iter().map(|x| x / 1e3).collect::<Vec<_>>();
+        sorted_json(
+            &OptimumFile {
+                study: &self.study,
+                objective: &self.objective,
+                refiner: self.method.as_str(),
+                damper_floors: &self.damper_floors,
+                slip_loads_kn: kn(&r.optimum_loads),
+                on_bound: &self.on_bound,
+                objective_value: r.optimum.f,
+                bare_objective: r.bare_objective,
+                file_objective: r.file_objective,
+                sweep_designs: r.sweep_designs,
+                refine_evaluations: r.log.len(),
+                finalists: r
+                    .finalists
+                    .iter()
+                    .map(|f| FinalistEntry {
+                        slip_loads_kn: kn(&f.slip_loads_n),
+                        objective_sweep: f.f_sweep,
+                        objective_check: f.f_check,
+                    })
+                    .collect(),
+                ranking_held: r.ranking_held,
+            },
+            "optimum.json",
+        )
+    }
+
+    /// `candidates.json`: the candidates as `rank --designs` reads them.
+    pub fn candidates_json(&self) -> Result<String, OptError> {
+        let mut text =
+            serde_json::to_string_pretty(&self.candidates).map_err(|source| OptError::Json {
+                path: "candidates.json".into(),
+                source,
+            })?;
+        text.push('\n');
+        Ok(text)
+    }
+
+    /// Writes `refine.csv`, `optimum.json`, `design-table.{csv,md,json}` and
+    /// `candidates.json` into `out` (the sweep wrote its own files as it finished).
+    pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
+        write_atomic(&out.join("refine.csv"), self.refine_csv().as_bytes())?;
+        write_atomic(&out.join("optimum.json"), self.optimum_json()?.as_bytes())?;
+        self.table.write_files(out)?;
+        write_atomic(
+            &out.join("candidates.json"),
+            self.candidates_json()?.as_bytes(),
+        )
+    }
+}
