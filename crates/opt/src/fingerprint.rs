@@ -175,6 +175,30 @@ pub fn of_study(study: &crate::Study, designs: &[crate::sampler::Design]) -> Fin
             None => h.u64(0),
         };
     }
+    // Yield laws, P-Δ loads and the collapse limit, hashed only when present, so an
+    // elastic building keeps the fingerprint it had before they existed.
+    if b.storey_yield.iter().any(Option::is_some)
+        || b.gravity_loads.is_some()
+        || b.collapse_drift.is_some()
+    {
+        h.u64(0x7969_656c_64); // a tag: nothing hashed before can end with it by accident
+        for y in &b.storey_yield {
+            match y {
+                Some(y) => h
+                    .u64(1)
+                    .f64(y.stiffness)
+                    .f64(y.yield_shear)
+                    .f64(y.post_yield_ratio),
+                None => h.u64(0),
+            };
+        }
+        for v in [&b.gravity_loads, &b.collapse_drift] {
+            match v {
+                Some(v) => h.u64(1).f64s(v),
+                None => h.u64(0),
+            };
+        }
+    }
     part("building", "building".into(), &h);
 
     let mut h = Fnv64::default();
