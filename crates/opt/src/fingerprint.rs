@@ -181,7 +181,7 @@ pub fn of_study(study: &crate::Study, designs: &[crate::sampler::Design]) -> Fin
         || b.gravity_loads.is_some()
         || b.collapse_drift.is_some()
     {
-        h.u64(0x7969_656c_64); // a tag: nothing hashed before can end with it by accident
+        h.u64(0x0079_6965_6c64); // "yield": a tag before the frame's nonlinear data
         for y in &b.storey_yield {
             match y {
                 Some(y) => h

@@ -25,6 +25,18 @@ pub struct RecordMetrics {
     pub energy_friction: Option<f64>,
     /// ∫ E_strain dt, J·s (energies on).
     pub strain_energy_area: Option<f64>,
+    /// Peak ductility (peak drift / yield drift) per storey, 0 for a storey without a
+    /// yield law; absent for an elastic frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ductility: Option<Vec<f64>>,
+    /// Plastic (hysteretic) energy of the yielding storeys, J (energies on; absent for an
+    /// elastic frame).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy_plastic: Option<f64>,
+    /// The run stopped on the collapse limit: (storey from 1, time in s). The design fails
+    /// this record.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse: Option<(usize, f64)>,
 }
 
 impl RecordMetrics {
@@ -53,7 +65,25 @@ impl RecordMetrics {
             energy_input: energy.map(|e| e.input),
             energy_friction: energy.map(|e| e.friction),
             strain_energy_area: energy.map(|_| out.diagnostics.strain_energy_area),
+            ductility: r
+                .peak_ductility
+                .as_ref()
+                .map(|mu| mu.iter().map(|m| m.unwrap_or(0.0)).collect()),
+            energy_plastic: energy.and_then(|e| e.plastic),
+            collapse: r.collapse.map(|c| (c.storey, c.time)),
         }
+    }
+
+    /// Largest peak ductility over the storeys (`None` for an elastic frame).
+    pub fn peak_ductility(&self) -> Option<f64> {
+        self.ductility
+            .as_ref()
+            .map(|mu| mu.iter().copied().fold(0.0, f64::max))
+    }
+
+    /// Whether the run stopped on the collapse limit.
+    pub fn collapsed(&self) -> bool {
+        self.collapse.is_some()
     }
 
     /// Largest peak drift ratio over the storeys.
@@ -91,6 +121,8 @@ impl RecordMetrics {
             ("energy_input", self.energy_input),
             ("energy_friction", self.energy_friction),
             ("strain_energy_area", self.strain_energy_area),
+            ("energy_plastic", self.energy_plastic),
+            ("peak_ductility", self.peak_ductility()),
         ];
         for (name, v) in scalars {
             if let Some(v) = v
@@ -114,5 +146,7 @@ impl RecordMetrics {
             && opt(self.energy_input)
             && opt(self.energy_friction)
             && opt(self.strain_energy_area)
+            && opt(self.energy_plastic)
+            && opt(self.peak_ductility())
     }
 }

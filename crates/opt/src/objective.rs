@@ -27,6 +27,13 @@ pub enum Metric {
     /// frame and of the braces, as sim accumulates it), u_max the peak floor displacement
     /// (max over floors), index 0 = bare frame under the same record.
     Rpi,
+    /// Peak storey ductility (peak drift / yield drift), max over the yielding storeys.
+    PeakDuctility,
+    /// Plastic (hysteretic) energy of the yielding storeys, J.
+    HystereticEnergy,
+    /// Friction share of the dissipated energy, E_friction / (E_friction + E_plastic) (to
+    /// maximise: the objective uses 1 − share).
+    FrictionShare,
 }
 
 impl Metric {
@@ -39,6 +46,9 @@ impl Metric {
             Metric::ResidualDriftRatio => "residual_drift_ratio",
             Metric::EnergyRatio => "energy_ratio",
             Metric::Rpi => "rpi",
+            Metric::PeakDuctility => "peak_ductility",
+            Metric::HystereticEnergy => "hysteretic_energy",
+            Metric::FrictionShare => "friction_share",
         }
     }
 
@@ -72,6 +82,21 @@ impl Metric {
                 let sea0 = need(b.strain_energy_area, "the bare frame's strain-energy area")?;
                 let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 1.0 };
                 0.5 * (ratio(sea, sea0) + ratio(m.peak_displacement, b.peak_displacement))
+            }
+            Metric::PeakDuctility => m.peak_ductility().ok_or_else(|| {
+                OptError::Missing(
+                    "peak_ductility needs a frame whose storeys yield (storey_yield in the building)"
+                        .into(),
+                )
+            })?,
+            Metric::HystereticEnergy => {
+                need(m.energy_plastic, "yielding storeys (storey_yield) and energies")?
+            }
+            Metric::FrictionShare => {
+                let friction = need(m.energy_friction, "the friction energy")?;
+                let plastic = m.energy_plastic.unwrap_or(0.0);
+                let total = friction + plastic;
+                if total > 0.0 { plastic / total } else { 0.0 }
             }
         })
     }
@@ -170,13 +195,22 @@ impl Objective {
         Ok(sum / suites.len() as f64)
     }
 
-    /// Σ weight · term value.
+    /// Σ weight · term value; +∞ for a design that collapses on a record of the suites
+    /// (it fails that record: it ranks after every design that stands, and refiners treat
+    /// it as a rejected step).
     pub fn value(
         &self,
         records: &[RecordMetrics],
         bare: Option<&[RecordMetrics]>,
         suites: &[Range<usize>],
     ) -> Result<f64, OptError> {
+        if suites
+            .iter()
+            .flat_map(|s| s.clone())
+            .any(|i| records[i].collapsed())
+        {
+            return Ok(f64::INFINITY);
+        }
         let mut f = 0.0;
         for t in &self.terms {
             f += t.weight * Objective::term_value(t, records, bare, suites)?;

@@ -145,6 +145,12 @@ pub fn refine_sweep(
         )
         .cloned()
         .expect("index from the list");
+    if !best_sweep.f.is_finite() {
+        return Err(OptError::Missing(format!(
+            "every sampled design collapses on some record of the study (the drift limit of the building): widen the slip-load range or lower the suites' intensity ({} designs)",
+            known.len()
+        )));
+    }
     let oracle = {
         let bare = bare.clone();
         move |zs: &[Vec<f64>]| -> Result<Vec<f64>, OptError> {
@@ -206,7 +212,13 @@ pub fn check_finalists(
     } = refinement;
     let sweep_designs = known.len();
     // finalists: the best distinct points of everything evaluated
-    let mut all: Vec<Point> = known.iter().chain(log.iter()).cloned().collect();
+    // (a design that collapsed at the sweep's fidelity is no finalist)
+    let mut all: Vec<Point> = known
+        .iter()
+        .chain(log.iter())
+        .filter(|p| p.f.is_finite())
+        .cloned()
+        .collect();
     all.sort_by(|a, b| a.f.total_cmp(&b.f));
     let mut picked: Vec<Point> = Vec::new();
     for p in all {

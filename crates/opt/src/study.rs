@@ -795,10 +795,15 @@ impl Study {
 
     /// Whether any objective term needs the energies.
     pub fn needs_energies(&self) -> bool {
-        self.objective
-            .terms
-            .iter()
-            .any(|t| matches!(t.metric, Metric::EnergyRatio | Metric::Rpi))
+        self.objective.terms.iter().any(|t| {
+            matches!(
+                t.metric,
+                Metric::EnergyRatio
+                    | Metric::Rpi
+                    | Metric::HystereticEnergy
+                    | Metric::FrictionShare
+            )
+        })
     }
 
     /// Slip loads of the building file per dissipator, N (the "paper" design); locked or

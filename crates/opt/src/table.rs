@@ -58,6 +58,81 @@ pub struct TableRow {
     pub objective_at_75pct: f64,
     /// Objective with every slip load × 1.25.
     pub objective_at_125pct: f64,
+    /// Per suite, for a frame whose storeys yield or carry P-Δ (absent otherwise): the
+    /// responses at each intensity level, ductility, hysteretic energy and collapses.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub by_suite: Option<Vec<SuiteStats>>,
+}
+
+/// One design's responses over one suite (a yielding or P-Δ frame).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SuiteStats {
+    /// Suite name.
+    pub suite: String,
+    /// Records in the suite.
+    pub records: usize,
+    /// Records on which the design collapsed (the run passed the drift limit).
+    pub collapses: usize,
+    /// Peak drift ratio (max over storeys): mean over the records.
+    pub peak_drift_ratio_mean: f64,
+    /// Peak drift ratio: max over the records.
+    pub peak_drift_ratio_max: f64,
+    /// Residual drift ratio (max over storeys): mean over the records.
+    pub residual_drift_ratio_mean: f64,
+    /// Peak storey ductility (max over storeys): mean over the records (`None` when no
+    /// storey yields).
+    pub peak_ductility_mean: Option<f64>,
+    /// Peak storey ductility: max over the records.
+    pub peak_ductility_max: Option<f64>,
+    /// Hysteretic (plastic) energy of the frame, J: mean over the records.
+    pub hysteretic_energy_mean: Option<f64>,
+    /// Friction share of the dissipated energy, E_f / (E_f + E_p): mean over the records.
+    pub friction_share_mean: Option<f64>,
+}
+
+impl SuiteStats {
+    fn of(suite: &str, r: &[RecordMetrics]) -> SuiteStats {
+        let opt_mean = |v: Vec<Option<f64>>| -> Option<f64> {
+            v.into_iter()
+                .collect::<Option<Vec<f64>>>()
+                .map(|v| Statistic::Mean.of(&v))
+        };
+        let mu: Vec<Option<f64>> = r.iter().map(RecordMetrics::peak_ductility).collect();
+        let mu_max = mu
+            .iter()
+            .copied()
+            .collect::<Option<Vec<f64>>>()
+            .map(|v| Statistic::Max.of(&v));
+        SuiteStats {
+            suite: suite.to_string(),
+            records: r.len(),
+            collapses: r.iter().filter(|m| m.collapsed()).count(),
+            peak_drift_ratio_mean: mean(r.iter().map(RecordMetrics::peak_drift_ratio)),
+            peak_drift_ratio_max: Statistic::Max.of(&r
+                .iter()
+                .map(RecordMetrics::peak_drift_ratio)
+                .collect::<Vec<_>>()),
+            residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+            peak_ductility_mean: opt_mean(mu),
+            peak_ductility_max: mu_max,
+            hysteretic_energy_mean: opt_mean(r.iter().map(|m| m.energy_plastic).collect()),
+            // over the records that dissipated anything by friction or yielding
+            friction_share_mean: {
+                let shares: Option<Vec<f64>> = r
+                    .iter()
+                    .map(|m| {
+                        let f = m.energy_friction?;
+                        let total = f + m.energy_plastic.unwrap_or(0.0);
+                        Some((total > 0.0).then(|| f / total))
+                    })
+                    .collect::<Option<Vec<Option<f64>>>>()
+                    .map(|v| v.into_iter().flatten().collect());
+                shares
+                    .filter(|v| !v.is_empty())
+                    .map(|v| Statistic::Mean.of(&v))
+            },
+        }
+    }
 }
 
 /// A design table.
@@ -191,6 +266,13 @@ impl DesignTable {
                 rpi_mean: Statistic::Mean.of(&rpi),
                 objective_at_75pct: objective(&runs[2 + 3 * k])?,
                 objective_at_125pct: objective(&runs[3 + 3 * k])?,
+                by_suite: study.building.is_nonlinear_frame().then(|| {
+                    study
+                        .suites
+                        .iter()
+                        .map(|su| SuiteStats::of(&su.name, &r[su.range.clone()]))
+                        .collect()
+                }),
             });
         }
         let table = DesignTable {
@@ -324,6 +406,33 @@ impl DesignTable {
                 r.objective_at_75pct,
                 r.objective_at_125pct
             );
+        }
+        if self.rows.iter().any(|r| r.by_suite.is_some()) {
+            s.push_str("\nBy suite (the frame yields or carries P-Δ): peak drift and residual drift ratios in %, peak storey ductility = peak drift / yield drift (max over the storeys), hysteretic energy of the frame in kJ, friction share = E_friction / (E_friction + E_plastic); collapses = records on which the run passed the drift limit (the design fails them).\n\n");
+            s.push_str("| design | suite | records | collapses | peak drift mean (%) | peak drift max (%) | residual drift (%) | ductility mean | ductility max | hysteretic energy (kJ) | friction share |\n");
+            s.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+            let opt = |v: Option<f64>, scale: f64, digits: usize| {
+                v.map_or("-".to_string(), |v| format!("{:.*}", digits, v * scale))
+            };
+            for r in &self.rows {
+                for (k, st) in r.by_suite.iter().flatten().enumerate() {
+                    let _ = writeln!(
+                        s,
+                        "| {} | {} | {} | {} | {:.3} | {:.3} | {:.4} | {} | {} | {} | {} |",
+                        if k == 0 { r.design.as_str() } else { "" },
+                        st.suite,
+                        st.records,
+                        st.collapses,
+                        100.0 * st.peak_drift_ratio_mean,
+                        100.0 * st.peak_drift_ratio_max,
+                        100.0 * st.residual_drift_ratio_mean,
+                        opt(st.peak_ductility_mean, 1.0, 2),
+                        opt(st.peak_ductility_max, 1.0, 2),
+                        opt(st.hysteretic_energy_mean, 1e-3, 1),
+                        opt(st.friction_share_mean, 1.0, 3),
+                    );
+                }
+            }
         }
         s
     }

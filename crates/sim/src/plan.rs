@@ -360,6 +360,32 @@ impl Plan {
                     .collect::<Vec<_>>()
                     .join(", ")
             ));
+            if b.storey_yield.iter().any(Option::is_some) {
+                // What P-Δ leaves of a yielded storey: its tangent αk − P/h.
+                let tangents: Vec<String> = b
+                    .storey_yield
+                    .iter()
+                    .zip(p.iter().zip(h))
+                    .map(|(y, (pi, hi))| match y {
+                        Some(y) => format!("{:.4e}", y.post_yield_ratio * y.stiffness - pi / hi),
+                        None => "elastic".into(),
+                    })
+                    .collect();
+                notes.push(format!(
+                    "P-Delta: post-yield tangent alpha*k - P/h per storey [{}] N/m (negative: a yielded storey loses stiffness and can ratchet to the collapse limit)",
+                    tangents.join(", ")
+                ));
+            }
+        }
+        if let Some(limit) = &b.collapse_drift {
+            notes.push(format!(
+                "collapse limit: a storey drift past [{}] m stops the run and reports the collapse (storey, time, drift)",
+                limit
+                    .iter()
+                    .map(|v| format!("{v:.4}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
         }
         // The initial stiffness (every contact stuck, its brace or plastic element
         // elastic) must be positive definite (it is for valid buildings; a check here

@@ -145,6 +145,25 @@ pub fn table(name: &str, out: &Outcome) -> String {
         );
     }
     let _ = writeln!(s, "peak base shear: {:.6e} N", r.peak_base_shear);
+    if let (Some(mu), Some(plastic)) = (&r.peak_ductility, &r.peak_plastic_drift) {
+        // A yielding frame: each storey's ductility and plastic drift.
+        let _ = writeln!(
+            s,
+            "{:>6} {:>12} {:>17}",
+            "storey", "ductility", "plastic drift (m)"
+        );
+        for (i, (m, p)) in mu.iter().zip(plastic).enumerate() {
+            let m = m.map_or("elastic".to_string(), |m| format!("{m:.4}"));
+            let _ = writeln!(s, "{:>6} {m:>12} {p:>17.4e}", i + 1);
+        }
+    }
+    if let Some(c) = &r.collapse {
+        let _ = writeln!(
+            s,
+            "COLLAPSE: storey {} drifted {:.4e} m at t = {:.4} s, past its limit {:.4e} m; the run stopped there (peaks up to that instant)",
+            c.storey, c.drift, c.time, c.limit
+        );
+    }
     if let Some(e) = &r.energy {
         let scale = (e.input.abs() + out.diagnostics.initial_energy).max(f64::MIN_POSITIVE);
         let _ = writeln!(
@@ -158,6 +177,16 @@ pub fn table(name: &str, out: &Outcome) -> String {
             e.balance_error / 1e3,
             e.balance_error.abs() / scale
         );
+        if let Some(p) = e.plastic {
+            let share = e
+                .friction_share()
+                .map_or("-".to_string(), |f| format!("{:.1} %", 100.0 * f));
+            let _ = writeln!(
+                s,
+                "plastic (hysteretic) energy of the frame {:.3} kJ (in the balance); friction share of the dissipated energy {share}",
+                p / 1e3
+            );
+        }
     }
     match &out.diagnostics.loop_iterations {
         Some(l) => {

@@ -87,6 +87,9 @@ pub fn write_all(
     if let Some(fig) = hysteresis(scene, h)? {
         save(fig, "hysteresis")?;
     }
+    if let Some(fig) = storey_hysteresis(scene, h)? {
+        save(fig, "storey-hysteresis")?;
+    }
     if h.columns.iter().any(|c| c == "E_input_J") {
         save(energies(scene, h, out)?, "energy")?;
     }
@@ -224,6 +227,80 @@ pub fn hysteresis(scene: &Scene, h: &History) -> anyhow::Result<Option<Figure>> 
     Ok(Some(fig))
 }
 
+/// Per yielding storey: the storey shear αk·d + Fₚ (its elastic part and its plastic
+/// element's force) against the drift d, with ±Fy dashed, beside the friction force
+/// against slip of the damper on the same floor (when there is one). `None` when no
+/// storey yields.
+pub fn storey_hysteresis(scene: &Scene, h: &History) -> anyhow::Result<Option<Figure>> {
+    let yielding: Vec<(usize, slipload_sim::StoreyYield)> = scene
+        .building
+        .storey_yield
+        .iter()
+        .enumerate()
+        .filter_map(|(i, y)| y.map(|y| (i + 1, y)))
+        .filter(|(i, _)| h.columns.iter().any(|c| *c == format!("Fp{i}_N")))
+        .collect();
+    if yielding.is_empty() {
+        return Ok(None);
+    }
+    let mut fig = Figure::new(format!(
+        "{}: storey shear vs drift, beside the damper's friction force vs slip",
+        scene.name
+    ))
+    .columns(2);
+    for (i, y) in yielding {
+        let drift = column(h, &format!("drift{i}_m"))?;
+        let fp = column(h, &format!("Fp{i}_N"))?;
+        let shear: Vec<f64> = drift
+            .iter()
+            .zip(&fp)
+            .map(|(d, f)| 1e-3 * (y.post_yield_ratio * y.stiffness * d + f))
+            .collect();
+        let d_mm = scaled(&drift, 1e3);
+        let (lo, hi) = d_mm
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), v| {
+                (l.min(*v), u.max(*v))
+            });
+        let fy = y.yield_shear * 1e-3;
+        let mut p = Panel::new(format!("drift {i} (mm)"), format!("storey shear {i} (kN)"))
+            .title(format!(
+                "storey {i}: Fy = {} kN, α = {} (dashed ±Fy)",
+                sig(fy),
+                sig(y.post_yield_ratio)
+            ))
+            .legend(Legend::None)
+            .series(Series::line("storey shear", d_mm, shear).color(1));
+        if lo.is_finite() {
+            p.push(Series::hline("±Fy", fy, lo, hi).rgb(style::INK));
+            p.push(Series::hline("", -fy, lo, hi).rgb(style::INK).no_legend());
+        }
+        fig = fig.panel(p);
+        let damper = match (
+            h.column(&format!("x{i}_m")),
+            h.column(&format!("xd{i}_m")),
+            h.column(&format!("F{i}_N")),
+        ) {
+            (Some(x), Some(xd), Some(f)) => Some((x, xd, f)),
+            _ => None,
+        };
+        fig = fig.panel(match damper {
+            Some((x, xd, f)) => {
+                let slip: Vec<f64> = x.iter().zip(&xd).map(|(a, b)| 1e3 * (a - b)).collect();
+                Panel::new(
+                    format!("slip x{i} − x′{i} (mm)"),
+                    format!("friction force F{i} (kN)"),
+                )
+                .title(format!("damper {i}"))
+                .legend(Legend::None)
+                .series(Series::line("friction force", slip, scaled(&f, 1e-3)).color(0))
+            }
+            None => Panel::new("-", "-").title(format!("storey {i}: no damper")),
+        });
+    }
+    Ok(Some(fig))
+}
+
 /// Energy histories (relative formulation): friction, viscous and kinetic + strain
 /// stacked, the input (plus any initial energy) as a line on top; the gap between the
 /// line and the stack is the balance error.
@@ -244,9 +321,13 @@ pub fn energies(scene: &Scene, h: &History, out: &Outcome) -> anyhow::Result<Fig
     } else {
         ("input", input)
     };
-    let p = Panel::new("time (s)", "energy (kJ)")
+    let mut p = Panel::new("time (s)", "energy (kJ)")
         .y_from_zero()
-        .legend(Legend::UpperLeft)
+        .legend(Legend::UpperLeft);
+    if let Some(plastic) = h.column("E_plastic_J") {
+        p = p.series(Series::area("plastic (frame)", t.clone(), scaled(&plastic, 1e-3)).color(3));
+    }
+    let p = p
         .series(Series::area("friction", t.clone(), friction).color(1))
         .series(Series::area("viscous", t.clone(), viscous).color(0))
         .series(Series::area("kinetic + strain", t.clone(), ks).color(2))

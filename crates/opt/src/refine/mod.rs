@@ -62,8 +62,39 @@ pub fn run(
 pub struct Point {
     /// Scaled variables.
     pub z: Vec<f64>,
-    /// Objective.
+    /// Objective (+∞, written `"inf"`, for a design that collapses on a record).
+    #[serde(with = "objective_value")]
     pub f: f64,
+}
+
+/// An objective value in a journal: a JSON number, or `"inf"` for +∞ (a collapsed
+/// design), which JSON numbers cannot hold.
+mod objective_value {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if *v == f64::INFINITY {
+            s.serialize_str("inf")
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Num(f64),
+            Text(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Num(v) => Ok(v),
+            Raw::Text(t) if t == "inf" => Ok(f64::INFINITY),
+            Raw::Text(t) => Err(serde::de::Error::custom(format!(
+                "objective {t:?}: expected a number or \"inf\""
+            ))),
+        }
+    }
 }
 
 /// The batch objective: objective values of several scaled points.

@@ -145,7 +145,8 @@ impl TrustRegion {
         let near = |ev: &Evaluations<'_>, c: &Point, delta: f64| -> Vec<Point> {
             let mut v: Vec<Point> = ev
                 .all()
-                .filter(|q| dist_inf(&q.z, &c.z) <= delta * (1.0 + 1e-12))
+                // A collapsed design (+∞) is no sample of a smooth model.
+                .filter(|q| q.f.is_finite() && dist_inf(&q.z, &c.z) <= delta * (1.0 + 1e-12))
                 .cloned()
                 .collect();
             v.sort_by(|a, b| dist_inf(&a.z, &c.z).total_cmp(&dist_inf(&b.z, &c.z)));
