@@ -4,6 +4,7 @@
 //! each design's responses per suite (intensity level) with its collapses. On an elastic
 //! frame none of this appears and the ductility objective is refused by name.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+#![allow(clippy::single_range_in_vec_init)] // one suite: a slice of one range
 
 use slipload_opt::refine::Point;
 use slipload_opt::table::DesignTable;
