@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates results/benchmark-3story/ and results/ten-story/: the design tables
+# Regenerates results/benchmark-3story/, results/ten-story/ and results/ten-story-mce/
+# (the yielding, P-Delta frame at the design level and at MCE): the design tables
 # (design-table.{csv,md,json}), the sweep (designs.csv, responses.csv, manifest.json),
 # the refinement (refine.csv, optimum.json, candidates.json), the ranking of the
 # candidates (rank.{csv,md,json}) and, for the benchmark, the family table
@@ -8,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 bin=target/release/slipload
-for pair in "benchmark-3story:configs/study-benchmark.json" "ten-story:configs/study-ten-story.json"; do
+for pair in "benchmark-3story:configs/study-benchmark.json" "ten-story:configs/study-ten-story.json" "ten-story-mce:configs/study-ten-story-mce.json"; do
     name=${pair%%:*}
     study=${pair#*:}
     out=results/$name
