@@ -430,3 +430,75 @@ fn bad_yield_laws_are_refused_by_field() {
         "{err}"
     );
 }
+
+#[test]
+fn a_slow_push_past_yield_and_back_follows_the_static_law() {
+    // F(t) = F_max sin(ω_f t) over half a cycle, ω_f = ω/100, 5 % damping: quasi-static
+    // to (ω_f/ω)² (inertia) and 2ζω_f/ω (damping force) ≈ 1e-3 of the response. The
+    // static law with hardening: u_max = u_y + (F_max − Fy)/(αk); unloading is elastic
+    // (the elastic range 2(1−α)Fy exceeds F_max here), so at F = 0 the residual drift is
+    // u_max − F_max/k, and the plastic element has slipped u_max − u_y.
+    let (m, k, fy, alpha): (f64, f64, f64, f64) = (1.0e5, 4.0e7, 2.0e5, 0.1);
+    let omega = (k / m).sqrt();
+    let wf = omega / 100.0;
+    let fmax = 1.5 * fy;
+    let c = 2.0 * 0.05 * omega * m;
+    let uy = fy / k;
+    let umax = uy + (fmax - fy) / (alpha * k);
+    let ures = umax - fmax / k;
+    let text = format!(
+        r#"{{ "building": {{ "floor_masses": [{m}], "storey_stiffness": [{k}],
+              "damping": {{ "storey": [{c}] }},
+              "storey_yield": [ {{ "storey": 1, "yield_shear": {fy}, "post_yield_ratio": {alpha} }} ] }},
+             "excitation": {{ "harmonic": {{ "floor": 1, "amplitude": {fmax}, "omega": {wf} }} }},
+             "duration": {}, "method": {{ "name": "exact", "dt": 0.005 }} }}"#,
+        std::f64::consts::PI / wf
+    );
+    for method in ["exact", "newmark"] {
+        let r = run(&text, method).response;
+        assert!(
+            rel(r.peak_drift[0], umax) < 5e-3,
+            "{method}: {} vs {umax}",
+            r.peak_drift[0]
+        );
+        assert!(
+            (r.residual_drift[0] - ures).abs() < 5e-3 * umax,
+            "{method}: residual {} vs {ures}",
+            r.residual_drift[0]
+        );
+        // the plastic element's slip: everything past u_y
+        let plastic = r.peak_plastic_drift.as_ref().unwrap()[0];
+        assert!(
+            rel(plastic, umax - uy) < 5e-3 * umax / (umax - uy),
+            "{method}: {r:?}"
+        );
+    }
+}
+
+#[test]
+fn a_storey_of_a_matrix_frame_yields_when_its_spring_is_named() {
+    // The benchmark's condensed matrix: the first storey's spring (k = 1e8 N/m of the
+    // coupling the matrix holds) yields; exact and newmark agree to newmark's accuracy at
+    // its default step (1e-2), and the balance closes.
+    let b = std::fs::read_to_string(configs().join("benchmark-3story-massless.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&b).unwrap();
+    v["storey_yield"] = serde_json::json!([{ "storey": 1, "yield_shear": "900 kN", "stiffness": "100 MN/m", "post_yield_ratio": 0.05 }]);
+    let text = format!(
+        r#"{{ "building": {v},
+             "excitation": {{ "synthetic": {{ "seed": 3, "duration": 8, "dt": 0.01, "pga_g": 0.6 }} }},
+             "outputs": {{ "energies": true }} }}"#
+    );
+    let exact = run(&text, "exact");
+    let nm = run(&text, "newmark");
+    let pe = exact.response.energy.unwrap().plastic.unwrap();
+    assert!(pe > 0.0, "the storey must yield");
+    assert!(exact.diagnostics.balance_error_max_relative < 1e-10);
+    for (a, b) in nm
+        .response
+        .peak_drift
+        .iter()
+        .zip(&exact.response.peak_drift)
+    {
+        assert!(rel(*a, *b) < 1e-2, "{a} vs {b}");
+    }
+}
