@@ -407,6 +407,7 @@ impl Integrator for Exact {
         let mut ynode = DVector::zeros(dim);
         let mut yabs = DVector::zeros(dim);
         let mut at_end = vec![false; nf];
+        let mut far = vec![0.0; dim];
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
             out.copy_from(&p[TAYLOR_TERMS - 1]);
             for k in (0..TAYLOR_TERMS - 1).rev() {
@@ -486,7 +487,7 @@ impl Integrator for Exact {
                     // needs them and there are no Taylor rows).
                     let mut summed = fast.is_none();
                     if summed {
-                        taylor(&ops.a, &y, &mut p);
+                        taylor(&ops.a_rows, &y, &mut p);
                     }
                     let nev = ops.events.len();
                     let coefs =
@@ -507,10 +508,40 @@ impl Integrator for Exact {
                                 }
                             }
                         };
+                    // On a summed substep without the mode set's bounds, the sizes of the
+                    // far Taylor terms, q_j = Σ_{k≥L} |p_k,j| lenᵏ: with |row| they bound
+                    // an event function's far part, so its leading coefficients alone
+                    // (L dot products, not all of them) can rule it out.
+                    let far_ready = bounds.is_none() && summed && !ops.events.is_empty();
+                    if far_ready {
+                        far.fill(0.0);
+                        let mut lk = len.powi(LEAD_TERMS as i32);
+                        for pk in &p[LEAD_TERMS..] {
+                            for (q, v) in far.iter_mut().zip(pk.iter()) {
+                                *q += v.abs() * lk;
+                            }
+                            lk *= len;
+                        }
+                    }
                     // Earliest event.
                     let mut tau_end = len;
                     let mut fired: Option<usize> = None;
                     for (e, ef) in ops.events.iter().enumerate() {
+                        if far_ready {
+                            let row = ef.row.as_slice();
+                            let g0 = dot(row, p[0].as_slice());
+                            let mut low = g0;
+                            let mut lk = 1.0;
+                            for pk in &p[1..LEAD_TERMS] {
+                                lk *= len;
+                                low += (dot(row, pk.as_slice()) * lk).min(0.0);
+                            }
+                            if g0 >= 0.0 && low >= dot(ops.event_abs[e].as_slice(), far.as_slice())
+                            {
+                                // g(τ) ≥ g(0) + Σ_{k<L} min(0, c_k lenᵏ) − Σ_j |row_j| q_j ≥ 0.
+                                continue;
+                            }
+                        }
                         if let Some(st) = bounds {
                             let g0 = dot(ef.row.as_slice(), y.as_slice());
                             if g0 >= dot(col(&st.tails, e), yabs.as_slice()) {
@@ -606,7 +637,7 @@ impl Integrator for Exact {
                     } else {
                         if !summed {
                             // A grid substep cut by an event.
-                            taylor(&ops.a, &y, &mut p);
+                            taylor(&ops.a_rows, &y, &mut p);
                             summed = true;
                         }
                         if energies {

@@ -47,9 +47,67 @@ pub(super) struct EventFn {
     pub(super) scale: Scale,
 }
 
+/// A square matrix by rows, nonzeros only (compressed sparse rows).
+pub(super) struct SparseRows {
+    /// Row i's entries are `start[i]..start[i + 1]` of `col` and `val`.
+    start: Vec<usize>,
+    col: Vec<usize>,
+    val: Vec<f64>,
+}
+
+impl SparseRows {
+    pub(super) fn of(m: &DMatrix<f64>) -> SparseRows {
+        let mut start = vec![0];
+        let (mut col, mut val) = (Vec::new(), Vec::new());
+        for i in 0..m.nrows() {
+            for j in 0..m.ncols() {
+                if m[(i, j)] != 0.0 {
+                    col.push(j);
+                    val.push(m[(i, j)]);
+                }
+            }
+            start.push(col.len());
+        }
+        SparseRows { start, col, val }
+    }
+
+    /// out = scale · (M x), each row summed in column order.
+    #[inline]
+    pub(super) fn mul_into(&self, scale: f64, x: &[f64], out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            let (a, b) = (self.start[i], self.start[i + 1]);
+            let mut s = 0.0;
+            for (j, v) in self.col[a..b].iter().zip(&self.val[a..b]) {
+                s += v * x[*j];
+            }
+            *o = scale * s;
+        }
+    }
+
+    /// out = scale · (rᵀ M) (a row vector times the matrix), as a column.
+    pub(super) fn row_mul_into(&self, scale: f64, r: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        for (i, ri) in r.iter().enumerate() {
+            if *ri == 0.0 {
+                continue;
+            }
+            for k in self.start[i]..self.start[i + 1] {
+                out[self.col[k]] += ri * self.val[k];
+            }
+        }
+        for o in out.iter_mut() {
+            *o *= scale;
+        }
+    }
+}
+
 /// Everything fixed for one mode set.
 pub(super) struct ModeOps {
     pub(super) a: DMatrix<f64>,
+    /// `a` by rows, its nonzeros only ([`SparseRows`]): the velocity rows are one entry,
+    /// the generators' one or none, the elements' few; only the acceleration rows are
+    /// full. Products with it cost n·dim instead of dim².
+    pub(super) a_rows: SparseRows,
     /// The acceleration rows n..2n of `a`, stored transposed (dim × n: column i is the
     /// acceleration of DOF i as a row on y), for the peaks at every output step.
     pub(super) acc_rows: DMatrix<f64>,
@@ -62,6 +120,9 @@ pub(super) struct ModeOps {
     /// likewise.
     pub(super) xdot: DMatrix<f64>,
     pub(super) events: Vec<EventFn>,
+    /// |row| of each event function, componentwise: with the far Taylor terms' sizes it
+    /// bounds the part of g past its leading coefficients on a summed substep.
+    pub(super) event_abs: Vec<DVector<f64>>,
     /// The M-orthogonal projector of the velocities onto B_Sᵀv = 0 for the stuck contacts
     /// with a DOF, I − M⁻¹B_S W_S⁻¹B_Sᵀ (n × n); `None` when none sticks.
     pub(super) proj: Option<DMatrix<f64>>,
@@ -392,7 +453,11 @@ impl<'a> Model<'a> {
         };
         let prepare_after = dim + events.len() + plan.floors;
         let acc_rows = a.rows(n, n).transpose();
+        let a_rows = SparseRows::of(&a);
+        let event_abs = events.iter().map(|e| e.row.abs()).collect();
         ModeOps {
+            event_abs,
+            a_rows,
             a,
             acc_rows,
             force: force.transpose(),

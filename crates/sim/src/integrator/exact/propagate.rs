@@ -2,7 +2,7 @@
 //! ([`taylor`]) or cached as grid propagators ([`Stepping`]) once the mode set has lasted.
 
 use super::energy::GAUSS;
-use super::modes::{ModeOps, Model};
+use super::modes::{ModeOps, Model, SparseRows};
 use super::{LEAD_TERMS, TAYLOR_TERMS};
 use nalgebra::{DMatrix, DVector};
 
@@ -45,7 +45,16 @@ impl Model<'_> {
         let mut powers = Vec::with_capacity(TAYLOR_TERMS);
         powers.push(DMatrix::identity(dim, dim));
         for k in 1..TAYLOR_TERMS {
-            let next = &ops.a * &powers[k - 1] / k as f64;
+            // Aᵏ/k! column by column, with A's nonzeros only.
+            let prev: &DMatrix<f64> = &powers[k - 1];
+            let mut next = DMatrix::zeros(dim, dim);
+            for c in 0..dim {
+                ops.a_rows.mul_into(
+                    1.0 / k as f64,
+                    prev.column(c).as_slice(),
+                    next.column_mut(c).as_mut_slice(),
+                );
+            }
             powers.push(next);
         }
         let expm = |tau: f64| {
@@ -78,7 +87,7 @@ impl Model<'_> {
         let mut tails = DMatrix::zeros(dim, nfun);
         let mut tails_far = DMatrix::zeros(dim, nfun);
         let mut rate_tails_far = DMatrix::zeros(dim, nfun);
-        let at = ops.a.transpose();
+        let mut next_r = DVector::zeros(dim);
         for f in 0..nfun {
             let mut r = if f < ops.events.len() {
                 ops.events[f].row.clone()
@@ -95,7 +104,10 @@ impl Model<'_> {
             let mut hk1 = 1.0;
             for k in 0..TAYLOR_TERMS {
                 if k > 0 {
-                    r = &at * r / k as f64;
+                    // r Aᵏ/k! = (r Aᵏ⁻¹/(k−1)!) A / k, with A's nonzeros only
+                    ops.a_rows
+                        .row_mul_into(1.0 / k as f64, r.as_slice(), next_r.as_mut_slice());
+                    std::mem::swap(&mut r, &mut next_r);
                     if k > 1 {
                         hk1 *= h;
                     }
@@ -199,10 +211,10 @@ pub(super) fn quadratic(q: &DMatrix<f64>, y: &DVector<f64>, scratch: &mut DVecto
 }
 
 /// The Taylor coefficients p_k = Aᵏ y / k! of exp(Aτ) y.
-pub(super) fn taylor(a: &DMatrix<f64>, y: &DVector<f64>, p: &mut [DVector<f64>]) {
+pub(super) fn taylor(a: &SparseRows, y: &DVector<f64>, p: &mut [DVector<f64>]) {
     p[0].copy_from(y);
     for k in 1..p.len() {
         let (lo, hi) = p.split_at_mut(k);
-        hi[0].gemv(1.0 / k as f64, a, &lo[k - 1], 0.0);
+        a.mul_into(1.0 / k as f64, lo[k - 1].as_slice(), hi[0].as_mut_slice());
     }
 }
