@@ -166,7 +166,20 @@ impl Manifest {
         for i in 1..=n {
             let _ = write!(s, ",stroke_m_{i}");
         }
-        s.push_str(",energy_input_J,energy_friction_J,strain_energy_area_J_s\n");
+        s.push_str(",energy_input_J,energy_friction_J,strain_energy_area_J_s");
+        // A yielding frame's ductility, hysteretic energy and collapse (absent otherwise,
+        // so an elastic study's file is as before).
+        let nonlinear = rows
+            .iter()
+            .flatten()
+            .any(|m| m.ductility.is_some() || m.energy_plastic.is_some() || m.collapsed());
+        if nonlinear {
+            for i in 1..=n {
+                let _ = write!(s, ",ductility_{i}");
+            }
+            s.push_str(",energy_plastic_J,collapse_storey,collapse_time_s");
+        }
+        s.push('\n');
         let opt = |o: Option<f64>| o.map(|v| v.to_string()).unwrap_or_default();
         for (k, row) in rows.iter().enumerate() {
             let Some(m) = row else { continue };
@@ -193,13 +206,28 @@ impl Manifest {
             for v in &m.stroke {
                 let _ = write!(s, ",{v}");
             }
-            let _ = writeln!(
+            let _ = write!(
                 s,
                 ",{},{},{}",
                 opt(m.energy_input),
                 opt(m.energy_friction),
                 opt(m.strain_energy_area)
             );
+            if nonlinear {
+                match &m.ductility {
+                    Some(mu) => mu.iter().for_each(|v| {
+                        let _ = write!(s, ",{v}");
+                    }),
+                    None => (0..n).for_each(|_| s.push(',')),
+                }
+                let (storey, time) = m
+                    .collapse
+                    .map_or((String::new(), String::new()), |(st, t)| {
+                        (st.to_string(), t.to_string())
+                    });
+                let _ = write!(s, ",{},{storey},{time}", opt(m.energy_plastic));
+            }
+            s.push('\n');
         }
         s
     }
