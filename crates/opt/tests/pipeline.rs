@@ -1,5 +1,5 @@
 //! Contract: `pipeline::optimize_study` runs sweep, refine, check and design table (and
-//! the objective map when asked) in that order, each announced to the progress callback
+//! the objective map when asked, journalled with the check's runs) in that order, each announced to the progress callback
 //! with a tick per simulation; its report holds what the files it writes say; a second
 //! run over the same folder takes every journalled phase from its journal — nothing is
 //! simulated, no journal grows — and writes the same bytes; bad options and a folder of
@@ -212,6 +212,12 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
     assert_eq!(r2.work.run(), 0);
     assert_eq!(r2.refine.optimum, r.refine.optimum);
     assert!(bytes(&StudyReport::FILES) == files, "the same files");
+    assert!(bytes(&JOURNALS) == journals, "no journal grew");
+    // asked again, the objective map comes from check.jsonl too
+    let r3 = optimize_study(&st, &out, &options, &NoProgress).unwrap();
+    let m = r3.work.map.unwrap();
+    assert_eq!((m.run, m.reused), (0, 4 * nr));
+    assert_eq!(r3.work.run(), 0);
     assert!(bytes(&JOURNALS) == journals, "no journal grew");
     std::fs::remove_dir_all(&out).unwrap();
 }

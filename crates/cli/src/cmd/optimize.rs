@@ -155,13 +155,19 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             Some(m) => format!(", objective map {}", m.run),
             None => String::new(),
         },
-        if w.check.reused + w.table.reused > 0 {
-            format!(
-                " ({} check and {} design-table runs reused from check.jsonl)",
-                w.check.reused, w.table.reused
-            )
-        } else {
-            String::new()
+        {
+            let map_reused = w.map.map_or(0, |m| m.reused);
+            match (w.check.reused + w.table.reused > 0, map_reused > 0) {
+                (false, false) => String::new(),
+                (true, false) => format!(
+                    " ({} check and {} design-table runs reused from check.jsonl)",
+                    w.check.reused, w.table.reused
+                ),
+                (_, true) => format!(
+                    " ({} check, {} design-table and {map_reused} objective-map runs reused from check.jsonl)",
+                    w.check.reused, w.table.reused
+                ),
+            }
         }
     );
     outln!(

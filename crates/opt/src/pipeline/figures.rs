@@ -10,10 +10,10 @@
 //! - per-record peak drift ratio of the best design vs the bare frame.
 
 use crate::error::OptError;
+use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
 use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::objective::Statistic;
-use crate::optimize::objectives;
 use crate::refine::Point;
 use crate::space::SpaceConfig;
 use crate::study::{MAX_DESIGNS, Study};
@@ -107,12 +107,16 @@ fn map_bounds(study: &Study, k: usize, optimum: f64) -> (f64, f64) {
 /// Runs the objective map `request`: its designs over the bounds of the dissipators on
 /// its floors, every other slip load at `optimum` (N per dissipator), each over every
 /// record at the sweep fidelity. `bare` holds the bare frame's responses at that
-/// fidelity (the sweep's first design).
+/// fidelity (the sweep's first design). With a `journal` its runs are taken from it
+/// when there and appended when not (keyed by fidelity, slip loads and record, so they
+/// sit beside the check's runs without mixing), so a resumed `optimize --map` reruns
+/// nothing.
 pub fn objective_map(
     study: &Study,
     optimum: &[f64],
     bare: &[RecordMetrics],
     request: &MapRequest,
+    journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<ObjectiveMap, OptError> {
     let [ka, kb] = request.dampers(study)?;
@@ -133,7 +137,13 @@ pub fn objective_map(
             designs.push(d);
         }
     }
-    let objective = objectives(study, &designs, bare, &Fidelity::sweep(study), tick)
+    let ranges = suite_ranges(study);
+    let objective = run_designs_journalled(study, &designs, &Fidelity::sweep(study), journal, tick)
+        .and_then(|runs| {
+            runs.iter()
+                .map(|rows| study.objective.value(rows, Some(bare), &ranges))
+                .collect::<Result<Vec<f64>, OptError>>()
+        })
         .map_err(|e| e.context("objective map simulations"))?;
     Ok(ObjectiveMap {
         floors: request.floors,

@@ -45,7 +45,8 @@ impl OptimizeOptions {
 /// Every phase that simulates is resumable: the sweep continues `journal.jsonl`, the
 /// refinement replays `refine-METHOD.jsonl`, the check and the design table take their
 /// runs from `check.jsonl`; a second run over the same folder reruns nothing and writes
-/// the same bytes. The objective map is not journalled.
+/// the same bytes. The objective map's runs are journalled in `check.jsonl` too (at the
+/// sweep's fidelity, which their key carries).
 pub fn optimize_study(
     study: &Study,
     out: &Path,
@@ -101,15 +102,26 @@ pub fn optimize_study(
     )?;
     let table_reused = check_journal.reused() - check_reused;
 
+    let before_map = check_journal.reused();
     let map = match &options.map {
         Some(request) => Some(phase(
             progress,
             Phase::ObjectiveMap,
             request.grid * request.grid * nr,
-            |tick| objective_map(study, &refined.optimum_loads, &rows[..nr], request, tick),
+            |tick| {
+                objective_map(
+                    study,
+                    &refined.optimum_loads,
+                    &rows[..nr],
+                    request,
+                    Some(&check_journal),
+                    tick,
+                )
+            },
         )?),
         None => None,
     };
+    let map_reused = check_journal.reused() - before_map;
 
     let refine_run = (refined.log.len() - refined.replayed) * nr;
     let check_total = (refined.finalists.len() + 1) * nr;
@@ -132,8 +144,8 @@ pub fn optimize_study(
             reused: table_reused,
         },
         map: map.as_ref().map(|m| PhaseWork {
-            run: m.objective.len() * nr,
-            reused: 0,
+            run: m.objective.len() * nr - map_reused,
+            reused: map_reused,
         }),
     };
     let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
