@@ -40,7 +40,13 @@
 //! rules out functions that are near zero but moving away from it, which the first
 //! cannot (on the benchmark it saves about 7 % of the run time). Substeps
 //! off the grid (after an event, or where record samples cut an output step) sum the
-//! series for their own length.
+//! series for their own length; when no longer than the grid interval they are ruled out
+//! by the same bounds (every term grows with τ). A drift that fails them but whose rate
+//! keeps one sign on the substep (its leading quadratic against a bound on the rest) has
+//! its peak at the substep's end, taken without a scan. Where the mode set has no
+//! propagators yet, an event function is ruled out from its first [`LEAD_TERMS`]
+//! coefficients and Σ_j |r_j| Σ_{k≥L} |p_k,j| τᵏ before the rest are formed. A is applied
+//! by its nonzeros: only its n acceleration rows are full.
 //!
 //! Contacts:
 //! - a dissipator with mass that sticks is the constraint w = 0, imposed by a Lagrange
@@ -54,7 +60,11 @@
 //!   ẋ′ = ẋᵢ₋₁ + (F± − k′(x′ − xᵢ₋₁))/c′ for c′ > 0 (a Maxwell element, exact as well; its
 //!   rate k′/c′ enters ρ, so a tiny c′ costs substeps).
 //! - a dissipator with zero mass that keeps a DOF (unreduced plan) is rejected: compile
-//!   with `reduce` on, which turns it into the equivalent elastic–perfectly plastic element.
+//!   with `reduce` on, which turns it into the equivalent elastic–perfectly plastic element;
+//! - a yielding storey's plastic element (plan `ContactRole::Storey`) is an
+//!   elastic–perfectly plastic contact like a massless dissipator, between the storey's
+//!   floors; its work is the plastic energy, kept apart from friction, and its changes are
+//!   no dissipator's transitions.
 //!
 //! Events: a stuck contact's force reaching a bound, a sliding contact's slip rate reaching
 //! zero. Each event function g (positive while the mode is consistent) is scanned at
@@ -85,8 +95,9 @@
 //! Peaks: drift peaks are those of the continuous solution (each storey's drift extremum
 //! located inside its substep by the same root finding on the drift rate); the peaks at
 //! the output steps are reported beside them (`Diagnostics::sampled_peak_drift`). Other
-//! peaks (displacement, acceleration, base shear, slip) are taken at the output steps.
-//! Energies: input, viscous and friction powers integrated by 6-point Gauss–Legendre on
+//! peaks (displacement, acceleration, base shear, slip) are taken at the output steps,
+//! where a drift past the plan's collapse limit also stops the run (`Response::collapse`).
+//! Energies: input, viscous, friction and (yielding storeys) plastic powers integrated by 6-point Gauss–Legendre on
 //! every substep (exact to degree 11; with phase 2ρτ ≤ 1 the rule's error term is below
 //! 2e-16 of the powers' scale: Davis & Rabinowitz 1984, §2.7).
 //! Each power is a quadratic form p(y) = yᵀ Q_p y of the augmented state, so on the grid
