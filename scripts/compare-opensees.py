@@ -98,8 +98,10 @@ def have_modules() -> bool:
     return all(importlib.util.find_spec(m) is not None for m in ("openseespy", "numpy"))
 
 
-def ensure_environment() -> None:
-    """Re-executes this script inside scripts/.venv, creating it and installing when missing."""
+def ensure_environment(script: Path | None = None) -> None:
+    """Re-executes `script` (default: this script) inside scripts/.venv, creating it and
+    installing when missing. The other comparison scripts import this one and pass
+    themselves."""
     if have_modules():
         return
     py = VENV / "bin" / "python"
@@ -114,7 +116,7 @@ def ensure_environment() -> None:
     if in_venv:
         importlib.invalidate_caches()
         return
-    os.execv(str(py), [str(py), str(Path(__file__).resolve()), *sys.argv[1:]])
+    os.execv(str(py), [str(py), str((script or Path(__file__)).resolve()), *sys.argv[1:]])
 
 
 def import_opensees():

@@ -7,6 +7,7 @@
 #                         (scripts/design-tables.sh)
 #   results/refiners/     the refiners against an exhaustive grid (scripts/refiner-comparison.sh)
 #   results/performance/  `slipload bench` and the OpenSees comparison
+#   results/opensees-yielding/  the yielding, P-Delta frame against OpenSees
 #   results/figures/      the simulation and spectrum figures the README shows
 # Usage: scripts/reproduce-all.sh   (from anywhere; needs ../shared/records beside the repo;
 # about 20 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
@@ -21,6 +22,7 @@ scripts/design-tables.sh
 scripts/refiner-comparison.sh
 scripts/bench.sh
 python3 scripts/compare-opensees.py
+python3 scripts/compare-opensees-yielding.py
 
 fig=results/figures
 rm -rf "$fig"
