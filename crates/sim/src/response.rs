@@ -45,7 +45,8 @@ impl Energy {
 pub struct Collapse {
     /// Storey, 1 = the first.
     pub storey: usize,
-    /// Time the limit was passed, s.
+    /// Time the limit was passed, s: the first output step at which the drift was past it
+    /// (every method checks at its output steps; `Response::steps` counts the steps run).
     pub time: f64,
     /// The storey's drift then, m (signed).
     pub drift: f64,
@@ -378,6 +379,10 @@ impl Peaks {
         );
         r.peak_ductility = ductility;
         r.peak_plastic_drift = plastic;
+        if let Some(c) = &collapse {
+            // the steps actually run: the run stopped at the output step past the limit
+            r.steps = ((c.time / plan.method.dt).round() as usize).min(plan.steps);
+        }
         r.collapse = collapse;
         r
     }

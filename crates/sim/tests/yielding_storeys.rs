@@ -346,6 +346,8 @@ fn p_delta_with_a_perfectly_plastic_storey_collapses_as_a_typed_outcome() {
         assert!((c.limit - 0.3).abs() < 1e-12, "{c:?}");
         assert!(c.drift > c.limit && c.drift < 1.01 * c.limit, "{c:?}");
         assert!(c.time > 0.0 && c.time < 1.0, "{c:?}");
+        // the steps run, to the one past the limit (dt = 1 ms)
+        assert_eq!(r.steps, (c.time / 1e-3).round() as usize, "{r:?}");
         assert!(r.first_non_finite().is_none(), "{method}: {r:?}");
     }
     // Without P-Δ the same push stays bounded: no collapse.
