@@ -240,12 +240,12 @@ pub struct Peaks {
     pub last_drift: Vec<f64>,
     /// Peak |base shear|.
     pub base_shear: f64,
-    /// Peak |slip| per floor.
+    /// Peak |slip| per slot: the damper of floor i at i, the plastic element of storey
+    /// i + 1 at n + i (its slip is the plastic drift), so a step loop records either with
+    /// one index and no branch.
     pub slip: Vec<f64>,
-    /// Stick↔slip transitions per floor.
+    /// Stick↔slip transitions per slot, likewise (a yielding storey's are not reported).
     pub transitions: Vec<u64>,
-    /// Peak |plastic drift| per storey (yielding storeys).
-    pub plastic: Vec<f64>,
     /// Collapse drift per storey, when the plan sets one.
     pub collapse_limit: Option<Vec<f64>>,
     /// The first storey past its collapse limit.
@@ -261,9 +261,8 @@ impl Peaks {
             abs_acceleration: vec![0.0; n],
             last_drift: vec![0.0; n],
             base_shear: 0.0,
-            slip: vec![0.0; n],
-            transitions: vec![0; n],
-            plastic: vec![0.0; n],
+            slip: vec![0.0; 2 * n],
+            transitions: vec![0; 2 * n],
             collapse_limit: None,
             collapse: None,
         }
@@ -305,9 +304,8 @@ impl Peaks {
     /// Keeps the larger |plastic drift| (m) of storey `floor + 1`.
     #[inline]
     pub fn observe_plastic(&mut self, floor: usize, s: f64) {
-        if s.abs() > self.plastic[floor] {
-            self.plastic[floor] = s.abs();
-        }
+        let slot = self.drift.len() + floor;
+        self.observe_slip(slot, s);
     }
 
     /// Records floor displacements `x` and relative accelerations `a` (first n entries
@@ -349,7 +347,8 @@ impl Peaks {
         }
     }
 
-    /// Keeps the larger |slip| (m) of the damper on `floor` (from 0).
+    /// Keeps the larger |slip| (m) of slot `floor` (from 0; n + i for storey i + 1's
+    /// plastic element).
     #[inline]
     pub fn observe_slip(&mut self, floor: usize, s: f64) {
         if s.abs() > self.slip[floor] {
@@ -368,7 +367,8 @@ impl Peaks {
                 .map(|(d, y)| y.map(|y| d / y))
                 .collect()
         });
-        let plastic = yields.then(|| self.plastic.clone());
+        let n = self.drift.len();
+        let plastic = yields.then(|| self.slip[n..].to_vec());
         let collapse = self.collapse;
         let mut r = self.into_response(
             plan.method.name.as_str(),
@@ -397,6 +397,7 @@ impl Peaks {
         energy: Option<Energy>,
     ) -> Response {
         let ratio = heights.map(|h| self.drift.iter().zip(h).map(|(d, h)| d / h).collect());
+        let n = self.drift.len();
         Response {
             method: method.to_string(),
             dt,
@@ -408,8 +409,8 @@ impl Peaks {
             peak_abs_acceleration: self.abs_acceleration,
             residual_drift: self.last_drift.iter().map(|d| d.abs()).collect(),
             peak_base_shear: self.base_shear,
-            peak_slip: self.slip,
-            transitions: self.transitions,
+            peak_slip: self.slip[..n].to_vec(),
+            transitions: self.transitions[..n].to_vec(),
             energy,
             peak_ductility: None,
             peak_plastic_drift: None,

@@ -150,7 +150,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         other: GROUND,
         epp: false,
         k_over_kappa: 0.0,
-        storey: false,
+        slot: 0,
     }; NC];
     for c in 0..NC {
         lo[c] = plan.contacts[c].lower;

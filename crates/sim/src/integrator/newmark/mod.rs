@@ -135,9 +135,9 @@ struct Link {
     epp: bool,
     /// k′/κ of an EPP contact.
     k_over_kappa: f64,
-    /// The plastic element of a yielding storey (its slip is plastic drift, its changes
-    /// are no dissipator's transitions).
-    storey: bool,
+    /// Where its slip peak and transitions go in [`Peaks`]: its floor for a damper, n +
+    /// floor for a yielding storey's plastic element (no branch in the step loop).
+    slot: usize,
 }
 
 /// The Newmark constants of a run's step.
@@ -219,27 +219,18 @@ impl Link {
         } else {
             u[self.other]
         };
-        if self.storey {
-            *stuck = now_stuck;
-            peaks.observe_plastic(self.floor, u[self.floor] - x_other);
-            return;
-        }
         if now_stuck != *stuck {
-            peaks.transitions[self.floor] += 1;
+            peaks.transitions[self.slot] += 1;
             *stuck = now_stuck;
         }
-        peaks.observe_slip(self.floor, u[self.floor] - x_other);
+        peaks.observe_slip(self.slot, u[self.floor] - x_other);
     }
 
     /// The first observation of this contact's slip (or plastic drift), from the initial
     /// displacements `u` and the other end `x_other`.
     #[inline]
     fn observe_start(&self, u: &[f64], x_other: f64, peaks: &mut Peaks) {
-        if self.storey {
-            peaks.observe_plastic(self.floor, u[self.floor] - x_other);
-        } else {
-            peaks.observe_slip(self.floor, u[self.floor] - x_other);
-        }
+        peaks.observe_slip(self.slot, u[self.floor] - x_other);
     }
 
     /// An EPP element's state at the end of the step, from its predictors, its floor's
@@ -309,14 +300,20 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
                 other: dof,
                 epp: false,
                 k_over_kappa: 0.0,
-                storey: ct.role == ContactRole::Storey,
+                slot: match ct.role {
+                    ContactRole::Damper => ct.floor,
+                    ContactRole::Storey => plan.floors + ct.floor,
+                },
             },
             ContactKind::Epp => Link {
                 floor: ct.floor,
                 other: ct.below.unwrap_or(GROUND),
                 epp: true,
                 k_over_kappa: ct.brace_stiffness / ops.kappa[c],
-                storey: ct.role == ContactRole::Storey,
+                slot: match ct.role {
+                    ContactRole::Damper => ct.floor,
+                    ContactRole::Storey => plan.floors + ct.floor,
+                },
             },
         })
         .collect()
