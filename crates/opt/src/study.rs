@@ -47,6 +47,10 @@ pub struct StudyConfig {
     /// The refinement after the sweep.
     #[serde(default)]
     pub refine: RefineConfig,
+    /// The storey drift ratio past which a run counts as a collapse (the design fails that
+    /// record), overriding the building's `collapse_drift_ratio` for this study.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse_drift_ratio: Option<f64>,
 }
 
 /// One suite of records.
@@ -706,16 +710,26 @@ impl Study {
     pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         cfg.validate(path)?;
         let base = path.parent().unwrap_or(Path::new("."));
-        let building = match &cfg.building {
+        let mut building = match &cfg.building {
             BuildingRef::Path(p) => Building::load(&base.join(p))?,
             BuildingRef::Inline(b) => Building::from_config(b, path)?,
         };
-        if building.storey_heights.is_none() {
+        let Some(heights) = building.storey_heights.clone() else {
             return Err(OptError::invalid(
                 path,
                 "building",
                 "the building needs storey_heights: drift ratios are the responses every study reports",
             ));
+        };
+        if let Some(r) = cfg.collapse_drift_ratio {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(OptError::invalid(
+                    path,
+                    "collapse_drift_ratio",
+                    format!("must be positive and finite, got {r}"),
+                ));
+            }
+            building.collapse_drift = Some(heights.iter().map(|h| r * h).collect());
         }
         let space = DesignSpace::new(&cfg.space, &cfg.constraints, &building, path)?;
         let objective = Objective {

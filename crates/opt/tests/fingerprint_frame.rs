@@ -52,3 +52,31 @@ fn yield_laws_p_delta_and_collapse_limits_are_part_of_the_fingerprint() {
         seen.push(f);
     }
 }
+
+#[test]
+fn a_study_sets_its_own_collapse_limit() {
+    let configs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs");
+    let path = configs.join("study-ten-story-mce.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let default = Study::from_json(&v.to_string(), &path).unwrap();
+    // the building's default: 10 % of the 3.5 m storeys
+    let limit = default.building.collapse_drift.clone().unwrap();
+    assert!(
+        limit.len() == 10 && limit.iter().all(|d| (d - 0.35).abs() < 1e-12),
+        "{limit:?}"
+    );
+    v["collapse_drift_ratio"] = serde_json::json!(0.04);
+    let own = Study::from_json(&v.to_string(), &path).unwrap();
+    let limit = own.building.collapse_drift.clone().unwrap();
+    assert!(limit.iter().all(|d| (d - 0.14).abs() < 1e-12), "{limit:?}");
+    assert_eq!(
+        of_study(&own, &[]).changes_from(&of_study(&default, &[])),
+        vec!["building".to_string()]
+    );
+    v["collapse_drift_ratio"] = serde_json::json!(-1.0);
+    let err = Study::from_json(&v.to_string(), &path)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("collapse_drift_ratio"), "{err}");
+}
