@@ -379,21 +379,7 @@ def opensees_run(ops, b: dict, mats: dict, dt_rec: float, acc: list[float], dt: 
     failed = []
     t0 = time.perf_counter()
     for s in range(1, steps + 1):
-        ok = ops.analyze(1, dt)
-        it = ops.testIter()
-        if ok != 0:
-            failed.append(s)
-            for retry in (("NewtonLineSearch",), ("ModifiedNewton", "-initial")):
-                ops.algorithm(*retry)
-                ops.test("NormDispIncr", TEST_TOL, 10 * TEST_MAX_ITER, 0)
-                ok = ops.analyze(1, dt)
-                it += ops.testIter()
-                ops.algorithm("Newton")
-                ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
-                if ok == 0:
-                    break
-            if ok != 0:
-                raise SystemExit(f"OpenSees: step {s} (t = {s * dt:.4f} s) does not converge even with line search / modified Newton")
+        it = base.analyze_step(ops, s, dt, "Newton", failed)
         iters.append(it)
         u = [ops.nodeDisp(i + 1, 1) for i in range(n)]
         d = [u[i] - (u[i - 1] if i > 0 else 0.0) for i in range(n)]
@@ -482,20 +468,7 @@ def model_checks(ops, b: dict, mats: dict, explain: str, dt: float) -> dict:
         """Eigen periods (initial tangent) and the stiffness matrix OpenSees assembles: the
         system matrix of one static step with no load (Newton: the tangent at rest)."""
         build_model(ops, b, mats, 1.0, [0.0, 0.0, 0.0], pdelta=pdelta, dampers=dampers)
-        w2 = sorted(ops.eigen("-fullGenLapack", n))
-        T = [2.0 * math.pi / math.sqrt(x) for x in w2]
-        ops.constraints("Plain")
-        ops.numberer("Plain")
-        ops.system("FullGeneral")
-        ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
-        ops.algorithm("Newton")
-        ops.integrator("LoadControl", 1.0)
-        ops.analysis("Static")
-        if ops.analyze(1) != 0:
-            raise SystemExit("OpenSees: model check static step failed")
-        K = np.array(ops.printA("-ret")).reshape(n, n)
-        ops.wipe()
-        return T, K
+        return base.periods_and_tangent(ops, n)
 
     T_bare_os, K_bare_os = opensees_matrix(False, False)
     T_plan_os, K_plan_os = opensees_matrix(True, False)

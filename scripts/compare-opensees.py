@@ -384,6 +384,50 @@ def analysis(ops, algorithm: str, system: str) -> None:
     ops.analysis("Transient")
 
 
+
+def analyze_step(ops, s: int, dt: float, algorithm: str, failed: list) -> int:
+    """One analysis step s of length dt; a step that does not converge is counted in
+    `failed` and retried with line search and with a modified Newton of many iterations
+    (the algorithm and test restored after each). Returns its Newton iterations."""
+    ok = ops.analyze(1, dt)
+    it = ops.testIter()
+    if ok != 0:
+        failed.append(s)
+        for retry in (("NewtonLineSearch",), ("ModifiedNewton", "-initial")):
+            ops.algorithm(*retry)
+            ops.test("NormDispIncr", TEST_TOL, 10 * TEST_MAX_ITER, 0)
+            ok = ops.analyze(1, dt)
+            it += ops.testIter()
+            ops.algorithm(algorithm)
+            ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
+            if ok == 0:
+                break
+        if ok != 0:
+            raise SystemExit(f"OpenSees: step {s} (t = {s * dt:.4f} s) does not converge even with line search / modified Newton")
+    return it
+
+
+def periods_and_tangent(ops, n: int):
+    """Of the model just built: its eigen periods (initial tangent) and the stiffness
+    matrix OpenSees assembles, the system matrix of one static step with no load (Newton:
+    the tangent at rest); the model is wiped after."""
+    import numpy as np
+
+    w2 = sorted(ops.eigen("-fullGenLapack", n))
+    T = [2.0 * math.pi / math.sqrt(x) for x in w2]
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
+    ops.algorithm("Newton")
+    ops.integrator("LoadControl", 1.0)
+    ops.analysis("Static")
+    if ops.analyze(1) != 0:
+        raise SystemExit("OpenSees: model check static step failed")
+    K = np.array(ops.printA("-ret")).reshape(n, n)
+    ops.wipe()
+    return T, K
+
 def opensees_timed(ops, b, dt_rec, acc, dt, steps, algorithm, system, tmp: Path) -> dict:
     """One simulation: build (timed apart), then set-up + analyze(steps) timed."""
     t0 = time.perf_counter()
@@ -420,21 +464,7 @@ def opensees_stepwise(ops, b, dt_rec, acc, dt, steps, algorithm, system) -> dict
     iters = []
     failed = []
     for s in range(1, steps + 1):
-        ok = ops.analyze(1, dt)
-        it = ops.testIter()
-        if ok != 0:
-            failed.append(s)
-            for retry in (("NewtonLineSearch",), ("ModifiedNewton", "-initial")):
-                ops.algorithm(*retry)
-                ops.test("NormDispIncr", TEST_TOL, 10 * TEST_MAX_ITER, 0)
-                ok = ops.analyze(1, dt)
-                it += ops.testIter()
-                ops.algorithm(algorithm)
-                ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
-                if ok == 0:
-                    break
-            if ok != 0:
-                raise SystemExit(f"OpenSees: step {s} (t = {s * dt:.4f} s) does not converge even with line search / modified Newton")
+        it = analyze_step(ops, s, dt, algorithm, failed)
         iters.append(it)
         u = [ops.nodeDisp(i + 1, 1) for i in range(n)]
         drift.append([u[i] - (u[i - 1] if i > 0 else 0.0) for i in range(n)])
@@ -551,20 +581,7 @@ def model_checks(ops, b: dict, dt: float, slipload_t1: float | None) -> dict:
         """Eigen periods (initial tangent) and the stiffness matrix OpenSees assembles: the
         system matrix of one static step with no load (Newton: the tangent at rest)."""
         build_model(ops, b, 1.0, [0.0, 0.0, 0.0], braces=braces)
-        w2 = sorted(ops.eigen("-fullGenLapack", n))
-        T = [2.0 * math.pi / math.sqrt(x) for x in w2]
-        ops.constraints("Plain")
-        ops.numberer("Plain")
-        ops.system("FullGeneral")
-        ops.test("NormDispIncr", TEST_TOL, TEST_MAX_ITER, 0)
-        ops.algorithm("Newton")
-        ops.integrator("LoadControl", 1.0)
-        ops.analysis("Static")
-        if ops.analyze(1) != 0:
-            raise SystemExit("OpenSees: model check static step failed")
-        Ks = np.array(ops.printA("-ret")).reshape(n, n)
-        ops.wipe()
-        return T, Ks
+        return periods_and_tangent(ops, n)
 
     os_bare, K_os = opensees_model(braces=False)
     os_braced, Kb_os = opensees_model(braces=True)
