@@ -108,7 +108,7 @@ SLIP_NOISE = 1e-10
 # The Python references' Newton stops when the largest correction is below this (m).
 REF_TOL = 1e-14
 
-UNIT = dict(base.UNIT, mm=1e-3, cm=1e-2)
+UNIT = base.UNIT
 
 # OpenSees element (and material) tags: storey i (0-based) of each kind is TAG + i.
 STOREY_ELASTIC_TAG = 100
@@ -125,15 +125,8 @@ DASHPOT_TAG = 1000
 
 
 def quantity(value, what: str) -> float:
-    """A config quantity: a number (SI) or a string "<number> <unit>"."""
-    if isinstance(value, (int, float)):
-        return float(value)
-    parts = str(value).split()
-    if len(parts) == 2 and parts[1] in UNIT:
-        return float(parts[0]) * UNIT[parts[1]]
-    if len(parts) == 1:
-        return float(parts[0])
-    raise SystemExit(f"{BUILDING}: {what}: cannot read the quantity {value!r}")
+    """A quantity of this script's building (compare-opensees.py's reader)."""
+    return base.quantity(value, what, BUILDING)
 
 
 def load_building(path: Path) -> dict:
@@ -321,13 +314,7 @@ def build_model(ops, b: dict, mats: dict, dt_rec: float, acc: list[float], pdelt
     slipload's damping matrix C as zeroLength linear dashpots; the record as a uniform
     excitation. `pdelta`, `dampers` False leave those out (model checks only)."""
     n = len(b["m"])
-    ops.wipe()
-    ops.model("basic", "-ndm", 1, "-ndf", 1)
-    ops.node(0, 0.0)
-    ops.fix(0, 1)
-    for i in range(n):
-        ops.node(i + 1, 0.0)
-        ops.mass(i + 1, b["m"][i])
+    base.floor_nodes(ops, b["m"])
 
     def spring(tag: int, i: int, *material) -> None:
         ops.uniaxialMaterial(*material[:1], tag, *material[1:])

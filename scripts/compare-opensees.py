@@ -56,7 +56,6 @@ import math
 import os
 import platform
 import re
-import shutil
 import statistics
 import subprocess
 import sys
@@ -143,11 +142,11 @@ def import_opensees():
 # Inputs: the building config and the records.
 # ---------------------------------------------------------------------------------------
 
-UNIT = {"kg": 1.0, "t": 1e3, "N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "GN/m": 1e9, "N": 1.0, "kN": 1e3, "MN": 1e6, "m": 1.0, "s": 1.0}
+UNIT = {"kg": 1.0, "t": 1e3, "N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "GN/m": 1e9, "N": 1.0, "kN": 1e3, "MN": 1e6, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "s": 1.0}
 
 
-def quantity(value, what: str) -> float:
-    """A config quantity: a number (SI) or a string "<number> <unit>"."""
+def quantity(value, what: str, source: Path = BUILDING) -> float:
+    """A config quantity of `source`: a number (SI) or a string "<number> <unit>"."""
     if isinstance(value, (int, float)):
         return float(value)
     parts = str(value).split()
@@ -155,7 +154,7 @@ def quantity(value, what: str) -> float:
         return float(parts[0]) * UNIT[parts[1]]
     if len(parts) == 1:
         return float(parts[0])
-    raise SystemExit(f"{BUILDING}: {what}: cannot read the quantity {value!r}")
+    raise SystemExit(f"{source}: {what}: cannot read the quantity {value!r}")
 
 
 def frame_matrix(cfg: dict, path: Path, n: int) -> list[list[float]]:
@@ -335,19 +334,24 @@ def frame_springs(K: list[list[float]]) -> list[tuple[int, int, float]]:
     return springs
 
 
+def floor_nodes(ops, m: list[float]) -> None:
+    """A fresh 1-D model: a fixed ground node 0 and floor nodes 1..n with masses `m`."""
+    ops.wipe()
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    ops.node(0, 0.0)
+    ops.fix(0, 1)
+    for i, mi in enumerate(m):
+        ops.node(i + 1, 0.0)
+        ops.mass(i + 1, mi)
+
+
 def build_model(ops, b: dict, dt_rec: float, acc: list[float], braces: bool = True) -> None:
     """Floors as nodes with their masses on a fixed ground node 0; the frame as zeroLength
     Elastic springs that assemble its matrix K (`frame_springs`); each brace + damper a
     zeroLength ElasticPP element between floors i-1 and i; the record as a uniform
     excitation. `braces = False`: the bare frame (model checks only)."""
     n = len(b["m"])
-    ops.wipe()
-    ops.model("basic", "-ndm", 1, "-ndf", 1)
-    ops.node(0, 0.0)
-    ops.fix(0, 1)
-    for i in range(n):
-        ops.node(i + 1, 0.0)
-        ops.mass(i + 1, b["m"][i])
+    floor_nodes(ops, b["m"])
     springs = frame_springs(b["K"])
     if FRAME_TAG + len(springs) > EPP_TAG:
         raise SystemExit(f"{len(springs)} frame springs: their element tags would reach the EPP elements' {EPP_TAG}")
