@@ -590,3 +590,72 @@ fn exact_on_a_record_does_not_depend_on_how_its_steps_cut_the_samples() {
         assert!(rel(*a, *b) < 1e-12, "energies off: {a} vs {b}");
     }
 }
+
+#[test]
+fn exact_does_not_depend_on_what_ran_before_on_its_thread() {
+    // A thread keeps the mode sets (operators and grid propagators) of the buildings it ran
+    // last, so a suite of records on one design forms them once. Whether a run finds them
+    // formed must not change what it computes: when a run steps with the propagators is
+    // its own decision. The same scene run on a fresh thread, after another design of the
+    // same frame (same mode sets, other slip loads: other operators), and twice over
+    // (everything found formed) gives the same bits.
+    let building = std::fs::read_to_string(configs().join("benchmark-3story.json")).unwrap();
+    let scene = |slip_factor: f64, mass: f64, energies: bool| {
+        let mut b: serde_json::Value = serde_json::from_str(&building).unwrap();
+        for d in b["dissipators"].as_array_mut().unwrap() {
+            let kn: f64 = d["slip_load"]
+                .as_str()
+                .unwrap()
+                .trim_end_matches(" kN")
+                .parse()
+                .unwrap();
+            d["slip_load"] = format!("{} kN", kn * slip_factor).into();
+            d["mass"] = mass.into();
+        }
+        let json = format!(
+            r#"{{ "building": {b},
+                 "excitation": {{ "synthetic": {{ "seed": 7, "duration": 6, "dt": 0.01 }} }},
+                 "method": {{ "name": "exact" }},
+                 "outputs": {{ "energies": {energies} }},
+                 "reduce": true }}"#
+        );
+        scene_json(&json, &SceneOverrides::default())
+    };
+    let bits = |o: &slipload_sim::Outcome| {
+        let mut v: Vec<u64> = o.response.peak_drift.iter().map(|x| x.to_bits()).collect();
+        v.extend(o.response.peak_displacement.iter().map(|x| x.to_bits()));
+        if let Some(e) = o.response.energy {
+            v.extend([e.input, e.friction, e.viscous, e.kinetic, e.strain].map(f64::to_bits));
+        }
+        v.push(o.diagnostics.events);
+        v
+    };
+    for (mass, energies) in [(350.11, true), (0.0, false), (0.0, true)] {
+        let target = scene(1.0, mass, energies);
+        let other = scene(0.5, mass, energies);
+        let fresh = {
+            let s = target.clone();
+            std::thread::spawn(move || bits(&simulate(&s).unwrap()))
+                .join()
+                .unwrap()
+        };
+        let warm = {
+            let (s, o) = (target.clone(), other.clone());
+            std::thread::spawn(move || {
+                let before = simulate(&o).unwrap();
+                let first = bits(&simulate(&s).unwrap());
+                let second = bits(&simulate(&s).unwrap());
+                (before.diagnostics.events, first, second)
+            })
+            .join()
+            .unwrap()
+        };
+        assert!(warm.0 > 10, "the other design has events: {}", warm.0);
+        assert!(fresh.last().copied().unwrap_or(0) > 10, "events");
+        assert_eq!(
+            fresh, warm.1,
+            "m' {mass}, energies {energies}: after another design"
+        );
+        assert_eq!(fresh, warm.2, "m' {mass}, energies {energies}: run twice");
+    }
+}

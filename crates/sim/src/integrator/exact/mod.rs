@@ -17,7 +17,11 @@
 //! it slides, and the substeps of the stuck phases follow the frame's modes. The same
 //! polynomial gives every quantity inside the substep as a scalar polynomial in τ, which is
 //! where events and peaks are located. Mode matrices are cached per mode set
-//! ([`MODE_CACHE`] entries, cleared when full).
+//! ([`MODE_CACHE`] entries, cleared when full), and a thread keeps the mode sets of the
+//! last two buildings it ran (keyed by the bits of everything they are formed from), so
+//! the records of a suite on one design form each mode set's operators and propagators
+//! once; when a run steps with a mode set's propagators is decided by that run's own use
+//! of it, so its bits do not depend on what ran before it on the thread.
 //!
 //! Map of the module, by concept:
 //! - `modes`: contacts and mode sets — the augmented state's layout, each mode set's
@@ -122,7 +126,6 @@ use nalgebra::DVector;
 use propagate::{col, dot, lead_coefs, lead_terms, monotone, quadratic, taylor};
 use search::{first_crossing, illinois, poly, tail_and_degree};
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 /// Event-driven integrator, exact between events.
 #[derive(Debug, Clone, Copy, Default)]
@@ -327,9 +330,7 @@ impl Integrator for Exact {
                 }
             }
         }
-        let mut cache = Cache {
-            modes: HashMap::new(),
-        };
+        let mut cache = Cache::new(plan);
         model.decide(&mut cache, &y, &mut modes, &to_decide, 0.0)?;
         let mut ops = cache.get(&model, &modes);
         let mut integ = Integrals::default();
@@ -475,17 +476,13 @@ impl Integrator for Exact {
                     };
                     // A grid substep of a mode set that has lasted uses its propagators;
                     // any other substep sums the Taylor coefficients p_k = Aᵏ y / k!.
-                    if regular && ops.stepping.get().is_none() {
-                        let u = ops.uses.get() + 1;
-                        ops.uses.set(u);
-                        if u > ops.prepare_after {
-                            let _ = ops.stepping.set(model.stepping(&ops));
-                        }
+                    if regular && ops.prepared().is_none() {
+                        ops.count_use(&model);
                     }
                     // Bounds: a prepared mode set's tails hold for any substep no longer
                     // than its grid interval (every term grows with τ), so substeps off
                     // the grid (after an event) are ruled out by the same tests.
-                    let bounds = ops.stepping.get().filter(|_| len <= ops.h * (1.0 + 1e-12));
+                    let bounds = ops.prepared().filter(|_| len <= ops.h * (1.0 + 1e-12));
                     // The propagator itself only on a whole grid interval.
                     let fast = if regular { bounds } else { None };
                     if bounds.is_some() {
