@@ -44,7 +44,8 @@ zeroLength ElasticPP element between floors i-1 and i, without.
 Writes results/performance/opensees.json and results/performance/opensees.md atomically.
 
 Usage: [SLIPLOAD_BIN=path] scripts/compare-opensees.py [--repeats R] [--dt DT] [--record FILE|synthetic ...]
-Creates scripts/.venv with openseespy + numpy on first use and re-runs itself inside it.
+Creates scripts/.venv with openseespy + numpy (+ matplotlib, for the figures of
+scripts/compare-opensees-precision.py) on first use and re-runs itself inside it.
 """
 
 from __future__ import annotations
@@ -67,7 +68,10 @@ ROOT = Path(__file__).resolve().parent.parent
 VENV = ROOT / "scripts" / ".venv"
 # Simulations per slipload process in the timed repeats (their median is the figure).
 SLIPLOAD_REPEAT = 5
-REQUIREMENTS = ["openseespy==3.7.1.2", "numpy"]
+# The environment of every OpenSees comparison script (they import this one): matplotlib
+# draws the work-precision figures of scripts/compare-opensees-precision.py.
+REQUIREMENTS = ["openseespy==3.7.1.2", "numpy", "matplotlib"]
+MODULES = ("openseespy", "numpy", "matplotlib")
 G = 9.80665  # m/s² per g, as slipload-motion's G
 BUILDING = ROOT / "configs" / "benchmark-3story-massless.json"
 RECORDS = ROOT.parent / "shared" / "records"
@@ -89,12 +93,12 @@ PAPER_BARE_PERIODS = (1.01, 0.33, 0.17)
 
 
 # ---------------------------------------------------------------------------------------
-# Environment: venv with openseespy, then the OpenSees module itself.
+# Environment: venv with openseespy, numpy and matplotlib, then the OpenSees module itself.
 # ---------------------------------------------------------------------------------------
 
 
 def have_modules() -> bool:
-    return all(importlib.util.find_spec(m) is not None for m in ("openseespy", "numpy"))
+    return all(importlib.util.find_spec(m) is not None for m in MODULES)
 
 
 def ensure_environment(script: Path | None = None) -> None:
@@ -108,7 +112,7 @@ def ensure_environment(script: Path | None = None) -> None:
     if not in_venv and not py.exists():
         print(f"creating {VENV.relative_to(ROOT)} ...", file=sys.stderr)
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-    check = "import importlib.util as u,sys; sys.exit(0 if u.find_spec('openseespy') and u.find_spec('numpy') else 1)"
+    check = f"import importlib.util as u,sys; sys.exit(0 if all(u.find_spec(m) for m in {MODULES!r}) else 1)"
     if subprocess.run([str(py), "-c", check]).returncode != 0:
         print(f"installing {' '.join(REQUIREMENTS)} into {VENV.relative_to(ROOT)} ...", file=sys.stderr)
         subprocess.run([str(py), "-m", "pip", "install", "--quiet", *REQUIREMENTS], check=True)
@@ -753,11 +757,13 @@ def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats
     return case
 
 
-def write_atomic(path: Path, text: str) -> None:
+def write_atomic(path: Path, text: str | bytes) -> None:
+    """Writes `text` (or bytes: a PNG) to a temporary file beside `path` and renames it
+    over `path`: a reader sees the old file or the whole new one, never a partial one."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
     try:
-        with os.fdopen(fd, "w") as f:
+        with os.fdopen(fd, "wb" if isinstance(text, bytes) else "w") as f:
             f.write(text)
             f.flush()
             os.fsync(f.fileno())
