@@ -58,7 +58,7 @@ Writes results/opensees-yielding/README.md and comparison.json atomically; every
 them comes from this run.
 
 Usage: [SLIPLOAD_BIN=path] scripts/compare-opensees-yielding.py [--record FILE ...] [--design-pga G] [--halvings N] [--collapse-pga G]
-Creates scripts/.venv with openseespy + numpy on first use and re-runs itself inside it
+Creates scripts/.venv with openseespy, numpy and matplotlib on first use and re-runs itself inside it
 (the environment of scripts/compare-opensees.py, whose helpers it imports).
 """
 

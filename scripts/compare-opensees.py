@@ -44,7 +44,8 @@ zeroLength ElasticPP element between floors i-1 and i, without.
 Writes results/performance/opensees.json and results/performance/opensees.md atomically.
 
 Usage: [SLIPLOAD_BIN=path] scripts/compare-opensees.py [--repeats R] [--dt DT] [--record FILE|synthetic ...]
-Creates scripts/.venv with openseespy + numpy on first use and re-runs itself inside it.
+Creates scripts/.venv with openseespy + numpy (+ matplotlib, for the figures of
+scripts/compare-opensees-precision.py) on first use and re-runs itself inside it.
 """
 
 from __future__ import annotations
@@ -67,7 +68,10 @@ ROOT = Path(__file__).resolve().parent.parent
 VENV = ROOT / "scripts" / ".venv"
 # Simulations per slipload process in the timed repeats (their median is the figure).
 SLIPLOAD_REPEAT = 5
-REQUIREMENTS = ["openseespy==3.7.1.2", "numpy"]
+# The environment of every OpenSees comparison script (they import this one): matplotlib
+# draws the work-precision figures of scripts/compare-opensees-precision.py.
+REQUIREMENTS = ["openseespy==3.7.1.2", "numpy", "matplotlib"]
+MODULES = ("openseespy", "numpy", "matplotlib")
 G = 9.80665  # m/s² per g, as slipload-motion's G
 BUILDING = ROOT / "configs" / "benchmark-3story-massless.json"
 RECORDS = ROOT.parent / "shared" / "records"
@@ -89,12 +93,12 @@ PAPER_BARE_PERIODS = (1.01, 0.33, 0.17)
 
 
 # ---------------------------------------------------------------------------------------
-# Environment: venv with openseespy, then the OpenSees module itself.
+# Environment: venv with openseespy, numpy and matplotlib, then the OpenSees module itself.
 # ---------------------------------------------------------------------------------------
 
 
 def have_modules() -> bool:
-    return all(importlib.util.find_spec(m) is not None for m in ("openseespy", "numpy"))
+    return all(importlib.util.find_spec(m) is not None for m in MODULES)
 
 
 def ensure_environment(script: Path | None = None) -> None:
@@ -108,7 +112,7 @@ def ensure_environment(script: Path | None = None) -> None:
     if not in_venv and not py.exists():
         print(f"creating {VENV.relative_to(ROOT)} ...", file=sys.stderr)
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-    check = "import importlib.util as u,sys; sys.exit(0 if u.find_spec('openseespy') and u.find_spec('numpy') else 1)"
+    check = f"import importlib.util as u,sys; sys.exit(0 if all(u.find_spec(m) for m in {MODULES!r}) else 1)"
     if subprocess.run([str(py), "-c", check]).returncode != 0:
         print(f"installing {' '.join(REQUIREMENTS)} into {VENV.relative_to(ROOT)} ...", file=sys.stderr)
         subprocess.run([str(py), "-m", "pip", "install", "--quiet", *REQUIREMENTS], check=True)
@@ -753,11 +757,13 @@ def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats
     return case
 
 
-def write_atomic(path: Path, text: str) -> None:
+def write_atomic(path: Path, text: str | bytes) -> None:
+    """Writes `text` (or bytes: a PNG) to a temporary file beside `path` and renames it
+    over `path`: a reader sees the old file or the whole new one, never a partial one."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
     try:
-        with os.fdopen(fd, "w") as f:
+        with os.fdopen(fd, "wb" if isinstance(text, bytes) else "w") as f:
             f.write(text)
             f.flush()
             os.fsync(f.fileno())
@@ -862,26 +868,13 @@ def markdown(report: dict) -> str:
     return "\n".join(lines)
 
 
-def main() -> None:
-    ensure_environment()
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--record", action="append", help=f"record file (.AT2, in g) or '{SYNTHETIC}' (a {SYNTHETIC_DURATION:g} s record from `slipload record synth`); repeatable [default: synthetic, SYL090.AT2, I-ELC180.AT2]")
-    ap.add_argument("--dt", type=float, default=0.0025, help="time step of both programs, s [default: 0.0025, slipload's default T1/400 rounded to divide the records' dt]")
-    ap.add_argument("--repeats", type=int, default=21, help="timed repeats per program and record (median) [default: 21]")
-    ap.add_argument("--system", default="ProfileSPD", help="OpenSees linear system [default: ProfileSPD, the fastest direct solver measured here]")
-    ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder [default: results/performance]")
-    args = ap.parse_args()
-    if args.repeats < 1:
-        raise SystemExit("--repeats must be at least 1")
-    ops = import_opensees()
-    binary = slipload_bin()
-    b = load_building(BUILDING)
-    records = args.record or [SYNTHETIC, str(RECORDS / "SYL090.AT2"), str(RECORDS / "I-ELC180.AT2")]
-    # Newton first (the reported figure), ModifiedNewton (tangent of the step start) as a variant.
-    algorithms = ["Newton", "ModifiedNewton"]
+def checked_model(ops, binary: Path, b: dict, dt: float) -> dict:
+    """model_checks of the OpenSees model at time step dt, with slipload's bare T1 (from
+    `slipload explain`); stops when the model is not the config's, since no comparison
+    means anything then. The other comparison scripts on this building call it too."""
     explain = subprocess.run([str(binary), "explain", str(BUILDING), "--duration", "1"], cwd=ROOT, capture_output=True, text=True, check=True).stdout
     mt = re.search(r"bare T1 = ([0-9.]+) s", explain)
-    checks = model_checks(ops, b, args.dt, float(mt.group(1)) if mt else None)
+    checks = model_checks(ops, b, dt, float(mt.group(1)) if mt else None)
     print(
         f"model checks: bare periods {checks['bare_periods_s']} (paper {checks['bare_periods_paper_s']}), slipload bare T1 {checks['bare_T1_slipload_s']}; "
         f"OpenSees: stiffness matrix rel. diff {checks['frame_stiffness_max_rel_diff']:.1e} (braced {checks['braced_stiffness_max_rel_diff']:.1e}), "
@@ -901,28 +894,55 @@ def main() -> None:
     ]
     if failed:
         raise SystemExit("model checks failed: " + "; ".join(failed))
+    return checks
+
+
+def load_record(binary: Path, tmp: Path, spec: str) -> dict:
+    """A record of the comparison: SYNTHETIC (written into tmp by `slipload record synth`)
+    or an AT2 file (in g). Returns its path, units (for the slipload scene), label, step,
+    samples (m/s², as OpenSees gets them) and, for the synthetic one, how it was made."""
+    if spec == SYNTHETIC:
+        path = tmp / "synthetic-15s.csv"
+        subprocess.run([str(binary), "record", "synth", "--duration", str(SYNTHETIC_DURATION), "--dt", str(SYNTHETIC_DT), "--out", str(path)], cwd=ROOT, check=True, capture_output=True)
+        dt_rec, acc = read_csv_record(path)
+        source = f"`slipload record synth --duration {SYNTHETIC_DURATION:g} --dt {SYNTHETIC_DT}` (seed 2007, PGA 0.4 g)"
+        return {"path": path, "units": "m/s2", "label": f"synthetic {SYNTHETIC_DURATION:g} s", "dt": dt_rec, "acc": acc, "source": source}
+    record = Path(spec).resolve()
+    if not record.exists():
+        raise SystemExit(f"{spec}: no such record file")
+    dt_rec, acc = read_at2(record)
+    return {"path": record, "units": "g", "label": record.stem, "dt": dt_rec, "acc": acc, "source": None}
+
+
+def main() -> None:
+    ensure_environment()
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--record", action="append", help=f"record file (.AT2, in g) or '{SYNTHETIC}' (a {SYNTHETIC_DURATION:g} s record from `slipload record synth`); repeatable [default: synthetic, SYL090.AT2, I-ELC180.AT2]")
+    ap.add_argument("--dt", type=float, default=0.0025, help="time step of both programs, s [default: 0.0025, slipload's default T1/400 rounded to divide the records' dt]")
+    ap.add_argument("--repeats", type=int, default=21, help="timed repeats per program and record (median) [default: 21]")
+    ap.add_argument("--system", default="ProfileSPD", help="OpenSees linear system [default: ProfileSPD, the fastest direct solver measured here]")
+    ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder [default: results/performance]")
+    args = ap.parse_args()
+    if args.repeats < 1:
+        raise SystemExit("--repeats must be at least 1")
+    ops = import_opensees()
+    binary = slipload_bin()
+    b = load_building(BUILDING)
+    records = args.record or [SYNTHETIC, str(RECORDS / "SYL090.AT2"), str(RECORDS / "I-ELC180.AT2")]
+    # Newton first (the reported figure), ModifiedNewton (tangent of the step start) as a variant.
+    algorithms = ["Newton", "ModifiedNewton"]
+    checks = checked_model(ops, binary, b, args.dt)
     cases = []
     with tempfile.TemporaryDirectory(prefix="slipload-opensees-") as td:
         tmp = Path(td)
         for spec in records:
-            if spec == SYNTHETIC:
-                path = tmp / "synthetic-15s.csv"
-                subprocess.run([str(binary), "record", "synth", "--duration", str(SYNTHETIC_DURATION), "--dt", str(SYNTHETIC_DT), "--out", str(path)], cwd=ROOT, check=True, capture_output=True)
-                dt_rec, acc = read_csv_record(path)
-                units, label = "m/s2", f"synthetic {SYNTHETIC_DURATION:g} s"
-                record = path
-            else:
-                record = Path(spec).resolve()
-                if not record.exists():
-                    raise SystemExit(f"{spec}: no such record file")
-                dt_rec, acc = read_at2(record)
-                units, label = "g", record.stem
-            ratio = dt_rec / args.dt
+            rec = load_record(binary, tmp, spec)
+            ratio = rec["dt"] / args.dt
             if abs(ratio - round(ratio)) > 1e-9:
-                raise SystemExit(f"{spec}: dt = {args.dt} s does not divide the record's dt = {dt_rec} s")
-            case = run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, args.dt, args.repeats, algorithms, args.system)
-            if spec == SYNTHETIC:
-                case["record"] = f"`slipload record synth --duration {SYNTHETIC_DURATION:g} --dt {SYNTHETIC_DT}` (seed 2007, PGA 0.4 g)"
+                raise SystemExit(f"{spec}: dt = {args.dt} s does not divide the record's dt = {rec['dt']} s")
+            case = run_case(ops, binary, tmp, b, rec["label"], rec["path"], rec["units"], rec["dt"], rec["acc"], args.dt, args.repeats, algorithms, args.system)
+            if rec["source"]:
+                case["record"] = rec["source"]
             cases.append(case)
     report = {
         "machine": machine(ops),

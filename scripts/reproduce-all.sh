@@ -6,11 +6,11 @@
 #                         and study figures
 #                         (scripts/design-tables.sh)
 #   results/refiners/     the refiners against an exhaustive grid (scripts/refiner-comparison.sh)
-#   results/performance/  `slipload bench` and the OpenSees comparison
+#   results/performance/  `slipload bench` and the OpenSees comparisons (same step; equal accuracy)
 #   results/opensees-yielding/  the yielding, P-Delta frame against OpenSees
 #   results/figures/      the simulation and spectrum figures the README shows
 # Usage: scripts/reproduce-all.sh   (from anywhere; needs ../shared/records beside the repo;
-# about 20 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
+# about 22 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet -p slipload
@@ -23,6 +23,7 @@ scripts/refiner-comparison.sh
 scripts/bench.sh
 python3 scripts/compare-opensees.py
 python3 scripts/compare-opensees-yielding.py
+python3 scripts/compare-opensees-precision.py
 
 fig=results/figures
 rm -rf "$fig"
