@@ -567,11 +567,10 @@ thread_local! {
 const SHARED_PLANS: usize = 2;
 
 /// Everything a mode set's operators and propagators are formed from, as bits: the
-/// matrices, the contacts, the harmonic force's floor, amplitude and frequency, the output
+/// matrices (the mass influence M·1 follows from M), the contacts, the harmonic force's floor, amplitude and frequency, the output
 /// step and whether energies are asked for. Equal keys give equal operators.
 fn plan_key(plan: &Plan) -> Vec<u64> {
-    let mut k: Vec<u64> =
-        Vec::with_capacity(8 + 3 * plan.mass.len() + plan.dofs() + 10 * plan.contacts.len());
+    let mut k: Vec<u64> = Vec::with_capacity(8 + 3 * plan.mass.len() + 8 * plan.contacts.len());
     k.extend([
         plan.floors as u64,
         plan.dofs() as u64,
@@ -580,7 +579,6 @@ fn plan_key(plan: &Plan) -> Vec<u64> {
     for m in [&plan.mass, &plan.damping, &plan.stiffness] {
         k.extend(m.iter().map(|x| x.to_bits()));
     }
-    k.extend(plan.mass_influence().iter().map(|x| x.to_bits()));
     for ct in &plan.contacts {
         k.push(match ct.role {
             ContactRole::Damper => 0,
