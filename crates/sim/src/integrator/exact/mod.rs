@@ -32,7 +32,23 @@
 //! - `energy`: the powers as quadratic forms, their quadrature, the stored energies;
 //! - this file: the run itself (inputs per record piece, substeps, events, peaks, outputs).
 //!
-//! Whole output steps run on the mode set's grid h = Δt/m (m = ⌈Δt ρ/[`SUBSTEP_PHASE`]⌉).
+//! Frames: the run advances frame by frame, a frame being one output step, or, when the run
+//! asks for peaks only (no histories, no energies) on a record whose sample interval is q
+//! output steps, that record interval (q output steps). Whole frames run on the mode set's
+//! grid: m = q⌈Δt ρ/[`SUBSTEP_PHASE`]⌉ substeps where an output step is longer than the
+//! longest substep, else q/s substeps of s output steps (s the largest divisor of q with
+//! sΔt ρ ≤ [`SUBSTEP_PHASE`]); output steps are grid points either way. The output steps
+//! inside a frame are observed from the substep that reaches them, and only where a
+//! sampled peak can change there: every observed quantity (drifts, displacements,
+//! absolute accelerations, base shear, slips) is a row r on y, and where
+//! |r y| + Σ_j |y_j| Σ_{k≥1} |r Aᵏ/k!|_j hᵏ stays within its peak on a grid substep
+//! (a stuck contact's slip does not change), none of the output steps inside it can
+//! raise a peak or pass the collapse limit; elsewhere their states come from exp(AΔt)
+//! (one product each) or the substep's Taylor coefficients. The test is made where it
+//! costs less than the output steps it can spare. So a fine output step (T₁/400 of a
+//! stiff one-storey frame is 15 to the record's step) costs no substeps of its own: the
+//! substeps follow the dynamics (ρ) and the record.
+//!
 //! Once a mode set has lasted as many grid substeps as forming them costs, it caches the
 //! same truncated series as a matrix, exp(A h) (and, when energies are asked for, the work
 //! over h as quadratic forms of the starting state, below), and each scanned function's
@@ -43,7 +59,7 @@
 //! which are formed exactly (their negative parts at their largest). That second test
 //! rules out functions that are near zero but moving away from it, which the first
 //! cannot (on the benchmark it saves about 7 % of the run time). Substeps
-//! off the grid (after an event, or where record samples cut an output step) sum the
+//! off the grid (after an event, or where record samples cut a frame) sum the
 //! series for their own length; when no longer than the grid interval they are ruled out
 //! by the same bounds (every term grows with τ). A drift that fails them but whose rate
 //! keeps one sign on the substep (its leading quadratic against a bound on the rest) has
@@ -85,7 +101,7 @@
 //!   `newmark`'s initial state): Free = stick, a bound = slide that way (reversal). The
 //!   velocities are then projected M-orthogonally onto B_Sᵀv = 0 (the residual of the
 //!   located root, ~1e-11 m/s; its kinetic energy goes to friction). The same projection
-//!   is repeated at every output step, so round-off drift of the stuck constraints cannot
+//!   is repeated at the end of every frame, so round-off drift of the stuck constraints cannot
 //!   accumulate over many substeps (it matters on very stiff braces, k′ ~ 1e12 N/m);
 //! - a contact with F⁻ = F⁺ (μN = 0 in an unreduced plan) applies that force and has no
 //!   events.
@@ -121,7 +137,7 @@ use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use energy::{GAUSS, Integrals};
-use modes::{Cache, Mode, ModeOps, Model, Scale, row_dot};
+use modes::{Cache, Mode, ModeOps, Model, Scale, observed_peak, row_dot};
 use nalgebra::DVector;
 use propagate::{col, dot, lead_coefs, lead_terms, monotone, quadratic, taylor};
 use search::{first_crossing, illinois, poly, tail_and_degree};
@@ -420,6 +436,7 @@ impl Integrator for Exact {
         let mut yabs = DVector::zeros(dim);
         let mut at_end = vec![false; nf];
         let mut far = vec![0.0; dim];
+        let mut yobs = DVector::zeros(dim);
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
             out.copy_from(&p[TAYLOR_TERMS - 1]);
             for k in (0..TAYLOR_TERMS - 1).rev() {
@@ -432,19 +449,27 @@ impl Integrator for Exact {
         let mut last_event_t = f64::NEG_INFINITY;
         let mut balance_max_rel: f64 = 0.0;
 
-        for step in 0..plan.steps {
-            let t_step_end = (step + 1) as f64 * dt;
-            let mut ta = step as f64 * dt;
+        // Frames of q output steps (q = 1 unless the run asks for peaks only: then a frame
+        // is a record interval, `modes::frame_steps`); the output steps inside a frame are
+        // observed from the substep that reaches them, where a sampled peak can change.
+        let q = model.frame_steps;
+        'frames: for frame in 0..plan.steps.div_ceil(q) {
+            let first = frame * q;
+            let last = (first + q).min(plan.steps);
+            let t_step_end = last as f64 * dt;
+            let mut ta = first as f64 * dt;
             let step_start = ta;
+            let full = last - first == q;
+            let mut next_out = first + 1;
             while ta < t_step_end {
                 let tb = piece_end(plan, ta, t_step_end);
                 set_inputs(&mut y, ta, tb);
-                // A piece that is a whole output step runs on its mode set's grid
-                // ta + j·h (h = Δt/m): a substep from one grid point to the next is one
+                // A piece that is a whole frame runs on its mode set's grid
+                // ta + j·h (h = qΔt/m): a substep from one grid point to the next is one
                 // product with the cached exp(A h), and its scans start with a bound that
                 // rules most of them out. Substeps off the grid (after an event, or in
                 // pieces cut by record samples) sum the Taylor series for their length.
-                let whole = ta == step_start && tb == t_step_end;
+                let whole = full && ta == step_start && tb == t_step_end;
                 let mut t = ta;
                 let mut on_grid = whole.then_some(0usize);
                 while t < tb {
@@ -579,6 +604,73 @@ impl Integrator for Exact {
                             fired = Some(e);
                         }
                     }
+                    // Output steps inside the frame that this substep reaches (a frame of
+                    // several output steps). A sampled peak can change there only where an
+                    // observed function's bound on the substep, |g(0)| + Σ|y_j|·tail_j,
+                    // exceeds it; where one does, each output step inside is observed from
+                    // exp(AΔt) (a grid substep) or the Taylor coefficients, and one at the
+                    // substep's end once the end state is known. Past a collapse limit the
+                    // substep ends at that output step and the run stops there.
+                    let mut stop = false;
+                    let mut end_out = None;
+                    if next_out < last {
+                        let t_sub = t + tau_end;
+                        let tol = 1e-9 * dt;
+                        let mut upto = next_out;
+                        while upto < last && upto as f64 * dt <= t_sub + tol {
+                            upto += 1;
+                        }
+                        let at_end =
+                            upto > next_out && ((upto - 1) as f64 * dt - t_sub).abs() <= tol;
+                        let inner = if at_end { upto - 1 } else { upto };
+                        let quiet = upto > next_out
+                            && ops.obs_rows.ncols() > 0
+                            && bounds.is_some_and(|st| {
+                                (0..ops.obs_rows.ncols()).all(|o| {
+                                    // A stuck contact's slip does not change.
+                                    (o > 3 * nf && modes[o - 3 * nf - 1] == Mode::Stuck)
+                                        || dot(col(&ops.obs_rows, o), y.as_slice()).abs()
+                                            + dot(col(&st.obs_tails, o), yabs.as_slice())
+                                            <= observed_peak(plan, &peaks, o)
+                                })
+                            });
+                        if !quiet {
+                            let chain = bounds
+                                .and_then(|st| st.phi_out.as_ref())
+                                .filter(|_| regular);
+                            if chain.is_some() {
+                                yobs.copy_from(&y);
+                            } else if inner > next_out && !summed {
+                                taylor(&ops.a_rows, &y, &mut p);
+                                summed = true;
+                            }
+                            for j in next_out..inner {
+                                let tj = j as f64 * dt;
+                                let tau = (tj - t).clamp(0.0, tau_end);
+                                if let Some(po) = chain {
+                                    ynode.gemv(1.0, po, &yobs, 0.0);
+                                    std::mem::swap(&mut yobs, &mut ynode);
+                                } else {
+                                    eval(&p, tau, &mut yobs);
+                                }
+                                observe(&mut peaks, &ops, &yobs, &mut acc);
+                                if peaks.collapsed(tj) {
+                                    if !summed {
+                                        taylor(&ops.a_rows, &y, &mut p);
+                                        summed = true;
+                                    }
+                                    tau_end = tau;
+                                    fired = None;
+                                    stop = true;
+                                    break;
+                                }
+                            }
+                            if at_end && !stop {
+                                end_out = Some(upto - 1);
+                            }
+                        }
+                        next_out = upto;
+                    }
                     // Drift extrema inside (0, tau_end]; a drift that is monotone there
                     // has its peak at the end, taken once the end state is known.
                     at_end.fill(false);
@@ -630,7 +722,7 @@ impl Integrator for Exact {
                         }
                         cont_drift[i] = cont_drift[i].max(poly(coef, tau_end).0.abs());
                     }
-                    if let (Some(st), None) = (fast, fired) {
+                    if let (Some(st), None, false) = (fast, fired, stop) {
                         if let Some([wi, wv, wf, wp]) = &st.work {
                             // One grid interval: its work is a quadratic form of y.
                             integ.input += quadratic(wi, &y, &mut ynode);
@@ -670,6 +762,13 @@ impl Integrator for Exact {
                         }
                         below = y[i];
                     }
+                    if let Some(j) = end_out {
+                        observe(&mut peaks, &ops, &y, &mut acc);
+                        stop = peaks.collapsed(j as f64 * dt);
+                    }
+                    if stop {
+                        break 'frames;
+                    }
                     match (fired, reach) {
                         (None, Some(j)) => {
                             t = if j >= ops.per_step {
@@ -690,7 +789,7 @@ impl Integrator for Exact {
                     }
                     if !y.iter().all(|x| x.is_finite()) {
                         return Err(SimError::NonFinite {
-                            step: step + 1,
+                            step: next_out,
                             t,
                             hint: "exact: the state became non-finite".into(),
                         });
@@ -803,7 +902,7 @@ impl Integrator for Exact {
                 }
                 ta = tb;
             }
-            // Output step. Re-impose B_Sᵀv = 0 on the stuck contacts: the projected
+            // The frame's last output step. Re-impose B_Sᵀv = 0 on the stuck contacts: the projected
             // dynamics keep it only to round-off, which accumulates over many substeps on
             // very stiff braces (the kinetic energy removed, ~ε², goes to friction).
             if ops.proj.is_some() {

@@ -8,6 +8,7 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::plan::{ContactKind, ContactRole, Plan};
+use crate::response::Peaks;
 use nalgebra::{DMatrix, DVector};
 use std::cell::{Cell, OnceCell, RefCell};
 use std::collections::HashMap;
@@ -126,10 +127,21 @@ pub(super) struct ModeOps {
     /// The M-orthogonal projector of the velocities onto B_Sᵀv = 0 for the stuck contacts
     /// with a DOF, I − M⁻¹B_S W_S⁻¹B_Sᵀ (n × n); `None` when none sticks.
     pub(super) proj: Option<DMatrix<f64>>,
+    /// The sampled peaks' quantities as rows on y, transposed (dim × functions), in the
+    /// order of [`observed_peak`]: storey drifts, floor displacements, absolute floor
+    /// accelerations, base shear, then each contact's slip. Formed only when a grid
+    /// substep holds several output steps and testing them costs less than observing
+    /// those (dim × 0 otherwise: every output step is observed).
+    pub(super) obs_rows: DMatrix<f64>,
     /// Longest substep, [`SUBSTEP_PHASE`]/ρ (ρ this mode set's spectral bound).
     pub(super) delta_max: f64,
-    /// Substeps per output step, m = ⌈Δt/δ_max⌉, and the grid interval h = Δt/m.
+    /// Substeps per frame of q output steps ([`frame_steps`]), m, and the grid interval
+    /// h = qΔt/m: m = q⌈Δt/δ_max⌉ where an output step is longer than δ_max, else
+    /// q/s with s the largest divisor of q such that sΔt ≤ δ_max. Output steps are
+    /// grid points either way.
     pub(super) per_step: usize,
+    /// Output steps per grid substep, s (0 when a substep is shorter than an output step).
+    pub(super) out_steps: usize,
     pub(super) h: f64,
     /// How many grid substeps taken with the Taylor sums make the mode set worth its
     /// propagators in a run (forming them costs about dim + scanned functions substeps).
@@ -197,6 +209,33 @@ pub(super) struct Model<'a> {
     pub(super) omega_h: f64,
     /// Whether a storey yields (the plastic work is then kept apart from friction).
     pub(super) storeys: bool,
+    /// Output steps per frame, q ([`frame_steps`]), and the frame's length q·Δt: the
+    /// interval a mode set's grid divides.
+    pub(super) frame_steps: usize,
+    pub(super) span: f64,
+}
+
+/// Output steps per frame: the record's sample interval in output steps when the run asks
+/// for peaks only (no histories, no energies) and Δt divides that interval, else 1. A
+/// frame is one record interval, the span a mode set's grid divides; the output steps
+/// inside it are observed only where a peak can change there (the observed functions'
+/// bounds, [`ModeOps::obs_rows`]), so a fine output step costs no substeps of its own.
+/// Histories and energies need the state at every output step: their frames are the
+/// output steps.
+pub(super) fn frame_steps(plan: &Plan) -> usize {
+    let Some(r) = plan.record.as_ref() else {
+        return 1;
+    };
+    if plan.outputs.histories || plan.outputs.energies {
+        return 1;
+    }
+    let (rdt, dt) = (r.dt(), plan.method.dt);
+    let q = (rdt / dt).round();
+    if (2.0..=1e6).contains(&q) && (q * dt - rdt).abs() <= 1e-9 * rdt {
+        q as usize
+    } else {
+        1
+    }
 }
 
 impl<'a> Model<'a> {
@@ -260,6 +299,7 @@ impl<'a> Model<'a> {
             f0[(h.floor, lay.i_sin)] = h.amplitude;
             omega_h = h.omega;
         }
+        let frame_steps = frame_steps(plan);
         Ok(Model {
             plan,
             lay,
@@ -270,6 +310,8 @@ impl<'a> Model<'a> {
             f0,
             omega_h,
             storeys: plan.has_yielding_storeys(),
+            frame_steps,
+            span: frame_steps as f64 * plan.method.dt,
         })
     }
 
@@ -489,17 +531,41 @@ impl<'a> Model<'a> {
         } else {
             f64::INFINITY
         };
-        let per_step = if delta_max.is_finite() {
+        // Substeps per output step; where one output step is shorter than δ_max, the
+        // frame of q output steps is cut into substeps of s output steps each, s the
+        // largest divisor of q with s·Δt ≤ δ_max, so output steps are grid points.
+        let per_out = if delta_max.is_finite() {
             ((dt / delta_max) * (1.0 - 1e-12)).ceil().max(1.0) as usize
         } else {
             1
         };
+        let q = self.frame_steps;
+        let (per_step, out_steps) = if per_out > 1 || q == 1 {
+            (q * per_out, usize::from(per_out == 1))
+        } else {
+            let s = (1..=q)
+                .rev()
+                .find(|&s| q.is_multiple_of(s) && s as f64 * dt <= delta_max * (1.0 - 1e-12))
+                .unwrap_or(1);
+            (q / s, s)
+        };
         let prepare_after = dim + events.len() + plan.floors;
         let acc_rows = a.rows(n, n).transpose();
+        // The observed functions' bounds are worth testing on a substep when they cost
+        // less than the output steps inside it they can spare (a product with exp(A Δt)
+        // and the observation, each).
+        let obs_rows = if out_steps >= 2
+            && 2 * (3 * plan.floors + 1 + nc) * dim < (out_steps - 1) * (dim + n) * dim
+        {
+            self.observed_rows(&acc_rows)
+        } else {
+            DMatrix::zeros(dim, 0)
+        };
         let a_rows = SparseRows::of(&a);
         let event_abs = events.iter().map(|e| e.row.abs()).collect();
         ModeOps {
             event_abs,
+            obs_rows,
             a_rows,
             a,
             acc_rows,
@@ -510,7 +576,8 @@ impl<'a> Model<'a> {
             proj,
             delta_max,
             per_step,
-            h: dt / per_step as f64,
+            out_steps,
+            h: self.span / per_step as f64,
             prepare_after,
             stepping: OnceCell::new(),
         }
@@ -568,7 +635,8 @@ const SHARED_PLANS: usize = 2;
 
 /// Everything a mode set's operators and propagators are formed from, as bits: the
 /// matrices (the mass influence M·1 follows from M), the contacts, the harmonic force's floor, amplitude and frequency, the output
-/// step and whether energies are asked for. Equal keys give equal operators.
+/// step, whether energies are asked for and the frame ([`frame_steps`]). Equal keys give
+/// equal operators.
 fn plan_key(plan: &Plan) -> Vec<u64> {
     let mut k: Vec<u64> = Vec::with_capacity(8 + 3 * plan.mass.len() + 8 * plan.contacts.len());
     k.extend([
@@ -598,6 +666,7 @@ fn plan_key(plan: &Plan) -> Vec<u64> {
     }
     k.push(plan.method.dt.to_bits());
     k.push(u64::from(plan.outputs.energies));
+    k.push(frame_steps(plan) as u64);
     k
 }
 
@@ -654,7 +723,69 @@ impl Cache {
     }
 }
 
+/// The current sampled peak of observed function `o` (the order of
+/// [`ModeOps::obs_rows`]).
+#[inline]
+pub(super) fn observed_peak(plan: &Plan, peaks: &Peaks, o: usize) -> f64 {
+    let nf = plan.floors;
+    match o {
+        _ if o < nf => peaks.drift[o],
+        _ if o < 2 * nf => peaks.displacement[o - nf],
+        _ if o < 3 * nf => peaks.abs_acceleration[o - 2 * nf],
+        _ if o == 3 * nf => peaks.base_shear,
+        _ => {
+            let ct = &plan.contacts[o - 3 * nf - 1];
+            match ct.role {
+                ContactRole::Damper => peaks.slip[ct.floor],
+                ContactRole::Storey => peaks.slip[nf + ct.floor],
+            }
+        }
+    }
+}
+
 impl Model<'_> {
+    /// The rows of [`ModeOps::obs_rows`] from the mode set's acceleration rows
+    /// (`acc_rows`, dim × n): the same quantities the output steps observe.
+    fn observed_rows(&self, acc_rows: &DMatrix<f64>) -> DMatrix<f64> {
+        let plan = self.plan;
+        let lay = &self.lay;
+        let (n, nf, dim) = (lay.n, plan.floors, lay.dim);
+        if self.frame_steps <= 1 {
+            return DMatrix::zeros(dim, 0);
+        }
+        let mut rows = DMatrix::zeros(dim, 3 * nf + 1 + plan.contacts.len());
+        for i in 0..nf {
+            rows[(i, i)] = 1.0;
+            if i > 0 {
+                rows[(i - 1, i)] = -1.0;
+            }
+            rows[(i, nf + i)] = 1.0;
+            let mut a = acc_rows.column(i).into_owned();
+            a[lay.i_ag] += 1.0;
+            rows.set_column(2 * nf + i, &a);
+        }
+        // Base shear Σ mᵢ(aᵢ + a_g) − p over every DOF (as `base_shear`).
+        let mut v = DVector::zeros(dim);
+        for i in 0..n {
+            v.axpy(self.mr[i], &acc_rows.column(i), 1.0);
+        }
+        v[lay.i_ag] += self.mr.iter().sum::<f64>();
+        if let Some(h) = &plan.harmonic {
+            v[lay.i_sin] -= h.amplitude;
+        }
+        rows.set_column(3 * nf, &v);
+        for (c, ct) in plan.contacts.iter().enumerate() {
+            let col = 3 * nf + 1 + c;
+            rows[(ct.floor, col)] = 1.0;
+            match (ct.kind, lay.epp_slot[c]) {
+                (ContactKind::Dof { dof }, _) => rows[(dof, col)] -= 1.0,
+                (_, Some(s)) => rows[(s, col)] -= 1.0,
+                (ContactKind::Epp, None) => {}
+            }
+        }
+        rows
+    }
+
     /// Modes decided by the acceleration-level box QP for the contacts in `decide`
     /// (all other contacts keep `modes`).
     pub(super) fn decide(

@@ -33,6 +33,15 @@ pub(super) struct Stepping {
     /// more than Σ|y_j|·rate_tail_j, g is monotone on the substep (a drift's peak there is
     /// at an end).
     pub(super) rate_tails_far: DMatrix<f64>,
+    /// Column o: Σ_{k≥1} |r_o Aᵏ/k!| hᵏ componentwise for observed function o
+    /// ([`ModeOps::obs_rows`]), so that |g_o(τ)| ≤ |g_o(0)| + Σ_j |y_j|·tail_j on a
+    /// substep no longer than h: where that stays within the function's sampled peak, no
+    /// output step inside the substep can raise it.
+    pub(super) obs_tails: DMatrix<f64>,
+    /// exp(A Δt) over one output step, when a grid substep holds several
+    /// ([`ModeOps::out_steps`] ≥ 2): the states at the output steps inside it, one product
+    /// each.
+    pub(super) phi_out: Option<DMatrix<f64>>,
 }
 
 impl Model<'_> {
@@ -66,6 +75,7 @@ impl Model<'_> {
             phi
         };
         let phi = expm(h);
+        let phi_out = (ops.out_steps >= 2).then(|| expm(self.plan.method.dt));
         let work = self.plan.outputs.energies.then(|| {
             let forms = self.power_forms(ops);
             let forms = &forms[..if self.storeys { 4 } else { 3 }];
@@ -123,8 +133,25 @@ impl Model<'_> {
                 rows.set_column(f * TAYLOR_TERMS + k, &r);
             }
         }
+        let nobs = ops.obs_rows.ncols();
+        let mut obs_tails = DMatrix::zeros(dim, nobs);
+        for o in 0..nobs {
+            let mut r = ops.obs_rows.column(o).into_owned();
+            let mut hk = 1.0;
+            for k in 1..TAYLOR_TERMS {
+                ops.a_rows
+                    .row_mul_into(1.0 / k as f64, r.as_slice(), next_r.as_mut_slice());
+                std::mem::swap(&mut r, &mut next_r);
+                hk *= h;
+                for j in 0..dim {
+                    obs_tails[(j, o)] += r[j].abs() * hk;
+                }
+            }
+        }
         Stepping {
             phi,
+            obs_tails,
+            phi_out,
             work,
             rows,
             tails,
