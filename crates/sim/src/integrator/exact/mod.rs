@@ -139,7 +139,7 @@ use crate::units::is_positive;
 use energy::{GAUSS, Integrals};
 use modes::{Cache, Mode, ModeOps, Model, Scale, observed_peak, row_dot};
 use nalgebra::DVector;
-use propagate::{col, dot, lead_coefs, lead_terms, monotone, quadratic, taylor};
+use propagate::{col, dot, lead_coefs, lead_terms, mat_vec, monotone, quadratic, taylor};
 use search::{first_crossing, illinois, poly, tail_and_degree};
 use std::cell::RefCell;
 
@@ -648,7 +648,7 @@ impl Integrator for Exact {
                                 let tj = j as f64 * dt;
                                 let tau = (tj - t).clamp(0.0, tau_end);
                                 if let Some(po) = chain {
-                                    ynode.gemv(1.0, po, &yobs, 0.0);
+                                    mat_vec(po, yobs.as_slice(), ynode.as_mut_slice());
                                     std::mem::swap(&mut yobs, &mut ynode);
                                 } else {
                                     eval(&p, tau, &mut yobs);
@@ -732,7 +732,7 @@ impl Integrator for Exact {
                                 integ.plastic += quadratic(wp, &y, &mut ynode);
                             }
                         }
-                        ynode.gemv(1.0, &st.phi, &y, 0.0);
+                        mat_vec(&st.phi, y.as_slice(), ynode.as_mut_slice());
                         std::mem::swap(&mut y, &mut ynode);
                     } else {
                         if !summed {

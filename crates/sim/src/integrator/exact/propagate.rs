@@ -230,10 +230,33 @@ pub(super) fn monotone(c: &[f64; LEAD_TERMS - 1], len: f64, rest: f64) -> bool {
     lo > rest || hi < -rest
 }
 
+/// out = M x for a column-major M: the columns scaled and summed in order, over plain
+/// slices so the compiler vectorises the inner loop (the step loop's products with the
+/// propagators are small and dynamic-sized, where a generic product pays for its
+/// strides).
+#[inline]
+pub(super) fn mat_vec(m: &DMatrix<f64>, x: &[f64], out: &mut [f64]) {
+    let r = m.nrows();
+    let out = &mut out[..r];
+    let mut cols = m.as_slice().chunks_exact(r).zip(x);
+    if let Some((c0, &x0)) = cols.next() {
+        for (o, a) in out.iter_mut().zip(c0) {
+            *o = a * x0;
+        }
+    } else {
+        out.fill(0.0);
+    }
+    for (c, &xj) in cols {
+        for (o, a) in out.iter_mut().zip(c) {
+            *o += a * xj;
+        }
+    }
+}
+
 /// yᵀ Q y, with `scratch` for Q y.
 #[inline]
 pub(super) fn quadratic(q: &DMatrix<f64>, y: &DVector<f64>, scratch: &mut DVector<f64>) -> f64 {
-    scratch.gemv(1.0, q, y, 0.0);
+    mat_vec(q, y.as_slice(), scratch.as_mut_slice());
     y.dot(scratch)
 }
 
