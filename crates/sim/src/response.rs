@@ -161,6 +161,13 @@ pub struct Diagnostics {
     /// frame's in their relative performance index.
     #[serde(default)]
     pub strain_energy_area: f64,
+    /// The run's arithmetic in multiply-adds of its dominant operations (products with
+    /// the step operators, Taylor sums, event scans, observations), counted as the run
+    /// goes: a measure of its cost that does not depend on the machine or its load, so a
+    /// choice made from it is the same on every machine (`newmark`, `exact`; 0 for
+    /// `delacruz`). `slipload bench` sets its time per unit beside it.
+    #[serde(default)]
+    pub work: u64,
 }
 
 /// Iterations of `delacruz`'s three nested fixed-point loops, per invocation of each loop.

@@ -379,6 +379,10 @@ impl Integrator for Exact {
             }
         };
 
+        // The run's arithmetic in multiply-adds of its dominant operations
+        // (`Diagnostics::work`).
+        let work = std::cell::Cell::new(0u64);
+        let add = |w: usize| work.set(work.get() + w as u64);
         let mut peaks = Peaks::for_plan(plan);
         let mut cont_drift = vec![0.0; nf];
         let msum: f64 = model.mr.iter().sum();
@@ -386,6 +390,7 @@ impl Integrator for Exact {
         let observe =
             |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>| {
                 // Only the accelerations (rows n..2n of A y) are observed.
+                add(n * dim + 4 * nf);
                 for (i, ai) in acc.as_mut_slice()[n..2 * n].iter_mut().enumerate() {
                     *ai = dot(col(&ops.acc_rows, i), y.as_slice());
                 }
@@ -438,6 +443,7 @@ impl Integrator for Exact {
         let mut far = vec![0.0; dim];
         let mut yobs = DVector::zeros(dim);
         let eval = |p: &[DVector<f64>], t: f64, out: &mut DVector<f64>| {
+            add(TAYLOR_TERMS * dim);
             out.copy_from(&p[TAYLOR_TERMS - 1]);
             for k in (0..TAYLOR_TERMS - 1).rev() {
                 *out *= t;
@@ -521,10 +527,14 @@ impl Integrator for Exact {
                     let mut summed = fast.is_none();
                     if summed {
                         taylor(&ops.a_rows, &y, &mut p);
+                        add(TAYLOR_TERMS * ops.a_rows.nnz());
                     }
                     let nev = ops.events.len();
+                    // the exclusion tests of the event functions and drifts
+                    add((nev + nf) * dim);
                     let coefs =
                         |f: usize, y: &DVector<f64>, p: &[DVector<f64>], coef: &mut [f64]| {
+                            add(TAYLOR_TERMS * (dim + 2 * SCAN_POINTS));
                             if let Some(st) = bounds {
                                 for (k, c) in coef.iter_mut().enumerate() {
                                     *c = dot(col(&st.rows, f * TAYLOR_TERMS + k), y.as_slice());
@@ -623,6 +633,9 @@ impl Integrator for Exact {
                         let at_end =
                             upto > next_out && ((upto - 1) as f64 * dt - t_sub).abs() <= tol;
                         let inner = if at_end { upto - 1 } else { upto };
+                        if upto > next_out && bounds.is_some() {
+                            add(2 * ops.obs_rows.ncols() * dim);
+                        }
                         let quiet = upto > next_out
                             && ops.obs_rows.ncols() > 0
                             && bounds.is_some_and(|st| {
@@ -642,6 +655,7 @@ impl Integrator for Exact {
                                 yobs.copy_from(&y);
                             } else if inner > next_out && !summed {
                                 taylor(&ops.a_rows, &y, &mut p);
+                                add(TAYLOR_TERMS * ops.a_rows.nnz());
                                 summed = true;
                             }
                             for j in next_out..inner {
@@ -649,6 +663,7 @@ impl Integrator for Exact {
                                 let tau = (tj - t).clamp(0.0, tau_end);
                                 if let Some(po) = chain {
                                     mat_vec(po, yobs.as_slice(), ynode.as_mut_slice());
+                                    add(dim * dim);
                                     std::mem::swap(&mut yobs, &mut ynode);
                                 } else {
                                     eval(&p, tau, &mut yobs);
@@ -657,6 +672,7 @@ impl Integrator for Exact {
                                 if peaks.collapsed(tj) {
                                     if !summed {
                                         taylor(&ops.a_rows, &y, &mut p);
+                                        add(TAYLOR_TERMS * ops.a_rows.nnz());
                                         summed = true;
                                     }
                                     tau_end = tau;
@@ -724,6 +740,7 @@ impl Integrator for Exact {
                     }
                     if let (Some(st), None, false) = (fast, fired, stop) {
                         if let Some([wi, wv, wf, wp]) = &st.work {
+                            add(4 * dim * dim);
                             // One grid interval: its work is a quadratic form of y.
                             integ.input += quadratic(wi, &y, &mut ynode);
                             integ.viscous += quadratic(wv, &y, &mut ynode);
@@ -733,11 +750,13 @@ impl Integrator for Exact {
                             }
                         }
                         mat_vec(&st.phi, y.as_slice(), ynode.as_mut_slice());
+                        add(dim * dim);
                         std::mem::swap(&mut y, &mut ynode);
                     } else {
                         if !summed {
                             // A grid substep cut by an event.
                             taylor(&ops.a_rows, &y, &mut p);
+                            add(TAYLOR_TERMS * ops.a_rows.nnz());
                             summed = true;
                         }
                         if energies {
@@ -747,6 +766,7 @@ impl Integrator for Exact {
                                 tau_end,
                                 &mut ynode,
                                 |g, out| {
+                                    add(3 * dim * dim / 2);
                                     eval(&p, GAUSS[g].0 * tau_end, out);
                                 },
                             );
@@ -797,6 +817,7 @@ impl Integrator for Exact {
                     let Some(e) = fired else { continue };
                     // Event: decide the new modes.
                     events += 1;
+                    add(2 * dim * dim);
                     if events > MAX_EVENTS {
                         return Err(SimError::ExactBudget {
                             what: "stick-slip events".into(),
@@ -961,6 +982,7 @@ impl Integrator for Exact {
                 sampled_peak_drift: Some(sampled),
                 events,
                 strain_energy_area: strain_area,
+                work: work.get(),
                 ..Default::default()
             },
             history,

@@ -57,6 +57,11 @@ pub(super) struct SparseRows {
 }
 
 impl SparseRows {
+    /// Stored entries.
+    pub(super) fn nnz(&self) -> usize {
+        self.val.len()
+    }
+
     pub(super) fn of(m: &DMatrix<f64>) -> SparseRows {
         let mut start = vec![0];
         let (mut col, mut val) = (Vec::new(), Vec::new());

@@ -260,8 +260,11 @@ fn outcome(
     (qp_total, qp_max): (u64, u32),
     history: Option<History>,
 ) -> Outcome {
+    let response = peaks.into_plan_response(plan, energy);
+    // the steps run (fewer than the plan's when a collapse stopped the run)
+    let work = work_per_step(plan) * response.steps as u64;
     Outcome {
-        response: peaks.into_plan_response(plan, energy),
+        response,
         diagnostics: Diagnostics {
             // per step, 0 for a run of no steps
             qp_iterations_mean: if plan.steps > 0 {
@@ -273,10 +276,19 @@ fn outcome(
             balance_error_max_relative: acc.balance_max_rel,
             initial_energy: acc.initial_energy(),
             strain_energy_area: acc.strain_area,
+            work,
             ..Default::default()
         },
         history,
     }
+}
+
+/// Multiply-adds of one step (`Diagnostics::work`): the n × 2n linear operator, the
+/// friction columns G F and slip rates BᵀG F, the Delassus product of the box QP and the
+/// predictor and corrector vector updates.
+fn work_per_step(plan: &Plan) -> u64 {
+    let (n, c) = (plan.dofs() as u64, plan.contacts.len() as u64);
+    2 * n * n + 2 * n * c + c * c + 12 * n
 }
 
 /// The error of a run whose state stopped being finite at `step` (from 1).
