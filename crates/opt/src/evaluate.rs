@@ -26,6 +26,32 @@ pub fn run_one(
     label: &str,
 ) -> Result<RecordMetrics, OptError> {
     let rec = &study.records[record];
+    let out = simulate_one(study, slip_loads, record, fid, label)?;
+    let heights = study
+        .building
+        .storey_heights
+        .as_deref()
+        .expect("a study's building has storey heights (checked when loading)");
+    let m = RecordMetrics::from_outcome(&out, heights);
+    if let Some(quantity) = m.first_non_finite() {
+        return Err(OptError::NonFinite {
+            design: label.to_string(),
+            record: rec.name().to_string(),
+            quantity,
+        });
+    }
+    Ok(m)
+}
+
+/// The simulation of [`run_one`], whole (responses and diagnostics).
+pub fn simulate_one(
+    study: &Study,
+    slip_loads: &[f64],
+    record: usize,
+    fid: &Fidelity,
+    label: &str,
+) -> Result<slipload_sim::Outcome, OptError> {
+    let rec = &study.records[record];
     let n = study.building.floors();
     let building = study
         .building
@@ -63,21 +89,7 @@ pub fn run_one(
         source: Box::new(source),
     };
     let plan = Plan::compile(&scene).map_err(wrap)?;
-    let out = run_plan(&plan).map_err(wrap)?;
-    let heights = study
-        .building
-        .storey_heights
-        .as_deref()
-        .expect("a study's building has storey heights (checked when loading)");
-    let m = RecordMetrics::from_outcome(&out, heights);
-    if let Some(quantity) = m.first_non_finite() {
-        return Err(OptError::NonFinite {
-            design: label.to_string(),
-            record: rec.name().to_string(),
-            quantity,
-        });
-    }
-    Ok(m)
+    run_plan(&plan).map_err(wrap)
 }
 
 /// One task: slip loads (N per dissipator) and a record index.

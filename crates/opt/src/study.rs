@@ -7,6 +7,7 @@
 //! in the file name (not in folder names); matches are sorted by name.
 
 use crate::error::OptError;
+use crate::fidelity::SweepMethod;
 use crate::objective::{Metric, Objective, Term};
 use crate::space::{ConstraintsConfig, DesignSpace, SpaceConfig};
 use serde::{Deserialize, Serialize};
@@ -131,9 +132,11 @@ pub struct ObjectiveConfig {
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FidelityConfig {
-    /// Method of the sweep and refinement (default newmark).
+    /// Method of the sweep and refinement. Absent: chosen for the study's building,
+    /// `exact` where a probe run costs it at most [`crate::fidelity::EXACT_SWEEP_COST`]
+    /// times `newmark`'s work, else `newmark` ([`crate::fidelity::choose_sweep_method`]).
     #[serde(default)]
-    pub method: MethodName,
+    pub method: Option<MethodName>,
     /// Time step, s (default: the simulation's, T₁/400 rounded to divide the record's dt).
     #[serde(default)]
     pub dt_s: Option<f64>,
@@ -156,7 +159,7 @@ fn default_check_factor() -> f64 {
 impl Default for FidelityConfig {
     fn default() -> Self {
         FidelityConfig {
-            method: MethodName::Newmark,
+            method: None,
             dt_s: None,
             check_method: default_check_method(),
             check_dt_factor: default_check_factor(),
@@ -344,6 +347,8 @@ pub struct Study {
     pub space: DesignSpace,
     /// The objective.
     pub objective: Objective,
+    /// The sweep's method, and why ([`crate::fidelity::choose_sweep_method`]).
+    pub sweep_method: SweepMethod,
 }
 
 fn read_text(path: &Path) -> Result<String, OptError> {
@@ -485,17 +490,19 @@ fn check_work(
         "tasks",
     )?;
     let fid = &cfg.fidelity;
+    // Unnamed, the sweep's method is chosen later; newmark's step checks are the stricter.
+    let method = fid.method.unwrap_or(MethodName::Newmark);
     let t1 = building.t1();
     let mut steps = 0.0;
     for r in records {
         let duration = r.duration();
         let dt = match fid.dt_s {
             Some(dt) => {
-                slipload_sim::scene::check_step_against_record(fid.method, dt, r)
+                slipload_sim::scene::check_step_against_record(method, dt, r)
                     .map_err(|e| OptError::invalid(path, "fidelity.dt_s", e.to_string()))?;
                 dt
             }
-            None => slipload_sim::scene::default_dt(fid.method, t1, Some(r.dt()), duration),
+            None => slipload_sim::scene::default_dt(method, t1, Some(r.dt()), duration),
         };
         if dt > duration * (1.0 + 1e-9) {
             return Err(OptError::invalid(
@@ -795,7 +802,7 @@ impl Study {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_else(|| "study".into())
         });
-        Ok(Study {
+        let mut study = Study {
             name,
             path: path.to_path_buf(),
             config: cfg,
@@ -804,7 +811,13 @@ impl Study {
             suites,
             space,
             objective,
-        })
+            sweep_method: SweepMethod {
+                method: MethodName::Newmark,
+                reason: String::new(),
+            },
+        };
+        study.sweep_method = crate::fidelity::choose_sweep_method(&study)?;
+        Ok(study)
     }
 
     /// Whether any objective term needs the energies.

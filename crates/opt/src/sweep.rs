@@ -36,6 +36,9 @@ pub struct Manifest {
     pub objective: Objective,
     /// Sweep method name.
     pub method: MethodName,
+    /// Why the sweep runs that method ([`crate::fidelity::choose_sweep_method`]).
+    #[serde(default)]
+    pub method_reason: String,
     /// Sweep time step, s (`null`: sim's default per record).
     pub dt_s: Option<f64>,
     /// Energies accumulated.
@@ -87,6 +90,7 @@ impl Manifest {
             study: study.name.clone(),
             objective: study.objective.clone(),
             method: fid.method,
+            method_reason: study.sweep_method.reason.clone(),
             dt_s: fid.dt_s,
             energies: fid.energies,
             damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),

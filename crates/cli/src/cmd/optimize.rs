@@ -130,6 +130,11 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     let method = report.method.as_str();
     let floors: Vec<String> = report.damper_floors.iter().map(usize::to_string).collect();
     outln!("{}: {} over {} records", report.study, report.objective, nr);
+    outln!(
+        "sweep and refinement run {} ({})",
+        report.sweep.manifest.method.as_str(),
+        report.sweep.manifest.method_reason
+    );
     // What ran now, and what was taken from the journals of an earlier run.
     outln!(
         "sweep: {} designs × {} records, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
@@ -191,12 +196,18 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         r.file_objective,
         pct(r.optimum.f, r.file_objective)
     );
-    outln!(
-        "check at reference accuracy ({} at {} × dt): finalists' ranking {}",
-        study.config.fidelity.check_method.as_str(),
-        study.config.fidelity.check_dt_factor,
-        if r.ranking_held { "held" } else { "changed" }
-    );
+    if r.check_reran {
+        outln!(
+            "check at reference accuracy ({} at {} × dt): finalists' ranking {}",
+            study.config.fidelity.check_method.as_str(),
+            study.config.fidelity.check_dt_factor,
+            if r.ranking_held { "held" } else { "changed" }
+        );
+    } else {
+        outln!(
+            "check: the sweep ran the reference (exact), so there is nothing to correct; the finalists were not run again"
+        );
+    }
     for f in &r.finalists {
         outln!(
             "  {} kN: objective {:.6} (sweep {:.6})",

@@ -58,6 +58,11 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         secs,
         report.ran as f64 / secs.max(1e-9)
     );
+    eprintln!(
+        "sweep method {} ({})",
+        report.manifest.method.as_str(),
+        report.manifest.method_reason
+    );
     if let Some(figures) = &run.figures {
         eprintln!(
             "wrote {}/{{{}}}",

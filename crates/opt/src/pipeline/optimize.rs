@@ -124,7 +124,12 @@ pub fn optimize_study(
     let map_reused = check_journal.reused() - before_map;
 
     let refine_run = (refined.log.len() - refined.replayed) * nr;
-    let check_total = (refined.finalists.len() + 1) * nr;
+    // the bare frame and the finalists, unless the sweep ran the reference itself
+    let check_total = if refined.check_reran {
+        (refined.finalists.len() + 1) * nr
+    } else {
+        0
+    };
     let table_total: usize = table_runs.iter().map(Vec::len).sum();
     let work = Work {
         sweep: PhaseWork {
