@@ -45,7 +45,13 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             dt_factor: 1.0,
             energies: study.needs_energies(),
         };
-        simulate_one(study, &study.file_slip_loads(), 0, &fid, "probe")
+        simulate_one(
+            study,
+            &study.file_slip_loads(),
+            0,
+            &fid,
+            "file (the sweep-method probe)",
+        )
     };
     let record = study.records[0].name();
     let newmark = probe(MethodName::Newmark)?.diagnostics.work;

@@ -101,8 +101,8 @@
 //!   `newmark`'s initial state): Free = stick, a bound = slide that way (reversal). The
 //!   velocities are then projected M-orthogonally onto B_Sᵀv = 0 (the residual of the
 //!   located root, ~1e-11 m/s; its kinetic energy goes to friction). The same projection
-//!   is repeated at the end of every frame, so round-off drift of the stuck constraints cannot
-//!   accumulate over many substeps (it matters on very stiff braces, k′ ~ 1e12 N/m);
+//!   is repeated at the end of every frame, so round-off drift of the stuck constraints
+//!   cannot accumulate over many substeps (it matters on very stiff braces, k′ ~ 1e12 N/m);
 //! - a contact with F⁻ = F⁺ (μN = 0 in an unreduced plan) applies that force and has no
 //!   events.
 //!
@@ -923,9 +923,10 @@ impl Integrator for Exact {
                 }
                 ta = tb;
             }
-            // The frame's last output step. Re-impose B_Sᵀv = 0 on the stuck contacts: the projected
-            // dynamics keep it only to round-off, which accumulates over many substeps on
-            // very stiff braces (the kinetic energy removed, ~ε², goes to friction).
+            // The frame's last output step. Re-impose B_Sᵀv = 0 on the stuck contacts: the
+            // projected dynamics keep it only to round-off, which accumulates over many
+            // substeps on very stiff braces (the kinetic energy removed, ~ε², goes to
+            // friction).
             if ops.proj.is_some() {
                 project_counted(&mut y, &ops, &mut integ);
             }
