@@ -9,7 +9,7 @@
 use slipload_opt::Study;
 use slipload_opt::evaluate::{Fidelity, run_designs, simulate_one};
 use slipload_opt::fidelity::EXACT_SWEEP_COST;
-use slipload_opt::optimize::optimize;
+use slipload_opt::optimize::{OptimizeReport, optimize};
 use slipload_opt::study::RefineMethod;
 use slipload_opt::sweep::Manifest;
 use slipload_sim::scene::MethodName;
@@ -60,6 +60,27 @@ fn probe_work(study: &Study) -> (u64, u64) {
     (work(MethodName::Exact), work(MethodName::Newmark))
 }
 
+/// The study's sweep, then its refinement and finalists' check.
+fn swept_and_optimized(study: &Study) -> OptimizeReport {
+    let m = Manifest::of(study);
+    let designs: Vec<Vec<f64>> = m.designs.iter().map(|d| d.slip_loads_n.clone()).collect();
+    let rows: Vec<_> = run_designs(study, &designs, &Fidelity::sweep(study), &|| {})
+        .unwrap()
+        .into_iter()
+        .flatten()
+        .collect();
+    optimize(
+        study,
+        &m,
+        &rows,
+        RefineMethod::TrustRegion,
+        None,
+        None,
+        &|| {},
+    )
+    .unwrap()
+}
+
 #[test]
 fn a_study_sweeps_with_exact_where_it_costs_at_most_twice_newmark() {
     // A one-storey frame with a massless dissipator: exact's substeps follow the record
@@ -78,22 +99,7 @@ fn a_study_sweeps_with_exact_where_it_costs_at_most_twice_newmark() {
         m.method_reason
     );
     // The check has nothing to correct: no simulations, the sweep's objectives.
-    let designs: Vec<Vec<f64>> = m.designs.iter().map(|d| d.slip_loads_n.clone()).collect();
-    let rows: Vec<_> = run_designs(&study, &designs, &Fidelity::sweep(&study), &|| {})
-        .unwrap()
-        .into_iter()
-        .flatten()
-        .collect();
-    let r = optimize(
-        &study,
-        &m,
-        &rows,
-        RefineMethod::TrustRegion,
-        None,
-        None,
-        &|| {},
-    )
-    .unwrap();
+    let r = swept_and_optimized(&study);
     assert!(!r.check_reran && r.ranking_held);
     assert_eq!(
         r.simulations,
@@ -109,23 +115,7 @@ fn a_study_sweeps_with_exact_where_it_costs_at_most_twice_newmark() {
         named.sweep_method.reason,
         "named by the study (fidelity.method)"
     );
-    let m = Manifest::of(&named);
-    let designs: Vec<Vec<f64>> = m.designs.iter().map(|d| d.slip_loads_n.clone()).collect();
-    let rows: Vec<_> = run_designs(&named, &designs, &Fidelity::sweep(&named), &|| {})
-        .unwrap()
-        .into_iter()
-        .flatten()
-        .collect();
-    let r = optimize(
-        &named,
-        &m,
-        &rows,
-        RefineMethod::TrustRegion,
-        None,
-        None,
-        &|| {},
-    )
-    .unwrap();
+    let r = swept_and_optimized(&named);
     assert!(r.check_reran);
     assert!(r.finalists.iter().all(|f| f.f_check != f.f_sweep));
 }
