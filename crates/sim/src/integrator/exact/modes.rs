@@ -214,10 +214,9 @@ pub(super) struct Model<'a> {
     pub(super) omega_h: f64,
     /// Whether a storey yields (the plastic work is then kept apart from friction).
     pub(super) storeys: bool,
-    /// Output steps per frame, q ([`frame_steps`]), and the frame's length q·Δt: the
-    /// interval a mode set's grid divides.
+    /// Output steps per frame, q ([`frame_steps`]): a frame of qΔt is the interval a mode
+    /// set's grid divides.
     pub(super) frame_steps: usize,
-    pub(super) span: f64,
 }
 
 /// Output steps per frame: the record's sample interval in output steps when the run asks
@@ -304,7 +303,6 @@ impl<'a> Model<'a> {
             f0[(h.floor, lay.i_sin)] = h.amplitude;
             omega_h = h.omega;
         }
-        let frame_steps = frame_steps(plan);
         Ok(Model {
             plan,
             lay,
@@ -315,8 +313,7 @@ impl<'a> Model<'a> {
             f0,
             omega_h,
             storeys: plan.has_yielding_storeys(),
-            frame_steps,
-            span: frame_steps as f64 * plan.method.dt,
+            frame_steps: frame_steps(plan),
         })
     }
 
@@ -582,7 +579,7 @@ impl<'a> Model<'a> {
             delta_max,
             per_step,
             out_steps,
-            h: self.span / per_step as f64,
+            h: (q as f64 * dt) / per_step as f64,
             prepare_after,
             stepping: OnceCell::new(),
         }
@@ -755,9 +752,6 @@ impl Model<'_> {
         let plan = self.plan;
         let lay = &self.lay;
         let (n, nf, dim) = (lay.n, plan.floors, lay.dim);
-        if self.frame_steps <= 1 {
-            return DMatrix::zeros(dim, 0);
-        }
         let mut rows = DMatrix::zeros(dim, 3 * nf + 1 + plan.contacts.len());
         for i in 0..nf {
             rows[(i, i)] = 1.0;
