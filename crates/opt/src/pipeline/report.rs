@@ -111,6 +111,9 @@ struct OptimumFile<'a> {
     refine_evaluations: usize,
     finalists: Vec<FinalistEntry>,
     ranking_held: bool,
+    /// Whether the finalists were run again at the check fidelity (not when the sweep
+    /// ran `exact`, the check's method: their check objectives are then the sweep's).
+    check_reran: bool,
 }
 
 /// Pretty JSON with a final newline; through a [`serde_json::Value`], so object keys are
@@ -187,6 +190,7 @@ impl StudyReport {
                     })
                     .collect(),
                 ranking_held: r.ranking_held,
+                check_reran: r.check_reran,
             },
             "optimum.json",
         )
