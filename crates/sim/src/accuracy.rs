@@ -141,8 +141,13 @@ pub struct Entry {
     pub dt: f64,
     /// Errors, or `None` when the method failed.
     pub errors: Option<Errors>,
-    /// Median CPU seconds per simulation (`None` when it failed).
+    /// Median CPU seconds per simulation with energies and histories, as compared here
+    /// (`None` when it failed).
     pub cpu_seconds: Option<f64>,
+    /// Median CPU seconds per simulation of the same run asking for peaks only, as a
+    /// sweep runs it (`None` when it failed).
+    #[serde(default)]
+    pub cpu_seconds_peaks_only: Option<f64>,
     /// The method's error message when it failed.
     pub failure: Option<String>,
     /// Events located (`exact`), 0 otherwise.
@@ -181,34 +186,44 @@ pub struct StudyReport {
     pub orders: Vec<Orders>,
 }
 
-fn with_method(scene: &Scene, name: MethodName, dt: f64) -> Scene {
+/// `scene` run by `name` at `dt`, with energies and histories when `outputs` (the runs
+/// compared here), peaks only otherwise (as a sweep runs it).
+fn with_method(scene: &Scene, name: MethodName, dt: f64, outputs: bool) -> Scene {
     let mut s = scene.clone();
     s.method.name = name;
     s.method.dt = dt;
     s.method.alpha = study_alpha(name);
-    s.outputs.energies = true;
-    s.outputs.histories = true;
+    s.outputs.energies = outputs;
+    s.outputs.histories = outputs;
     s
 }
 
-/// Compiles and runs `scene` with `name` at `dt`: the outcome and the median CPU seconds
-/// of `repeats` timed runs after one warm-up.
+/// Compiles and runs `scene` with `name` at `dt` (with energies and histories): the
+/// outcome, the median CPU seconds of `repeats` timed runs after one warm-up, and the
+/// same for the run that asks for peaks only.
 fn timed(
     scene: &Scene,
     name: MethodName,
     dt: f64,
     repeats: usize,
-) -> Result<(Outcome, f64), SimError> {
-    let plan = Plan::compile(&with_method(scene, name, dt))?;
-    let out = run_plan(&plan)?; // warm-up, and the outcome compared
-    let mut times = Vec::with_capacity(repeats);
-    for _ in 0..repeats.max(1) {
-        let start = std::time::Instant::now();
-        let o = run_plan(&plan)?;
-        times.push(start.elapsed().as_secs_f64());
-        std::hint::black_box(o);
+) -> Result<(Outcome, f64, f64), SimError> {
+    let mut out = None;
+    let mut cpu = [0.0; 2];
+    for (c, outputs) in cpu.iter_mut().zip([true, false]) {
+        let plan = Plan::compile(&with_method(scene, name, dt, outputs))?;
+        let first = run_plan(&plan)?; // warm-up, and (with outputs) the outcome compared
+        let mut times = Vec::with_capacity(repeats);
+        for _ in 0..repeats.max(1) {
+            let start = std::time::Instant::now();
+            let o = run_plan(&plan)?;
+            times.push(start.elapsed().as_secs_f64());
+            std::hint::black_box(o);
+        }
+        *c = median(&mut times);
+        out.get_or_insert(first);
     }
-    Ok((out, median(&mut times)))
+    let out = out.expect("the run with outputs ran first");
+    Ok((out, cpu[0], cpu[1]))
 }
 
 /// Median of a slice (sorted in place with `total_cmp`); NaN for an empty slice.
@@ -305,18 +320,19 @@ pub fn run_study(scene: &Scene, settings: &StudySettings) -> Result<StudyReport,
     let mut entries = Vec::new();
     let mut references = Vec::with_capacity(dts.len());
     for &(_, dt) in &dts {
-        let plan = Plan::compile(&with_method(scene, MethodName::Exact, dt))?;
+        let plan = Plan::compile(&with_method(scene, MethodName::Exact, dt, true))?;
         references.push(run_plan(&plan)?);
     }
     for &method in &settings.methods {
         for (k, &(spec, dt)) in dts.iter().enumerate() {
             let entry = match timed(scene, method, dt, settings.repeats) {
-                Ok((out, cpu)) => Entry {
+                Ok((out, cpu, cpu_peaks)) => Entry {
                     method: method.as_str().into(),
                     dt_label: spec.label(),
                     dt,
                     errors: Some(compare(&out, &references[k])),
                     cpu_seconds: Some(cpu),
+                    cpu_seconds_peaks_only: Some(cpu_peaks),
                     failure: None,
                     events: out.diagnostics.events,
                 },
@@ -326,6 +342,7 @@ pub fn run_study(scene: &Scene, settings: &StudySettings) -> Result<StudyReport,
                     dt,
                     errors: None,
                     cpu_seconds: None,
+                    cpu_seconds_peaks_only: None,
                     failure: Some(e.to_string()),
                     events: 0,
                 },
@@ -378,6 +395,10 @@ pub fn median_report(name: &str, reports: &[StudyReport], methods: &[MethodName]
         let failed: Vec<&String> = all.iter().filter_map(|e| e.failure.as_ref()).collect();
         let med = |f: fn(&Errors) -> f64| median(&mut ok.iter().map(|e| f(e)).collect::<Vec<_>>());
         let mut cpu: Vec<f64> = all.iter().filter_map(|e| e.cpu_seconds).collect();
+        let mut cpu_peaks: Vec<f64> = all
+            .iter()
+            .filter_map(|e| e.cpu_seconds_peaks_only)
+            .collect();
         entries.push(Entry {
             method: e0.method.clone(),
             dt_label: e0.dt_label.clone(),
@@ -388,6 +409,7 @@ pub fn median_report(name: &str, reports: &[StudyReport], methods: &[MethodName]
                 roof_history: med(|e| e.roof_history),
             }),
             cpu_seconds: (!cpu.is_empty()).then(|| median(&mut cpu)),
+            cpu_seconds_peaks_only: (!cpu_peaks.is_empty()).then(|| median(&mut cpu_peaks)),
             failure: failed
                 .first()
                 .map(|f| format!("failed on {} of {} records: {f}", failed.len(), all.len())),
@@ -437,7 +459,7 @@ impl StudyReport {
     /// CSV, one line per entry.
     pub fn to_csv(&self) -> String {
         let mut s = String::from(
-            "scene,method,dt_label,dt_s,peak_drift_error,friction_energy_error,roof_history_error,cpu_seconds,events,failure\n",
+            "scene,method,dt_label,dt_s,peak_drift_error,friction_energy_error,roof_history_error,cpu_seconds,cpu_seconds_peaks_only,events,failure\n",
         );
         for e in &self.entries {
             let (a, b, c) = e
@@ -450,11 +472,14 @@ impl StudyReport {
                     )
                 });
             let cpu = e.cpu_seconds.map_or(String::new(), |c| format!("{c:.6e}"));
+            let cpu_peaks = e
+                .cpu_seconds_peaks_only
+                .map_or(String::new(), |c| format!("{c:.6e}"));
             // Scene names hold commas ("benchmark, synthetic 0"): quoted, as RFC 4180 says.
             let fail = e.failure.as_deref().unwrap_or("").replace('"', "'");
             let _ = writeln!(
                 s,
-                "\"{}\",{},{},{:.9e},{a},{b},{c},{cpu},{},\"{fail}\"",
+                "\"{}\",{},{},{:.9e},{a},{b},{c},{cpu},{cpu_peaks},{},\"{fail}\"",
                 self.scene.replace('"', "\"\""),
                 e.method,
                 e.dt_label,
@@ -481,14 +506,14 @@ impl StudyReport {
                 .collect::<Vec<_>>(),
             self.reference_friction_energy
         );
-        s.push_str("| method | dt | dt (s) | peak drift err | friction E err | roof RMS err | CPU (s) | events |\n");
-        s.push_str("|---|---|---|---|---|---|---|---|\n");
+        s.push_str("| method | dt | dt (s) | peak drift err | friction E err | roof RMS err | CPU (s) | CPU, peaks only (s) | events |\n");
+        s.push_str("|---|---|---|---|---|---|---|---|---|\n");
         for e in &self.entries {
             match (&e.errors, &e.failure) {
                 (Some(x), _) => {
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {:.3e} | {:.2e} | {:.2e} | {:.2e} | {:.3e} | {} |",
+                        "| {} | {} | {:.3e} | {:.2e} | {:.2e} | {:.2e} | {:.3e} | {:.3e} | {} |",
                         e.method,
                         e.dt_label,
                         e.dt,
@@ -496,13 +521,14 @@ impl StudyReport {
                         x.friction_energy,
                         x.roof_history,
                         e.cpu_seconds.unwrap_or(f64::NAN),
+                        e.cpu_seconds_peaks_only.unwrap_or(f64::NAN),
                         e.events
                     );
                 }
                 (None, f) => {
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {:.3e} | failed: {} | | | | |",
+                        "| {} | {} | {:.3e} | failed: {} | | | | | |",
                         e.method,
                         e.dt_label,
                         e.dt,
