@@ -2,7 +2,9 @@
 //! (SVG + PNG, non-empty) beside NAME.csv: one panel per error measure, one series per
 //! method plus one of failed runs; every series matches the CSV rows it comes from, the
 //! failed runs sit above every error, and the legend of error vs Δt gives the fitted order
-//! that NAME.json reports.
+//! that NAME.json reports. The peak-drift panel costs each run by its peaks-only time (what
+//! a sweep pays), the energy and history panels by the time with those outputs; `exact`,
+//! whose error against itself is round-off, is a vertical line at its cost.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -20,19 +22,28 @@ struct Row {
     dt: f64,
     errors: Option<[f64; 3]>,
     cpu: Option<f64>,
+    cpu_peaks: Option<f64>,
+}
+
+impl Row {
+    /// The cost panel `k` draws (0: peak drift, peaks only; else with outputs).
+    fn cost(&self, k: usize) -> Option<f64> {
+        if k == 0 { self.cpu_peaks } else { self.cpu }
+    }
 }
 
 fn rows(csv: &str) -> Vec<Row> {
     csv.lines()
         .skip(1)
         .map(|l| {
-            let c: Vec<&str> = l.splitn(10, ',').collect();
+            let c: Vec<&str> = l.splitn(11, ',').collect();
             let num = |s: &str| s.parse::<f64>().ok();
             Row {
                 method: c[1].to_string(),
                 dt: num(c[3]).unwrap(),
                 errors: num(c[4]).map(|a| [a, num(c[5]).unwrap(), num(c[6]).unwrap()]),
                 cpu: num(c[7]),
+                cpu_peaks: num(c[8]),
             }
         })
         .collect()
@@ -99,7 +110,7 @@ fn work_precision_and_error_vs_dt_match_the_csv() {
                 .collect();
             let e = span(ok.iter().map(|r| r.errors.unwrap()[k]));
             max_err = max_err.max(e.1);
-            let c = span(ok.iter().map(|r| r.cpu.unwrap()));
+            let c = span(ok.iter().map(|r| r.cost(k).unwrap()));
             let d = span(ok.iter().map(|r| r.dt));
             assert_eq!(pw.series[i].drawn, ok.len(), "{m}: a marker per Δt");
             assert_y(&pw.series[i], e, REL * e.1);
@@ -137,11 +148,56 @@ fn work_precision_and_error_vs_dt_match_the_csv() {
                     .total_cmp(&(b.dt / failed[0].dt).ln().abs())
             })
             .unwrap();
-        let est = near.cpu.unwrap() * near.dt / failed[0].dt;
+        let est = near.cost(k).unwrap() * near.dt / failed[0].dt;
         let fw = &pw.series[methods.len()];
         assert_eq!(fw.drawn, 1);
         assert_x(fw, (est, est), 2.0 * REL * est);
         assert!(fw.y[0].unwrap() > max_err);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn exact_is_a_line_at_its_cost_at_the_default_step() {
+    let dir = scratch("figacc", "x");
+    let out = slipload(&[
+        "accuracy",
+        "configs/benchmark-3story-massless.json",
+        "--record",
+        "../shared/records/SYL090.AT2",
+        "--duration",
+        "3",
+        "--methods",
+        "newmark,exact",
+        "--dts",
+        "T1/100,T1/400",
+        "--repeats",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--name",
+        "x",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rows = rows(&std::fs::read_to_string(dir.join("x.csv")).unwrap());
+    // T1/400, the finer of the two steps
+    let at_default = rows
+        .iter()
+        .filter(|r| r.method == "exact")
+        .min_by(|a, b| a.dt.total_cmp(&b.dt))
+        .unwrap();
+    assert!(at_default.cpu_peaks.unwrap() > 0.0);
+    let wp = figure(&dir.join("x-work-precision"));
+    for k in 0..3 {
+        let line = &wp.panels[k].series[1];
+        assert!(line.name.starts_with("exact at T1/400"), "{}", line.name);
+        let c = at_default.cost(k).unwrap();
+        assert_x(line, (c, c), REL * c);
+        assert_eq!(line.kind, "line");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -65,17 +65,29 @@ fn error_range(r: &StudyReport, err: fn(&Errors) -> f64) -> (f64, f64, f64) {
 /// Estimated CPU time of a failed entry: the cost of the method's successful run with the
 /// nearest Δt, scaled by the step ratio (cost ∝ steps ∝ 1/Δt). `None` when the method has
 /// no successful run.
-fn estimated_cpu(failed: &Entry, ok: &[&Entry]) -> Option<f64> {
-    let near = ok
-        .iter()
-        .filter(|e| e.cpu_seconds.is_some())
-        .min_by(|a, b| {
-            (a.dt / failed.dt)
-                .ln()
-                .abs()
-                .total_cmp(&(b.dt / failed.dt).ln().abs())
-        })?;
-    Some(near.cpu_seconds? * near.dt / failed.dt)
+fn estimated_cpu(failed: &Entry, ok: &[&Entry], cost: fn(&Entry) -> Option<f64>) -> Option<f64> {
+    let near = ok.iter().filter(|e| cost(e).is_some()).min_by(|a, b| {
+        (a.dt / failed.dt)
+            .ln()
+            .abs()
+            .total_cmp(&(b.dt / failed.dt).ln().abs())
+    })?;
+    Some(cost(near)? * near.dt / failed.dt)
+}
+
+/// The cost a panel draws: the peak-drift panel the time of a run asking for peaks only
+/// (what a sweep pays; the time with outputs for reports without it), the energy and
+/// history panels the time of the runs they measure, with energies and histories.
+fn panel_cost(measure: usize) -> (&'static str, fn(&Entry) -> Option<f64>) {
+    if measure == 0 {
+        ("CPU time per run, peaks only (s)", |e| {
+            e.cpu_seconds_peaks_only.or(e.cpu_seconds)
+        })
+    } else {
+        ("CPU time per run, with energies and histories (s)", |e| {
+            e.cpu_seconds
+        })
+    }
 }
 
 /// Builds both figures.
@@ -83,9 +95,10 @@ pub fn figures(r: &StudyReport) -> (Figure, Figure) {
     let methods = methods(r);
     let mut wp = Figure::new(format!("Work-precision: {}", r.scene)).size(1000, 1000);
     let mut dt = Figure::new(format!("Error vs time step: {}", r.scene)).size(1000, 1000);
-    for (label, err, order) in MEASURES {
+    for (measure, (label, err, order)) in MEASURES.into_iter().enumerate() {
         let (ylo, fail_y, yhi) = error_range(r, err);
-        let mut pw = Panel::new("CPU time per run (s)", label)
+        let (x_label, cost) = panel_cost(measure);
+        let mut pw = Panel::new(x_label, label)
             .x_log()
             .y_log()
             .y_range(ylo, yhi)
@@ -104,10 +117,7 @@ pub fn figures(r: &StudyReport) -> (Figure, Figure) {
                 .copied()
                 .filter(|e| e.errors.is_some())
                 .collect();
-            let x_cpu: Vec<f64> = ok
-                .iter()
-                .map(|e| e.cpu_seconds.unwrap_or(f64::NAN))
-                .collect();
+            let x_cpu: Vec<f64> = ok.iter().map(|e| cost(e).unwrap_or(f64::NAN)).collect();
             let x_dt: Vec<f64> = ok.iter().map(|e| e.dt).collect();
             let y: Vec<f64> = ok
                 .iter()
@@ -122,11 +132,32 @@ pub fn figures(r: &StudyReport) -> (Figure, Figure) {
             } else {
                 m.to_string()
             };
-            pw.push(
-                Series::line(name.clone(), x_cpu, y.clone())
-                    .marker(marker)
+            // The reference against itself is round-off, below the axis: its cost (at
+            // T1/400, the default step, when the report has it) is a vertical line.
+            let reference = (*m == "exact" && y.iter().all(|v| v.is_nan()))
+                .then(|| {
+                    ok.iter()
+                        .find(|e| e.dt_label == "T1/400")
+                        .or(ok.first())
+                        .and_then(|e| cost(e).map(|c| (c, e.dt_label.clone())))
+                })
+                .flatten();
+            match reference {
+                Some((c, at)) => pw.push(
+                    Series::line(
+                        format!("exact at {at} (error vs itself < {FLOOR:.0e})"),
+                        vec![c, c],
+                        vec![ylo, yhi],
+                    )
+                    .dashed()
                     .color(k),
-            );
+                ),
+                None => pw.push(
+                    Series::line(name.clone(), x_cpu, y.clone())
+                        .marker(marker)
+                        .color(k),
+                ),
+            }
             let with_order = match r.orders.iter().find(|o| o.method == *m).and_then(order) {
                 Some(p) => format!("{name} (order {p:.2})"),
                 None => name,
@@ -135,7 +166,7 @@ pub fn figures(r: &StudyReport) -> (Figure, Figure) {
             for f in entries.iter().filter(|e| e.errors.is_none()) {
                 fail_dt.0.push(f.dt);
                 fail_dt.1.push(fail_y);
-                if let Some(c) = estimated_cpu(f, &ok) {
+                if let Some(c) = estimated_cpu(f, &ok, cost) {
                     fail_cost.0.push(c);
                     fail_cost.1.push(fail_y);
                 }
