@@ -55,9 +55,9 @@ fn span(v: impl Iterator<Item = f64>) -> (f64, f64) {
     })
 }
 
-#[test]
-fn work_precision_and_error_vs_dt_match_the_csv() {
-    let dir = scratch("figacc", "m");
+/// `slipload accuracy` of the massless benchmark on 3 s of SYL090 (one timed repeat),
+/// `methods` at `dts`, into `dir` as NAME.*; it must succeed.
+fn accuracy(dir: &std::path::Path, methods: &str, dts: &str, name: &str) {
     let out = slipload(&[
         "accuracy",
         "configs/benchmark-3story-massless.json",
@@ -66,21 +66,27 @@ fn work_precision_and_error_vs_dt_match_the_csv() {
         "--duration",
         "3",
         "--methods",
-        "delacruz,newmark",
+        methods,
         "--dts",
-        "T1/25,T1/50,T1/100",
+        dts,
         "--repeats",
         "1",
         "--out",
         dir.to_str().unwrap(),
         "--name",
-        "m",
+        name,
     ]);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+#[test]
+fn work_precision_and_error_vs_dt_match_the_csv() {
+    let dir = scratch("figacc", "m");
+    accuracy(&dir, "delacruz,newmark", "T1/25,T1/50,T1/100", "m");
     let rows = rows(&std::fs::read_to_string(dir.join("m.csv")).unwrap());
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("m.json")).unwrap()).unwrap();
@@ -160,29 +166,7 @@ fn work_precision_and_error_vs_dt_match_the_csv() {
 #[test]
 fn exact_is_a_line_at_its_cost_at_the_default_step() {
     let dir = scratch("figacc", "x");
-    let out = slipload(&[
-        "accuracy",
-        "configs/benchmark-3story-massless.json",
-        "--record",
-        "../shared/records/SYL090.AT2",
-        "--duration",
-        "3",
-        "--methods",
-        "newmark,exact",
-        "--dts",
-        "T1/100,T1/400",
-        "--repeats",
-        "1",
-        "--out",
-        dir.to_str().unwrap(),
-        "--name",
-        "x",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    accuracy(&dir, "newmark,exact", "T1/100,T1/400", "x");
     let rows = rows(&std::fs::read_to_string(dir.join("x.csv")).unwrap());
     // T1/400, the finer of the two steps
     let at_default = rows
