@@ -103,6 +103,30 @@ fn withdrawn_and_pending_targets_are_marked() {
     );
 }
 
+/// The locked m′ = 0 scene, which separates the stepping and output cost of `exact` from
+/// its events, has none: its dampers never slip, and it judges no target.
+#[test]
+fn the_locked_scene_has_no_events() {
+    let v = bench_json(&[
+        "--only",
+        "benchmark-3story m'=0 locked, 15 s synthetic, exact",
+    ]);
+    let figs = v.as_array().unwrap();
+    let events = figs
+        .iter()
+        .find(|f| f["metric"] == "stick-slip events")
+        .unwrap_or_else(|| panic!("{v:#}"));
+    assert_eq!(events["value"], 0.0, "{events}");
+    assert!(
+        figs.iter()
+            .any(|f| f["metric"] == "time per simulation / newmark's at its default dt")
+    );
+    for f in figs {
+        check_status(f);
+        assert!(f["target"].is_null(), "{f}");
+    }
+}
+
 #[test]
 fn json_lists_figures_and_reductions_keep_answers() {
     let v = bench_json(&[
