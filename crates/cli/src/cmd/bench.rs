@@ -189,38 +189,38 @@ fn seconds_per_run(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<f64>
     Ok(median(&mut times))
 }
 
-/// A building JSON with every dissipator mass set to 0 (the m′ = 0 design model).
-fn massless(building: &str) -> anyhow::Result<String> {
+/// A building JSON with `edit` applied to each dissipator (with its index).
+fn edit_dissipators(
+    building: &str,
+    mut edit: impl FnMut(usize, &mut serde_json::Value),
+) -> anyhow::Result<String> {
     let mut v: serde_json::Value = serde_json::from_str(building)?;
     if let Some(ds) = v["dissipators"].as_array_mut() {
-        for d in ds {
-            d["mass"] = 0.into();
+        for (i, d) in ds.iter_mut().enumerate() {
+            edit(i, d);
         }
     }
     Ok(v.to_string())
+}
+
+/// A building JSON with every dissipator mass set to 0 (the m′ = 0 design model).
+fn massless(building: &str) -> anyhow::Result<String> {
+    edit_dissipators(building, |_, d| d["mass"] = 0.into())
 }
 
 /// A building JSON with every dissipator's slip load at 1e12 N, far above any force its
 /// brace carries under the bench records: the dissipators never slip.
 fn locked(building: &str) -> anyhow::Result<String> {
-    let mut v: serde_json::Value = serde_json::from_str(building)?;
-    if let Some(ds) = v["dissipators"].as_array_mut() {
-        for d in ds {
-            d["slip_load"] = "1e12 N".into();
-        }
-    }
-    Ok(v.to_string())
+    edit_dissipators(building, |_, d| d["slip_load"] = "1e12 N".into())
 }
 
 /// A building JSON with the slip load of every dissipator but the first set to 0.
 fn first_damper_only(building: &str) -> anyhow::Result<String> {
-    let mut v: serde_json::Value = serde_json::from_str(building)?;
-    if let Some(ds) = v["dissipators"].as_array_mut() {
-        for d in ds.iter_mut().skip(1) {
+    edit_dissipators(building, |i, d| {
+        if i > 0 {
             d["slip_load"] = 0.into();
         }
-    }
-    Ok(v.to_string())
+    })
 }
 
 /// A uniform shear building of `n` storeys: 5e5 kg floors, storey stiffness giving
