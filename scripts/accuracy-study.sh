@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Regenerates results/accuracy/: every method x time step against the exact integrator
 # (errors, median CPU time, observed orders) for the cases the README discusses.
-# Usage: scripts/accuracy-study.sh   (from anywhere; needs ../shared/records beside the repo)
+# Usage: scripts/accuracy-study.sh   (from anywhere)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-records=../shared/records
+records=records
 out=results/accuracy
 if [ ! -d "$records" ]; then
-    echo "$records is missing: the study reads the shared earthquake records by path" >&2
+    echo "$records is missing: the study reads the repository's earthquake records by path" >&2
     exit 1
 fi
 cargo build --release --quiet -p slipload

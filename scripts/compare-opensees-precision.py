@@ -128,9 +128,9 @@ def scene(tmp: Path, rec: dict, method: str, dt: float | None) -> Path:
 
 
 def record_name(record: Path) -> str:
-    """The record's path beside the repository (shared/records/NAME), as the other scripts
-    write it, also when ../shared is a link to the records elsewhere."""
-    for top in (ROOT.parent, base.RECORDS.resolve().parent.parent):
+    """The record's path in the repository (records/NAME), as the other scripts write it,
+    also when records/ is a link to the records elsewhere."""
+    for top in (ROOT, base.RECORDS.resolve().parent):
         if record.is_relative_to(top):
             return str(record.relative_to(top))
     return str(record)

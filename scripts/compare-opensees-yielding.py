@@ -666,7 +666,7 @@ def run_case(ops, binary: Path, tmp: Path, b: dict, mats: dict, record: Path, le
     os_fig = figures(b, mats, os_run["drift"], os_run["force"])
     case = {
         "label": label,
-        "record": str(record.relative_to(ROOT.parent)) if record.is_relative_to(ROOT.parent) else str(record),
+        "record": str(record.relative_to(ROOT)) if record.is_relative_to(ROOT) else str(record),
         "level": level,
         "pga_g": pga_g,
         "record_dt_s": dt_rec,
@@ -741,7 +741,7 @@ def run_collapse(ops, binary: Path, tmp: Path, b: dict, mats: dict, record: Path
     os_fig = figures(b, mats, os_run["drift"], os_run["force"])
     c = os_fig["collapse"]
     out = {
-        "record": str(record.relative_to(ROOT.parent)) if record.is_relative_to(ROOT.parent) else str(record),
+        "record": str(record.relative_to(ROOT)) if record.is_relative_to(ROOT) else str(record),
         "label": record.stem,
         "pga_g": pga_g,
         "dt_s": sl["dt"],
@@ -1008,7 +1008,7 @@ def main() -> None:
             "command": "scripts/compare-opensees-yielding.py" + "".join(f" {a}" for a in sys.argv[1:]),
             "building": str(BUILDING.relative_to(ROOT)),
             "building_summary": summary,
-            "records": [str(r.relative_to(ROOT.parent)) if r.is_relative_to(ROOT.parent) else str(r) for r in records],
+            "records": [str(r.relative_to(ROOT)) if r.is_relative_to(ROOT) else str(r) for r in records],
             "levels": {name: pga for name, pga in levels},
             "integrator": f"Newmark gamma = {GAMMA}, beta = {BETA}",
             "opensees_model": "floors as nodes with their masses; per storey zeroLength Elastic αk ∥ ElasticPP (1−α)k (yield strain Fy/k) ∥ Elastic −P/h (P-Δ) ∥ ElasticPP k′ (yield strain slip load/k′) for the brace + damper; slipload's modal C as zeroLength linear dashpots (Elastic, E = 0, damping tangent −C[i][j] between floors, the row sums to the ground); no Rayleigh damping",

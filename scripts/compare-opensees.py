@@ -74,7 +74,7 @@ REQUIREMENTS = ["openseespy==3.7.1.2", "numpy", "matplotlib"]
 MODULES = ("openseespy", "numpy", "matplotlib")
 G = 9.80665  # m/s² per g, as slipload-motion's G
 BUILDING = ROOT / "configs" / "benchmark-3story-massless.json"
-RECORDS = ROOT.parent / "shared" / "records"
+RECORDS = ROOT / "records"
 OUT_DIR = ROOT / "results" / "performance"
 SYNTHETIC = "synthetic"
 SYNTHETIC_DURATION = 15.0  # s, the benchmark record
@@ -694,7 +694,7 @@ def run_case(ops, binary, tmp, b, label, record, units, dt_rec, acc, dt, repeats
     sl_med = statistics.median(sl_times)
     case = {
         "label": label,
-        "record": str(record.relative_to(ROOT.parent)) if record.is_relative_to(ROOT.parent) else str(record),
+        "record": str(record.relative_to(ROOT)) if record.is_relative_to(ROOT) else str(record),
         "record_samples": len(acc),
         "record_dt_s": dt_rec,
         "dt_s": dt,

@@ -9,7 +9,7 @@
 #   results/performance/  `slipload bench` and the OpenSees comparisons (same step; equal accuracy)
 #   results/opensees-yielding/  the yielding, P-Delta frame against OpenSees
 #   results/figures/      the simulation and spectrum figures the README shows
-# Usage: scripts/reproduce-all.sh   (from anywhere; needs ../shared/records beside the repo;
+# Usage: scripts/reproduce-all.sh   (from anywhere; needs records beside the repo;
 # about 22 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,7 +31,7 @@ mkdir -p "$fig"
 # The benchmark under Sylmar 090 with and without dampers (the paper's Figs. 6-7, 10, 13).
 "$bin" simulate configs/paper-benchmark-sylmar.json --plot "$fig/benchmark-sylmar" --compare-bare --format table > "$fig/benchmark-sylmar.txt"
 # The yielding ten-storey frame at MCE: storey shear-drift loops beside the dampers'.
-"$bin" simulate configs/ten-story-yielding.json --record ../shared/records/RSN1106_KOBE_KJM000.AT2 --scale-pga-g 0.6 --window 5,25 --plot "$fig/ten-story-yielding-mce" --format table > "$fig/ten-story-yielding-mce.txt"
+"$bin" simulate configs/ten-story-yielding.json --record records/RSN1106_KOBE_KJM000.AT2 --scale-pga-g 0.6 --window 5,25 --plot "$fig/ten-story-yielding-mce" --format table > "$fig/ten-story-yielding-mce.txt"
 # The embedded synthetic suite's spectra with the ASCE 7 design spectrum it is scaled near.
 "$bin" record spectrum --synthetic 10 --plot "$fig/suite-spectra" > /dev/null
 

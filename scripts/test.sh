@@ -7,7 +7,7 @@
 #   - the check script's npm packages (`npm ci` in scripts/check-report, from its lock file).
 # Installing needs root or sudo and Debian's apt-get; without them it stops and says what
 # to install. Arguments are passed to `cargo test` (e.g. `scripts/test.sh -p slipload-sim`).
-# Usage: bash scripts/test.sh   (from anywhere; needs ../shared/records beside the repo)
+# Usage: bash scripts/test.sh   (from anywhere)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,8 +15,8 @@ if ! command -v cargo >/dev/null 2>&1; then
     echo "scripts/test.sh: cargo is required (the Rust toolchain, 1.89 or newer)" >&2
     exit 1
 fi
-if [ ! -d ../shared/records ]; then
-    echo "scripts/test.sh: ../shared/records is missing: the tests read the shared earthquake records by path" >&2
+if [ ! -f records/index.csv ]; then
+    echo "scripts/test.sh: records/ is incomplete: the tests read the repository's earthquake records by path" >&2
     exit 1
 fi
 

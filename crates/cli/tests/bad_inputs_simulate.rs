@@ -11,7 +11,7 @@ use common::{scratch, slipload_within, stderr};
 use std::path::Path;
 
 const B: &str = "configs/benchmark-3story.json";
-const SYL: &str = "../shared/records/SYL090.AT2";
+const SYL: &str = "records/SYL090.AT2";
 /// Seconds any refusal may take (they are all up-front; this is generous).
 const T: u64 = 60;
 

@@ -287,7 +287,7 @@ fn sweeps_beyond_any_real_study_are_refused_up_front() {
         &["sweep.levels", "designs", "--allow-large"],
     );
     // a step coarser than the records' sampling (0.02 s) skips samples
-    let syl = root().join("../shared/records/SYL090.AT2");
+    let syl = root().join("records/SYL090.AT2");
     let coarse = dir.join("coarse.json");
     std::fs::write(
         &coarse,

@@ -62,7 +62,7 @@ fn accuracy(dir: &std::path::Path, methods: &str, dts: &str, name: &str) {
         "accuracy",
         "configs/benchmark-3story-massless.json",
         "--record",
-        "../shared/records/SYL090.AT2",
+        "records/SYL090.AT2",
         "--duration",
         "3",
         "--methods",

@@ -84,7 +84,7 @@ fn suite_with_mean_and_target() {
 #[test]
 fn record_files_without_target() {
     let dir = scratch("figspec", "files");
-    let rec = root().join("../shared/records");
+    let rec = root().join("records");
     let a = rec.join("elCentro.AT2");
     let b = rec.join("SYL090.AT2");
     let stem = dir.join("two");

@@ -168,7 +168,7 @@ fn default_outputs_go_under_out() {
 #[test]
 fn a_folder_of_records_is_read_whatever_the_case_of_the_extension() {
     let dir = scratch("newcomer", "records");
-    let shared = root().join("../shared/records");
+    let shared = root().join("records");
     std::fs::copy(shared.join("ARL360.at2"), dir.join("ARL360.at2")).unwrap();
     std::fs::copy(shared.join("SYL090.AT2"), dir.join("SYL090.AT2")).unwrap();
     std::fs::write(dir.join("README.md"), "not a record\n").unwrap();

@@ -77,7 +77,7 @@ fn run(args: &[String], name: &str) -> String {
             continue;
         }
         argv.push(
-            if a.starts_with("configs/") || a.starts_with("../shared/") {
+            if a.starts_with("configs/") || a.starts_with("records/") {
                 root().join(a).to_string_lossy().into_owned()
             } else {
                 a.clone()

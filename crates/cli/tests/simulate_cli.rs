@@ -11,7 +11,7 @@ fn json_output_has_exactly_the_contract_keys() {
         "simulate",
         "configs/benchmark-3story.json",
         "--record",
-        "../shared/records/SYL090.AT2",
+        "records/SYL090.AT2",
         "--duration",
         "10",
         "--format",

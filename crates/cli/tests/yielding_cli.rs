@@ -77,7 +77,7 @@ fn plot_draws_the_storey_loops_beside_the_dampers() {
         "simulate",
         "configs/ten-story-yielding.json",
         "--record",
-        "../shared/records/RSN1106_KOBE_KJM000.AT2",
+        "records/RSN1106_KOBE_KJM000.AT2",
         "--scale-pga-g",
         "0.6",
         "--window",

@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 
 fn record(file: &str) -> Record {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/records")
+        .join("../../records")
         .join(file);
     read_record(&path, None, None).expect("record reads")
 }

@@ -1,5 +1,5 @@
-//! Contract: every recorded accelerogram in `shared/records/` reads, and its NPTS, DT and
-//! PGA agree with `shared/records/index.csv` (read here, not hard-coded). The index prints
+//! Contract: every recorded accelerogram in `records/` reads, and its NPTS, DT and
+//! PGA agree with `records/index.csv` (read here, not hard-coded). The index prints
 //! PGA in g to 4 significant figures, so the measured PGA must lie within half a unit of
 //! that last figure; NPTS is exact and DT is a short decimal, compared to 1e-12 relative
 //! (one decimal-to-binary rounding).
@@ -8,7 +8,7 @@ use slipload_motion::{G, Record, read_record};
 use std::path::PathBuf;
 
 fn records_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/records")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../records")
 }
 
 struct IndexRow {

@@ -8,7 +8,7 @@ use slipload_motion::{
 };
 
 fn paper_records() -> Vec<Record> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/records");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../records");
     ["I-ELC180.AT2", "STM090.AT2", "SYL090.AT2"]
         .iter()
         .map(|f| read_record(&dir.join(f), None, None).expect("paper record reads"))

@@ -165,7 +165,7 @@ fn huge_slip_load_matches_the_braced_frame() {
     // braced frame: the contacts never slip, so only round-off separates them.
     let run = |slip: &str, reduce: bool| {
         let json = format!(
-            r#"{{ "building": {}, "excitation": {{ "record": {{ "file": "../../shared/records/elCentro.AT2" }} }},
+            r#"{{ "building": {}, "excitation": {{ "record": {{ "file": "../records/elCentro.AT2" }} }},
                  "duration": 5, "method": {{ "dt": 0.005 }}, "reduce": {reduce} }}"#,
             BUILDING.replace("SLIP", slip)
         );

@@ -561,7 +561,7 @@ fn a_huge_slip_load_equals_a_locked_damper() {
             .replace("\"740.831 kN\"", slip)
             .replace("\"437.510 kN\"", slip);
         let json = format!(
-            r#"{{ "building": {b}, "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2" }} }},
+            r#"{{ "building": {b}, "excitation": {{ "record": {{ "file": "../records/SYL090.AT2" }} }},
                  "duration": 10, "method": {{ "name": "delacruz", "dt": 0.001 }} }}"#
         );
         simulate(&scene_json(&json, &SceneOverrides::default()))

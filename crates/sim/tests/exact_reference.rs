@@ -410,7 +410,7 @@ fn linear_limit(slip: &str, reduce: bool) -> (Vec<f64>, Vec<nalgebra::DVector<f6
                "dissipators": [ {{ "floor": 1, "brace_stiffness": 4.48e8, "mass": 350, "slip_load": {slip} }},
                                 {{ "floor": 2, "brace_stiffness": 4.48e8, "mass": 350, "slip_load": {slip} }},
                                 {{ "floor": 3, "brace_stiffness": 4.48e8, "mass": 350, "slip_load": {slip} }} ] }},
-             "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2", "window": [0, 4] }} }},
+             "excitation": {{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, 4] }} }},
              "reduce": {reduce},
              "method": {{ "name": "exact", "dt": 0.02 }}, "outputs": {{ "histories": true, "energies": true }} }}"#
     );
@@ -558,7 +558,7 @@ fn exact_on_a_record_does_not_depend_on_how_its_steps_cut_the_samples() {
     let run = |dt: f64, energies: bool| {
         let json = format!(
             r#"{{ "building": "benchmark-3story.json",
-                 "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2", "window": [0, 6] }} }},
+                 "excitation": {{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, 6] }} }},
                  "method": {{ "name": "exact", "dt": {dt} }},
                  "outputs": {{ "energies": {energies} }} }}"#
         );
@@ -676,7 +676,7 @@ fn exact_observes_the_output_steps_inside_a_record_interval_as_at_every_step() {
     // and step count).
     let syl = |window: f64| {
         format!(
-            r#"{{ "record": {{ "file": "../../shared/records/SYL090.AT2", "window": [0, {window}] }} }}"#
+            r#"{{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, {window}] }} }}"#
         )
     };
     let bench = |mass: f64| {
@@ -709,7 +709,7 @@ fn exact_observes_the_output_steps_inside_a_record_interval_as_at_every_step() {
         (
             "collapse",
             collapse_frame.into(),
-            r#"{ "record": { "file": "../../shared/records/SYL090.AT2", "window": [0, 8], "scale_pga_g": 1.5 } }"#.into(),
+            r#"{ "record": { "file": "../records/SYL090.AT2", "window": [0, 8], "scale_pga_g": 1.5 } }"#.into(),
             0.0005,
         ),
     ];

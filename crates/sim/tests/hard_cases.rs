@@ -62,7 +62,7 @@ fn paper_building(mass: f64, k: f64) -> String {
 fn syl_scene(building: &str, secs: f64, scale: f64, dt: f64) -> Scene {
     let json = format!(
         r#"{{ "building": {building},
-             "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2", "window": [0, {secs}], "scale": {scale} }} }},
+             "excitation": {{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, {secs}], "scale": {scale} }} }},
              "method": {{ "dt": {dt} }}, "outputs": {{ "energies": true, "histories": true }} }}"#
     );
     scene_json(&json, &SceneOverrides::default())
@@ -606,7 +606,7 @@ fn zero_damping_on_a_300_s_record() {
     );
     let json = format!(
         r#"{{ "building": {b}, "duration": 300,
-             "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2" }} }},
+             "excitation": {{ "record": {{ "file": "../records/SYL090.AT2" }} }},
              "method": {{ "dt": {DT} }}, "outputs": {{ "energies": true, "histories": true }} }}"#
     );
     let scene = scene_json(&json, &SceneOverrides::default());

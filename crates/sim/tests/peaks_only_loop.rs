@@ -115,7 +115,7 @@ fn assert_same(name: &str, runs: &Runs) {
 fn record_scene(building: &str, record: &str, pga_g: f64, duration: f64, extra: &str) -> String {
     format!(
         r#"{{ "building": {building},
-             "excitation": {{ "record": {{ "file": "../../shared/records/{record}", "scale_pga_g": {pga_g} }} }},
+             "excitation": {{ "record": {{ "file": "../records/{record}", "scale_pga_g": {pga_g} }} }},
              "duration": {duration} {extra} }}"#
     )
 }

@@ -12,7 +12,7 @@ use slipload_sim::{Plan, Response, SceneOverrides, run_plan};
 
 fn run(building: &str, reduce: bool, record: &str, pga_g: f64) -> (Response, usize) {
     let json = format!(
-        r#"{{ "building": {building}, "excitation": {{ "record": {{ "file": "../../shared/records/{record}", "scale_pga_g": {pga_g} }} }},
+        r#"{{ "building": {building}, "excitation": {{ "record": {{ "file": "../records/{record}", "scale_pga_g": {pga_g} }} }},
              "duration": 8, "reduce": {reduce} }}"#
     );
     let scene = scene_json(&json, &SceneOverrides::default());
@@ -101,7 +101,7 @@ fn bilinear_equals_the_full_model_with_massless_dissipators() {
     assert_ne!(bench, massless);
     let run_with = |building: &str, method: &str, reduce: bool| {
         let json = format!(
-            r#"{{ "building": {building}, "excitation": {{ "record": {{ "file": "../../shared/records/SYL090.AT2" }} }},
+            r#"{{ "building": {building}, "excitation": {{ "record": {{ "file": "../records/SYL090.AT2" }} }},
                  "duration": 10, "method": {{ "name": "{method}" }}, "reduce": {reduce} }}"#
         );
         slipload_sim::simulate(&scene_json(&json, &SceneOverrides::default()))

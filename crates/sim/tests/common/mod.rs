@@ -13,9 +13,9 @@ pub fn configs() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs")
 }
 
-/// The shared records folder (beside the repository).
+/// The repository's earthquake records folder (`records/`).
 pub fn records() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/records")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../records")
 }
 
 /// A scene from JSON text (relative paths resolve against `configs/`).
