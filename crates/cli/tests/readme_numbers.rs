@@ -76,13 +76,11 @@ fn run(args: &[String], name: &str) -> String {
             it.next();
             continue;
         }
-        argv.push(
-            if a.starts_with("configs/") || a.starts_with("records/") {
-                root().join(a).to_string_lossy().into_owned()
-            } else {
-                a.clone()
-            },
-        );
+        argv.push(if a.starts_with("configs/") || a.starts_with("records/") {
+            root().join(a).to_string_lossy().into_owned()
+        } else {
+            a.clone()
+        });
     }
     if argv
         .first()

@@ -28,8 +28,7 @@ fn truncated_at2_reports_counts() {
         "{e:?}"
     );
     // a real record cut in half
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../records/elCentro.AT2");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../records/elCentro.AT2");
     let text = std::fs::read_to_string(path).unwrap();
     let cut = &text[..text.len() / 2];
     let cut = &cut[..cut.rfind('\n').unwrap()];

@@ -8,8 +8,7 @@ use slipload_motion::{G, Record, Spectrum, read_record, sdof_displacement};
 use std::f64::consts::PI;
 
 fn el_centro_first_10_s() -> Record {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../records/elCentro.AT2");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../records/elCentro.AT2");
     let r = read_record(&path, None, None).expect("elCentro.AT2 reads");
     r.window(0.0, 10.0).expect("record is longer than 10 s")
 }

@@ -675,9 +675,7 @@ fn exact_observes_the_output_steps_inside_a_record_interval_as_at_every_step() {
     // storeys with P-Δ, and a collapse inside a record interval (the same storey, instant
     // and step count).
     let syl = |window: f64| {
-        format!(
-            r#"{{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, {window}] }} }}"#
-        )
+        format!(r#"{{ "record": {{ "file": "../records/SYL090.AT2", "window": [0, {window}] }} }}"#)
     };
     let bench = |mass: f64| {
         let b = std::fs::read_to_string(configs().join("benchmark-3story.json")).unwrap();
