@@ -200,79 +200,104 @@ done
 [[ $state == idle ]] || fail "node localhost not idle after 60 s (sinfo says '${state:-nothing}')"
 sinfo
 
-echo "== slurm-check: scripts/slurm-sweep.sh $(basename "$study") ($shards shards)"
-# One thread per task, so two shards run side by side on a two-core node; the single run
-# below uses every core, so the comparison also covers the thread count. Called from
-# another folder with relative paths, as a user on a login node would.
-submitted=$(cd "$tmp" && SLIPLOAD_THREADS=1 "$repo/scripts/slurm-sweep.sh" \
-    "$(realpath --relative-to="$tmp" "$study")" "$(basename "$out")" "$shards")
-echo "$submitted"
-read -r array merge < <(sed -n 's/^submitted array job \([0-9][0-9]*\) .* merge job \([0-9][0-9]*\);.*/\1 \2/p' <<<"$submitted") ||
-    true
-[[ -n ${array:-} && -n ${merge:-} ]] || fail "could not read the job ids from slurm-sweep.sh's output"
-jobs_to_cancel=("$array" "$merge")
-
-echo "== slurm-check: waiting for jobs $array (array) and $merge (merge), at most $timeout s"
-start=$SECONDS
-while :; do
-    # One line per array task and job: id, state, reason.
-    listing=$(squeue -h -r -t all -j "$array,$merge" -o '%i %T %r')
-    if grep -Eq ' (FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE|PREEMPTED|SPECIAL_EXIT|REVOKED) |DependencyNeverSatisfied' <<<"$listing"; then
-        echo "$listing" >&2
-        fail "a job failed or can never run"
-    fi
-    if [[ -n $listing ]] && ! grep -vq ' COMPLETED ' <<<"$listing"; then
-        # Every line COMPLETED: the array's tasks and the merge.
-        n=$(grep -c '' <<<"$listing")
-        ((n == shards + 1)) || {
+# Submits the study with slurm-sweep.sh and waits for the array and its merge. One thread
+# per task, so two shards run side by side on a two-core node; the single run below uses
+# every core, so the comparison also covers the thread count. Called from another folder
+# with relative paths, as a user on a login node would.
+sweep_on_slurm() {
+    local submitted array merge listing n start
+    submitted=$(cd "$tmp" && SLIPLOAD_THREADS=1 "$repo/scripts/slurm-sweep.sh" \
+        "$(realpath --relative-to="$tmp" "$study")" "$(basename "$out")" "$shards")
+    echo "$submitted"
+    read -r array merge < <(sed -n 's/^submitted array job \([0-9][0-9]*\) .* merge job \([0-9][0-9]*\);.*/\1 \2/p' <<<"$submitted") ||
+        true
+    [[ -n ${array:-} && -n ${merge:-} ]] || fail "could not read the job ids from slurm-sweep.sh's output"
+    jobs_to_cancel=("$array" "$merge")
+    echo "waiting for jobs $array (array) and $merge (merge), at most $timeout s"
+    start=$SECONDS
+    while :; do
+        # One line per array task and job: id, state, reason.
+        listing=$(squeue -h -r -t all -j "$array,$merge" -o '%i %T %r')
+        if grep -Eq ' (FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE|PREEMPTED|SPECIAL_EXIT|REVOKED) |DependencyNeverSatisfied' <<<"$listing"; then
             echo "$listing" >&2
-            fail "expected $shards array tasks and one merge job, squeue lists $n jobs"
-        }
-        break
+            fail "a job failed or can never run"
+        fi
+        if [[ -n $listing ]] && ! grep -vq ' COMPLETED ' <<<"$listing"; then
+            # Every line COMPLETED: the array's tasks and the merge.
+            n=$(grep -c '' <<<"$listing")
+            ((n == shards + 1)) || {
+                echo "$listing" >&2
+                fail "expected $shards array tasks and one merge job, squeue lists $n jobs"
+            }
+            break
+        fi
+        if ((SECONDS - start > timeout)); then
+            echo "$listing" >&2
+            fail "jobs not finished after $timeout s"
+        fi
+        sleep 2
+    done
+    jobs_to_cancel=()
+    echo "$listing"
+    echo "jobs finished in $((SECONDS - start)) s"
+}
+
+# Requires OUT/merged to be the single run's folder: every file byte for byte, except the
+# journals: a journal is the log of finished tasks in the order they finished (which the
+# thread count and the shard split change); the tables and figures are built from it
+# sorted by key. Journals must hold the same lines.
+compare_with_single() {
+    local files journal_files j differ=0 excludes=()
+    [[ -d $out/merged ]] || fail "the merge job wrote no $out/merged"
+    files=$(find "$single" -type f -printf '%P\n' | LC_ALL=C sort)
+    [[ -n $files ]] || fail "the single sweep wrote no files into $single"
+    for j in journal.jsonl check.jsonl 'refine-*.jsonl'; do excludes+=(-x "$j"); done
+    if ! diff -r "${excludes[@]}" "$single" "$out/merged" >"$tmp/diff.txt" 2>&1; then
+        differ=1
+        echo "slurm-check: the merged folder differs from the single run:" >&2
+        diff -rq "${excludes[@]}" "$single" "$out/merged" >&2 || true
+        head -n 40 "$tmp/diff.txt" >&2
     fi
-    if ((SECONDS - start > timeout)); then
-        echo "$listing" >&2
-        fail "jobs not finished after $timeout s"
-    fi
-    sleep 2
-done
-jobs_to_cancel=()
-echo "$listing"
-echo "jobs finished in $((SECONDS - start)) s"
+    journal_files=$(find "$single" "$out/merged" -type f -printf '%P\n' |
+        grep -E '(^|/)(journal\.jsonl|check\.jsonl|refine-[^/]*\.jsonl)$' | LC_ALL=C sort -u || true)
+    for j in $journal_files; do
+        if [[ ! -f $single/$j || ! -f $out/merged/$j ]]; then
+            differ=1
+            echo "slurm-check: journal $j is in only one of the two folders" >&2
+        elif ! cmp -s <(LC_ALL=C sort "$single/$j") <(LC_ALL=C sort "$out/merged/$j"); then
+            differ=1
+            echo "slurm-check: journal $j holds other lines in the merged folder than in the single run:" >&2
+            diff <(LC_ALL=C sort "$single/$j") <(LC_ALL=C sort "$out/merged/$j") | head -n 20 >&2 || true
+        fi
+    done
+    ((differ == 0)) || fail "merged shards != single sweep"
+    echo "same files ($(wc -l <<<"$files")): $(tr '\n' ' ' <<<"$files")"
+    echo "(byte for byte; the journals, ${journal_files//$'\n'/ }, as sets of lines)"
+}
+
+echo "== slurm-check: scripts/slurm-sweep.sh $(basename "$study") ($shards shards)"
+sweep_on_slurm
 
 echo "== slurm-check: one sweep of the same study"
 "${CARGO_TARGET_DIR:-$repo/target}/release/slipload" --threads "$cpus" sweep "$study" --out "$single" --quiet
 
 echo "== slurm-check: merged folder against the single run"
-[[ -d $out/merged ]] || fail "the merge job wrote no $out/merged"
-files=$(find "$single" -type f -printf '%P\n' | LC_ALL=C sort)
-[[ -n $files ]] || fail "the single sweep wrote no files into $single"
-# Every file byte for byte, except the journals: a journal is the log of finished tasks in
-# the order they finished (which the thread count and the shard split change); the tables
-# and figures are built from it sorted by key. Journals must hold the same lines.
-journals=(journal.jsonl check.jsonl 'refine-*.jsonl')
-excludes=()
-for j in "${journals[@]}"; do excludes+=(-x "$j"); done
-differ=0
-if ! diff -r "${excludes[@]}" "$single" "$out/merged" >"$tmp/diff.txt" 2>&1; then
-    differ=1
-    echo "slurm-check: the merged folder differs from the single run:" >&2
-    diff -rq "${excludes[@]}" "$single" "$out/merged" >&2 || true
-    head -n 40 "$tmp/diff.txt" >&2
-fi
-journal_files=$(find "$single" "$out/merged" -type f -printf '%P\n' |
-    grep -E '(^|/)(journal\.jsonl|check\.jsonl|refine-[^/]*\.jsonl)$' | LC_ALL=C sort -u || true)
-for j in $journal_files; do
-    if [[ ! -f $single/$j || ! -f $out/merged/$j ]]; then
-        differ=1
-        echo "slurm-check: journal $j is in only one of the two folders" >&2
-    elif ! cmp -s <(LC_ALL=C sort "$single/$j") <(LC_ALL=C sort "$out/merged/$j"); then
-        differ=1
-        echo "slurm-check: journal $j holds other lines in the merged folder than in the single run:" >&2
-        diff <(LC_ALL=C sort "$single/$j") <(LC_ALL=C sort "$out/merged/$j") | head -n 20 >&2 || true
-    fi
+compare_with_single
+
+echo "== slurm-check: the same submission again (every shard resumes a finished journal)"
+# A requeued or resubmitted task continues its shard's journal: finished, it must run
+# nothing (its journal keeps the same lines), and the merge must write the same files.
+mkdir -p "$tmp/before"
+shard_dirs=("$out"/shard-*)
+((${#shard_dirs[@]} == shards)) || fail "expected $shards shard folders in $out, found ${#shard_dirs[@]}"
+for d in "${shard_dirs[@]}"; do
+    LC_ALL=C sort "$d/journal.jsonl" >"$tmp/before/$(basename "$d").jsonl"
 done
-((differ == 0)) || fail "merged shards != single sweep"
-echo "same files ($(wc -l <<<"$files")): $(tr '\n' ' ' <<<"$files")"
-echo "(byte for byte; the journals, ${journal_files//$'\n'/ }, as sets of lines)"
+rm -rf "$out/merged"
+sweep_on_slurm
+for d in "${shard_dirs[@]}"; do
+    cmp -s <(LC_ALL=C sort "$d/journal.jsonl") "$tmp/before/$(basename "$d").jsonl" ||
+        fail "resubmitted, $(basename "$d")/journal.jsonl changed: a resumed shard ran tasks again"
+done
+compare_with_single
 echo "slurm-check: ok"
