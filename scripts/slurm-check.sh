@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Runs scripts/slurm-sweep.sh on a local single-node Slurm and requires that the folder its
-# merge job writes is, file for file and byte for byte, the folder one `slipload sweep` of
-# the same study writes.
+# merge job writes is, file for file, the folder one `slipload sweep` of the same study
+# writes: every table and figure byte for byte, the journal (the log of finished tasks, in
+# the order they finished) line for line in any order. Then submits the same study again
+# into the same folder, where every shard must resume its finished journal and the merge
+# must write the same files again.
 #
 #   scripts/slurm-check.sh [STUDY [SHARDS]]     (as root on Debian; default: the small
 #                                                 configs/study-slurm-check.json, 3 shards)
@@ -9,7 +12,8 @@
 # It installs munge, slurmctld, slurmd and slurm-client with apt-get when they are missing,
 # writes a single-node slurm.conf (no cgroups, no systemd, no accounting) into a temporary
 # folder, starts munged, slurmctld and slurmd in the background on that folder, waits until
-# the node is idle, submits the sweep, waits for its jobs, runs the single sweep and diffs.
+# the node is idle, submits the sweep, waits for its jobs (bounded; a failed task fails at
+# once), runs the single sweep and diffs.
 # Everything it started is stopped when it exits, whatever the outcome; on a failure it
 # prints the job and daemon logs. Nothing outside the temporary folder is configured: the
 # daemons use their own munge socket and key, and the clients find the cluster through
@@ -30,11 +34,11 @@ fail() {
 
 study=${1:-configs/study-slurm-check.json}
 shards=${2:-3}
-timeout=${SLURM_CHECK_TIMEOUT:-300}
+job_timeout=${SLURM_CHECK_TIMEOUT:-300}
 port=${SLURM_CHECK_PORT:-16817}
 [[ -f $study ]] || fail "study file $study not found"
 [[ $shards =~ ^[1-9][0-9]*$ ]] || fail "SHARDS must be a positive whole number, got '$shards'"
-[[ $timeout =~ ^[1-9][0-9]*$ ]] || fail "SLURM_CHECK_TIMEOUT must be a positive whole number of seconds, got '$timeout'"
+[[ $job_timeout =~ ^[1-9][0-9]*$ ]] || fail "SLURM_CHECK_TIMEOUT must be a positive whole number of seconds, got '$job_timeout'"
 if ! [[ $port =~ ^[1-9][0-9]{0,4}$ ]] || ((port >= 65535)); then
     fail "SLURM_CHECK_PORT must be a TCP port below 65535, got '$port'"
 fi
@@ -76,7 +80,6 @@ single=$tmp/single
 pids=()
 munged_started=0
 jobs_to_cancel=()
-status=1
 
 print_logs() {
     local f d
@@ -180,8 +183,14 @@ MinJobAge=3600
 NodeName=localhost CPUs=$cpus RealMemory=1024 State=UNKNOWN
 PartitionName=check Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 EOF
-# The sweep must see only this cluster and its own arguments.
-unset SBATCH_ARGS SLURM_ARRAY_TASK_ID SLURM_ARRAY_TASK_MIN SLURM_ARRAY_TASK_COUNT SLURM_JOB_ID
+# The sweep must see only this cluster and its own arguments (not those of a job or a
+# login shell this runs in).
+for v in $(compgen -e); do
+    case $v in
+    SLURM_CONF) ;;
+    SBATCH_* | SLURM_* | SQUEUE_* | SINFO_* | SLIPLOAD_*) unset "$v" ;;
+    esac
+done
 
 echo "== slurm-check: slurmctld, slurmd"
 slurmctld -D -f "$SLURM_CONF" >"$tmp/log/slurmctld.out" 2>&1 &
@@ -189,12 +198,12 @@ pids+=($!)
 slurmd -D -N localhost -f "$SLURM_CONF" >"$tmp/log/slurmd.out" 2>&1 &
 pids+=($!)
 state=
-for _ in $(seq 1 60); do
-    state=$(sinfo -h -N -n localhost -o %T 2>/dev/null || true)
+up=$SECONDS
+while ((SECONDS - up < 60)); do
+    state=$(timeout 10 sinfo -h -N -n localhost -o %T 2>/dev/null || true)
     [[ $state == idle ]] && break
-    for pid in "${pids[@]}"; do
-        kill -0 "$pid" 2>/dev/null || fail "a Slurm daemon (pid $pid) exited before the node came up"
-    done
+    kill -0 "${pids[0]}" 2>/dev/null || fail "slurmctld exited before the node came up (its log follows)"
+    kill -0 "${pids[1]}" 2>/dev/null || fail "slurmd exited before the node came up (its log follows)"
     sleep 1
 done
 [[ $state == idle ]] || fail "node localhost not idle after 60 s (sinfo says '${state:-nothing}')"
@@ -213,11 +222,12 @@ sweep_on_slurm() {
         true
     [[ -n ${array:-} && -n ${merge:-} ]] || fail "could not read the job ids from slurm-sweep.sh's output"
     jobs_to_cancel=("$array" "$merge")
-    echo "waiting for jobs $array (array) and $merge (merge), at most $timeout s"
+    echo "waiting for jobs $array (array) and $merge (merge), at most $job_timeout s"
     start=$SECONDS
     while :; do
         # One line per array task and job: id, state, reason.
-        listing=$(squeue -h -r -t all -j "$array,$merge" -o '%i %T %r')
+        listing=$(squeue -h -r -t all -j "$array,$merge" -o '%i %T %r') ||
+            fail "squeue failed while waiting for jobs $array and $merge"
         if grep -Eq ' (FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE|PREEMPTED|SPECIAL_EXIT|REVOKED) |DependencyNeverSatisfied' <<<"$listing"; then
             echo "$listing" >&2
             fail "a job failed or can never run"
@@ -231,9 +241,9 @@ sweep_on_slurm() {
             }
             break
         fi
-        if ((SECONDS - start > timeout)); then
+        if ((SECONDS - start > job_timeout)); then
             echo "$listing" >&2
-            fail "jobs not finished after $timeout s"
+            fail "jobs not finished after $job_timeout s"
         fi
         sleep 2
     done
