@@ -36,6 +36,7 @@ study=${1:-configs/study-slurm-check.json}
 shards=${2:-3}
 job_timeout=${SLURM_CHECK_TIMEOUT:-300}
 port=${SLURM_CHECK_PORT:-16817}
+keep=${SLURM_CHECK_KEEP:-0}
 [[ -f $study ]] || fail "study file $study not found"
 [[ $shards =~ ^[1-9][0-9]*$ ]] || fail "SHARDS must be a positive whole number, got '$shards'"
 [[ $job_timeout =~ ^[1-9][0-9]*$ ]] || fail "SLURM_CHECK_TIMEOUT must be a positive whole number of seconds, got '$job_timeout'"
@@ -125,7 +126,7 @@ stop_all() {
     if ((munged_started)); then
         munged --stop --socket="$tmp/munge.sock" >/dev/null 2>&1
     fi
-    if [[ ${SLURM_CHECK_KEEP:-} == 1 || $status != 0 ]]; then
+    if [[ $keep == 1 || $status != 0 ]]; then
         echo "slurm-check: files kept in $tmp" >&2
     else
         rm -rf "$tmp"
@@ -187,7 +188,7 @@ EOF
 # login shell this runs in).
 for v in $(compgen -e); do
     case $v in
-    SLURM_CONF) ;;
+    SLURM_CONF | SLURM_CHECK_*) ;;
     SBATCH_* | SLURM_* | SQUEUE_* | SINFO_* | SLIPLOAD_*) unset "$v" ;;
     esac
 done
