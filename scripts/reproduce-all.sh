@@ -9,7 +9,7 @@
 #   results/performance/  `slipload bench` and the OpenSees comparisons (same step; equal accuracy)
 #   results/opensees-yielding/  the yielding, P-Delta frame against OpenSees
 #   results/figures/      the simulation and spectrum figures the README shows
-# Usage: scripts/reproduce-all.sh   (from anywhere; needs records beside the repo;
+# Usage: scripts/reproduce-all.sh   (from anywhere;
 # about 22 minutes on a 2-core machine, most of it the accuracy study and the OpenSees runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
