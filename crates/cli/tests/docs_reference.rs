@@ -3,8 +3,8 @@
 //! The keys are not listed here: they are read from the parsers themselves. A tracing
 //! [`Deserializer`] walks each file type (building, scene, study, candidate designs) as
 //! its serde derive asks to be walked: `deserialize_struct` hands over the struct's field
-//! names (every struct of the configs denies unknown fields, so these are exactly the keys
-//! accepted), `deserialize_enum` its variant names, and each field's value is walked in
+//! names (every struct of the configs denies unknown fields — checked too: each is walked
+//! once with an extra key — so these are exactly the keys accepted), `deserialize_enum` its variant names, and each field's value is walked in
 //! turn, so nested objects, lists and enum variants (one pass per variant index) are all
 //! reached. Two more questions go to the parser field by field: whether a key may be left
 //! out (its struct is walked once without it: serde's "missing field" means required), and
@@ -73,6 +73,8 @@ struct Walk {
     omit: Option<String>,
     /// Give `"1 zz"` (a number with an unknown unit) at this path's `deserialize_any`.
     unit_probe: Option<String>,
+    /// Add the key `zz_unknown` to the object at this path.
+    unknown_key: Option<String>,
 }
 
 #[derive(Debug, Default)]
@@ -241,6 +243,7 @@ impl<'de> Deserializer<'de> for Tracer<'_> {
             tracer: self,
             fields,
             next: 0,
+            unknown_given: false,
             value_path: String::new(),
         })
     }
@@ -289,6 +292,7 @@ struct Fields<'a> {
     tracer: Tracer<'a>,
     fields: &'static [&'static str],
     next: usize,
+    unknown_given: bool,
     value_path: String,
 }
 
@@ -305,6 +309,13 @@ impl<'de> MapAccess<'de> for Fields<'_> {
                 continue;
             }
             let key: de::value::StrDeserializer<'_, TraceError> = field.into_deserializer();
+            return seed.deserialize(key).map(Some);
+        }
+        if !self.unknown_given && self.tracer.walk.unknown_key.as_deref() == Some(self.tracer.path)
+        {
+            self.unknown_given = true;
+            self.value_path = format!("{}.zz_unknown", self.tracer.path);
+            let key: de::value::StrDeserializer<'_, TraceError> = "zz_unknown".into_deserializer();
             return seed.deserialize(key).map(Some);
         }
         Ok(None)
@@ -451,6 +462,8 @@ struct Schema {
     required: BTreeSet<String>,
     /// Paths whose `deserialize_any` accepts a unit string, with the units it lists.
     quantities: BTreeMap<String, Vec<String>>,
+    /// Objects that accept (and ignore) keys they do not know.
+    open: Vec<String>,
 }
 
 impl Schema {
@@ -484,9 +497,20 @@ impl Schema {
         let nodes = trace.into_inner().nodes;
         let mut required = BTreeSet::new();
         let mut quantities = BTreeMap::new();
+        let mut open = Vec::new();
         for (path, node) in &nodes {
             match &node.kind {
                 Kind::Struct(fields) => {
+                    let w = Walk {
+                        pass: node.pass,
+                        unknown_key: Some(path.clone()),
+                        ..Walk::default()
+                    };
+                    match root_of(path)(&w, &RefCell::new(Trace::default())) {
+                        Ok(()) => open.push(path.clone()),
+                        Err(e) if e.starts_with("unknown field `zz_unknown`") => {}
+                        Err(e) => panic!("walking {path} with an unknown key: {e}"),
+                    }
                     for field in fields {
                         let key = format!("{path}.{field}");
                         let w = Walk {
@@ -529,6 +553,7 @@ impl Schema {
             nodes,
             required,
             quantities,
+            open,
         }
     }
 
@@ -595,10 +620,21 @@ const TYPE: usize = 1;
 const DEFAULT: usize = 3;
 const ALLOWED: usize = 4;
 
-/// The section a struct or data enum at `path` must have: its own path.
+/// Where `doc` and the parsers disagree: each object (and each enum written as an object)
+/// at path P needs a section headed `P` with a row per key and no other rows; every row
+/// is checked by [`check_row`]; every unit a quantity accepts is listed under Quantities;
+/// and no object ignores unknown keys (the reference says they are refused).
 fn problems(doc: &str, schema: &Schema) -> Vec<String> {
     let secs = sections(doc);
-    let mut out = Vec::new();
+    let mut out: Vec<String> = schema
+        .open
+        .iter()
+        .map(|p| {
+            format!(
+                "`{p}` ignores keys it does not know; the reference says every object refuses them"
+            )
+        })
+        .collect();
     for (path, node) in &schema.nodes {
         let keys: Vec<&str> = match &node.kind {
             Kind::Struct(fields) => fields.clone(),
@@ -791,6 +827,27 @@ fn the_trace_reaches_every_level_of_the_configs() {
         !s.quantities.contains_key("scene.building"),
         "a path, not a quantity"
     );
+    // The extra-key walk tells an object that refuses unknown keys from one that ignores them.
+    #[derive(serde::Deserialize)]
+    #[allow(dead_code)]
+    struct Lenient {
+        a: f64,
+    }
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct Strict {
+        a: f64,
+    }
+    let extra = Walk {
+        unknown_key: Some("x".into()),
+        ..Walk::default()
+    };
+    let t = RefCell::new(Trace::default());
+    assert_eq!(walk::<Lenient>("x", &extra, &t), Ok(()));
+    let e = walk::<Strict>("x", &extra, &t).unwrap_err();
+    assert!(e.starts_with("unknown field `zz_unknown`"), "{e}");
+    assert!(s.open.is_empty(), "{:?}", s.open);
     let structs = s
         .nodes
         .values()
