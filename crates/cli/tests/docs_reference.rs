@@ -942,3 +942,65 @@ fn the_record_units_listed_are_the_ones_the_readers_accept() {
         }
     }
 }
+
+/// The defaults serde itself fills in (objects that parse from `{}`), against the default
+/// column: the cell's value before any remark in parentheses or after a semicolon.
+#[test]
+fn the_defaults_listed_are_the_ones_the_parsers_fill_in() {
+    fn defaults<T: DeserializeOwned + serde::Serialize>() -> serde_json::Value {
+        serde_json::to_value(serde_json::from_str::<T>("{}").unwrap()).unwrap()
+    }
+    let secs = sections(&reference());
+    let mut checked = 0;
+    for (section, value) in [
+        (
+            "scene.outputs",
+            defaults::<slipload_sim::scene::OutputsConfig>(),
+        ),
+        (
+            "study.suites[].synthetic",
+            defaults::<slipload_opt::study::SyntheticSuiteConfig>(),
+        ),
+        (
+            "study.fidelity",
+            defaults::<slipload_opt::study::FidelityConfig>(),
+        ),
+        (
+            "study.sweep",
+            defaults::<slipload_opt::study::SweepConfig>(),
+        ),
+        (
+            "study.refine",
+            defaults::<slipload_opt::study::RefineConfig>(),
+        ),
+    ] {
+        for (key, v) in value.as_object().unwrap() {
+            if v.is_null() {
+                continue; // resolved later, not by the parser: said in words
+            }
+            let row = secs[section]
+                .iter()
+                .find(|r| r.key == *key)
+                .unwrap_or_else(|| panic!("`{section}` has no row `{key}`"));
+            let cell = row.cells[DEFAULT]
+                .split([';', '('])
+                .next()
+                .unwrap()
+                .trim()
+                .trim_matches('`');
+            let same = match v {
+                serde_json::Value::Number(n) => cell.parse::<f64>().ok() == n.as_f64(),
+                serde_json::Value::String(s) => cell == s,
+                serde_json::Value::Bool(b) => cell == if *b { "true" } else { "false" },
+                other => panic!("`{section}` `{key}`: a default of another kind: {other}"),
+            };
+            assert!(
+                same,
+                "line {}: `{section}` `{key}` defaults to {v}; the reference says {:?}",
+                row.line, row.cells[DEFAULT]
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 18, "{checked} defaults checked");
+}
