@@ -215,7 +215,11 @@ fn compare_bare_needs_plot_and_bad_folder_is_an_error() {
         err.contains("existing file") && err.contains("--plot takes a folder"),
         "says what --plot takes: {err}"
     );
-    assert_eq!(std::fs::read_to_string(&file).unwrap(), "x", "the file is untouched");
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "x",
+        "the file is untouched"
+    );
     assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
