@@ -20,6 +20,62 @@ pub fn escape(s: &str) -> String {
     out
 }
 
+/// `v` with `digits` significant digits, in plain notation, trailing zeros dropped
+/// (`sig(1999.9999999999925, 6)` = "2000", `sig(0.0054799035, 4)` = "0.005480" → "0.00548").
+pub fn sig(v: f64, digits: usize) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return if v == 0.0 {
+            "0".to_string()
+        } else {
+            v.to_string()
+        };
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+    trim_zeros(&format!("{v:.decimals$}"))
+}
+
+fn trim_zeros(s: &str) -> String {
+    if s.contains('.') && !s.contains(['e', 'E']) {
+        let t = s.trim_end_matches('0').trim_end_matches('.');
+        if t == "-0" {
+            "0".to_string()
+        } else {
+            t.to_string()
+        }
+    } else {
+        s.to_string()
+    }
+}
+
+/// A number as a table shows it: slip loads (a name with a `kN` part: `slip_load_kN_1`,
+/// `slip_loads_kn`) with one decimal as
+/// the design tables give them; integers as integers; other values with 6 significant
+/// digits, in scientific notation when very small or very large. The files keep every
+/// digit; this is only what the page prints (the full value is the cell's tooltip).
+pub fn display_number(name: &str, v: f64) -> String {
+    if !v.is_finite() {
+        return v.to_string();
+    }
+    if name.split('_').any(|part| part.eq_ignore_ascii_case("kn")) {
+        let s = format!("{v:.1}");
+        return if s == "-0.0" { "0.0".to_string() } else { s };
+    }
+    if v.fract() == 0.0 && v.abs() < 1e15 {
+        return format!("{v:.0}");
+    }
+    let a = v.abs();
+    if (1e-4..1e7).contains(&a) {
+        sig(v, 6)
+    } else {
+        let s = format!("{v:.5e}");
+        match s.split_once('e') {
+            Some((m, e)) => format!("{}e{e}", trim_zeros(m)),
+            None => s,
+        }
+    }
+}
+
 /// Inline Markdown: escapes the text, then turns `code` and **bold** spans into tags.
 /// Unpaired markers stay as they are.
 pub fn inline(s: &str) -> String {
@@ -261,13 +317,23 @@ pub fn csv_table(text: &str, max_rows: usize) -> String {
     out.push_str("</tr></thead>\n<tbody>\n");
     for r in body.iter().take(max_rows) {
         out.push_str("<tr>");
-        for c in r {
-            let (align, number) = if is_number(c) {
-                (Align::Right, true)
-            } else {
-                (Align::Left, false)
-            };
-            out.push_str(&td("td", align, &escape(c), number));
+        for (k, c) in r.iter().enumerate() {
+            match c.parse::<f64>() {
+                Ok(v) if !c.is_empty() => {
+                    let shown = display_number(head.get(k).map_or("", String::as_str), v);
+                    if shown == *c {
+                        out.push_str(&td("td", Align::Right, &escape(c), true));
+                    } else {
+                        let _ = write!(
+                            out,
+                            "<td class=\"num\" title=\"{}\">{}</td>",
+                            escape(c),
+                            escape(&shown)
+                        );
+                    }
+                }
+                _ => out.push_str(&td("td", Align::Left, &escape(c), false)),
+            }
         }
         out.push_str("</tr>\n");
     }
@@ -282,16 +348,24 @@ pub fn csv_table(text: &str, max_rows: usize) -> String {
     out
 }
 
-fn scalar(v: &serde_json::Value) -> Option<String> {
+/// A scalar (or an array of scalars) as text; numbers rounded for display by the name
+/// of the field that holds them ([`display_number`]).
+fn scalar(name: &str, v: &serde_json::Value) -> Option<String> {
     use serde_json::Value;
     match v {
         Value::Null => Some("—".to_string()),
         Value::Bool(b) => Some(b.to_string()),
-        Value::Number(n) => Some(n.to_string()),
+        Value::Number(n) => Some(match n.as_f64() {
+            Some(x) if !(n.is_i64() || n.is_u64()) => display_number(name, x),
+            _ => n.to_string(),
+        }),
         Value::String(s) => Some(s.clone()),
-        Value::Array(a) if a.iter().all(|x| !x.is_array() && !x.is_object()) => {
-            Some(a.iter().filter_map(scalar).collect::<Vec<_>>().join(", "))
-        }
+        Value::Array(a) if a.iter().all(|x| !x.is_array() && !x.is_object()) => Some(
+            a.iter()
+                .filter_map(|x| scalar(name, x))
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
         _ => None,
     }
 }
@@ -300,8 +374,13 @@ fn scalar(v: &serde_json::Value) -> Option<String> {
 /// objects a table with one column per key, scalars and arrays of scalars text.
 /// Nesting deeper than `depth` is shown as compact JSON.
 pub fn json_table(v: &serde_json::Value, depth: usize) -> String {
+    json_table_named("", v, depth)
+}
+
+/// [`json_table`] of the value of field `name` (which decides how its numbers round).
+fn json_table_named(name: &str, v: &serde_json::Value, depth: usize) -> String {
     use serde_json::Value;
-    if let Some(s) = scalar(v) {
+    if let Some(s) = scalar(name, v) {
         return escape(&s);
     }
     if depth == 0 {
@@ -315,7 +394,7 @@ pub fn json_table(v: &serde_json::Value, depth: usize) -> String {
                     out,
                     "<tr><th>{}</th><td>{}</td></tr>",
                     escape(k),
-                    json_table(x, depth - 1)
+                    json_table_named(k, x, depth - 1)
                 );
             }
             out.push_str("</tbody></table>");
@@ -333,7 +412,10 @@ pub fn json_table(v: &serde_json::Value, depth: usize) -> String {
                 }
             }
             if keys.is_empty() || items.iter().any(|it| !it.is_object()) {
-                let cells: Vec<String> = items.iter().map(|x| json_table(x, depth - 1)).collect();
+                let cells: Vec<String> = items
+                    .iter()
+                    .map(|x| json_table_named(name, x, depth - 1))
+                    .collect();
                 return cells.join("<br>");
             }
             let mut out = String::from("<table><thead><tr>");
@@ -346,7 +428,7 @@ pub fn json_table(v: &serde_json::Value, depth: usize) -> String {
                 for k in &keys {
                     let cell = it
                         .get(k.as_str())
-                        .map_or(String::new(), |x| json_table(x, depth - 1));
+                        .map_or(String::new(), |x| json_table_named(k, x, depth - 1));
                     let _ = write!(out, "<td>{cell}</td>");
                 }
                 out.push_str("</tr>\n");
@@ -403,6 +485,37 @@ mod tests {
         let html = csv_table("a,b\n1,2\n3,4\n5,6\n", 2);
         assert_eq!(html.matches("<tr>").count(), 3, "header + 2 rows: {html}");
         assert!(html.contains("First 2 of 3 rows"), "{html}");
+    }
+
+    #[test]
+    fn numbers_are_rounded_for_people_and_kept_in_the_tooltip() {
+        // slip loads to 0.1 kN as the design tables give them
+        assert_eq!(
+            display_number("slip_load_kN_2", 1999.9999999999925),
+            "2000.0"
+        );
+        assert_eq!(
+            display_number("slip_loads_kn", 1950.4456797051607),
+            "1950.4"
+        );
+        // other values: 6 significant digits, integers as integers, tiny ones scientific
+        assert_eq!(
+            display_number("objective", 0.005479903502075623),
+            "0.0054799"
+        );
+        assert_eq!(display_number("rank", 50.0), "50");
+        assert_eq!(display_number("x", 4.656612873077393e-10), "4.65661e-10");
+        assert_eq!(sig(1999.9999999999925, 6), "2000");
+        assert_eq!(sig(-0.00001, 2), "-0.00001");
+        let html = csv_table("slip_load_kN_1,objective\n1999.9999999999925,0.5\n", 10);
+        assert!(
+            html.contains("<td class=\"num\" title=\"1999.9999999999925\">2000.0</td>"),
+            "{html}"
+        );
+        assert!(html.contains("<td class=\"num\">0.5</td>"), "{html}");
+        let v: serde_json::Value =
+            serde_json::from_str(r#"{"slip_loads_kN": [1999.9999999999925, 0.0]}"#).unwrap();
+        assert!(json_table(&v, 2).contains("<td>2000.0, 0.0</td>"));
     }
 
     #[test]

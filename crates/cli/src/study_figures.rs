@@ -141,7 +141,9 @@ pub fn write(data: &FigureData, dir: &Path) -> anyhow::Result<Vec<String>> {
             .x_from_zero()
             .y_range(0.5, storeys as f64 + 0.5)
             .y_integer()
-            .legend(Legend::UpperRight);
+            // outside the axes: the profiles span the whole height, and the bare frame's
+            // reaches the right edge, so no corner inside is free
+            .legend(Legend::Right);
         for (k, p) in data.profiles.iter().enumerate() {
             let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();
             let pct = |v: &[f64]| v.iter().map(|x| 100.0 * x).collect::<Vec<_>>();

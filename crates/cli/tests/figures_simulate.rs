@@ -110,6 +110,15 @@ fn benchmark_figures_match_their_csv() {
     let p = &m.panels[0];
     assert_eq!(p.series.len(), 2);
     assert_inside(p);
+    // The legend covers no curve: it sits outside the plotting area.
+    let [l, t, r, b] = p.legend.expect("a legend");
+    let [pl, pt, pr, pb] = p.plot_area.unwrap();
+    assert!(
+        r <= pl || l >= pr || b <= pt || t >= pb,
+        "legend {:?} over the plotting area {:?}",
+        [l, t, r, b],
+        [pl, pt, pr, pb]
+    );
     // Storeys are labelled at whole numbers only.
     let storeys: Vec<f64> = (1..=floors).map(|i| i as f64).collect();
     assert!(
@@ -202,6 +211,15 @@ fn compare_bare_needs_plot_and_bad_folder_is_an_error() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("not-a-folder"), "{err}");
+    assert!(
+        err.contains("existing file") && err.contains("--plot takes a folder"),
+        "says what --plot takes: {err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "x",
+        "the file is untouched"
+    );
     assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,6 +1,9 @@
-//! Contract: `slipload record spectrum … --plot FILE` writes FILE.svg and FILE.png (non-empty)
-//! and FILE.csv, and prints the data on stdout only when `--format` asks for them; the SVG holds one series per record, the mean (with several records) and
-//! the target (when given), each matching its CSV column; the period axis is logarithmic.
+//! Contract: `slipload record spectrum … --plot DIR` writes DIR/spectra.svg and
+//! DIR/spectra.png (non-empty) and DIR/spectra.csv (`--plot` names a folder, as in every
+//! command; an existing file there is refused), and prints the data on stdout only when
+//! `--format` asks for them; the SVG holds one series per record, the mean (with several
+//! records) and the target (when given), each matching its CSV column; the period axis is
+//! logarithmic.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -16,7 +19,8 @@ const TOL: f64 = 1e-12;
 #[test]
 fn suite_with_mean_and_target() {
     let dir = scratch("figspec", "suite");
-    let stem = dir.join("spectra");
+    let plot = dir.join("plots");
+    let stem = plot.join("spectra");
     let out = slipload(&[
         "record",
         "spectrum",
@@ -29,7 +33,7 @@ fn suite_with_mean_and_target() {
         "--target-sd1",
         "0.6",
         "--plot",
-        &format!("{}.png", stem.display()),
+        plot.to_str().unwrap(),
     ]);
     assert!(
         out.status.success(),
@@ -45,7 +49,7 @@ fn suite_with_mean_and_target() {
         "{text}"
     );
     let m = figure(&stem);
-    let csv = Csv::read(&dir.join("spectra.csv"));
+    let csv = Csv::read(&plot.join("spectra.csv"));
     let p = &m.panels[0];
     assert!(p.x.log, "period axis is logarithmic");
     assert_inside(p);
@@ -87,7 +91,8 @@ fn record_files_without_target() {
     let rec = root().join("records");
     let a = rec.join("elCentro.AT2");
     let b = rec.join("SYL090.AT2");
-    let stem = dir.join("two");
+    let plot = dir.join("two");
+    let stem = plot.join("spectra");
     let out = slipload(&[
         "record",
         "spectrum",
@@ -96,7 +101,7 @@ fn record_files_without_target() {
         "--periods",
         "0.1,0.3,1,3",
         "--plot",
-        stem.to_str().unwrap(),
+        plot.to_str().unwrap(),
         "--format",
         "csv",
     ]);
@@ -110,7 +115,7 @@ fn record_files_without_target() {
     assert!(text.starts_with("record,period_s,"));
     assert_eq!(text.lines().count(), 1 + 2 * 4);
     let m = figure(&stem);
-    let csv = Csv::read(&dir.join("two.csv"));
+    let csv = Csv::read(&plot.join("spectra.csv"));
     assert!(!csv.has("target_psa_g"));
     let p = &m.panels[0];
     assert_eq!(p.series.len(), 3, "two records and their mean");
@@ -156,5 +161,32 @@ fn bad_requests_fail_cleanly() {
         0,
         "no partial output"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_existing_file_as_plot_is_refused() {
+    let dir = scratch("figspec", "file");
+    let file = dir.join("spectra.png");
+    std::fs::write(&file, "not a folder").unwrap();
+    let out = slipload(&[
+        "record",
+        "spectrum",
+        "--synthetic",
+        "1",
+        "--plot",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "refused, not a panic");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(&format!("--plot {}", file.display()))
+            && err.contains("existing file")
+            && err.contains("takes a folder"),
+        "{err}"
+    );
+    // the file is untouched and nothing else was written
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     std::fs::remove_dir_all(&dir).unwrap();
 }

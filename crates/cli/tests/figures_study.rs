@@ -1,4 +1,5 @@
-//! Contract: `optimize` and `sweep` write the study figures' data beside them, and the
+//! Contract: `optimize` and `sweep` write the study figures' data beside them (the
+//! drift profiles' legend off the curves, outside the axes), and the
 //! data is the study's own: the drift profiles are the design table's per-storey mean
 //! and 84th percentile (optimize) or the statistics of responses.csv (sweep); the
 //! per-record scatter holds one point per record whose means are the table's; the
@@ -76,6 +77,19 @@ fn figure(dir: &Path, stem: &str) -> meta::PanelMeta {
 }
 
 /// Every value lies within the axis as drawn, and the drawn series' range matches.
+/// The legend covers no curve: its box lies outside the plotting area.
+fn legend_clear_of_the_curves(p: &meta::PanelMeta, what: &str) {
+    let [l, t, r, b] = p.legend.unwrap_or_else(|| panic!("{what}: a legend"));
+    let [pl, pt, pr, pb] = p.plot_area.unwrap();
+    let overlaps = l < pr && r > pl && t < pb && b > pt;
+    assert!(
+        !overlaps,
+        "{what}: legend {:?} over the plotting area {:?}",
+        [l, t, r, b],
+        [pl, pt, pr, pb]
+    );
+}
+
 fn within(axis: &meta::AxisMeta, values: &[f64], what: &str) {
     let (lo, hi) = values
         .iter()
@@ -246,6 +260,7 @@ fn optimize_figure_data_is_the_studys_own() {
     within(&p.y, &[1.0, 3.0], "storeys");
     // The storey axis is labelled at the storeys only: 1, 2, 3, no 1.5 or 2.5.
     assert_eq!(p.y.ticks, [1.0, 2.0, 3.0], "storey ticks");
+    legend_clear_of_the_curves(&p, "drift profiles (optimize)");
     let (_, sc) = csv(&out.join("records-scatter.csv"));
     let p = figure(&out, "records-scatter");
     assert_eq!(p.series.len(), 2, "records and the 1:1 line");
@@ -349,6 +364,7 @@ fn sweep_figure_data_comes_from_its_responses() {
     }
     let p = figure(&out, "drift-profiles");
     assert_eq!(p.series.len(), 2 * 5);
+    legend_clear_of_the_curves(&p, "drift profiles (sweep)");
     assert!(
         !p.y.ticks.is_empty() && p.y.ticks.iter().all(|t| t.fract() == 0.0),
         "storey ticks {:?}",

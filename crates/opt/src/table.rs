@@ -17,6 +17,9 @@ use slipload_motion::G;
 use std::fmt::Write as _;
 use std::path::Path;
 
+/// What a table shows where a storey has no damper (no slip load, stroke or ratio).
+pub const NONE: &str = "—";
+
 /// One row of a design table (SI unless the name says otherwise).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TableRow {
@@ -370,20 +373,33 @@ impl DesignTable {
         );
         s.push_str("| design | floor | slip load (kN) | /W | /ΣW | drift mean (%) | drift p84 (%) | drift max (%) | stroke max (mm) |\n");
         s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        let storeys = self.rows.first().map_or(0, |r| r.drift_ratio_mean.len());
         for r in &self.rows {
-            for (k, f) in self.damper_floors.iter().enumerate() {
-                let i = f - 1;
+            // every storey, those without a damper too (their damper columns "—")
+            for i in 0..storeys {
+                let damper = self.damper_floors.iter().position(|&f| f == i + 1);
+                let (load, w, sw, stroke) = match damper {
+                    Some(k) => (
+                        format!("{:.1}", r.slip_load_kn[k]),
+                        format!("{:.3}", r.ratio_to_floor_weight[k]),
+                        format!("{:.3}", r.ratio_to_weight_above[k]),
+                        format!("{:.1}", 1e3 * r.stroke_max[i]),
+                    ),
+                    None => (
+                        "no damper".to_string(),
+                        NONE.to_string(),
+                        NONE.to_string(),
+                        NONE.to_string(),
+                    ),
+                };
                 let _ = writeln!(
                     s,
-                    "| {} | {f} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
-                    if k == 0 { r.design.as_str() } else { "" },
-                    r.slip_load_kn[k],
-                    r.ratio_to_floor_weight[k],
-                    r.ratio_to_weight_above[k],
+                    "| {} | {} | {load} | {w} | {sw} | {:.3} | {:.3} | {:.3} | {stroke} |",
+                    if i == 0 { r.design.as_str() } else { "" },
+                    i + 1,
                     100.0 * r.drift_ratio_mean[i],
                     100.0 * r.drift_ratio_p84[i],
                     100.0 * r.drift_ratio_max[i],
-                    1e3 * r.stroke_max[i],
                 );
             }
         }

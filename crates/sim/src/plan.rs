@@ -421,13 +421,23 @@ impl Plan {
                 &crate::limits::bytes,
             )?;
         }
+        let dampers = contacts
+            .iter()
+            .filter(|c| c.role == ContactRole::Damper)
+            .count();
         notes.push(format!(
-            "{} DOFs ({} floors + {} dissipators), {} friction contacts ({} with DOF, {} elastic-perfectly plastic)",
-            n_dof,
-            n,
-            n_dof - n,
-            contacts.iter().filter(|c| c.role == ContactRole::Damper).count(),
-            contacts.iter().filter(|c| matches!(c.kind, ContactKind::Dof { .. })).count(),
+            "{}, {} ({} with DOF, {} elastic-perfectly plastic)",
+            counted(n_dof, "DOF", "DOFs")
+                + &format!(
+                    " ({} + {})",
+                    counted(n, "floor", "floors"),
+                    counted(n_dof - n, "dissipator", "dissipators")
+                ),
+            counted(dampers, "friction contact", "friction contacts"),
+            contacts
+                .iter()
+                .filter(|c| matches!(c.kind, ContactKind::Dof { .. }))
+                .count(),
             contacts
                 .iter()
                 .filter(|c| c.kind == ContactKind::Epp && c.role == ContactRole::Damper)
@@ -439,7 +449,8 @@ impl Plan {
             .count();
         if storeys > 0 {
             notes.push(format!(
-                "{storeys} yielding storeys as elastic-perfectly plastic elements (no DOF)"
+                "{} as elastic-perfectly plastic elements (no DOF)",
+                counted(storeys, "yielding storey", "yielding storeys")
             ));
         }
         notes.push(format!(
@@ -573,4 +584,9 @@ impl Plan {
         }
         s
     }
+}
+
+/// "1 friction contact", "2 friction contacts": a count with its noun in the right number.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }

@@ -85,6 +85,47 @@ fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
         .join("; ")
 }
 
+/// What the optimum costs, from the design table: the mean (over the records) peak base
+/// shear and floor acceleration of the optimum beside the building file's slip loads and
+/// the bare frame's, rounded as the design table rounds them. `None` without an optimum
+/// row.
+pub fn costs_line(report: &StudyReport) -> Option<String> {
+    let row = |name: &str| report.table.rows.iter().find(|r| r.design == name);
+    let opt = row("optimum")?;
+    let others: Vec<(&str, &slipload_opt::table::TableRow)> = [
+        ("building file's slip loads", "file"),
+        ("bare frame", "bare"),
+    ]
+    .into_iter()
+    .filter_map(|(label, name)| row(name).map(|r| (label, r)))
+    .collect();
+    let beside = |f: &dyn Fn(&slipload_opt::table::TableRow) -> String| {
+        if others.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " ({})",
+                others
+                    .iter()
+                    .map(|(label, r)| format!("{label} {}", f(r)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    };
+    let shear = |r: &slipload_opt::table::TableRow| format!("{:.2} MN", r.base_shear_mean / 1e6);
+    let accel =
+        |r: &slipload_opt::table::TableRow| format!("{:.2} m/s²", r.peak_floor_acceleration_mean);
+    Some(format!(
+        "what the optimum costs (means over the records of each run's peak, {}): base shear {}{}, floor acceleration {}{}",
+        report.table.fidelity,
+        shear(opt),
+        beside(&shear),
+        accel(opt),
+        beside(&accel)
+    ))
+}
+
 /// Runs `slipload optimize`.
 pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
@@ -196,6 +237,9 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         r.file_objective,
         pct(r.optimum.f, r.file_objective)
     );
+    if let Some(line) = costs_line(report) {
+        outln!("{line}");
+    }
     if r.check_reran {
         outln!(
             "check at reference accuracy ({} at {} × dt): finalists' ranking {}",

@@ -130,8 +130,9 @@ struct SpectrumArgs {
     #[arg(long, value_enum)]
     format: Option<SpectrumFormat>,
     /// Draw the pseudo-acceleration spectra, their mean and the target (if given) into
-    /// FILE.svg and FILE.png, with the data in FILE.csv (FILE is a stem; .svg/.png dropped)
-    #[arg(long, value_name = "FILE")]
+    /// this folder (created when missing): spectra.svg and spectra.png, with the data in
+    /// spectra.csv
+    #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
     /// Target: ASCE 7-16 design spectrum with this S_DS, g (needs --target-sd1)
     #[arg(
@@ -267,7 +268,8 @@ fn info_table(rows: &[InfoRow]) -> String {
 }
 
 fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
-    if args.plot.is_some() {
+    if let Some(dir) = &args.plot {
+        crate::plot::check_plot_folder(dir)?;
         crate::plot::raster::check_fonts()?;
     }
     let periods = args.periods.clone().unwrap_or_else(default_periods);
@@ -311,7 +313,7 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
         })
         .collect::<anyhow::Result<_>>()?;
     let several = records.len() > 1;
-    // With --plot the data go to FILE.csv: stdout gets them only when asked for.
+    // With --plot the data go to DIR/spectra.csv: stdout gets them only when asked for.
     let format = match (args.format, &args.plot) {
         (Some(f), _) => Some(f),
         (None, None) => Some(SpectrumFormat::Csv),
@@ -362,10 +364,15 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
             t
         }
     };
-    if let Some(stem) = &args.plot {
+    if let Some(dir) = &args.plot {
         let names: Vec<String> = records.iter().map(|(n, _)| short_name(n)).collect();
-        let stem =
-            crate::figures::spectra::write(stem, &names, &spectra, args.damping, target.as_ref())?;
+        let stem = crate::figures::spectra::write(
+            &dir.join(crate::figures::spectra::STEM),
+            &names,
+            &spectra,
+            args.damping,
+            target.as_ref(),
+        )?;
         if format.is_none() {
             let s = stem.display();
             outln!(

@@ -6,7 +6,7 @@
 //! pretty-printed in collapsible blocks, and the slipload version. It loads nothing from
 //! elsewhere (no scripts, fonts or style sheets from the network) and opens offline.
 
-use crate::html::{csv_table, escape, json_table, markdown};
+use crate::html::{csv_table, escape, json_table, markdown, sig};
 use anyhow::{Context, bail};
 use slipload_opt::output::write_atomic;
 use std::fmt::Write as _;
@@ -149,9 +149,10 @@ fn recognise(dir: &Path, files: &[Entry]) -> Option<(FolderKind, String)> {
                 .is_some_and(|t| t.starts_with("t_s,") || t.starts_with("\"t_s\","))
     });
     if history.is_some() {
-        let scene_name = files
-            .iter()
-            .filter(|e| e.ext == "json")
+        // the scene `simulate --plot` keeps beside its figures names the page
+        let scene_name = find("scene.json")
+            .into_iter()
+            .chain(files.iter().filter(|e| e.ext == "json"))
             .filter_map(read_json)
             .find_map(|v| v.get("name").and_then(|n| n.as_str()).map(String::from));
         return Some((FolderKind::Simulation, scene_name.unwrap_or(dir_name)));
@@ -259,9 +260,20 @@ fn is_input(e: &Entry) -> bool {
         || e.stem.contains("config")
 }
 
-/// JSON summaries shown as tables in the tables section.
+/// JSON summaries shown as tables in the tables section (a simulation's
+/// `response.json` is shown as its per-storey table instead, [`simulation_run`]).
 fn is_summary(e: &Entry) -> bool {
-    matches!(e.name.as_str(), "optimum.json" | "candidates.json") || e.stem.contains("response")
+    matches!(e.name.as_str(), "optimum.json" | "candidates.json")
+}
+
+/// JSON outputs whose content the page shows as tables already: a study's design table
+/// (`design-table.md`, `.csv`), a simulation's responses (the run section).
+fn shown_as_table(kind: FolderKind, e: &Entry) -> bool {
+    match kind {
+        FolderKind::Optimize | FolderKind::Sweep => e.name == "design-table.json",
+        FolderKind::Simulation => e.stem.starts_with("response"),
+        _ => false,
+    }
 }
 
 /// Builds the page for `dir`.
@@ -292,15 +304,28 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
     // Summary: summary.txt and the optimum's key numbers
     let summary_txt = by_name("summary.txt");
     let optimum = by_name("optimum.json").and_then(read_json);
+    let design_table = by_name("design-table.json").and_then(read_json);
     if summary_txt.is_some() || optimum.is_some() {
         page.section("summary", "Summary");
         if let Some(o) = &optimum {
-            page.body.push_str(&key_results(o));
+            page.body.push_str(&key_results(o, design_table.as_ref()));
         }
         if let Some(e) = summary_txt {
             let _ = writeln!(page.body, "<pre>{}</pre>", escape(&read(e)?));
             shown.push(e.name.clone());
         }
+        page.end();
+    }
+
+    // A simulation: what ran, and its responses per storey in engineering units
+    if kind == FolderKind::Simulation
+        && let Some(response) = by_name("response.json").and_then(read_json)
+    {
+        page.section("run", "Run and responses");
+        let scene = by_name("scene.json").and_then(read_json);
+        let bare = by_name("response-bare.json").and_then(read_json);
+        page.body
+            .push_str(&simulation_run(scene.as_ref(), &response, bare.as_ref()));
         page.end();
     }
 
@@ -404,7 +429,11 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
     }
 
     // Inputs and raw JSON: pretty-printed, collapsed; inputs first
-    let mut jsons: Vec<&Entry> = files.iter().filter(|e| e.ext == "json").collect();
+    // (outputs already shown as tables above are not repeated with every digit)
+    let mut jsons: Vec<&Entry> = files
+        .iter()
+        .filter(|e| e.ext == "json" && !is_summary(e) && !shown_as_table(kind, e))
+        .collect();
     jsons.sort_by_key(|e| !is_input(e));
     if !jsons.is_empty() {
         page.section("inputs", "Inputs and JSON files");
@@ -451,24 +480,117 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
     Ok((kind, assemble(kind, &title, dir, &page)))
 }
 
-/// The optimum's key numbers as a table.
-fn key_results(o: &serde_json::Value) -> String {
-    let num = |k: &str| o.get(k).and_then(serde_json::Value::as_f64);
+/// A key/value table.
+fn kv_table(rows: &[(String, String)]) -> String {
+    let mut out = String::from("<div class=\"scroll\"><table class=\"kv\"><tbody>\n");
+    for (k, v) in rows {
+        let _ = writeln!(out, "<tr><th>{}</th><td>{}</td></tr>", escape(k), escape(v));
+    }
+    out.push_str("</tbody></table></div>\n");
+    out
+}
+
+/// An HTML table: a header row, then rows; cells are text (escaped here), numbers (cells
+/// that parse as one, or "—") right-aligned.
+fn grid(head: &[String], rows: &[Vec<String>]) -> String {
+    let num = |c: &str| c == "—" || c.parse::<f64>().is_ok();
+    let mut out = String::from("<div class=\"scroll\"><table>\n<thead><tr>");
+    for (k, h) in head.iter().enumerate() {
+        let class = if k > 0 { " class=\"num\"" } else { "" };
+        let _ = write!(out, "<th{class}>{}</th>", escape(h));
+    }
+    out.push_str("</tr></thead>\n<tbody>\n");
+    for r in rows {
+        out.push_str("<tr>");
+        for (k, c) in r.iter().enumerate() {
+            let class = if k > 0 && num(c) {
+                " class=\"num\""
+            } else {
+                ""
+            };
+            let _ = write!(out, "<td{class}>{}</td>", escape(c));
+        }
+        out.push_str("</tr>\n");
+    }
+    out.push_str("</tbody></table></div>\n");
+    out
+}
+
+fn f64_at(v: &serde_json::Value, key: &str) -> Option<f64> {
+    v.get(key).and_then(serde_json::Value::as_f64)
+}
+
+fn f64s_at(v: &serde_json::Value, key: &str) -> Option<Vec<f64>> {
+    v.get(key)?
+        .as_array()?
+        .iter()
+        .map(serde_json::Value::as_f64)
+        .collect()
+}
+
+/// `optimum.json`'s `on_bound` entries as a sentence: "floor 2 at its upper bound
+/// (2000.0 kN)"; a profile's scale names the floors it sets.
+fn on_bound_text(o: &serde_json::Value) -> Option<String> {
+    let entries = o.get("on_bound")?.as_array()?;
+    if entries.is_empty() {
+        return None;
+    }
+    let floors: Vec<u64> = o
+        .get("damper_floors")
+        .and_then(|v| v.as_array())
+        .map(|a| a.iter().filter_map(serde_json::Value::as_u64).collect())
+        .unwrap_or_default();
+    let loads = f64s_at(o, "slip_loads_kN").unwrap_or_default();
+    let load_of = |f: u64| {
+        floors
+            .iter()
+            .position(|&x| x == f)
+            .and_then(|k| loads.get(k))
+            .map(|v| format!("{v:.1} kN"))
+    };
+    let parts: Vec<String> = entries
+        .iter()
+        .map(|b| {
+            let fl: Vec<u64> = b
+                .get("floors")
+                .and_then(|v| v.as_array())
+                .map(|a| a.iter().filter_map(serde_json::Value::as_u64).collect())
+                .unwrap_or_default();
+            let bound = b.get("bound").and_then(|v| v.as_str()).unwrap_or("?");
+            let variable = b.get("variable").and_then(|v| v.as_str()).unwrap_or("?");
+            let at: Vec<String> = fl.iter().filter_map(|&f| load_of(f)).collect();
+            let names: Vec<String> = fl.iter().map(u64::to_string).collect();
+            if fl.len() == 1 && variable.starts_with("floor") {
+                format!("floor {} at its {bound} bound ({})", names[0], at.join(""))
+            } else {
+                format!(
+                    "{variable} (floors {}) at its {bound} bound ({})",
+                    names.join(", "),
+                    at.join(" / ")
+                )
+            }
+        })
+        .collect();
+    Some(parts.join("; "))
+}
+
+/// The optimum's key numbers as a table, the floors on a bound of the design space, and
+/// what the optimum costs in base shear and floor acceleration against the building
+/// file's slip loads and the bare frame (from `design-table.json`), rounded as the
+/// design tables round them.
+fn key_results(o: &serde_json::Value, table: Option<&serde_json::Value>) -> String {
+    let num = |k: &str| f64_at(o, k);
     let mut rows: Vec<(String, String)> = Vec::new();
     if let Some(s) = o.get("objective").and_then(|s| s.as_str()) {
         rows.push(("objective".into(), s.to_string()));
     }
-    if let Some(loads) = o.get("slip_loads_kN").and_then(|v| v.as_array()) {
+    if let Some(loads) = f64s_at(o, "slip_loads_kN") {
         let floors: Vec<String> = o
             .get("damper_floors")
             .and_then(|v| v.as_array())
             .map(|a| a.iter().map(|f| f.to_string()).collect())
             .unwrap_or_default();
-        let loads: Vec<String> = loads
-            .iter()
-            .filter_map(serde_json::Value::as_f64)
-            .map(|v| format!("{v:.1}"))
-            .collect();
+        let loads: Vec<String> = loads.iter().map(|v| format!("{v:.1}")).collect();
         rows.push((
             format!("optimal slip loads (kN), floors {}", floors.join(" / ")),
             loads.join(" / "),
@@ -477,28 +599,355 @@ fn key_results(o: &serde_json::Value) -> String {
     if let Some(f) = num("objective_value") {
         rows.push(("objective at the optimum".into(), format!("{f:.6}")));
     }
+    let lower = |f: f64, b: f64| format!("{b:.6} (optimum {:.1} % lower)", 100.0 * (1.0 - f / b));
     if let (Some(f), Some(b)) = (num("objective_value"), num("bare_objective")) {
-        rows.push((
-            "bare frame".into(),
-            format!("{b:.6} (optimum {:.1} % lower)", 100.0 * (1.0 - f / b)),
-        ));
+        rows.push(("bare frame".into(), lower(f, b)));
+    }
+    if let (Some(f), Some(b)) = (num("objective_value"), num("file_objective")) {
+        rows.push(("building file's slip loads".into(), lower(f, b)));
     }
     if let Some(s) = o.get("refiner").and_then(|s| s.as_str()) {
         rows.push(("refiner".into(), s.to_string()));
     }
-    if rows.is_empty() {
-        return String::new();
-    }
-    let mut out = String::from("<table class=\"kv\"><tbody>\n");
-    for (k, v) in rows {
+    let mut out = String::new();
+    if let Some(t) = on_bound_text(o) {
         let _ = writeln!(
             out,
-            "<tr><th>{}</th><td>{}</td></tr>",
-            escape(&k),
-            escape(&v)
+            "<p class=\"warn\"><strong>On a bound of the design space</strong> (the optimum may lie beyond it: widen the bound to see): {}</p>",
+            escape(&t)
         );
     }
-    out.push_str("</tbody></table>\n");
+    if !rows.is_empty() {
+        out.push_str(&kv_table(&rows));
+    }
+    if let Some(t) = table {
+        out.push_str(&costs(t));
+    }
+    out
+}
+
+/// What the optimum costs: mean peak base shear and floor acceleration of the optimum,
+/// the building file's slip loads and the bare frame (rows of `design-table.json`).
+fn costs(table: &serde_json::Value) -> String {
+    let Some(rows) = table.get("rows").and_then(|r| r.as_array()) else {
+        return String::new();
+    };
+    let row = |name: &str| {
+        rows.iter()
+            .find(|r| r.get("design").and_then(|d| d.as_str()) == Some(name))
+    };
+    let mut body: Vec<Vec<String>> = Vec::new();
+    for (name, label) in [
+        ("optimum", "optimum"),
+        ("file", "building file's slip loads"),
+        ("bare", "bare frame"),
+    ] {
+        let Some(r) = row(name) else { continue };
+        let loads = f64s_at(r, "slip_load_kn").unwrap_or_default();
+        body.push(vec![
+            label.to_string(),
+            loads
+                .iter()
+                .map(|v| format!("{v:.1}"))
+                .collect::<Vec<_>>()
+                .join(" / "),
+            f64_at(r, "objective").map_or("—".into(), |v| format!("{v:.5}")),
+            f64_at(r, "base_shear_mean").map_or("—".into(), |v| format!("{:.2}", v / 1e6)),
+            f64_at(r, "peak_floor_acceleration_mean").map_or("—".into(), |v| format!("{v:.2}")),
+        ]);
+    }
+    if body.is_empty() {
+        return String::new();
+    }
+    let fidelity = table.get("fidelity").and_then(|f| f.as_str()).unwrap_or("");
+    format!(
+        "<h3>What the optimum costs</h3>\n<p>Means over the records of each run's peak ({}).</p>\n{}",
+        escape(fidelity),
+        grid(
+            &[
+                "design".into(),
+                "slip loads (kN)".into(),
+                "objective".into(),
+                "peak base shear (MN)".into(),
+                "peak floor acceleration (m/s²)".into(),
+            ],
+            &body,
+        )
+    )
+}
+
+/// A length in mm: 0.01 mm below 10 mm, 0.1 mm below 1 m, whole mm beyond (a column
+/// keeps its decimals, so its values line up).
+fn mm(v_m: f64) -> String {
+    let v = 1e3 * v_m;
+    let s = if v.abs() < 10.0 {
+        format!("{v:.2}")
+    } else if v.abs() < 1000.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.0}")
+    };
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        // round-off of nothing (a storey that never yielded): plainly 0
+        "0".to_string()
+    } else {
+        s
+    }
+}
+
+/// An energy in kJ: 4 significant digits, whole kJ from 1000 kJ on.
+fn kj(v_j: f64) -> String {
+    let v = v_j / 1e3;
+    if v.abs() >= 1000.0 {
+        format!("{v:.0}")
+    } else {
+        sig(v, 4)
+    }
+}
+
+/// The floors (from 1) with a damper, from a scene's inline building.
+fn damper_floors(scene: &serde_json::Value) -> Option<Vec<u64>> {
+    let d = scene.get("building")?.get("dissipators")?.as_array()?;
+    Some(
+        d.iter()
+            .filter_map(|x| x.get("floor").and_then(serde_json::Value::as_u64))
+            .collect(),
+    )
+}
+
+/// Per storey: peak drift (mm, % of the storey height), peak displacement, peak absolute
+/// acceleration, residual drift, damper slip and stick↔slip transitions ("—" for a
+/// storey without a damper), ductility and plastic drift for a yielding frame.
+fn storey_table(r: &serde_json::Value, dampers: Option<&[u64]>) -> String {
+    let drift = f64s_at(r, "peak_drift").unwrap_or_default();
+    let n = drift.len();
+    let col = |k: &str| f64s_at(r, k).filter(|v| v.len() == n);
+    let ratio = col("peak_drift_ratio");
+    let disp = col("peak_displacement");
+    let acc = col("peak_abs_acceleration");
+    let resid = col("residual_drift");
+    let slip = col("peak_slip");
+    let trans = col("transitions");
+    let ductility: Option<Vec<Option<f64>>> = r
+        .get("peak_ductility")
+        .and_then(|v| v.as_array())
+        .map(|a| a.iter().map(serde_json::Value::as_f64).collect());
+    let plastic = col("peak_plastic_drift");
+    let mut head: Vec<String> = vec![
+        "storey".into(),
+        "peak drift (mm)".into(),
+        "drift ratio (%)".into(),
+        "peak displacement (mm)".into(),
+        "peak abs. acceleration (m/s²)".into(),
+        "residual drift (mm)".into(),
+        "damper slip (mm)".into(),
+        "stick↔slip transitions".into(),
+    ];
+    if ductility.is_some() {
+        head.push("ductility".into());
+        head.push("plastic drift (mm)".into());
+    }
+    let dash = || "—".to_string();
+    let at = |v: &Option<Vec<f64>>, i: usize, f: &dyn Fn(f64) -> String| {
+        v.as_ref().map_or_else(dash, |v| f(v[i]))
+    };
+    let rows: Vec<Vec<String>> = (0..n)
+        .map(|i| {
+            let has_damper = dampers.is_none_or(|d| d.contains(&(i as u64 + 1)));
+            let mut row = vec![
+                (i + 1).to_string(),
+                mm(drift[i]),
+                at(&ratio, i, &|v| format!("{:.3}", 100.0 * v)),
+                at(&disp, i, &mm),
+                at(&acc, i, &|v| format!("{v:.2}")),
+                at(&resid, i, &mm),
+                if has_damper {
+                    at(&slip, i, &mm)
+                } else {
+                    dash()
+                },
+                if has_damper {
+                    at(&trans, i, &|v| format!("{v:.0}"))
+                } else {
+                    dash()
+                },
+            ];
+            if let Some(d) = &ductility {
+                row.push(
+                    d.get(i)
+                        .copied()
+                        .flatten()
+                        .map_or("elastic".into(), |m| format!("{m:.2}")),
+                );
+                // plastic drift below 1 µm is round-off of a storey that never yielded
+                row.push(at(&plastic, i, &mm));
+            }
+            row
+        })
+        .collect();
+    grid(&head, &rows)
+}
+
+/// Whole-run responses: peak base shear (kN) and the energies (kJ).
+fn run_totals(r: &serde_json::Value) -> Vec<(String, String)> {
+    let mut rows = Vec::new();
+    if let Some(v) = f64_at(r, "peak_base_shear") {
+        rows.push(("peak base shear (kN)".into(), format!("{:.0}", v / 1e3)));
+    }
+    if let Some(e) = r.get("energy") {
+        for (k, label) in [
+            ("input", "input energy (kJ)"),
+            ("kinetic", "kinetic energy at the end (kJ)"),
+            ("strain", "strain energy at the end (kJ)"),
+            ("viscous", "viscous energy (kJ)"),
+            ("friction", "friction energy (kJ)"),
+            ("plastic", "plastic energy of the frame (kJ)"),
+        ] {
+            if let Some(v) = f64_at(e, k) {
+                rows.push((label.into(), kj(v)));
+            }
+        }
+        if let Some(v) = f64_at(e, "balance_error") {
+            rows.push((
+                "energy balance error (kJ)".into(),
+                format!("{:.1e}", v / 1e3),
+            ));
+        }
+    }
+    if let Some(c) = r.get("collapse").filter(|c| !c.is_null()) {
+        rows.push((
+            "collapse".into(),
+            format!(
+                "storey {} past its drift limit at t = {} s (peaks up to then)",
+                c.get("storey").map_or("?".into(), |v| v.to_string()),
+                f64_at(c, "time").map_or("?".into(), |t| sig(t, 4))
+            ),
+        ));
+    }
+    rows
+}
+
+/// What a scene ran on: building, ground motion (or force), scaling, as the facts of
+/// the page's run table.
+fn scene_facts(scene: &serde_json::Value, floors: usize) -> Vec<(String, String)> {
+    let mut rows = Vec::new();
+    let b = scene.get("building");
+    let bname = b
+        .and_then(|b| b.get("name"))
+        .and_then(|n| n.as_str())
+        .unwrap_or("(unnamed)");
+    let dampers = damper_floors(scene).unwrap_or_default();
+    let damper_text = match dampers.len() {
+        0 => "no dampers".to_string(),
+        1 => format!("a damper on floor {}", dampers[0]),
+        _ => format!(
+            "dampers on floors {}",
+            dampers
+                .iter()
+                .map(u64::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    rows.push((
+        "building".into(),
+        format!(
+            "{bname}: {floors} {}, {damper_text}",
+            if floors == 1 { "storey" } else { "storeys" }
+        ),
+    ));
+    let ex = scene.get("excitation");
+    let record = ex.and_then(|e| e.get("record")).filter(|r| !r.is_null());
+    let synthetic = ex.and_then(|e| e.get("synthetic")).filter(|r| !r.is_null());
+    let (motion, scaling) = if let Some(r) = record {
+        let file = r.get("file").and_then(|f| f.as_str()).unwrap_or("?");
+        let name = Path::new(file)
+            .file_name()
+            .map_or(file.to_string(), |n| n.to_string_lossy().into_owned());
+        let window = f64s_at(r, "window")
+            .filter(|w| w.len() == 2)
+            .map_or(String::new(), |w| {
+                format!(", window {} s from {} s", sig(w[1], 6), sig(w[0], 6))
+            });
+        let scaling = match (f64_at(r, "scale_pga_g"), f64_at(r, "scale")) {
+            (Some(p), _) => format!("scaled to a PGA of {} g", sig(p, 6)),
+            (None, Some(f)) => format!("× {}", sig(f, 6)),
+            (None, None) => "none (as recorded)".to_string(),
+        };
+        (format!("{name}{window}"), scaling)
+    } else if let Some(syn) = synthetic {
+        let pga = f64_at(syn, "pga_g").unwrap_or(slipload_motion::DEFAULT_SUITE_PGA_G);
+        let motion = match (
+            syn.get("seed").and_then(serde_json::Value::as_u64),
+            syn.get("index").and_then(serde_json::Value::as_u64),
+        ) {
+            (Some(seed), _) => format!("synthetic record, seed {seed}"),
+            (None, i) => format!("synthetic record {} of the embedded suite", i.unwrap_or(0)),
+        };
+        (motion, format!("scaled to a PGA of {} g", sig(pga, 6)))
+    } else {
+        ("none".to_string(), "—".to_string())
+    };
+    rows.push(("ground motion".into(), motion));
+    rows.push(("scaling".into(), scaling));
+    if let Some(h) = ex.and_then(|e| e.get("harmonic")).filter(|h| !h.is_null()) {
+        rows.push(("harmonic force".into(), h.to_string()));
+    }
+    rows
+}
+
+/// The run of a `simulate --plot` folder: what ran (from `scene.json`, which
+/// `simulate --plot` writes, and `response.json`), then the per-storey table and the
+/// whole-run numbers in engineering units, with the bare frame's when the folder has it.
+fn simulation_run(
+    scene: Option<&serde_json::Value>,
+    r: &serde_json::Value,
+    bare: Option<&serde_json::Value>,
+) -> String {
+    let floors = f64s_at(r, "peak_drift").map_or(0, |v| v.len());
+    let mut facts = match scene {
+        Some(s) => scene_facts(s, floors),
+        None => vec![(
+            "scene".to_string(),
+            "not in the folder (scene.json is written by simulate --plot)".to_string(),
+        )],
+    };
+    if let Some(m) = r.get("method").and_then(|m| m.as_str()) {
+        facts.push(("method".into(), m.to_string()));
+    }
+    if let Some(dt) = f64_at(r, "dt") {
+        let steps = r.get("steps").and_then(serde_json::Value::as_u64);
+        facts.push((
+            "time step Δt".into(),
+            match steps {
+                Some(n) => format!(
+                    "{} s, {n} steps ({} s simulated)",
+                    sig(dt, 6),
+                    sig(dt * n as f64, 6)
+                ),
+                None => format!("{} s", sig(dt, 6)),
+            },
+        ));
+    }
+    let dampers = scene.and_then(damper_floors);
+    let mut out = kv_table(&facts);
+    out.push_str("<h3>Peak responses per storey</h3>\n");
+    out.push_str(&storey_table(r, dampers.as_deref()));
+    let totals = run_totals(r);
+    if !totals.is_empty() {
+        out.push_str(&kv_table(&totals));
+    }
+    if let Some(b) = bare {
+        out.push_str("<h3>Bare frame (no braces: every slip load 0)</h3>\n");
+        out.push_str(&storey_table(b, Some(&[][..])));
+        let totals = run_totals(b);
+        if !totals.is_empty() {
+            out.push_str(&kv_table(&totals));
+        }
+    }
     out
 }
 
@@ -528,6 +977,25 @@ summary{cursor:pointer;font-weight:600}
 pre{background:#f6f8fa;padding:.6em;overflow-x:auto;font-size:.85em}
 code{font-size:.92em}
 footer{margin-top:3em;color:#777;font-size:.85em;border-top:1px solid #ccc}
+.warn{background:#fff4e0;border-left:4px solid #d08000;padding:.4em .8em}
+.scroll{max-width:100%}
+.scroll>table{min-width:max-content}
+@media print{
+@page{size:A4 landscape;margin:12mm}
+body{max-width:none;padding:0;font-size:9pt;line-height:1.3}
+nav{display:none}
+.scroll{overflow:visible}
+.scroll>table{min-width:0;width:100%}
+table{font-size:7pt;page-break-inside:auto}
+tr{break-inside:avoid}
+th,td{padding:.1em .3em}
+td.num,th.num,td.nw{white-space:nowrap}
+thead{display:table-header-group}
+figure{break-inside:avoid;border:none}
+figure svg{max-height:24cm}
+pre{white-space:pre-wrap;word-break:break-all;font-size:7pt}
+h2{break-after:avoid}
+}
 ";
 
 fn assemble(kind: FolderKind, title: &str, dir: &Path, page: &Page) -> String {

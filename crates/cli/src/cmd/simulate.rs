@@ -4,7 +4,7 @@
 use super::scene_args::SceneArgs;
 use anyhow::Context;
 use slipload_opt::output::write_atomic;
-use slipload_sim::{Outcome, simulate};
+use slipload_sim::{Outcome, Scene, simulate};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -32,7 +32,7 @@ pub struct SimulateArgs {
     /// Draw the run's figures into this folder (SVG + PNG): displacement histories with
     /// the ±μN/k′ thresholds, friction hysteresis, energies, peak drift profile. Turns on
     /// histories and energies; the data go beside the figures (history.csv,
-    /// drift-profile.csv, response.json)
+    /// drift-profile.csv, response.json) with the scene that ran (scene.json)
     #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
     /// With --plot: also run the bare frame — the same scene with no braces, i.e. every
@@ -50,7 +50,8 @@ pub struct SimulateArgs {
 
 /// Runs `slipload simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
-    if args.plot.is_some() {
+    if let Some(dir) = &args.plot {
+        crate::plot::check_plot_folder(dir)?;
         crate::plot::raster::check_fonts()?;
     }
     if let Some(path) = &args.history {
@@ -85,19 +86,39 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         } else {
             None
         };
-        let files = crate::figures::simulation::write_all(dir, &scene, &out, bare.as_ref())
-            .with_context(|| format!("writing figures to {}", dir.display()))?;
+        let scene_json = crate::figures::scene_file::resolved(&args.scene, &scene)
+            .context("writing down the scene that ran")?;
+        let files =
+            crate::figures::simulation::write_all(dir, &scene, &scene_json, &out, bare.as_ref())
+                .with_context(|| format!("writing figures to {}", dir.display()))?;
         eprintln!("wrote {} files to {}", files.len(), dir.display());
     }
     match args.format {
         Format::Json => outln!("{}", serde_json::to_string_pretty(&out.response)?),
-        Format::Table => out!("{}", table(&scene.name, &out)),
+        Format::Table => out!("{}", table(&scene, &out)),
     }
     Ok(())
 }
 
-/// The responses as a table.
-pub fn table(name: &str, out: &Outcome) -> String {
+/// Plastic drift below this fraction of the storey's yield drift is round-off of a storey
+/// that never yielded (its elastic-plastic element never slipped): shown as 0.
+pub const PLASTIC_DRIFT_NOISE: f64 = 1e-6;
+
+/// A storey's peak plastic drift for people: "0" for a storey that never yielded (below
+/// [`PLASTIC_DRIFT_NOISE`] of its yield drift), else in m.
+pub fn plastic_drift_text(plastic_m: f64, yield_drift_m: Option<f64>) -> String {
+    match yield_drift_m {
+        Some(y) if plastic_m.abs() < PLASTIC_DRIFT_NOISE * y => "0".to_string(),
+        None if plastic_m == 0.0 => "0".to_string(),
+        _ => format!("{plastic_m:.4e}"),
+    }
+}
+
+/// The responses as a table: a storey without a damper shows "—" for its slip and
+/// transitions.
+pub fn table(scene: &Scene, out: &Outcome) -> String {
+    let name = &scene.name;
+    let has_damper = |i: usize| matches!(scene.building.dissipators.get(i), Some(Some(_)));
     let r = &out.response;
     let mut s = String::new();
     let _ = writeln!(
@@ -131,17 +152,23 @@ pub fn table(name: &str, out: &Outcome) -> String {
             .peak_drift_ratio
             .as_ref()
             .map_or("-".to_string(), |v| format!("{:.4}", 100.0 * v[i]));
+        let (slip, transitions) = if has_damper(i) {
+            (
+                format!("{:.4e}", r.peak_slip[i]),
+                r.transitions[i].to_string(),
+            )
+        } else {
+            ("—".to_string(), "—".to_string())
+        };
         let _ = writeln!(
             s,
-            "{:>6} {:>12.5e} {:>10} {:>12.5e} {:>14.4} {:>12.3e} {:>12.4e} {:>11}",
+            "{:>6} {:>12.5e} {:>10} {:>12.5e} {:>14.4} {:>12.3e} {slip:>12} {transitions:>11}",
             i + 1,
             r.peak_drift[i],
             ratio,
             r.peak_displacement[i],
             r.peak_abs_acceleration[i],
             r.residual_drift[i],
-            r.peak_slip[i],
-            r.transitions[i]
         );
     }
     let _ = writeln!(s, "peak base shear: {:.6e} N", r.peak_base_shear);
@@ -154,7 +181,15 @@ pub fn table(name: &str, out: &Outcome) -> String {
         );
         for (i, (m, p)) in mu.iter().zip(plastic).enumerate() {
             let m = m.map_or("elastic".to_string(), |m| format!("{m:.4}"));
-            let _ = writeln!(s, "{:>6} {m:>12} {p:>17.4e}", i + 1);
+            let y = scene
+                .building
+                .storey_yield
+                .get(i)
+                .copied()
+                .flatten()
+                .map(|y| y.yield_drift());
+            let p = plastic_drift_text(*p, y);
+            let _ = writeln!(s, "{:>6} {m:>12} {p:>17}", i + 1);
         }
     }
     if let Some(c) = &r.collapse {

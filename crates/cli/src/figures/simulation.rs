@@ -4,7 +4,8 @@
 //!
 //! Data beside the figures: `history.csv` (every history column, SI units; the figures
 //! show mm, kN, kJ), `history-bare.csv`, `drift-profile.csv`, `response.json` (the output
-//! contract) and `response-bare.json`.
+//! contract), `response-bare.json`, and `scene.json`, the scene that ran
+//! ([`super::scene_file`]).
 
 use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
 use anyhow::Context;
@@ -42,11 +43,13 @@ fn columns_for(n: usize) -> usize {
     if n <= 3 { 1 } else { 2 }
 }
 
-/// Writes every figure of a run and the data beside them; returns the files written.
-/// `bare` is the same scene without braces (when `--compare-bare` asked for it).
+/// Writes every figure of a run and the data beside them, and `scene.json` (the resolved
+/// scene, `scene_json`); returns the files written. `bare` is the same scene without
+/// braces (when `--compare-bare` asked for it).
 pub fn write_all(
     dir: &Path,
     scene: &Scene,
+    scene_json: &serde_json::Value,
     out: &Outcome,
     bare: Option<&Outcome>,
 ) -> anyhow::Result<Vec<PathBuf>> {
@@ -56,6 +59,11 @@ pub fn write_all(
         .as_ref()
         .context("the run kept no histories to plot")?;
     let mut files = Vec::new();
+    let kept = dir.join("scene.json");
+    let mut text = serde_json::to_string_pretty(scene_json)?;
+    text.push('\n');
+    write_atomic(&kept, text.as_bytes())?;
+    files.push(kept);
     let csv = dir.join("history.csv");
     write_atomic(&csv, h.to_csv().as_bytes())?;
     files.push(csv);

@@ -1,5 +1,6 @@
-//! `slipload record spectrum … --plot FILE`: the pseudo-acceleration spectra of a suite,
-//! their mean and the design target, with the data in `FILE.csv`.
+//! `slipload record spectrum … --plot DIR`: the pseudo-acceleration spectra of a suite,
+//! their mean and the design target (`DIR/spectra.svg`, `.png`), with the data in
+//! `DIR/spectra.csv`.
 
 use crate::plot::{
     Figure, Legend, Panel, RGBColor, Series, strip_image_extension, style, with_suffix,
@@ -8,6 +9,9 @@ use slipload_motion::{DesignSpectrum, G, Spectrum};
 use slipload_opt::output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+/// Name (stem) of the spectra figure and its data in the `--plot` folder.
+pub const STEM: &str = "spectra";
 
 /// Records are drawn thin and grey so the mean and the target stand out.
 const RECORD_GREY: RGBColor = RGBColor(165, 165, 165);

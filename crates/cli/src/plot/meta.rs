@@ -37,6 +37,12 @@ pub struct PanelMeta {
     pub series: Vec<SeriesMeta>,
     /// The heat map of this panel, if it is one.
     pub heatmap: Option<HeatMapMeta>,
+    /// The plotting area (inside the axes), px of the figure: [left, top, right, bottom].
+    #[serde(default)]
+    pub plot_area: Option<[i32; 4]>,
+    /// The legend box, px of the figure: [left, top, right, bottom] (`None`: no legend).
+    #[serde(default)]
+    pub legend: Option<[i32; 4]>,
 }
 
 /// An axis as drawn.

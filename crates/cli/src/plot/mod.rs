@@ -229,6 +229,19 @@ impl Figure {
     }
 }
 
+/// Checks a `--plot` argument before any work: `--plot` names a FOLDER in every command
+/// (created when missing; the figures and their data go into it). An existing file there
+/// is refused, with what to give instead.
+pub fn check_plot_folder(dir: &Path) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        anyhow::bail!(
+            "--plot {}: that is an existing file, not a folder; --plot takes a folder (created when missing) that the figures and their data are written into",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
 /// `stem` without a trailing `.svg` or `.png`.
 pub fn strip_image_extension(stem: &Path) -> PathBuf {
     match stem.extension().and_then(|e| e.to_str()) {

@@ -275,28 +275,33 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
         });
     }
     let legend = legend_entries(p);
-    match legend_strip {
+    let (lw, lh) = legend_size(&legend);
+    let (pxr, pyr) = chart.plotting_area().get_pixel_range();
+    let plot_area = [pxr.start, pyr.start, pxr.end, pyr.end];
+    let legend_at = match legend_strip {
         Some(strip) => {
             let (xr, _) = strip.get_pixel_range();
-            let (_, yr) = chart.plotting_area().get_pixel_range();
-            draw_legend(root, (xr.start, yr.start), &legend)?;
+            Some((xr.start, pyr.start))
         }
         None => {
-            let (xr, yr) = chart.plotting_area().get_pixel_range();
-            let (w, h) = legend_size(&legend);
             let margin = 8;
             let x0 = match p.legend {
-                Legend::UpperLeft | Legend::LowerLeft => xr.start + margin,
-                _ => xr.end - margin - w,
+                Legend::UpperLeft | Legend::LowerLeft => pxr.start + margin,
+                _ => pxr.end - margin - lw,
             };
             let y0 = match p.legend {
-                Legend::LowerLeft | Legend::LowerRight => yr.end - margin - h,
-                _ => yr.start + margin,
+                Legend::LowerLeft | Legend::LowerRight => pyr.end - margin - lh,
+                _ => pyr.start + margin,
             };
-            if p.legend != Legend::None {
-                draw_legend(root, (x0, y0), &legend)?;
-            }
+            (p.legend != Legend::None).then_some((x0, y0))
         }
+    };
+    let mut legend_box = None;
+    if let Some((x0, y0)) = legend_at
+        && !legend.is_empty()
+    {
+        draw_legend(root, (x0, y0), &legend)?;
+        legend_box = Some([x0, y0, x0 + lw, y0 + lh]);
     }
     Ok(PanelMeta {
         title: p.title.clone(),
@@ -316,6 +321,8 @@ fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> 
         },
         series: metas,
         heatmap: heat_meta,
+        plot_area: Some(plot_area),
+        legend: legend_box,
     })
 }
 
