@@ -14,6 +14,7 @@ pub mod evaluate;
 pub mod family;
 pub mod fidelity;
 pub mod fingerprint;
+pub mod folder_lock;
 pub mod journal;
 pub mod metrics;
 pub mod objective;
