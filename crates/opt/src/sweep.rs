@@ -67,11 +67,13 @@ impl Manifest {
                 label: "bare".into(),
                 slip_loads_n: vec![0.0; m],
                 z: None,
+                friction_n: None,
             },
             Design {
                 label: "file".into(),
                 slip_loads_n: study.file_slip_loads(),
                 z: None,
+                friction_n: study.file_friction(),
             },
         ];
         for (i, z) in sampler::sample(&study.space, &study.config.sweep)
@@ -82,6 +84,7 @@ impl Manifest {
                 label: format!("s{:04}", i + 1),
                 slip_loads_n: study.space.slip_loads(&z),
                 z: Some(z),
+                friction_n: None,
             });
         }
         let fid = Fidelity::sweep(study);
@@ -196,9 +199,7 @@ impl Manifest {
                 .map(|su| su.name.as_str())
                 .unwrap_or("");
             let _ = write!(s, "{d},{},{},{suite}", design.label, self.records[r]);
-            for v in &design.slip_loads_n {
-                let _ = write!(s, ",{}", v / 1e3);
-            }
+            write_slip_loads_kn(&mut s, design);
             for v in m.drift_ratio.iter().chain(&m.residual_drift_ratio) {
                 let _ = write!(s, ",{v}");
             }
@@ -288,9 +289,7 @@ impl Manifest {
         let f0 = obj[0].0;
         for (d, design) in self.designs.iter().enumerate() {
             let _ = write!(s, "{d},{}", design.label);
-            for v in &design.slip_loads_n {
-                let _ = write!(s, ",{}", v / 1e3);
-            }
+            write_slip_loads_kn(&mut s, design);
             let _ = write!(s, ",{}", obj[d].0);
             for v in &obj[d].1 {
                 let _ = write!(s, ",{v}");
@@ -306,6 +305,19 @@ impl Manifest {
         let mut s = serde_json::to_string_pretty(self).expect("a manifest serialises");
         s.push('\n');
         s
+    }
+}
+
+/// The slip-load cells (kN) of one design's CSV row: the slip loads, or the friction law
+/// where the design has one (`locked`, `F⁻..F⁺`).
+fn write_slip_loads_kn(s: &mut String, design: &Design) {
+    match &design.friction_n {
+        Some(laws) => laws.iter().for_each(|l| {
+            let _ = write!(s, ",{}", l.text(1e3));
+        }),
+        None => design.slip_loads_n.iter().for_each(|v| {
+            let _ = write!(s, ",{}", v / 1e3);
+        }),
     }
 }
 
@@ -395,6 +407,7 @@ pub fn run(
             Task {
                 label: manifest.designs[d].label.clone(),
                 slip_loads: manifest.designs[d].slip_loads_n.clone(),
+                friction: manifest.designs[d].friction_n.clone(),
                 record: r,
             }
         })
@@ -434,6 +447,86 @@ pub fn run(
     })
 }
 
+/// The absolute, symlink-free form of `p`, as far as it exists (a missing tail is kept
+/// as written), so that two spellings of one folder compare equal.
+fn resolved(p: &Path) -> std::path::PathBuf {
+    let abs = if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        std::env::current_dir().unwrap_or_default().join(p)
+    };
+    let mut head = abs.clone();
+    let mut tail = Vec::new();
+    loop {
+        if let Ok(c) = std::fs::canonicalize(&head) {
+            let mut out = c;
+            for t in tail.iter().rev() {
+                out.push(t);
+            }
+            return out;
+        }
+        match (head.file_name().map(|n| n.to_os_string()), head.parent()) {
+            (Some(n), Some(parent)) => {
+                tail.push(n);
+                head = parent.to_path_buf();
+            }
+            _ => return abs,
+        }
+    }
+}
+
+/// Refuses a merge whose output folder is one of its shard folders, lies inside one, or
+/// holds one: the merged files would overwrite or mix with a shard's own (and a shard
+/// merged into itself keeps a partial journal beside complete tables).
+pub fn check_merge_folders(dirs: &[&Path], out: &Path) -> Result<(), OptError> {
+    let o = resolved(out);
+    for d in dirs {
+        let r = resolved(d);
+        let why = if r == o {
+            "is the output folder itself"
+        } else if o.starts_with(&r) {
+            "holds the output folder"
+        } else if r.starts_with(&o) {
+            "lies inside the output folder"
+        } else {
+            continue;
+        };
+        return Err(OptError::Shard(format!(
+            "shard folder {} {why} ({}): merge writes into a folder of its own; give an --out outside every shard folder",
+            d.display(),
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Refuses an output folder of `merge` that holds another study's sweep (its
+/// `manifest.json` or a journal of another fingerprint): merging over it would mix two
+/// studies' files.
+fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
+    let path = out.join("manifest.json");
+    if let Ok(text) = std::fs::read_to_string(&path) {
+        let theirs = serde_json::from_str::<Manifest>(&text).ok();
+        if theirs.as_ref().is_none_or(|m| m.fingerprint != manifest.fingerprint) {
+            return Err(OptError::Shard(format!(
+                "{} holds {}: merge into an empty folder or one holding this study's sweep (fingerprint {})",
+                out.display(),
+                match &theirs {
+                    Some(m) => format!(
+                        "the sweep of another study ({}, fingerprint {}; changed: {})",
+                        m.study,
+                        m.fingerprint.hash,
+                        manifest.fingerprint.describe_changes(&m.fingerprint)
+                    ),
+                    None => format!("a {} that is not a sweep manifest", path.display()),
+                },
+                manifest.fingerprint.hash
+            )));
+        }
+    }
+    crate::journal::check_folder(out, &manifest.fingerprint)
+}
+
 /// Joins the journals of shard folders into `out`: the bytes a single run writes.
 /// Every folder must hold the same `manifest.json`; every task must be present. Returns
 /// the manifest and the rows (task order), from which the caller draws the figures a
@@ -441,6 +534,8 @@ pub fn run(
 pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>), OptError> {
     let mut manifest: Option<(Manifest, &Path)> = None;
     for dir in dirs {
+        // a shard still being written would be merged half done
+        crate::folder_lock::FolderLock::check_idle(dir)?;
         let path = dir.join("manifest.json");
         let text = std::fs::read_to_string(&path).map_err(|source| OptError::Io {
             path: path.clone(),
@@ -473,6 +568,8 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         }
     }
     let (manifest, _) = manifest.ok_or_else(|| OptError::Shard("no folders to merge".into()))?;
+    check_merge_folders(dirs, out)?;
+    check_merge_output(out, &manifest)?;
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; manifest.tasks()];
     for dir in dirs {
         let jpath = dir.join("journal.jsonl");
@@ -513,10 +610,8 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         });
     }
     let journal_text = crate::journal::journal_text("sweep", &manifest.fingerprint, &entries);
+    // the journal first: the tables are never newer than the tasks they come from
+    write_atomic(&out.join("journal.jsonl"), journal_text.as_bytes())?;
     let full = write_outputs(out, &manifest, &rows)?.expect("checked complete above");
-    let jout = out.join("journal.jsonl");
-    if !dirs.iter().any(|d| d.join("journal.jsonl") == jout) {
-        write_atomic(&jout, journal_text.as_bytes())?;
-    }
     Ok((manifest, full))
 }

@@ -6,11 +6,12 @@
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
 use crate::error::OptError;
-use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::evaluate::{DesignLoads, TaskJournal, run_designs_journalled, suite_ranges};
 use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::objective::{Metric, Statistic};
 use crate::output::write_atomic;
+use crate::sampler::FrictionLaw;
 use crate::study::Study;
 use serde::{Deserialize, Serialize};
 use slipload_motion::G;
@@ -24,6 +25,11 @@ pub struct TableRow {
     pub design: String,
     /// Slip load per dissipator, kN.
     pub slip_load_kn: Vec<f64>,
+    /// The friction law per dissipator, kN, where the design is the building file's and
+    /// the file writes more than symmetric slip loads (`locked`, asymmetric bounds): it,
+    /// not `slip_load_kn`, is what ran.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_kn: Option<Vec<FrictionLaw>>,
     /// Slip load / floor weight (m_i g).
     pub ratio_to_floor_weight: Vec<f64>,
     /// Slip load / weight above the storey (Σ_{j≥i} m_j g, the storey's gravity shear).
@@ -62,6 +68,25 @@ pub struct TableRow {
     /// responses at each intensity level, ductility, hysteretic energy and collapses.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub by_suite: Option<Vec<SuiteStats>>,
+}
+
+impl TableRow {
+    /// A CSV ratio cell of a dissipator with friction law `law`: `locked`, or the ratio
+    /// of its upper bound F⁺.
+    fn ratio_cell(&self, law: FrictionLaw, ratio: f64) -> String {
+        match law {
+            FrictionLaw::Locked => "locked".into(),
+            FrictionLaw::Bounds(_) => ratio.to_string(),
+        }
+    }
+
+    /// A Markdown ratio cell of dissipator `k`: `locked`, or the ratio to 3 decimals.
+    fn ratio_md(&self, k: usize, ratio: f64) -> String {
+        match self.friction_kn.as_ref().map(|l| l[k]) {
+            Some(FrictionLaw::Locked) => "locked".into(),
+            _ => format!("{ratio:.3}"),
+        }
+    }
 }
 
 /// One design's responses over one suite (a yielding or P-Δ frame).
@@ -171,9 +196,9 @@ fn mean(v: impl Iterator<Item = f64>) -> f64 {
 impl DesignTable {
     /// Runs every design (slip loads, N) and its ±25 % variants at the check fidelity.
     /// The bare frame is added as the reference row if it is not among the designs.
-    pub fn build(
+    pub fn build<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<DesignTable, OptError> {
         Self::build_with_runs(study, designs, tick).map(|(table, _)| table)
@@ -183,9 +208,9 @@ impl DesignTable {
     /// no extra simulations), each over every record of the study: `runs[0]` the bare
     /// frame, then for design `k` `runs[1 + 3k]` (its slip loads), `runs[2 + 3k]` (× 0.75)
     /// and `runs[3 + 3k]` (× 1.25).
-    pub fn build_with_runs(
+    pub fn build_with_runs<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         Self::build_journalled(study, designs, None, tick)
@@ -193,19 +218,23 @@ impl DesignTable {
 
     /// As [`DesignTable::build_with_runs`], taking finished runs from `journal` (the
     /// check fidelity's task journal) and appending the others.
-    pub fn build_journalled(
+    pub fn build_journalled<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         journal: Option<&TaskJournal>,
         tick: &(dyn Fn() + Sync),
     ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         let fid = Fidelity::check(study);
         let m = study.space.dampers.len();
-        let mut all: Vec<Vec<f64>> = vec![vec![0.0; m]];
-        for (_, s) in designs {
+        let designs: Vec<(String, DesignLoads)> = designs
+            .iter()
+            .map(|(n, d)| (n.clone(), d.clone().into()))
+            .collect();
+        let mut all: Vec<DesignLoads> = vec![DesignLoads::from(vec![0.0; m])];
+        for (_, s) in &designs {
             all.push(s.clone());
-            all.push(s.iter().map(|v| 0.75 * v).collect());
-            all.push(s.iter().map(|v| 1.25 * v).collect());
+            all.push(s.scaled(0.75));
+            all.push(s.scaled(1.25));
         }
         let runs = run_designs_journalled(study, &all, &fid, journal, tick)?;
         let bare = &runs[0];
@@ -217,7 +246,8 @@ impl DesignTable {
             .map(|i| study.building.mass.row(i).sum())
             .collect();
         let mut rows = Vec::new();
-        for (k, (name, loads)) in designs.iter().enumerate() {
+        for (k, (name, design)) in designs.iter().enumerate() {
+            let loads = &design.slip_loads_n;
             let r = &runs[1 + 3 * k];
             let f = objective(r)?;
             let pdr = mean(r.iter().map(RecordMetrics::peak_drift_ratio));
@@ -233,6 +263,10 @@ impl DesignTable {
             rows.push(TableRow {
                 design: name.clone(),
                 slip_load_kn: loads.iter().map(|v| v / 1e3).collect(),
+                friction_kn: design
+                    .friction_n
+                    .as_ref()
+                    .map(|l| l.iter().map(|x| x.scaled(1e-3)).collect()),
                 ratio_to_floor_weight: study
                     .space
                     .dampers
@@ -318,12 +352,32 @@ impl DesignTable {
         s.push_str(",energy_ratio_mean,rpi_mean,objective_at_75pct,objective_at_125pct\n");
         for r in &self.rows {
             let _ = write!(s, "{}", r.design);
+            // a friction law the slip loads cannot say is written as it is, ratios too
+            match &r.friction_kn {
+                Some(laws) => {
+                    for l in laws {
+                        let _ = write!(s, ",{}", l.text(1.0));
+                    }
+                    for ratios in [&r.ratio_to_floor_weight, &r.ratio_to_weight_above] {
+                        for (l, v) in laws.iter().zip(ratios) {
+                            let _ = write!(s, ",{}", r.ratio_cell(*l, *v));
+                        }
+                    }
+                }
+                None => {
+                    for v in r
+                        .slip_load_kn
+                        .iter()
+                        .chain(&r.ratio_to_floor_weight)
+                        .chain(&r.ratio_to_weight_above)
+                    {
+                        let _ = write!(s, ",{v}");
+                    }
+                }
+            }
             for v in r
-                .slip_load_kn
+                .drift_ratio_mean
                 .iter()
-                .chain(&r.ratio_to_floor_weight)
-                .chain(&r.ratio_to_weight_above)
-                .chain(&r.drift_ratio_mean)
                 .chain(&r.drift_ratio_p84)
                 .chain(&r.drift_ratio_max)
             {
@@ -375,11 +429,15 @@ impl DesignTable {
                 let i = f - 1;
                 let _ = writeln!(
                     s,
-                    "| {} | {f} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
+                    "| {} | {f} | {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.1} |",
                     if k == 0 { r.design.as_str() } else { "" },
-                    r.slip_load_kn[k],
-                    r.ratio_to_floor_weight[k],
-                    r.ratio_to_weight_above[k],
+                    match r.friction_kn.as_ref().map(|l| l[k]) {
+                        Some(FrictionLaw::Locked) => "locked".to_string(),
+                        Some(FrictionLaw::Bounds([lo, hi])) => format!("{lo:.1}..{hi:.1}"),
+                        None => format!("{:.1}", r.slip_load_kn[k]),
+                    },
+                    r.ratio_md(k, r.ratio_to_floor_weight[k]),
+                    r.ratio_md(k, r.ratio_to_weight_above[k]),
                     100.0 * r.drift_ratio_mean[i],
                     100.0 * r.drift_ratio_p84[i],
                     100.0 * r.drift_ratio_max[i],
@@ -439,9 +497,10 @@ impl DesignTable {
 }
 
 /// The standard candidates around an optimum (slip loads N): the optimum, the uniform and
-/// storey-shear-proportional designs with the same total, the building file's slip
-/// loads, and the bare frame.
-pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>)> {
+/// storey-shear-proportional designs with the same total, the building file's design as
+/// written ([`DesignLoads::file`]: a locked or asymmetric damper stays so), and the bare
+/// frame.
+pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, DesignLoads)> {
     let total: f64 = optimum.iter().sum();
     let m = optimum.len();
     let shaped = |shape: crate::space::Shape| {
@@ -450,23 +509,29 @@ pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>
         let sum: f64 = sh.iter().sum();
         sh.iter().map(|v| v / sum * total).collect::<Vec<f64>>()
     };
-    let all = vec![
-        ("optimum".to_string(), optimum.to_vec()),
-        ("uniform".to_string(), shaped(crate::space::Shape::Uniform)),
+    let all: Vec<(String, DesignLoads)> = vec![
+        ("optimum".to_string(), optimum.to_vec().into()),
+        (
+            "uniform".to_string(),
+            shaped(crate::space::Shape::Uniform).into(),
+        ),
         (
             "storey-shear".to_string(),
-            shaped(crate::space::Shape::StoreyShear),
+            shaped(crate::space::Shape::StoreyShear).into(),
         ),
-        ("file".to_string(), study.file_slip_loads()),
-        ("bare".to_string(), vec![0.0; m]),
+        ("file".to_string(), DesignLoads::file(study)),
+        ("bare".to_string(), vec![0.0; m].into()),
     ];
     // a profile optimum already is its profile at that total: keep the first of equals
-    let same = |a: &[f64], b: &[f64]| {
-        a.iter()
-            .zip(b)
-            .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+    let same = |a: &DesignLoads, b: &DesignLoads| {
+        a.friction_n == b.friction_n
+            && a
+                .slip_loads_n
+                .iter()
+                .zip(&b.slip_loads_n)
+                .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
     };
-    let mut out: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut out: Vec<(String, DesignLoads)> = Vec::new();
     for (name, loads) in all {
         if !out.iter().any(|(_, l)| same(l, &loads)) {
             out.push((name, loads));

@@ -102,6 +102,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     };
     // a bad map fails before --fresh discards anything
     options.check(&study)?;
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     if args.fresh {
         discard_journals(&args.out)?;
     }

@@ -38,6 +38,8 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
     };
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     if args.fresh {
         discard_journals(&args.out)?;
     }

@@ -71,7 +71,7 @@ pub struct StudyReport {
     pub on_bound: Vec<OnBound>,
     /// The design table's designs (slip loads, N): the optimum first, then uniform and
     /// storey-shear designs of the same total, the building file's, the bare frame.
-    pub designs: Vec<(String, Vec<f64>)>,
+    pub designs: Vec<(String, crate::evaluate::DesignLoads)>,
     /// The design table at the check fidelity.
     pub table: DesignTable,
     /// The table's runs: `[0]` the bare frame, then per design its slip loads, × 0.75,
