@@ -9,6 +9,7 @@
 //! command — [`pipeline::optimize_study`] is the whole study — and writes its files
 //! ([`output::write_atomic`]), returning a report a caller renders.
 
+pub mod collapse;
 pub mod error;
 pub mod evaluate;
 pub mod family;

@@ -34,7 +34,9 @@ pub struct NamedDesign {
 pub struct SuiteRanking {
     /// Suite name (`all` for the study's objective over every suite).
     pub suite: String,
-    /// Objective per design.
+    /// Objective per design (`"collapsed"` for a design that collapses on a record of
+    /// the suite: [`crate::collapse`]).
+    #[serde(with = "crate::collapse::objectives_serde")]
     pub objective: Vec<f64>,
     /// Rank per design, 1 = best.
     pub rank: Vec<usize>,
@@ -228,7 +230,11 @@ impl Ranking {
                 let _ = writeln!(
                     s,
                     "{},{d},{},{},{},{}",
-                    su.suite, su.objective[k], su.rank[k], su.rank_kept[k], su.order_kept
+                    su.suite,
+                    crate::collapse::objective_text(su.objective[k], None),
+                    su.rank[k],
+                    su.rank_kept[k],
+                    su.order_kept
                 );
             }
         }
@@ -257,10 +263,10 @@ impl Ranking {
             for k in order {
                 let _ = writeln!(
                     s,
-                    "| {} | {} | {:.6} | {:.0} % |",
+                    "| {} | {} | {} | {:.0} % |",
                     su.rank[k],
                     self.designs[k],
-                    su.objective[k],
+                    crate::collapse::objective_text(su.objective[k], Some(6)),
                     100.0 * su.rank_kept[k]
                 );
             }

@@ -7,6 +7,7 @@
 //! of the relative performance index), design 1 the slip loads of the building file,
 //! then the sample.
 
+use crate::collapse::{COLLAPSED, objective_text, reduction, reduction_text};
 use crate::error::OptError;
 use crate::evaluate::{Task, run_tasks};
 use crate::fidelity::Fidelity;
@@ -200,8 +201,16 @@ impl Manifest {
                 .unwrap_or("");
             let _ = write!(s, "{d},{},{},{suite}", design.label, self.records[r]);
             write_slip_loads_kn(&mut s, design);
-            for v in m.drift_ratio.iter().chain(&m.residual_drift_ratio) {
+            for v in &m.drift_ratio {
                 let _ = write!(s, ",{v}");
+            }
+            // a run that stopped on the collapse limit has no residual drift: left empty
+            for v in &m.residual_drift_ratio {
+                if m.collapsed() {
+                    s.push(',');
+                } else {
+                    let _ = write!(s, ",{v}");
+                }
             }
             let _ = write!(
                 s,
@@ -290,11 +299,14 @@ impl Manifest {
         for (d, design) in self.designs.iter().enumerate() {
             let _ = write!(s, "{d},{}", design.label);
             write_slip_loads_kn(&mut s, design);
-            let _ = write!(s, ",{}", obj[d].0);
+            // a design that collapses on a record has no objective, nor terms: it failed
+            let collapsed = !obj[d].0.is_finite();
+            let _ = write!(s, ",{}", objective_text(obj[d].0, None));
             for v in &obj[d].1 {
-                let _ = write!(s, ",{v}");
+                let cell = if collapsed { COLLAPSED.to_string() } else { v.to_string() };
+                let _ = write!(s, ",{cell}");
             }
-            let red = if f0 != 0.0 { 1.0 - obj[d].0 / f0 } else { 0.0 };
+            let red = reduction_text(reduction(obj[d].0, f0), None);
             let _ = writeln!(s, ",{red},{}", rank[d]);
         }
         Ok(s)

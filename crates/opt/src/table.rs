@@ -5,6 +5,7 @@
 //! statistics pool the records of all suites; the objective keeps its own definition.
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
+use crate::collapse::{objective_text, reduction, reduction_text};
 use crate::error::OptError;
 use crate::evaluate::{DesignLoads, TaskJournal, run_designs_journalled, suite_ranges};
 use crate::fidelity::Fidelity;
@@ -40,15 +41,23 @@ pub struct TableRow {
     pub drift_ratio_p84: Vec<f64>,
     /// Peak drift ratio per storey: max.
     pub drift_ratio_max: Vec<f64>,
-    /// The study's objective.
+    /// The study's objective (`"collapsed"` when the design collapses on a record:
+    /// [`crate::collapse`]).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective: f64,
-    /// 1 − objective / objective of the bare frame.
+    /// 1 − objective / objective of the bare frame (`"collapsed"`, or `"bare frame
+    /// collapsed"` when only the reference collapses).
+    #[serde(with = "crate::collapse::reduction_serde")]
     pub objective_reduction: f64,
     /// Mean over records of the peak drift ratio (max over storeys).
     pub peak_drift_ratio_mean: f64,
-    /// 1 − that / the bare frame's.
+    /// 1 − that / the bare frame's (in words when either collapses on a record).
+    #[serde(with = "crate::collapse::reduction_serde")]
     pub peak_drift_reduction: f64,
-    /// Mean residual drift ratio (max over storeys).
+    /// Mean residual drift ratio (max over storeys) over the records run to their end (a
+    /// run that stopped on the collapse limit has none); `"collapsed"` when every run
+    /// stopped.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub residual_drift_ratio_mean: f64,
     /// Mean peak floor acceleration, m/s².
     pub peak_floor_acceleration_mean: f64,
@@ -61,8 +70,10 @@ pub struct TableRow {
     /// Mean relative performance index (Filiatrault & Cherry 1988).
     pub rpi_mean: f64,
     /// Objective with every slip load × 0.75.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective_at_75pct: f64,
     /// Objective with every slip load × 1.25.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective_at_125pct: f64,
     /// Per suite, for a frame whose storeys yield or carry P-Δ (absent otherwise): the
     /// responses at each intensity level, ductility, hysteretic energy and collapses.
@@ -102,7 +113,9 @@ pub struct SuiteStats {
     pub peak_drift_ratio_mean: f64,
     /// Peak drift ratio: max over the records.
     pub peak_drift_ratio_max: f64,
-    /// Residual drift ratio (max over storeys): mean over the records.
+    /// Residual drift ratio (max over storeys): mean over the records run to their end
+    /// (`"collapsed"` when every run stopped on the collapse limit).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub residual_drift_ratio_mean: f64,
     /// Peak storey ductility (max over storeys): mean over the records (`None` when no
     /// storey yields).
@@ -137,7 +150,7 @@ impl SuiteStats {
                 .iter()
                 .map(RecordMetrics::peak_drift_ratio)
                 .collect::<Vec<_>>()),
-            residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+            residual_drift_ratio_mean: residual_mean(r),
             peak_ductility_mean: opt_mean(mu),
             peak_ductility_max: mu_max,
             hysteretic_energy_mean: opt_mean(r.iter().map(|m| m.energy_plastic).collect()),
@@ -186,6 +199,31 @@ fn stat_by_storey(
     (0..n)
         .map(|i| st.of(&rows.iter().map(|m| f(m)[i]).collect::<Vec<_>>()))
         .collect()
+}
+
+/// Mean residual drift ratio over the runs that reached the record's end (a run that
+/// stopped on the collapse limit has no residual drift); +∞ (`collapsed`) when none did.
+fn residual_mean(r: &[RecordMetrics]) -> f64 {
+    let v: Vec<f64> = r
+        .iter()
+        .filter(|m| !m.collapsed())
+        .map(RecordMetrics::residual)
+        .collect();
+    if v.is_empty() {
+        f64::INFINITY
+    } else {
+        Statistic::Mean.of(&v)
+    }
+}
+
+/// Peak drift ratio of runs for a reduction: +∞ when a run collapsed (its peak is where
+/// it stopped, not a response to compare).
+fn drift_for_reduction(r: &[RecordMetrics]) -> f64 {
+    if r.iter().any(RecordMetrics::collapsed) {
+        f64::INFINITY
+    } else {
+        mean(r.iter().map(RecordMetrics::peak_drift_ratio))
+    }
 }
 
 fn mean(v: impl Iterator<Item = f64>) -> f64 {
@@ -241,7 +279,7 @@ impl DesignTable {
         let ranges = suite_ranges(study);
         let objective = |rows: &[RecordMetrics]| study.objective.value(rows, Some(bare), &ranges);
         let f_bare = objective(bare)?;
-        let pdr_bare = mean(bare.iter().map(RecordMetrics::peak_drift_ratio));
+        let pdr_bare = drift_for_reduction(bare);
         let masses: Vec<f64> = (0..study.building.floors())
             .map(|i| study.building.mass.row(i).sum())
             .collect();
@@ -285,14 +323,10 @@ impl DesignTable {
                 drift_ratio_p84: stat_by_storey(r, Statistic::P84, |m| &m.drift_ratio),
                 drift_ratio_max: stat_by_storey(r, Statistic::Max, |m| &m.drift_ratio),
                 objective: f,
-                objective_reduction: if f_bare != 0.0 { 1.0 - f / f_bare } else { 0.0 },
+                objective_reduction: reduction(f, f_bare),
                 peak_drift_ratio_mean: pdr,
-                peak_drift_reduction: if pdr_bare != 0.0 {
-                    1.0 - pdr / pdr_bare
-                } else {
-                    0.0
-                },
-                residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+                peak_drift_reduction: reduction(drift_for_reduction(r), pdr_bare),
+                residual_drift_ratio_mean: residual_mean(r),
                 peak_floor_acceleration_mean: mean(r.iter().map(|m| m.peak_floor_acceleration)),
                 base_shear_mean: mean(r.iter().map(|m| m.peak_base_shear)),
                 stroke_max: stat_by_storey(r, Statistic::Max, |m| &m.stroke),
@@ -383,24 +417,27 @@ impl DesignTable {
             {
                 let _ = write!(s, ",{v}");
             }
-            for v in [
-                r.objective,
-                r.objective_reduction,
+            let _ = write!(
+                s,
+                ",{},{},{},{},{},{},{}",
+                objective_text(r.objective, None),
+                reduction_text(r.objective_reduction, None),
                 r.peak_drift_ratio_mean,
-                r.peak_drift_reduction,
-                r.residual_drift_ratio_mean,
+                reduction_text(r.peak_drift_reduction, None),
+                objective_text(r.residual_drift_ratio_mean, None),
                 r.peak_floor_acceleration_mean,
-                r.base_shear_mean,
-            ] {
-                let _ = write!(s, ",{v}");
-            }
+                r.base_shear_mean
+            );
             for v in &r.stroke_max {
                 let _ = write!(s, ",{v}");
             }
             let _ = writeln!(
                 s,
                 ",{},{},{},{}",
-                r.energy_ratio_mean, r.rpi_mean, r.objective_at_75pct, r.objective_at_125pct
+                r.energy_ratio_mean,
+                r.rpi_mean,
+                objective_text(r.objective_at_75pct, None),
+                objective_text(r.objective_at_125pct, None)
             );
         }
         s
@@ -450,19 +487,19 @@ impl DesignTable {
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {:.5} | {:.1} % | {:.3} | {:.1} % | {:.4} | {:.2} | {:.2} | {:.2} | {:.3} | {:.5} / {:.5} |",
+                "| {} | {} | {} | {:.3} | {} | {} | {:.2} | {:.2} | {:.2} | {:.3} | {} / {} |",
                 r.design,
-                r.objective,
-                100.0 * r.objective_reduction,
+                objective_text(r.objective, Some(5)),
+                reduction_text(r.objective_reduction, Some(1)),
                 100.0 * r.peak_drift_ratio_mean,
-                100.0 * r.peak_drift_reduction,
-                100.0 * r.residual_drift_ratio_mean,
+                reduction_text(r.peak_drift_reduction, Some(1)),
+                objective_text(100.0 * r.residual_drift_ratio_mean, Some(4)),
                 r.peak_floor_acceleration_mean,
                 r.base_shear_mean / 1e6,
                 r.energy_ratio_mean,
                 r.rpi_mean,
-                r.objective_at_75pct,
-                r.objective_at_125pct
+                objective_text(r.objective_at_75pct, Some(5)),
+                objective_text(r.objective_at_125pct, Some(5))
             );
         }
         if self.rows.iter().any(|r| r.by_suite.is_some()) {
@@ -476,14 +513,14 @@ impl DesignTable {
                 for (k, st) in r.by_suite.iter().flatten().enumerate() {
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {} | {} | {:.3} | {:.3} | {:.4} | {} | {} | {} | {} |",
+                        "| {} | {} | {} | {} | {:.3} | {:.3} | {} | {} | {} | {} | {} |",
                         if k == 0 { r.design.as_str() } else { "" },
                         st.suite,
                         st.records,
                         st.collapses,
                         100.0 * st.peak_drift_ratio_mean,
                         100.0 * st.peak_drift_ratio_max,
-                        100.0 * st.residual_drift_ratio_mean,
+                        objective_text(100.0 * st.residual_drift_ratio_mean, Some(4)),
                         opt(st.peak_ductility_mean, 1.0, 2),
                         opt(st.peak_ductility_max, 1.0, 2),
                         opt(st.hysteretic_energy_mean, 1e-3, 1),

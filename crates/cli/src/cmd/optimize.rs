@@ -7,6 +7,7 @@ use super::study_args::{PhaseBars, discard_journals, load_study};
 use crate::study_figures;
 use slipload_opt::pipeline::{MapRequest, OptimizeOptions, StudyReport, optimize_study};
 use slipload_opt::study::RefineMethod;
+use slipload_opt::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::{OnBound, Study};
 use std::path::PathBuf;
 
@@ -188,15 +189,36 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             on_bound_text(study, &r.optimum_loads, &report.on_bound)
         );
     }
-    let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
+    // a collapse is said in words, never as a number or a "100 % lower"
+    let obj = |f: f64| objective_text(f, Some(6));
+    let lower = |f: f64, g: f64| {
+        let red = reduction(f, g);
+        if red.is_finite() {
+            format!("{} lower", reduction_text(red, Some(1)))
+        } else {
+            reduction_text(red, None)
+        }
+    };
+    let file_design = match study.file_friction() {
+        Some(laws) => format!(
+            "building file's design (friction law {} kN)",
+            laws.iter()
+                .map(|l| l.text(1e3))
+                .collect::<Vec<_>>()
+                .join(" / ")
+        ),
+        None => format!(
+            "building file's slip loads {} kN",
+            kn(&study.file_slip_loads())
+        ),
+    };
     outln!(
-        "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",
-        r.optimum.f,
-        r.bare_objective,
-        pct(r.optimum.f, r.bare_objective),
-        kn(&study.file_slip_loads()),
-        r.file_objective,
-        pct(r.optimum.f, r.file_objective)
+        "objective {} — bare frame {} ({}), {file_design}: {} ({})",
+        obj(r.optimum.f),
+        obj(r.bare_objective),
+        lower(r.optimum.f, r.bare_objective),
+        obj(r.file_objective),
+        lower(r.optimum.f, r.file_objective)
     );
     if r.check_reran {
         outln!(
@@ -212,10 +234,10 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     for f in &r.finalists {
         outln!(
-            "  {} kN: objective {:.6} (sweep {:.6})",
+            "  {} kN: objective {} (sweep {})",
             kn(&f.slip_loads_n),
-            f.f_check,
-            f.f_sweep
+            obj(f.f_check),
+            obj(f.f_sweep)
         );
     }
 }
