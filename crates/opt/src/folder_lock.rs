@@ -59,6 +59,19 @@ impl FolderLock {
         }
         let path = dir.join(LOCK_FILE);
         crate::output::refuse_symlink(&path)?;
+        // an output name that is a symbolic link is refused before anything runs
+        if let Ok(listing) = std::fs::read_dir(dir) {
+            let mut links: Vec<PathBuf> = listing
+                .flatten()
+                .filter(|e| e.file_type().is_ok_and(|t| t.is_symlink()))
+                .filter(|e| crate::journal::is_output_name(&e.file_name().to_string_lossy()))
+                .map(|e| e.path())
+                .collect();
+            links.sort();
+            if let Some(link) = links.first() {
+                crate::output::refuse_symlink(link)?;
+            }
+        }
         let file = OpenOptions::new()
             .create(true)
             .truncate(false)
