@@ -71,14 +71,20 @@ fn fresh_removes_every_file_slipload_wrote_and_names_what_it_keeps() {
     assert!(ok, "{err}");
     for f in stale {
         assert!(!out.join(f).exists(), "{f} survived --fresh");
-        assert!(err.contains(f), "--fresh does not say it removed {f}: {err}");
+        assert!(
+            err.contains(f),
+            "--fresh does not say it removed {f}: {err}"
+        );
     }
     assert!(err.contains("--fresh: removed"), "{err}");
     assert!(
         err.contains("--fresh: kept notes.txt"),
         "it names what it keeps: {err}"
     );
-    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
     assert!(std::fs::read(out.join("responses.csv")).unwrap() == fresh_bytes);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -101,7 +107,12 @@ fn an_output_that_is_a_symlink_is_refused_and_its_target_untouched() {
             err.contains("is a symbolic link") && err.contains("refusing to write through it"),
             "{name}: {err}"
         );
-        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "precious");
         // refused before anything ran: no journal, no table
         assert!(!out.join("manifest.json").exists(), "{name}");

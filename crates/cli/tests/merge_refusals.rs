@@ -66,7 +66,10 @@ fn merge_refuses_its_own_shards_and_another_studys_folder() {
     // the output is a shard folder, lies inside one, or holds them
     refused(
         &["merge", "--out", s(&a), s(&a), s(&b)],
-        &["is the output folder itself", "--out outside every shard folder"],
+        &[
+            "is the output folder itself",
+            "--out outside every shard folder",
+        ],
     );
     refused(
         &["merge", "--out", s(&a.join("m")), s(&a), s(&b)],
@@ -88,7 +91,10 @@ fn merge_refuses_its_own_shards_and_another_studys_folder() {
         &["holds the sweep of another study", "record 1 samples"],
     );
     assert!(std::fs::read(other.join("responses.csv")).unwrap() == other_csv);
-    assert!(journal(&a) == ja && journal(&b) == jb, "the shards are untouched");
+    assert!(
+        journal(&a) == ja && journal(&b) == jb,
+        "the shards are untouched"
+    );
     // a merge into its own folder drops no task: 4 designs x 2 records
     let merged = dir.join("merged");
     ok(&["merge", "--out", s(&merged), s(&a), s(&b)]);

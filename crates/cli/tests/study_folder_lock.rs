@@ -66,7 +66,10 @@ fn refused_busy(args: &[&str], dir: &Path) {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success(), "slipload {args:?} ran: {err}");
     assert!(
-        err.contains(&format!("{} is in use by another slipload command", dir.display())),
+        err.contains(&format!(
+            "{} is in use by another slipload command",
+            dir.display()
+        )),
         "slipload {args:?}: {err}"
     );
     assert!(!err.contains("panicked"), "{err}");
@@ -93,13 +96,31 @@ fn a_second_command_into_a_folder_in_use_is_refused_and_the_first_is_intact() {
     let before = snapshot(&out);
     assert!(before.iter().any(|(n, _)| n == "responses.csv"));
     let lock = hold(&out);
-    refused_busy(&["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"], &out);
-    refused_busy(&["sweep", s(&st), "--out", s(&out), "--resume", "--quiet"], &out);
+    refused_busy(
+        &["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"],
+        &out,
+    );
+    refused_busy(
+        &["sweep", s(&st), "--out", s(&out), "--resume", "--quiet"],
+        &out,
+    );
     refused_busy(&["optimize", s(&st), "--out", s(&out), "--quiet"], &out);
     let cands = dir.join("cands.json");
-    std::fs::write(&cands, r#"[{"name": "a", "slip_loads_kn": [100, 100, 100]}]"#).unwrap();
+    std::fs::write(
+        &cands,
+        r#"[{"name": "a", "slip_loads_kn": [100, 100, 100]}]"#,
+    )
+    .unwrap();
     refused_busy(
-        &["rank", s(&st), "--designs", s(&cands), "--out", s(&out), "--quiet"],
+        &[
+            "rank",
+            s(&st),
+            "--designs",
+            s(&cands),
+            "--out",
+            s(&out),
+            "--quiet",
+        ],
         &out,
     );
     assert!(snapshot(&out) == before, "the first run's files are intact");

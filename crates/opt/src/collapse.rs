@@ -172,7 +172,10 @@ mod tests {
 
     #[test]
     fn collapses_are_words_never_numbers() {
-        assert_eq!(reduction_text(reduction(f64::INFINITY, 1.0), Some(1)), "collapsed");
+        assert_eq!(
+            reduction_text(reduction(f64::INFINITY, 1.0), Some(1)),
+            "collapsed"
+        );
         assert_eq!(
             reduction_text(reduction(0.5, f64::INFINITY), Some(1)),
             "bare frame collapsed"

@@ -26,7 +26,13 @@ pub fn run_one(
     fid: &Fidelity,
     label: &str,
 ) -> Result<RecordMetrics, OptError> {
-    run_design(study, &DesignLoads::from(slip_loads.to_vec()), record, fid, label)
+    run_design(
+        study,
+        &DesignLoads::from(slip_loads.to_vec()),
+        record,
+        fid,
+        label,
+    )
 }
 
 /// A design as it runs: its slip loads (N per dissipator) and, for the building file's

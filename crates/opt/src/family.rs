@@ -6,8 +6,8 @@
 //! kept), masses and storey heights unchanged. An intensity scale multiplies every record.
 //! The design space (kN) stays the study's.
 
-use crate::error::OptError;
 use crate::collapse::{objective_text, reduction, reduction_text};
+use crate::error::OptError;
 use crate::evaluate::{DesignLoads, run_designs};
 use crate::fidelity::Fidelity;
 use crate::optimize::optimize;

@@ -54,7 +54,11 @@ impl FolderLock {
         let key = std::fs::canonicalize(dir).map_err(io(dir))?;
         let mut held = HELD.lock().unwrap_or_else(|p| p.into_inner());
         held.retain(|(_, w)| w.strong_count() > 0);
-        if let Some(h) = held.iter().find(|(k, _)| *k == key).and_then(|(_, w)| w.upgrade()) {
+        if let Some(h) = held
+            .iter()
+            .find(|(k, _)| *k == key)
+            .and_then(|(_, w)| w.upgrade())
+        {
             return Ok(FolderLock { _held: h });
         }
         let path = dir.join(LOCK_FILE);

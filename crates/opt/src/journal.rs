@@ -103,7 +103,11 @@ pub fn crc32(bytes: &[u8]) -> u32 {
     for &b in bytes {
         c ^= u32::from(b);
         for _ in 0..8 {
-            c = if c & 1 != 0 { (c >> 1) ^ 0xEDB8_8320 } else { c >> 1 };
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
         }
     }
     !c
@@ -137,9 +141,7 @@ fn check_line<T: serde::de::DeserializeOwned>(line: &[u8]) -> Line<T> {
             .ok()
             .and_then(|l| serde_json::from_str::<T>(l).ok())
     };
-    let at = line
-        .windows(CRC_TAG.len())
-        .rposition(|w| w == CRC_TAG);
+    let at = line.windows(CRC_TAG.len()).rposition(|w| w == CRC_TAG);
     let Some(at) = at else {
         // no checksum: an older slipload's line (recomputed), or not an entry
         return match parse(line) {
@@ -468,10 +470,7 @@ pub fn is_output_name(name: &str) -> bool {
         "convergence",
         "objective-map",
     ];
-    if let Some(inner) = name
-        .strip_prefix('.')
-        .and_then(|n| n.strip_suffix(".tmp"))
-    {
+    if let Some(inner) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) {
         return is_output_name(inner);
     }
     is_journal_name(name)
@@ -512,9 +511,7 @@ pub fn discard_journals(dir: &Path) -> Result<Discarded, OptError> {
             continue;
         }
         // a link named like an output is removed (the link, never its target)
-        let removable = e
-            .file_type()
-            .is_ok_and(|t| t.is_file() || t.is_symlink());
+        let removable = e.file_type().is_ok_and(|t| t.is_file() || t.is_symlink());
         if removable && is_output_name(&name) {
             std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
                 path: e.path(),

@@ -303,7 +303,11 @@ impl Manifest {
             let collapsed = !obj[d].0.is_finite();
             let _ = write!(s, ",{}", objective_text(obj[d].0, None));
             for v in &obj[d].1 {
-                let cell = if collapsed { COLLAPSED.to_string() } else { v.to_string() };
+                let cell = if collapsed {
+                    COLLAPSED.to_string()
+                } else {
+                    v.to_string()
+                };
                 let _ = write!(s, ",{cell}");
             }
             let red = reduction_text(reduction(obj[d].0, f0), None);
@@ -519,7 +523,10 @@ fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
     let path = out.join("manifest.json");
     if let Ok(text) = std::fs::read_to_string(&path) {
         let theirs = serde_json::from_str::<Manifest>(&text).ok();
-        if theirs.as_ref().is_none_or(|m| m.fingerprint != manifest.fingerprint) {
+        if theirs
+            .as_ref()
+            .is_none_or(|m| m.fingerprint != manifest.fingerprint)
+        {
             return Err(OptError::Shard(format!(
                 "{} holds {}: merge into an empty folder or one holding this study's sweep (fingerprint {})",
                 out.display(),

@@ -562,8 +562,7 @@ pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, DesignLo
     // a profile optimum already is its profile at that total: keep the first of equals
     let same = |a: &DesignLoads, b: &DesignLoads| {
         a.friction_n == b.friction_n
-            && a
-                .slip_loads_n
+            && a.slip_loads_n
                 .iter()
                 .zip(&b.slip_loads_n)
                 .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))

@@ -152,7 +152,11 @@ fn a_ranking_says_collapsed() {
     };
     let json = serde_json::to_string(&r).unwrap();
     assert!(json.contains(r#""objective":[0.01,"collapsed"]"#), "{json}");
-    for (what, text) in [("rank.csv", r.to_csv()), ("rank.md", r.to_markdown()), ("rank.json", json)] {
+    for (what, text) in [
+        ("rank.csv", r.to_csv()),
+        ("rank.md", r.to_markdown()),
+        ("rank.json", json),
+    ] {
         assert_no_number_for_collapse(what, &text);
         assert!(text.contains("collapsed"), "{what}:\n{text}");
     }

@@ -45,7 +45,12 @@ fn scratch(name: &str) -> PathBuf {
 fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
     let rec = &study.records[r];
     let dt = fid.dt_s.unwrap_or_else(|| {
-        default_dt(fid.method, study.building.t1(), Some(rec.dt()), rec.duration())
+        default_dt(
+            fid.method,
+            study.building.t1(),
+            Some(rec.dt()),
+            rec.duration(),
+        )
     }) * fid.dt_factor;
     let scene = Scene {
         name: "as written".into(),
@@ -179,7 +184,10 @@ fn the_design_table_candidates_and_rank_carry_the_law() {
     assert!(text.contains(r#""locked""#), "{text}");
     let back: Vec<NamedDesign> = serde_json::from_str(&text).unwrap();
     let loads = to_newtons(&st, &back).unwrap();
-    assert_eq!(loads[0].friction_n.as_ref().unwrap()[2], FrictionLaw::Locked);
+    assert_eq!(
+        loads[0].friction_n.as_ref().unwrap()[2],
+        FrictionLaw::Locked
+    );
     let zero = NamedDesign {
         name: "file read as 0 kN".into(),
         friction_kn: None,

@@ -41,7 +41,10 @@ fn crc32_matches_the_reference_value() {
     // the IEEE CRC-32 check value
     assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
     let line = checked_line(&serde_json::json!({"a": 1})).unwrap();
-    assert_eq!(line, format!(r#"{{"a":1,"crc32":"{:08x}"}}"#, crc32(br#"{"a":1}"#)));
+    assert_eq!(
+        line,
+        format!(r#"{{"a":1,"crc32":"{:08x}"}}"#, crc32(br#"{"a":1}"#))
+    );
 }
 
 #[test]
@@ -93,8 +96,7 @@ fn a_line_that_is_no_entry_is_refused_with_how_to_recover() {
     let mut lines: Vec<&str> = text.lines().collect();
     lines[3] = "garbage";
     std::fs::write(&j, lines.join("\n") + "\n").unwrap();
-    let e = sweep::run(&st, &dir, Shard::ALL, true, &|| {})
-        .unwrap_err();
+    let e = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap_err();
     let mut chain = e.to_string();
     let mut src = std::error::Error::source(&e);
     while let Some(s) = src {

@@ -5,9 +5,9 @@
 
 use super::study_args::{PhaseBars, discard_journals, load_study};
 use crate::study_figures;
+use slipload_opt::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::pipeline::{MapRequest, OptimizeOptions, StudyReport, optimize_study};
 use slipload_opt::study::RefineMethod;
-use slipload_opt::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::{OnBound, Study};
 use std::path::PathBuf;
 

@@ -3,8 +3,8 @@
 
 use super::progress::{Phase, Progress, phase};
 use crate::error::OptError;
-use crate::folder_lock::FolderLock;
 use crate::family::{FamilyReport, family};
+use crate::folder_lock::FolderLock;
 use crate::rank::{NamedDesign, Ranking, rank};
 use crate::study::{RefineMethod, Study};
 use std::path::Path;
