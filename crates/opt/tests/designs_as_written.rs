@@ -180,7 +180,7 @@ fn the_design_table_candidates_and_rank_carry_the_law() {
             .as_ref()
             .map(|l| l.iter().map(|x| x.scaled(1e-3)).collect()),
     };
-    let text = serde_json::to_string(&[named.clone()]).unwrap();
+    let text = serde_json::to_string(std::slice::from_ref(&named)).unwrap();
     assert!(text.contains(r#""locked""#), "{text}");
     let back: Vec<NamedDesign> = serde_json::from_str(&text).unwrap();
     let loads = to_newtons(&st, &back).unwrap();
