@@ -191,12 +191,16 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     // a collapse is said in words, never as a number or a "100 % lower"
     let obj = |f: f64| objective_text(f, Some(6));
-    let lower = |f: f64, g: f64| {
-        let red = reduction(f, g);
-        if red.is_finite() {
-            format!("{} lower", reduction_text(red, Some(1)))
+    // "collapsed", or the value and how much lower the optimum is
+    let against = |g: f64| {
+        if g.is_finite() {
+            format!(
+                "{} ({} lower)",
+                obj(g),
+                reduction_text(reduction(r.optimum.f, g), Some(1))
+            )
         } else {
-            reduction_text(red, None)
+            obj(g)
         }
     };
     let file_design = match study.file_friction() {
@@ -213,12 +217,10 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         ),
     };
     outln!(
-        "objective {} — bare frame {} ({}), {file_design}: {} ({})",
+        "objective {} — bare frame {}, {file_design}: {}",
         obj(r.optimum.f),
-        obj(r.bare_objective),
-        lower(r.optimum.f, r.bare_objective),
-        obj(r.file_objective),
-        lower(r.optimum.f, r.file_objective)
+        against(r.bare_objective),
+        against(r.file_objective)
     );
     if r.check_reran {
         outln!(
