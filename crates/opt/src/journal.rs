@@ -184,7 +184,7 @@ fn refuse(path: &Path, line: usize, why: String) -> OptError {
         path: path.to_path_buf(),
         line,
         message: format!(
-            "{why}; its results cannot be reused: pass --fresh to discard this folder's journals and start afresh, or choose another --out"
+            "{why}; its results cannot be reused: pass --fresh to discard this folder's journals and the files built from them and start afresh, or choose another --out"
         ),
     }
 }
@@ -304,7 +304,7 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
                     path: path.to_path_buf(),
                     line: line_no,
                     message: format!(
-                        "not a journal entry (only the last line may be torn): the journal is damaged; to recover, delete line {line_no} (--resume then runs its task again) or pass --fresh to discard the folder's journals and start afresh"
+                        "not a journal entry (only the last line may be torn): the journal is damaged; to recover, delete line {line_no} (--resume then runs its task again) or pass --fresh to discard the folder's journals and the files built from them and start afresh"
                     ),
                 });
             }

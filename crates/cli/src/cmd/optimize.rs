@@ -33,9 +33,10 @@ pub struct OptimizeArgs {
     /// Grid points per axis of the objective map
     #[arg(long, default_value_t = 11)]
     pub map_grid: usize,
-    /// Discard the output folder's journals (sweep, refine, check) and start afresh;
-    /// without it the journals of the same study (by fingerprint) are continued and those
-    /// of another study refused
+    /// Remove every file a slipload command wrote in the output folder (journals — sweep,
+    /// refine, check —, tables, figures, rankings, report; any other file is kept and
+    /// named) and start afresh; without it the journals of the same study (by
+    /// fingerprint) are continued and those of another study refused
     #[arg(long)]
     pub fresh: bool,
 }

@@ -25,8 +25,8 @@ pub struct SweepArgs {
     /// a journal of the same study, by its fingerprint)
     #[arg(long, conflicts_with = "fresh")]
     pub resume: bool,
-    /// Discard the output folder's journals (and the tables built from them) and start
-    /// afresh
+    /// Remove every file a slipload command wrote in the output folder (journals, tables,
+    /// figures, rankings, report; any other file is kept and named) and start afresh
     #[arg(long)]
     pub fresh: bool,
 }
