@@ -69,6 +69,7 @@ pub enum Reuse {
 pub struct Appender {
     path: PathBuf,
     writer: Mutex<LineWriter<File>>,
+    distrusted: usize,
 }
 
 impl Appender {
@@ -93,6 +94,12 @@ impl Appender {
     /// The journal's path.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Complete lines found in the journal when it was opened whose checksum failed or
+    /// was missing: not trusted, so their tasks run again.
+    pub fn distrusted(&self) -> usize {
+        self.distrusted
     }
 }
 
@@ -195,6 +202,14 @@ fn refuse(path: &Path, line: usize, why: String) -> OptError {
 pub fn read_journal<T: serde::de::DeserializeOwned>(
     path: &Path,
 ) -> Result<Option<(Header, Vec<T>, u64)>, OptError> {
+    Ok(read_journal_counted(path)?.map(|(h, e, good, _)| (h, e, good)))
+}
+
+/// As [`read_journal`], also counting the complete lines not trusted (checksum failed
+/// or missing).
+fn read_journal_counted<T: serde::de::DeserializeOwned>(
+    path: &Path,
+) -> Result<Option<(Header, Vec<T>, u64, usize)>, OptError> {
     let text = match std::fs::read(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
@@ -244,8 +259,8 @@ pub fn read_journal<T: serde::de::DeserializeOwned>(
             ));
         }
     };
-    let (entries, good) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
-    Ok(Some((header, entries, good + nl as u64 + 1)))
+    let (entries, good, distrusted) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
+    Ok(Some((header, entries, good + nl as u64 + 1, distrusted)))
 }
 
 /// Reads a file of one JSON `T` per line; a last line that does not parse (torn write)
@@ -261,7 +276,7 @@ pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>
             });
         }
     };
-    parse_lines(&text, path, 0)
+    parse_lines(&text, path, 0).map(|(e, good, _)| (e, good))
 }
 
 /// Entries of a journal with a header (the header skipped); none for a missing file.
@@ -276,7 +291,8 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
     text: &[u8],
     path: &Path,
     skipped: usize,
-) -> Result<(Vec<T>, u64), OptError> {
+) -> Result<(Vec<T>, u64, usize), OptError> {
+    let mut distrusted = 0;
     let mut entries = Vec::new();
     let mut good = 0u64;
     let mut pos = 0usize;
@@ -297,7 +313,10 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
                 good = next as u64;
             }
             // a complete line that fails its checksum: kept in the file, not trusted
-            Line::Untrusted if complete => good = next as u64,
+            Line::Untrusted if complete => {
+                good = next as u64;
+                distrusted += 1;
+            }
             _ if next == text.len() => break, // torn last line
             _ => {
                 return Err(OptError::Journal {
@@ -311,7 +330,7 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
         }
         pos = next;
     }
-    Ok((entries, good))
+    Ok((entries, good, distrusted))
 }
 
 /// Opens the journal `path` of kind `kind` for a study of fingerprint `fp`. A missing
@@ -330,10 +349,10 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
         source,
     };
     crate::output::refuse_symlink(path)?;
-    let found = read_journal::<T>(path)?;
-    let (entries, good) = match found {
-        None => (Vec::new(), 0),
-        Some((header, entries, good)) => {
+    let found = read_journal_counted::<T>(path)?;
+    let (entries, good, distrusted) = match found {
+        None => (Vec::new(), 0, 0),
+        Some((header, entries, good, distrusted)) => {
             if header.journal != kind {
                 return Err(refuse(
                     path,
@@ -360,7 +379,7 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
                     message: "a journal of an earlier run of this study is here: pass --resume to continue it, --fresh to start afresh, or choose another --out".into(),
                 });
             }
-            (entries, good)
+            (entries, good, distrusted)
         }
     };
     if let Some(dir) = path.parent() {
@@ -377,6 +396,7 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
     let appender = Appender {
         path: path.to_path_buf(),
         writer: Mutex::new(LineWriter::new(file)),
+        distrusted,
     };
     if good == 0 {
         appender.append(&Header {
@@ -545,5 +565,10 @@ impl Journal {
     /// Appends one entry as one line (written whole before the call returns).
     pub fn append(&self, e: &Entry) -> Result<(), OptError> {
         self.0.append(e)
+    }
+
+    /// Lines found not trusted when the journal was opened ([`Appender::distrusted`]).
+    pub fn distrusted(&self) -> usize {
+        self.0.distrusted()
     }
 }

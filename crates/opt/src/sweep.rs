@@ -348,6 +348,8 @@ pub struct SweepReport {
     pub resumed: usize,
     /// Of which run now.
     pub ran: usize,
+    /// Journal lines not trusted (checksum failed or missing): their tasks ran again.
+    pub distrusted: usize,
     /// All rows (when this run covers every task), sorted by key.
     pub rows: Option<Vec<RecordMetrics>>,
 }
@@ -406,6 +408,7 @@ pub fn run(
     let manifest = Manifest::of(study);
     let jpath = out.join("journal.jsonl");
     let (journal, entries) = Journal::open(&jpath, &manifest.fingerprint, resume)?;
+    let distrusted = journal.distrusted();
     let total = manifest.tasks();
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; total];
     place(&manifest, entries, &jpath, &mut rows)?;
@@ -459,6 +462,7 @@ pub fn run(
         shard_tasks: mine.len(),
         resumed,
         ran: todo.len(),
+        distrusted,
         rows: full,
     })
 }

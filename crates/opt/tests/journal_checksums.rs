@@ -64,6 +64,7 @@ fn a_line_that_fails_its_checksum_is_run_again() {
     assert_eq!(entries.len(), 4 * 2 - 1, "the damaged line is not trusted");
     let r = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap();
     assert_eq!((r.resumed, r.ran), (7, 1), "exactly its task runs again");
+    assert_eq!(r.distrusted, 1, "the run says one line was not trusted");
     assert!(std::fs::read(dir.join("responses.csv")).unwrap() == csv);
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -84,6 +85,7 @@ fn an_older_journal_without_checksums_is_recomputed() {
     std::fs::write(&j, old).unwrap();
     let r = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap();
     assert_eq!((r.resumed, r.ran), (0, 8), "none of its lines is trusted");
+    assert_eq!(r.distrusted, 8);
     assert!(std::fs::read(dir.join("responses.csv")).unwrap() == csv);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -60,6 +60,13 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         secs,
         report.ran as f64 / secs.max(1e-9)
     );
+    if report.distrusted > 0 {
+        eprintln!(
+            "{} line(s) of {}/journal.jsonl failed their checksum or had none (an older slipload's): not trusted, their tasks ran again",
+            report.distrusted,
+            args.out.display()
+        );
+    }
     eprintln!(
         "sweep method {} ({})",
         report.manifest.method.as_str(),

@@ -70,6 +70,7 @@ pub fn merge_shards(dirs: &[&Path], out: &Path) -> Result<SweepRun, OptError> {
         shard_tasks: manifest.tasks(),
         resumed: manifest.tasks(),
         ran: 0,
+        distrusted: 0,
         manifest,
         rows: Some(rows),
     })
