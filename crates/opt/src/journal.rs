@@ -205,11 +205,15 @@ pub fn read_journal<T: serde::de::DeserializeOwned>(
     Ok(read_journal_counted(path)?.map(|(h, e, good, _)| (h, e, good)))
 }
 
+/// A journal read whole: its header, trusted entries, the byte length of the intact
+/// part and the number of complete lines not trusted.
+type Counted<T> = (Header, Vec<T>, u64, usize);
+
 /// As [`read_journal`], also counting the complete lines not trusted (checksum failed
 /// or missing).
 fn read_journal_counted<T: serde::de::DeserializeOwned>(
     path: &Path,
-) -> Result<Option<(Header, Vec<T>, u64, usize)>, OptError> {
+) -> Result<Option<Counted<T>>, OptError> {
     let text = match std::fs::read(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
