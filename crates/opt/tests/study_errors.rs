@@ -63,8 +63,7 @@ fn empty_suites_are_rejected() {
     let e = err(|v| v["suites"][0]["synthetic"]["count"] = 0.into());
     assert!(e.contains("`suites[0].synthetic.count`"), "{e}");
     let e = err(|v| {
-        v["suites"] =
-            serde_json::json!([{ "name": "x", "records": ["../records/NOPE*.AT2"] }])
+        v["suites"] = serde_json::json!([{ "name": "x", "records": ["../records/NOPE*.AT2"] }])
     });
     assert!(
         e.contains("`suites[0].records[0]`") && e.contains("matches no file"),
