@@ -8,6 +8,7 @@
 //!   percentile over the suite);
 //! - per-record peak drift ratio of the best design vs the bare frame.
 
+use slipload_opt::collapse::objective_text;
 use slipload_opt::pipeline::{Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -19,7 +20,12 @@ pub fn map_csv(m: &ObjectiveMap) -> String {
     let nb = m.loads_b_kn.len();
     for (i, x) in m.loads_a_kn.iter().enumerate() {
         for (j, y) in m.loads_b_kn.iter().enumerate() {
-            let _ = writeln!(s, "{x},{y},{}", m.objective[i * nb + j]);
+            // a collapsed design's objective is the word, not inf
+            let _ = writeln!(
+                s,
+                "{x},{y},{}",
+                objective_text(m.objective[i * nb + j], None)
+            );
         }
     }
     s
@@ -30,7 +36,13 @@ pub fn convergence_csv(paths: &[Convergence]) -> String {
     let mut s = String::from("refiner,simulations,objective,best_so_far\n");
     for c in paths {
         for (n, f, b) in &c.points {
-            let _ = writeln!(s, "{},{n},{f},{b}", csv_field(&c.refiner));
+            let _ = writeln!(
+                s,
+                "{},{n},{},{}",
+                csv_field(&c.refiner),
+                objective_text(*f, None),
+                objective_text(*b, None)
+            );
         }
     }
     s

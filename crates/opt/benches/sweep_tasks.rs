@@ -24,6 +24,7 @@ fn tasks_per_second(c: &mut Criterion) {
             (0..4).map(move |r| Task {
                 label: format!("#{d}"),
                 slip_loads: vec![500e3 * (d + 1) as f64; 3],
+                friction: None,
                 record: r,
             })
         })

@@ -101,6 +101,24 @@ pub enum OptError {
         /// What it is.
         kind: String,
     },
+    /// An output path is a symbolic link: slipload never writes through one.
+    #[error(
+        "{path} is a symbolic link (to {target}): refusing to write through it; remove the link or give the path of a regular file"
+    )]
+    Symlink {
+        /// The path given.
+        path: PathBuf,
+        /// Where the link points, as written in the link.
+        target: PathBuf,
+    },
+    /// Another command holds the output folder's lock ([`crate::folder_lock`]).
+    #[error(
+        "{dir} is in use by another slipload command (it holds the folder's lock {dir}/.slipload.lock): one folder takes one writer at a time; wait for that run to finish, or choose another --out"
+    )]
+    FolderBusy {
+        /// The folder.
+        dir: PathBuf,
+    },
     /// A step of a study run failed: what was being done (`sweeping STUDY into DIR`),
     /// then the cause.
     #[error("{context}")]

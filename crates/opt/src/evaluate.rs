@@ -8,6 +8,7 @@ pub use crate::fidelity::{Fidelity, hht_alpha};
 use crate::fingerprint::Fingerprint;
 use crate::journal::{Appender, Reuse, open_journal};
 use crate::metrics::RecordMetrics;
+use crate::sampler::FrictionLaw;
 use crate::study::Study;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -25,8 +26,85 @@ pub fn run_one(
     fid: &Fidelity,
     label: &str,
 ) -> Result<RecordMetrics, OptError> {
+    run_design(
+        study,
+        &DesignLoads::from(slip_loads.to_vec()),
+        record,
+        fid,
+        label,
+    )
+}
+
+/// A design as it runs: its slip loads (N per dissipator) and, for the building file's
+/// design where the file writes more than symmetric slip loads, its friction law per
+/// dissipator (which then is what runs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignLoads {
+    /// Slip loads, N per dissipator.
+    pub slip_loads_n: Vec<f64>,
+    /// The friction law per dissipator, N, overriding the slip loads when present.
+    pub friction_n: Option<Vec<FrictionLaw>>,
+}
+
+impl From<Vec<f64>> for DesignLoads {
+    fn from(slip_loads_n: Vec<f64>) -> Self {
+        DesignLoads {
+            slip_loads_n,
+            friction_n: None,
+        }
+    }
+}
+
+impl DesignLoads {
+    /// The building file's design of `study`, as written ([`Study::file_friction`]).
+    pub fn file(study: &Study) -> DesignLoads {
+        DesignLoads {
+            slip_loads_n: study.file_slip_loads(),
+            friction_n: study.file_friction(),
+        }
+    }
+
+    /// Every force times `k` (a locked contact stays locked).
+    pub fn scaled(&self, k: f64) -> DesignLoads {
+        DesignLoads {
+            slip_loads_n: self.slip_loads_n.iter().map(|v| k * v).collect(),
+            friction_n: self
+                .friction_n
+                .as_ref()
+                .map(|l| l.iter().map(|x| x.scaled(k)).collect()),
+        }
+    }
+
+    /// The study's building with this design's dampers.
+    pub fn building(&self, study: &Study) -> slipload_sim::Building {
+        let n = study.building.floors();
+        match &self.friction_n {
+            None => study
+                .building
+                .with_slip_loads(&study.space.per_floor(n, &self.slip_loads_n)),
+            Some(laws) => {
+                let mut b = study.building.clone();
+                for (&f, law) in study.space.dampers.iter().zip(laws) {
+                    if let Some(d) = b.dissipators[f].as_mut() {
+                        (d.lower, d.upper) = law.bounds();
+                    }
+                }
+                b
+            }
+        }
+    }
+}
+
+/// Simulates `design` under record `record` of the study: its responses.
+pub fn run_design(
+    study: &Study,
+    design: &DesignLoads,
+    record: usize,
+    fid: &Fidelity,
+    label: &str,
+) -> Result<RecordMetrics, OptError> {
     let rec = &study.records[record];
-    let out = simulate_one(study, slip_loads, record, fid, label)?;
+    let out = simulate_design(study, design, record, fid, label)?;
     let heights = study
         .building
         .storey_heights
@@ -51,11 +129,26 @@ pub fn simulate_one(
     fid: &Fidelity,
     label: &str,
 ) -> Result<slipload_sim::Outcome, OptError> {
+    simulate_design(
+        study,
+        &DesignLoads::from(slip_loads.to_vec()),
+        record,
+        fid,
+        label,
+    )
+}
+
+/// The simulation of [`run_design`], whole (responses and diagnostics).
+pub fn simulate_design(
+    study: &Study,
+    design: &DesignLoads,
+    record: usize,
+    fid: &Fidelity,
+    label: &str,
+) -> Result<slipload_sim::Outcome, OptError> {
     let rec = &study.records[record];
     let n = study.building.floors();
-    let building = study
-        .building
-        .with_slip_loads(&study.space.per_floor(n, slip_loads));
+    let building = design.building(study);
     let duration = rec.duration();
     let dt = fid
         .dt_s
@@ -99,6 +192,9 @@ pub struct Task {
     pub label: String,
     /// Slip loads, N.
     pub slip_loads: Vec<f64>,
+    /// The friction law per dissipator, N, overriding the slip loads (the building
+    /// file's design as written).
+    pub friction: Option<Vec<FrictionLaw>>,
     /// Record index.
     pub record: usize,
 }
@@ -120,7 +216,11 @@ pub fn run_tasks(
         .map_init(
             || (),
             |_, (k, t)| {
-                let m = run_one(study, &t.slip_loads, t.record, fid, &t.label)?;
+                let design = DesignLoads {
+                    slip_loads_n: t.slip_loads.clone(),
+                    friction_n: t.friction.clone(),
+                };
+                let m = run_design(study, &design, t.record, fid, &t.label)?;
                 done(k, &m)?;
                 Ok(m)
             },
@@ -140,11 +240,26 @@ pub struct TaskEntry {
     pub record_name: String,
     /// Slip loads, N per dissipator.
     pub slip_loads_n: Vec<f64>,
+    /// The friction law per dissipator, N, when it overrides the slip loads.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_n: Option<Vec<FrictionLaw>>,
     /// The responses.
     pub metrics: RecordMetrics,
 }
 
 type TaskKey = (String, Vec<u64>, usize);
+
+/// The key of a design's task: the bits of its slip loads, then (when it has one) of
+/// its friction law, so that a locked or asymmetric design never shares a symmetric
+/// design's runs.
+fn design_key(loads: &[f64], friction: Option<&[FrictionLaw]>) -> Vec<u64> {
+    let mut k = key(loads);
+    for law in friction.into_iter().flatten() {
+        let (lo, hi) = law.bounds();
+        k.extend([u64::MAX, lo.to_bits(), hi.to_bits()]);
+    }
+    k
+}
 
 /// A journal of (design, record) tasks outside the sweep (`check.jsonl`: `optimize`'s
 /// finalist check and design table): tasks found there are not run again, tasks run are
@@ -175,7 +290,11 @@ impl TaskJournal {
                 });
             }
             known
-                .entry((e.fidelity, key(&e.slip_loads_n), e.record))
+                .entry((
+                    e.fidelity,
+                    design_key(&e.slip_loads_n, e.friction_n.as_deref()),
+                    e.record,
+                ))
                 .or_insert(e.metrics);
         }
         Ok(TaskJournal {
@@ -196,9 +315,9 @@ fn key(loads: &[f64]) -> Vec<u64> {
 }
 
 /// Responses of several designs over every record: `result[d][r]`.
-pub fn run_designs(
+pub fn run_designs<D: Clone + Into<DesignLoads>>(
     study: &Study,
-    designs: &[Vec<f64>],
+    designs: &[D],
     fid: &Fidelity,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<Vec<RecordMetrics>>, OptError> {
@@ -206,27 +325,40 @@ pub fn run_designs(
 }
 
 /// As [`run_designs`], taking finished tasks from `journal` and appending the others.
-pub fn run_designs_journalled(
+pub fn run_designs_journalled<D: Clone + Into<DesignLoads>>(
     study: &Study,
-    designs: &[Vec<f64>],
+    designs: &[D],
     fid: &Fidelity,
     journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<Vec<RecordMetrics>>, OptError> {
     let nr = study.records.len();
+    let designs: Vec<DesignLoads> = designs.iter().cloned().map(Into::into).collect();
     let tasks: Vec<Task> = designs
         .iter()
         .enumerate()
         .flat_map(|(d, s)| {
-            (0..nr).map(move |r| Task {
-                label: format!(
-                    "#{d} (slip loads {} kN)",
-                    s.iter()
+            let what = match &s.friction_n {
+                Some(laws) => format!(
+                    "friction law {} kN",
+                    laws.iter()
+                        .map(|l| l.text(1e3))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                ),
+                None => format!(
+                    "slip loads {} kN",
+                    s.slip_loads_n
+                        .iter()
                         .map(|v| format!("{:.1}", v / 1e3))
                         .collect::<Vec<_>>()
                         .join(" / ")
                 ),
-                slip_loads: s.clone(),
+            };
+            (0..nr).map(move |r| Task {
+                label: format!("#{d} ({what})"),
+                slip_loads: s.slip_loads_n.clone(),
+                friction: s.friction_n.clone(),
                 record: r,
             })
         })
@@ -237,7 +369,11 @@ pub fn run_designs_journalled(
         .map(|t| {
             journal.and_then(|j| {
                 j.known
-                    .get(&(tag.clone(), key(&t.slip_loads), t.record))
+                    .get(&(
+                        tag.clone(),
+                        design_key(&t.slip_loads, t.friction.as_deref()),
+                        t.record,
+                    ))
                     .cloned()
             })
         })
@@ -259,6 +395,7 @@ pub fn run_designs_journalled(
                 record: t.record,
                 record_name: study.records[t.record].name().to_string(),
                 slip_loads_n: t.slip_loads.clone(),
+                friction_n: t.friction.clone(),
                 metrics: m.clone(),
             })?;
         }

@@ -6,8 +6,9 @@
 //! kept), masses and storey heights unchanged. An intensity scale multiplies every record.
 //! The design space (kN) stays the study's.
 
+use crate::collapse::{objective_text, reduction, reduction_text};
 use crate::error::OptError;
-use crate::evaluate::run_designs;
+use crate::evaluate::{DesignLoads, run_designs};
 use crate::fidelity::Fidelity;
 use crate::optimize::optimize;
 use crate::output::write_atomic;
@@ -31,8 +32,10 @@ pub struct FamilyCell {
     /// Optimal slip loads, kN per dissipator.
     pub slip_loads_kn: Vec<f64>,
     /// Objective of the optimum (sweep fidelity).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective: f64,
-    /// Objective of the bare frame.
+    /// Objective of the bare frame (`"collapsed"` when it collapses on a record).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub bare_objective: f64,
     /// Designs evaluated (sweep + refinement).
     pub designs: usize,
@@ -85,14 +88,29 @@ pub fn family(
     let mut out = Vec::new();
     for &p in period_scales {
         for &a in intensity_scales {
-            let s = scaled_study(study, p, a)?;
+            // a cell that cannot be built names its scales (the cause names the record)
+            let at = |e: OptError| {
+                e.context(format!(
+                    "family table at period scale {p}, intensity scale {a}"
+                ))
+            };
+            let s = scaled_study(study, p, a).map_err(at)?;
             let m = Manifest::of(&s);
-            let designs: Vec<Vec<f64>> = m.designs.iter().map(|d| d.slip_loads_n.clone()).collect();
-            let rows: Vec<_> = run_designs(&s, &designs, &Fidelity::sweep(&s), tick)?
+            // the building file's design as written (its friction law, when it has one)
+            let designs: Vec<DesignLoads> = m
+                .designs
+                .iter()
+                .map(|d| DesignLoads {
+                    slip_loads_n: d.slip_loads_n.clone(),
+                    friction_n: d.friction_n.clone(),
+                })
+                .collect();
+            let rows: Vec<_> = run_designs(&s, &designs, &Fidelity::sweep(&s), tick)
+                .map_err(at)?
                 .into_iter()
                 .flatten()
                 .collect();
-            let r = optimize(&s, &m, &rows, method, None, None, tick)?;
+            let r = optimize(&s, &m, &rows, method, None, None, tick).map_err(at)?;
             out.push(FamilyCell {
                 period_scale: p,
                 intensity_scale: a,
@@ -119,7 +137,13 @@ pub fn to_csv(cells: &[FamilyCell], damper_floors: &[usize]) -> String {
         for v in &c.slip_loads_kn {
             let _ = write!(s, ",{v}");
         }
-        let _ = writeln!(s, ",{},{},{}", c.objective, c.bare_objective, c.designs);
+        let _ = writeln!(
+            s,
+            ",{},{},{}",
+            objective_text(c.objective, None),
+            objective_text(c.bare_objective, None),
+            c.designs
+        );
     }
     s
 }
@@ -135,14 +159,14 @@ pub fn to_markdown(cells: &[FamilyCell], damper_floors: &[usize], objective: &st
         let loads: Vec<String> = c.slip_loads_kn.iter().map(|v| format!("{v:.0}")).collect();
         let _ = writeln!(
             s,
-            "| {} | {:.3} | {} | {} | {:.5} | {:.5} | {:.1} % |",
+            "| {} | {:.3} | {} | {} | {} | {} | {} |",
             c.period_scale,
             c.t1_s,
             c.intensity_scale,
             loads.join(" / "),
-            c.objective,
-            c.bare_objective,
-            100.0 * (1.0 - c.objective / c.bare_objective)
+            objective_text(c.objective, Some(5)),
+            objective_text(c.bare_objective, Some(5)),
+            reduction_text(reduction(c.objective, c.bare_objective), Some(1))
         );
     }
     s

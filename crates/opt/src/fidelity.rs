@@ -4,7 +4,7 @@
 //! ([`crate::evaluate::TaskJournal`]).
 
 use crate::error::OptError;
-use crate::evaluate::simulate_one;
+use crate::evaluate::{DesignLoads, simulate_design};
 use crate::study::Study;
 use slipload_sim::scene::MethodName;
 
@@ -45,9 +45,10 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             dt_factor: 1.0,
             energies: study.needs_energies(),
         };
-        simulate_one(
+        // the building file's design as written (a locked or asymmetric damper as such)
+        simulate_design(
             study,
-            &study.file_slip_loads(),
+            &DesignLoads::file(study),
             0,
             &fid,
             "file (the sweep-method probe)",

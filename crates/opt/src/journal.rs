@@ -9,6 +9,15 @@
 //! only the rest. A torn last line (a crash mid-write) is ignored and cut off before new
 //! lines are appended. Each sweep line also carries the design's slip loads and the
 //! record's name, checked against the manifest.
+//!
+//! Every line ends with its checksum: the line's JSON object written without it, then
+//! `,"crc32":"xxxxxxxx"}` — the CRC-32 (IEEE) of that object's bytes, in hex. A line
+//! whose checksum fails (a flipped bit, a line spliced from another file) is not
+//! trusted: it is skipped and its task runs again (`--resume` recomputes it). A line
+//! without a checksum, as slipload wrote before checksums, is treated the same way: a
+//! journal of an older slipload is continued by recomputing its tasks, never by trusting
+//! them. A line that is no journal entry at all, other than the last, is refused with
+//! how to recover (delete that line, or `--fresh`).
 
 use crate::error::OptError;
 use crate::fingerprint::Fingerprint;
@@ -60,12 +69,14 @@ pub enum Reuse {
 pub struct Appender {
     path: PathBuf,
     writer: Mutex<LineWriter<File>>,
+    distrusted: usize,
 }
 
 impl Appender {
-    /// Appends one value as one line (written whole before the call returns).
+    /// Appends one value as one line with its checksum ([`checked_line`]), written whole
+    /// before the call returns.
     pub fn append<T: Serialize>(&self, value: &T) -> Result<(), OptError> {
-        let mut line = serde_json::to_string(value).map_err(|source| OptError::Json {
+        let mut line = checked_line(value).map_err(|source| OptError::Json {
             path: self.path.clone(),
             source,
         })?;
@@ -83,6 +94,81 @@ impl Appender {
     /// The journal's path.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Complete lines found in the journal when it was opened whose checksum failed or
+    /// was missing: not trusted, so their tasks run again.
+    pub fn distrusted(&self) -> usize {
+        self.distrusted
+    }
+}
+
+/// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of `bytes`: the checksum of a
+/// journal line.
+pub fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// What a line's checksum field is spelt as: `,"crc32":"` before 8 hex digits and `"}`.
+const CRC_TAG: &[u8] = b",\"crc32\":\"";
+
+/// One value as a journal line (no newline): its JSON object, with the CRC-32 of that
+/// object's bytes appended as a last field `crc32` (8 lowercase hex digits).
+pub fn checked_line<T: Serialize>(value: &T) -> Result<String, serde_json::Error> {
+    let body = serde_json::to_string(value)?;
+    let crc = crc32(body.as_bytes());
+    let open = body.strip_suffix('}').unwrap_or(&body);
+    Ok(format!("{open},\"crc32\":\"{crc:08x}\"}}"))
+}
+
+/// What one complete journal line holds.
+enum Line<T> {
+    /// Its checksum holds: the value.
+    Trusted(T),
+    /// An entry whose checksum fails or is missing: not trusted, its task runs again.
+    Untrusted,
+    /// No journal entry at all.
+    NotEntry,
+}
+
+fn check_line<T: serde::de::DeserializeOwned>(line: &[u8]) -> Line<T> {
+    let parse = |b: &[u8]| {
+        std::str::from_utf8(b)
+            .ok()
+            .and_then(|l| serde_json::from_str::<T>(l).ok())
+    };
+    let at = line.windows(CRC_TAG.len()).rposition(|w| w == CRC_TAG);
+    let Some(at) = at else {
+        // no checksum: an older slipload's line (recomputed), or not an entry
+        return match parse(line) {
+            Some(_) => Line::Untrusted,
+            None => Line::NotEntry,
+        };
+    };
+    let rest = &line[at + CRC_TAG.len()..];
+    let want = (rest.len() == 10 && &rest[8..] == b"\"}")
+        .then(|| std::str::from_utf8(&rest[..8]).ok())
+        .flatten()
+        .and_then(|h| u32::from_str_radix(h, 16).ok());
+    let mut body = line[..at].to_vec();
+    body.push(b'}');
+    if want != Some(crc32(&body)) {
+        return Line::Untrusted;
+    }
+    match parse(&body) {
+        Some(v) => Line::Trusted(v),
+        None => Line::NotEntry,
     }
 }
 
@@ -105,7 +191,7 @@ fn refuse(path: &Path, line: usize, why: String) -> OptError {
         path: path.to_path_buf(),
         line,
         message: format!(
-            "{why}; its results cannot be reused: pass --fresh to discard this folder's journals and start afresh, or choose another --out"
+            "{why}; its results cannot be reused: pass --fresh to discard this folder's journals and the files built from them and start afresh, or choose another --out"
         ),
     }
 }
@@ -116,6 +202,18 @@ fn refuse(path: &Path, line: usize, why: String) -> OptError {
 pub fn read_journal<T: serde::de::DeserializeOwned>(
     path: &Path,
 ) -> Result<Option<(Header, Vec<T>, u64)>, OptError> {
+    Ok(read_journal_counted(path)?.map(|(h, e, good, _)| (h, e, good)))
+}
+
+/// A journal read whole: its header, trusted entries, the byte length of the intact
+/// part and the number of complete lines not trusted.
+type Counted<T> = (Header, Vec<T>, u64, usize);
+
+/// As [`read_journal`], also counting the complete lines not trusted (checksum failed
+/// or missing).
+fn read_journal_counted<T: serde::de::DeserializeOwned>(
+    path: &Path,
+) -> Result<Option<Counted<T>>, OptError> {
     let text = match std::fs::read(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
@@ -137,15 +235,36 @@ pub fn read_journal<T: serde::de::DeserializeOwned>(
             "has no study fingerprint (written by an older slipload, or not a journal)".into(),
         ));
     };
-    let header: Header = serde_json::from_slice(&text[..nl]).map_err(|_| {
-        refuse(
-            path,
-            1,
-            "has no study fingerprint on its first line (written by an older slipload, or not a journal)".into(),
-        )
-    })?;
-    let (entries, good) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
-    Ok(Some((header, entries, good + nl as u64 + 1)))
+    let first = &text[..nl];
+    let header: Header = match check_line::<Header>(first) {
+        Line::Trusted(h) => h,
+        // a header written before line checksums: it names the study all the same
+        Line::Untrusted if !first.windows(CRC_TAG.len()).any(|w| w == CRC_TAG) => {
+            serde_json::from_slice(first).map_err(|_| {
+                refuse(
+                    path,
+                    1,
+                    "has no study fingerprint on its first line (written by an older slipload, or not a journal)".into(),
+                )
+            })?
+        }
+        Line::Untrusted => {
+            return Err(refuse(
+                path,
+                1,
+                "has a damaged first line (its checksum fails)".into(),
+            ));
+        }
+        Line::NotEntry => {
+            return Err(refuse(
+                path,
+                1,
+                "has no study fingerprint on its first line (written by an older slipload, or not a journal)".into(),
+            ));
+        }
+    };
+    let (entries, good, distrusted) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
+    Ok(Some((header, entries, good + nl as u64 + 1, distrusted)))
 }
 
 /// Reads a file of one JSON `T` per line; a last line that does not parse (torn write)
@@ -161,7 +280,7 @@ pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>
             });
         }
     };
-    parse_lines(&text, path, 0)
+    parse_lines(&text, path, 0).map(|(e, good, _)| (e, good))
 }
 
 /// Entries of a journal with a header (the header skipped); none for a missing file.
@@ -176,7 +295,8 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
     text: &[u8],
     path: &Path,
     skipped: usize,
-) -> Result<(Vec<T>, u64), OptError> {
+) -> Result<(Vec<T>, u64, usize), OptError> {
+    let mut distrusted = 0;
     let mut entries = Vec::new();
     let mut good = 0u64;
     let mut pos = 0usize;
@@ -191,26 +311,30 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
             Some(e) => (&text[pos..e], e + 1, true),
             None => (&text[pos..], text.len(), false),
         };
-        let parsed = std::str::from_utf8(line)
-            .ok()
-            .and_then(|l| serde_json::from_str::<T>(l).ok());
-        match parsed {
-            Some(e) if complete => {
+        match check_line::<T>(line) {
+            Line::Trusted(e) if complete => {
                 entries.push(e);
                 good = next as u64;
+            }
+            // a complete line that fails its checksum: kept in the file, not trusted
+            Line::Untrusted if complete => {
+                good = next as u64;
+                distrusted += 1;
             }
             _ if next == text.len() => break, // torn last line
             _ => {
                 return Err(OptError::Journal {
                     path: path.to_path_buf(),
                     line: line_no,
-                    message: "not a journal entry (only the last line may be torn)".into(),
+                    message: format!(
+                        "not a journal entry (only the last line may be torn): the journal is damaged; to recover, delete line {line_no} (--resume then runs its task again) or pass --fresh to discard the folder's journals and the files built from them and start afresh"
+                    ),
                 });
             }
         }
         pos = next;
     }
-    Ok((entries, good))
+    Ok((entries, good, distrusted))
 }
 
 /// Opens the journal `path` of kind `kind` for a study of fingerprint `fp`. A missing
@@ -228,10 +352,11 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
         path: path.to_path_buf(),
         source,
     };
-    let found = read_journal::<T>(path)?;
-    let (entries, good) = match found {
-        None => (Vec::new(), 0),
-        Some((header, entries, good)) => {
+    crate::output::refuse_symlink(path)?;
+    let found = read_journal_counted::<T>(path)?;
+    let (entries, good, distrusted) = match found {
+        None => (Vec::new(), 0, 0),
+        Some((header, entries, good, distrusted)) => {
             if header.journal != kind {
                 return Err(refuse(
                     path,
@@ -258,7 +383,7 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
                     message: "a journal of an earlier run of this study is here: pass --resume to continue it, --fresh to start afresh, or choose another --out".into(),
                 });
             }
-            (entries, good)
+            (entries, good, distrusted)
         }
     };
     if let Some(dir) = path.parent() {
@@ -275,6 +400,7 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
     let appender = Appender {
         path: path.to_path_buf(),
         writer: Mutex::new(LineWriter::new(file)),
+        distrusted,
     };
     if good == 0 {
         appender.append(&Header {
@@ -291,10 +417,10 @@ pub fn journal_text<T: Serialize>(kind: &str, fp: &Fingerprint, values: &[T]) ->
         journal: kind.to_string(),
         fingerprint: fp.clone(),
     };
-    let mut s = serde_json::to_string(&header).expect("a header serialises");
+    let mut s = checked_line(&header).expect("a header serialises");
     s.push('\n');
     for v in values {
-        s.push_str(&serde_json::to_string(v).expect("an entry serialises"));
+        s.push_str(&checked_line(v).expect("an entry serialises"));
         s.push('\n');
     }
     s
@@ -339,12 +465,62 @@ pub fn check_folder(dir: &Path, fp: &Fingerprint) -> Result<(), OptError> {
     Ok(())
 }
 
-/// `--fresh`: removes the journals of `dir` (and the tables `sweep` and `optimize` built
-/// from them, which would describe the discarded run). Returns the names removed.
-pub fn discard_journals(dir: &Path) -> Result<Vec<String>, OptError> {
+/// Whether `name` is a file some slipload command writes into an output folder: the
+/// journals, the sweep's and `optimize`'s tables, the design table, the candidates, the
+/// study figures (`.csv`, `.svg`, `.png`), `rank`'s and `table`'s files, the HTML
+/// report, and the hidden temporary file an interrupted atomic write leaves
+/// (`.NAME.tmp`).
+pub fn is_output_name(name: &str) -> bool {
+    const FILES: [&str; 15] = [
+        "manifest.json",
+        "responses.csv",
+        "designs.csv",
+        "refine.csv",
+        "optimum.json",
+        "candidates.json",
+        "design-table.csv",
+        "design-table.md",
+        "design-table.json",
+        "rank.csv",
+        "rank.md",
+        "rank.json",
+        "family.csv",
+        "family.md",
+        "report.html",
+    ];
+    const FIGURES: [&str; 4] = [
+        "drift-profiles",
+        "records-scatter",
+        "convergence",
+        "objective-map",
+    ];
+    if let Some(inner) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) {
+        return is_output_name(inner);
+    }
+    is_journal_name(name)
+        || FILES.contains(&name)
+        || name.rsplit_once('.').is_some_and(|(stem, ext)| {
+            FIGURES.contains(&stem) && matches!(ext, "csv" | "svg" | "png")
+        })
+}
+
+/// What `--fresh` did in a folder.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Discarded {
+    /// The files removed (every file a slipload command writes there), sorted.
+    pub removed: Vec<String>,
+    /// The other files, kept (not slipload's, or not files), sorted.
+    pub kept: Vec<String>,
+}
+
+/// `--fresh`: removes from `dir` every file a previous run of any slipload command wrote
+/// there ([`is_output_name`]: journals, tables, figures, rankings, the report), so
+/// nothing of the discarded run shows up in the next report; any other file is kept and
+/// named in [`Discarded::kept`]. The folder's lock file stays.
+pub fn discard_journals(dir: &Path) -> Result<Discarded, OptError> {
     let listing = match std::fs::read_dir(dir) {
         Ok(l) => l,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Discarded::default()),
         Err(source) => {
             return Err(OptError::Io {
                 path: dir.to_path_buf(),
@@ -352,31 +528,27 @@ pub fn discard_journals(dir: &Path) -> Result<Vec<String>, OptError> {
             });
         }
     };
-    let mut removed = Vec::new();
+    let mut out = Discarded::default();
     for e in listing.flatten() {
         let name = e.file_name().to_string_lossy().into_owned();
-        let table = matches!(
-            name.as_str(),
-            "responses.csv"
-                | "designs.csv"
-                | "manifest.json"
-                | "refine.csv"
-                | "optimum.json"
-                | "candidates.json"
-                | "design-table.csv"
-                | "design-table.md"
-                | "design-table.json"
-        );
-        if (is_journal_name(&name) || table) && e.file_type().is_ok_and(|t| t.is_file()) {
+        if name == crate::folder_lock::LOCK_FILE {
+            continue;
+        }
+        // a link named like an output is removed (the link, never its target)
+        let removable = e.file_type().is_ok_and(|t| t.is_file() || t.is_symlink());
+        if removable && is_output_name(&name) {
             std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
                 path: e.path(),
                 source,
             })?;
-            removed.push(name);
+            out.removed.push(name);
+        } else {
+            out.kept.push(name);
         }
     }
-    removed.sort();
-    Ok(removed)
+    out.removed.sort();
+    out.kept.sort();
+    Ok(out)
 }
 
 impl Journal {
@@ -397,5 +569,10 @@ impl Journal {
     /// Appends one entry as one line (written whole before the call returns).
     pub fn append(&self, e: &Entry) -> Result<(), OptError> {
         self.0.append(e)
+    }
+
+    /// Lines found not trusted when the journal was opened ([`Appender::distrusted`]).
+    pub fn distrusted(&self) -> usize {
+        self.0.distrusted()
     }
 }

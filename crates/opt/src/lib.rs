@@ -9,11 +9,13 @@
 //! command — [`pipeline::optimize_study`] is the whole study — and writes its files
 //! ([`output::write_atomic`]), returning a report a caller renders.
 
+pub mod collapse;
 pub mod error;
 pub mod evaluate;
 pub mod family;
 pub mod fidelity;
 pub mod fingerprint;
+pub mod folder_lock;
 pub mod journal;
 pub mod metrics;
 pub mod objective;

@@ -9,10 +9,23 @@ use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// Refuses `path` when it is a symbolic link ([`OptError::Symlink`]): an output is
+/// never written through a link (it could point anywhere — another study's file, a
+/// system file). A missing path, or anything else, passes.
+pub fn refuse_symlink(path: &Path) -> Result<(), OptError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => Err(OptError::Symlink {
+            path: path.to_path_buf(),
+            target: std::fs::read_link(path).unwrap_or_default(),
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// Where an atomic write of `path` goes: `path` itself when it is missing or a regular
-/// file, the final target of a symbolic link (written through: the link is kept), and an
-/// error for anything else (a FIFO, a device node, a socket, a folder), which a rename
-/// would replace — the write must reach a file or not happen.
+/// file; an error for a symbolic link (never written through: [`refuse_symlink`]) and
+/// for anything else (a FIFO, a device node, a socket, a folder), which a rename would
+/// replace — the write must reach a file or not happen.
 pub fn write_target(path: &Path) -> Result<PathBuf, OptError> {
     let meta = match std::fs::symlink_metadata(path) {
         Ok(m) => m,
@@ -24,35 +37,17 @@ pub fn write_target(path: &Path) -> Result<PathBuf, OptError> {
             });
         }
     };
-    let target = if meta.file_type().is_symlink() {
-        let resolved = std::fs::canonicalize(path).map_err(|_| OptError::NotRegular {
-            path: path.to_path_buf(),
-            kind: "a symbolic link whose target does not exist".into(),
-        })?;
-        let m = std::fs::metadata(&resolved).map_err(|source| OptError::Io {
-            path: resolved.clone(),
-            source,
-        })?;
-        if !m.file_type().is_file() {
-            return Err(OptError::NotRegular {
-                path: path.to_path_buf(),
-                kind: format!(
-                    "a symbolic link to {}, {}",
-                    resolved.display(),
-                    kind_of(&m.file_type())
-                ),
-            });
-        }
-        resolved
-    } else if meta.file_type().is_file() {
-        path.to_path_buf()
+    if meta.file_type().is_symlink() {
+        refuse_symlink(path)?;
+    }
+    if meta.file_type().is_file() {
+        Ok(path.to_path_buf())
     } else {
-        return Err(OptError::NotRegular {
+        Err(OptError::NotRegular {
             path: path.to_path_buf(),
             kind: kind_of(&meta.file_type()),
-        });
-    };
-    Ok(target)
+        })
+    }
 }
 
 fn kind_of(t: &std::fs::FileType) -> String {
@@ -78,8 +73,7 @@ fn kind_of(t: &std::fs::FileType) -> String {
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, `sync_all`,
 /// rename. An interrupted run never leaves a partial file under the final name. A
-/// symbolic link is written through; a FIFO, device or folder is refused
-/// ([`write_target`]).
+/// symbolic link, a FIFO, a device or a folder is refused ([`write_target`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OptError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,

@@ -4,11 +4,11 @@
 //! is unchanged, is reported.
 
 use crate::error::OptError;
-use crate::evaluate::run_designs;
+use crate::evaluate::{DesignLoads, run_designs};
 use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::output::write_atomic;
-use crate::sampler::SplitMix;
+use crate::sampler::{FrictionLaw, SplitMix};
 use crate::study::Study;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -22,6 +22,11 @@ pub struct NamedDesign {
     pub name: String,
     /// Slip load per dissipator, bottom to top, kN.
     pub slip_loads_kn: Vec<f64>,
+    /// The friction law per dissipator, kN (`"locked"` or `{"bounds": [F⁻, F⁺]}`), where
+    /// symmetric slip loads cannot say it (the building file's design in
+    /// `candidates.json`): then it, not `slip_loads_kn`, is what runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_kn: Option<Vec<FrictionLaw>>,
 }
 
 /// Ranks of the designs on one suite (or on all suites together).
@@ -29,7 +34,9 @@ pub struct NamedDesign {
 pub struct SuiteRanking {
     /// Suite name (`all` for the study's objective over every suite).
     pub suite: String,
-    /// Objective per design.
+    /// Objective per design (`"collapsed"` for a design that collapses on a record of
+    /// the suite: [`crate::collapse`]).
+    #[serde(with = "crate::collapse::objectives_serde")]
     pub objective: Vec<f64>,
     /// Rank per design, 1 = best.
     pub rank: Vec<usize>,
@@ -66,8 +73,9 @@ fn ranks(obj: &[f64]) -> Vec<usize> {
     r
 }
 
-/// Checks candidate designs against the study's space (count, finite, ≥ 0); N out.
-pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<Vec<f64>>, OptError> {
+/// Checks candidate designs against the study's space (count, finite, ≥ 0; a friction
+/// law with F⁻ ≤ 0 ≤ F⁺); N out, friction laws carried.
+pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<DesignLoads>, OptError> {
     let m = study.space.dampers.len();
     designs
         .iter()
@@ -89,7 +97,34 @@ pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<Vec<f64>
                     d.name
                 )));
             }
-            Ok(d.slip_loads_kn.iter().map(|v| v * 1e3).collect())
+            if let Some(laws) = &d.friction_kn {
+                if laws.len() != m {
+                    return Err(OptError::Missing(format!(
+                        "designs[{i}] ({}): friction_kn has {} laws, expected {m} (one per dissipator)",
+                        d.name,
+                        laws.len()
+                    )));
+                }
+                let bad = laws.iter().any(|l| match *l {
+                    FrictionLaw::Bounds([lo, hi]) => {
+                        !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && hi >= 0.0)
+                    }
+                    FrictionLaw::Locked => false,
+                });
+                if bad {
+                    return Err(OptError::Missing(format!(
+                        "designs[{i}] ({}): friction_kn bounds must be finite with lower <= 0 <= upper",
+                        d.name
+                    )));
+                }
+            }
+            Ok(DesignLoads {
+                slip_loads_n: d.slip_loads_kn.iter().map(|v| v * 1e3).collect(),
+                friction_n: d
+                    .friction_kn
+                    .as_ref()
+                    .map(|l| l.iter().map(|x| x.scaled(1e3)).collect()),
+            })
         })
         .collect()
 }
@@ -108,7 +143,7 @@ pub fn rank(
         ));
     }
     let loads = to_newtons(study, designs)?;
-    let mut all = vec![vec![0.0; study.space.dampers.len()]];
+    let mut all = vec![DesignLoads::from(vec![0.0; study.space.dampers.len()])];
     all.extend(loads);
     let runs = run_designs(study, &all, &Fidelity::sweep(study), tick)?;
     let bare = &runs[0];
@@ -195,7 +230,11 @@ impl Ranking {
                 let _ = writeln!(
                     s,
                     "{},{d},{},{},{},{}",
-                    su.suite, su.objective[k], su.rank[k], su.rank_kept[k], su.order_kept
+                    su.suite,
+                    crate::collapse::objective_text(su.objective[k], None),
+                    su.rank[k],
+                    su.rank_kept[k],
+                    su.order_kept
                 );
             }
         }
@@ -224,10 +263,10 @@ impl Ranking {
             for k in order {
                 let _ = writeln!(
                     s,
-                    "| {} | {} | {:.6} | {:.0} % |",
+                    "| {} | {} | {} | {:.0} % |",
                     su.rank[k],
                     self.designs[k],
-                    su.objective[k],
+                    crate::collapse::objective_text(su.objective[k], Some(6)),
                     100.0 * su.rank_kept[k]
                 );
             }

@@ -17,6 +17,49 @@ pub struct Design {
     pub slip_loads_n: Vec<f64>,
     /// Scaled variables (sample points only).
     pub z: Option<Vec<f64>>,
+    /// The friction law per dissipator, as the building file writes it, where it is not
+    /// a symmetric slip load (a `locked` contact, asymmetric bounds): then it, not
+    /// `slip_loads_n`, is what runs. Absent for every other design.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_n: Option<Vec<FrictionLaw>>,
+}
+
+/// The friction law of one dissipator where a symmetric slip load cannot say it: the
+/// building file's `locked` contact or its asymmetric `bounds` (docs/MODEL.md, friction
+/// law: F ∈ [F⁻, F⁺]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum FrictionLaw {
+    /// Bounds [F⁻, F⁺] with F⁻ ≤ 0 ≤ F⁺ (N, or kN where the field says so).
+    Bounds([f64; 2]),
+    /// Never slips (μN → ∞): the dissipator moves with its floor.
+    Locked,
+}
+
+impl FrictionLaw {
+    /// The law with its forces times `k` (a locked contact stays locked).
+    pub fn scaled(self, k: f64) -> FrictionLaw {
+        match self {
+            FrictionLaw::Bounds([lo, hi]) => FrictionLaw::Bounds([lo * k, hi * k]),
+            FrictionLaw::Locked => FrictionLaw::Locked,
+        }
+    }
+
+    /// (F⁻, F⁺), N (±∞ when locked).
+    pub fn bounds(self) -> (f64, f64) {
+        match self {
+            FrictionLaw::Bounds([lo, hi]) => (lo, hi),
+            FrictionLaw::Locked => (f64::NEG_INFINITY, f64::INFINITY),
+        }
+    }
+
+    /// For tables: `locked`, or `F⁻..F⁺` in the unit of the law divided by `unit`.
+    pub fn text(self, unit: f64) -> String {
+        match self {
+            FrictionLaw::Bounds([lo, hi]) => format!("{}..{}", lo / unit, hi / unit),
+            FrictionLaw::Locked => "locked".into(),
+        }
+    }
 }
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a small, well-mixed, seedable generator.

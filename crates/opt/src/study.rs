@@ -833,8 +833,32 @@ impl Study {
         })
     }
 
-    /// Slip loads of the building file per dissipator, N (the "paper" design); locked or
-    /// absent bounds count as 0.
+    /// The building file's friction law per dissipator of the space, when some
+    /// dissipator's is not a symmetric slip load (`locked`, or bounds with F⁻ ≠ −F⁺):
+    /// the file's design as written, which every run of "the file's design" carries
+    /// ([`crate::sampler::Design::friction_n`]). `None` when [`Study::file_slip_loads`]
+    /// says it all.
+    pub fn file_friction(&self) -> Option<Vec<crate::sampler::FrictionLaw>> {
+        use crate::sampler::FrictionLaw;
+        let laws: Vec<(FrictionLaw, bool)> = self
+            .space
+            .dampers
+            .iter()
+            .map(|&f| match self.building.dissipators[f] {
+                Some(d) if d.is_locked() => (FrictionLaw::Locked, false),
+                Some(d) => (
+                    FrictionLaw::Bounds([d.lower, d.upper]),
+                    d.upper.is_finite() && d.lower == -d.upper,
+                ),
+                None => (FrictionLaw::Bounds([0.0, 0.0]), true),
+            })
+            .collect();
+        (!laws.iter().all(|&(_, symmetric)| symmetric))
+            .then(|| laws.into_iter().map(|(l, _)| l).collect())
+    }
+
+    /// Slip loads of the building file per dissipator, N (the "paper" design): the upper
+    /// bound F⁺ (0 for a locked contact, which [`Study::file_friction`] carries).
     pub fn file_slip_loads(&self) -> Vec<f64> {
         self.space
             .dampers

@@ -7,6 +7,7 @@
 //! of the relative performance index), design 1 the slip loads of the building file,
 //! then the sample.
 
+use crate::collapse::{COLLAPSED, objective_text, reduction, reduction_text};
 use crate::error::OptError;
 use crate::evaluate::{Task, run_tasks};
 use crate::fidelity::Fidelity;
@@ -67,11 +68,13 @@ impl Manifest {
                 label: "bare".into(),
                 slip_loads_n: vec![0.0; m],
                 z: None,
+                friction_n: None,
             },
             Design {
                 label: "file".into(),
                 slip_loads_n: study.file_slip_loads(),
                 z: None,
+                friction_n: study.file_friction(),
             },
         ];
         for (i, z) in sampler::sample(&study.space, &study.config.sweep)
@@ -82,6 +85,7 @@ impl Manifest {
                 label: format!("s{:04}", i + 1),
                 slip_loads_n: study.space.slip_loads(&z),
                 z: Some(z),
+                friction_n: None,
             });
         }
         let fid = Fidelity::sweep(study);
@@ -196,11 +200,17 @@ impl Manifest {
                 .map(|su| su.name.as_str())
                 .unwrap_or("");
             let _ = write!(s, "{d},{},{},{suite}", design.label, self.records[r]);
-            for v in &design.slip_loads_n {
-                let _ = write!(s, ",{}", v / 1e3);
-            }
-            for v in m.drift_ratio.iter().chain(&m.residual_drift_ratio) {
+            write_slip_loads_kn(&mut s, design);
+            for v in &m.drift_ratio {
                 let _ = write!(s, ",{v}");
+            }
+            // a run that stopped on the collapse limit has no residual drift: left empty
+            for v in &m.residual_drift_ratio {
+                if m.collapsed() {
+                    s.push(',');
+                } else {
+                    let _ = write!(s, ",{v}");
+                }
             }
             let _ = write!(
                 s,
@@ -288,14 +298,19 @@ impl Manifest {
         let f0 = obj[0].0;
         for (d, design) in self.designs.iter().enumerate() {
             let _ = write!(s, "{d},{}", design.label);
-            for v in &design.slip_loads_n {
-                let _ = write!(s, ",{}", v / 1e3);
-            }
-            let _ = write!(s, ",{}", obj[d].0);
+            write_slip_loads_kn(&mut s, design);
+            // a design that collapses on a record has no objective, nor terms: it failed
+            let collapsed = !obj[d].0.is_finite();
+            let _ = write!(s, ",{}", objective_text(obj[d].0, None));
             for v in &obj[d].1 {
-                let _ = write!(s, ",{v}");
+                let cell = if collapsed {
+                    COLLAPSED.to_string()
+                } else {
+                    v.to_string()
+                };
+                let _ = write!(s, ",{cell}");
             }
-            let red = if f0 != 0.0 { 1.0 - obj[d].0 / f0 } else { 0.0 };
+            let red = reduction_text(reduction(obj[d].0, f0), None);
             let _ = writeln!(s, ",{red},{}", rank[d]);
         }
         Ok(s)
@@ -306,6 +321,19 @@ impl Manifest {
         let mut s = serde_json::to_string_pretty(self).expect("a manifest serialises");
         s.push('\n');
         s
+    }
+}
+
+/// The slip-load cells (kN) of one design's CSV row: the slip loads, or the friction law
+/// where the design has one (`locked`, `F⁻..F⁺`).
+fn write_slip_loads_kn(s: &mut String, design: &Design) {
+    match &design.friction_n {
+        Some(laws) => laws.iter().for_each(|l| {
+            let _ = write!(s, ",{}", l.text(1e3));
+        }),
+        None => design.slip_loads_n.iter().for_each(|v| {
+            let _ = write!(s, ",{}", v / 1e3);
+        }),
     }
 }
 
@@ -320,6 +348,8 @@ pub struct SweepReport {
     pub resumed: usize,
     /// Of which run now.
     pub ran: usize,
+    /// Journal lines not trusted (checksum failed or missing): their tasks ran again.
+    pub distrusted: usize,
     /// All rows (when this run covers every task), sorted by key.
     pub rows: Option<Vec<RecordMetrics>>,
 }
@@ -378,6 +408,7 @@ pub fn run(
     let manifest = Manifest::of(study);
     let jpath = out.join("journal.jsonl");
     let (journal, entries) = Journal::open(&jpath, &manifest.fingerprint, resume)?;
+    let distrusted = journal.distrusted();
     let total = manifest.tasks();
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; total];
     place(&manifest, entries, &jpath, &mut rows)?;
@@ -395,6 +426,7 @@ pub fn run(
             Task {
                 label: manifest.designs[d].label.clone(),
                 slip_loads: manifest.designs[d].slip_loads_n.clone(),
+                friction: manifest.designs[d].friction_n.clone(),
                 record: r,
             }
         })
@@ -430,8 +462,92 @@ pub fn run(
         shard_tasks: mine.len(),
         resumed,
         ran: todo.len(),
+        distrusted,
         rows: full,
     })
+}
+
+/// The absolute, symlink-free form of `p`, as far as it exists (a missing tail is kept
+/// as written), so that two spellings of one folder compare equal.
+fn resolved(p: &Path) -> std::path::PathBuf {
+    let abs = if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        std::env::current_dir().unwrap_or_default().join(p)
+    };
+    let mut head = abs.clone();
+    let mut tail = Vec::new();
+    loop {
+        if let Ok(c) = std::fs::canonicalize(&head) {
+            let mut out = c;
+            for t in tail.iter().rev() {
+                out.push(t);
+            }
+            return out;
+        }
+        match (head.file_name().map(|n| n.to_os_string()), head.parent()) {
+            (Some(n), Some(parent)) => {
+                tail.push(n);
+                head = parent.to_path_buf();
+            }
+            _ => return abs,
+        }
+    }
+}
+
+/// Refuses a merge whose output folder is one of its shard folders, lies inside one, or
+/// holds one: the merged files would overwrite or mix with a shard's own (and a shard
+/// merged into itself keeps a partial journal beside complete tables).
+pub fn check_merge_folders(dirs: &[&Path], out: &Path) -> Result<(), OptError> {
+    let o = resolved(out);
+    for d in dirs {
+        let r = resolved(d);
+        let why = if r == o {
+            "is the output folder itself"
+        } else if o.starts_with(&r) {
+            "holds the output folder"
+        } else if r.starts_with(&o) {
+            "lies inside the output folder"
+        } else {
+            continue;
+        };
+        return Err(OptError::Shard(format!(
+            "shard folder {} {why} ({}): merge writes into a folder of its own; give an --out outside every shard folder",
+            d.display(),
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Refuses an output folder of `merge` that holds another study's sweep (its
+/// `manifest.json` or a journal of another fingerprint): merging over it would mix two
+/// studies' files.
+fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
+    let path = out.join("manifest.json");
+    if let Ok(text) = std::fs::read_to_string(&path) {
+        let theirs = serde_json::from_str::<Manifest>(&text).ok();
+        if theirs
+            .as_ref()
+            .is_none_or(|m| m.fingerprint != manifest.fingerprint)
+        {
+            return Err(OptError::Shard(format!(
+                "{} holds {}: merge into an empty folder or one holding this study's sweep (fingerprint {})",
+                out.display(),
+                match &theirs {
+                    Some(m) => format!(
+                        "the sweep of another study ({}, fingerprint {}; changed: {})",
+                        m.study,
+                        m.fingerprint.hash,
+                        manifest.fingerprint.describe_changes(&m.fingerprint)
+                    ),
+                    None => format!("a {} that is not a sweep manifest", path.display()),
+                },
+                manifest.fingerprint.hash
+            )));
+        }
+    }
+    crate::journal::check_folder(out, &manifest.fingerprint)
 }
 
 /// Joins the journals of shard folders into `out`: the bytes a single run writes.
@@ -441,6 +557,8 @@ pub fn run(
 pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>), OptError> {
     let mut manifest: Option<(Manifest, &Path)> = None;
     for dir in dirs {
+        // a shard still being written would be merged half done
+        crate::folder_lock::FolderLock::check_idle(dir)?;
         let path = dir.join("manifest.json");
         let text = std::fs::read_to_string(&path).map_err(|source| OptError::Io {
             path: path.clone(),
@@ -473,6 +591,8 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         }
     }
     let (manifest, _) = manifest.ok_or_else(|| OptError::Shard("no folders to merge".into()))?;
+    check_merge_folders(dirs, out)?;
+    check_merge_output(out, &manifest)?;
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; manifest.tasks()];
     for dir in dirs {
         let jpath = dir.join("journal.jsonl");
@@ -513,10 +633,8 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         });
     }
     let journal_text = crate::journal::journal_text("sweep", &manifest.fingerprint, &entries);
+    // the journal first: the tables are never newer than the tasks they come from
+    write_atomic(&out.join("journal.jsonl"), journal_text.as_bytes())?;
     let full = write_outputs(out, &manifest, &rows)?.expect("checked complete above");
-    let jout = out.join("journal.jsonl");
-    if !dirs.iter().any(|d| d.join("journal.jsonl") == jout) {
-        write_atomic(&jout, journal_text.as_bytes())?;
-    }
     Ok((manifest, full))
 }

@@ -5,12 +5,14 @@
 //! statistics pool the records of all suites; the objective keeps its own definition.
 //! Robustness: the objective with every slip load scaled by 0.75 and by 1.25.
 
+use crate::collapse::{objective_text, reduction, reduction_text};
 use crate::error::OptError;
-use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::evaluate::{DesignLoads, TaskJournal, run_designs_journalled, suite_ranges};
 use crate::fidelity::Fidelity;
 use crate::metrics::RecordMetrics;
 use crate::objective::{Metric, Statistic};
 use crate::output::write_atomic;
+use crate::sampler::FrictionLaw;
 use crate::study::Study;
 use serde::{Deserialize, Serialize};
 use slipload_motion::G;
@@ -27,6 +29,11 @@ pub struct TableRow {
     pub design: String,
     /// Slip load per dissipator, kN.
     pub slip_load_kn: Vec<f64>,
+    /// The friction law per dissipator, kN, where the design is the building file's and
+    /// the file writes more than symmetric slip loads (`locked`, asymmetric bounds): it,
+    /// not `slip_load_kn`, is what ran.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_kn: Option<Vec<FrictionLaw>>,
     /// Slip load / floor weight (m_i g).
     pub ratio_to_floor_weight: Vec<f64>,
     /// Slip load / weight above the storey (Σ_{j≥i} m_j g, the storey's gravity shear).
@@ -37,15 +44,23 @@ pub struct TableRow {
     pub drift_ratio_p84: Vec<f64>,
     /// Peak drift ratio per storey: max.
     pub drift_ratio_max: Vec<f64>,
-    /// The study's objective.
+    /// The study's objective (`"collapsed"` when the design collapses on a record:
+    /// [`crate::collapse`]).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective: f64,
-    /// 1 − objective / objective of the bare frame.
+    /// 1 − objective / objective of the bare frame (`"collapsed"`, or `"bare frame
+    /// collapsed"` when only the reference collapses).
+    #[serde(with = "crate::collapse::reduction_serde")]
     pub objective_reduction: f64,
     /// Mean over records of the peak drift ratio (max over storeys).
     pub peak_drift_ratio_mean: f64,
-    /// 1 − that / the bare frame's.
+    /// 1 − that / the bare frame's (in words when either collapses on a record).
+    #[serde(with = "crate::collapse::reduction_serde")]
     pub peak_drift_reduction: f64,
-    /// Mean residual drift ratio (max over storeys).
+    /// Mean residual drift ratio (max over storeys) over the records run to their end (a
+    /// run that stopped on the collapse limit has none); `"collapsed"` when every run
+    /// stopped.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub residual_drift_ratio_mean: f64,
     /// Mean peak floor acceleration, m/s².
     pub peak_floor_acceleration_mean: f64,
@@ -58,13 +73,34 @@ pub struct TableRow {
     /// Mean relative performance index (Filiatrault & Cherry 1988).
     pub rpi_mean: f64,
     /// Objective with every slip load × 0.75.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective_at_75pct: f64,
     /// Objective with every slip load × 1.25.
+    #[serde(with = "crate::collapse::objective_serde")]
     pub objective_at_125pct: f64,
     /// Per suite, for a frame whose storeys yield or carry P-Δ (absent otherwise): the
     /// responses at each intensity level, ductility, hysteretic energy and collapses.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub by_suite: Option<Vec<SuiteStats>>,
+}
+
+impl TableRow {
+    /// A CSV ratio cell of a dissipator with friction law `law`: `locked`, or the ratio
+    /// of its upper bound F⁺.
+    fn ratio_cell(&self, law: FrictionLaw, ratio: f64) -> String {
+        match law {
+            FrictionLaw::Locked => "locked".into(),
+            FrictionLaw::Bounds(_) => ratio.to_string(),
+        }
+    }
+
+    /// A Markdown ratio cell of dissipator `k`: `locked`, or the ratio to 3 decimals.
+    fn ratio_md(&self, k: usize, ratio: f64) -> String {
+        match self.friction_kn.as_ref().map(|l| l[k]) {
+            Some(FrictionLaw::Locked) => "locked".into(),
+            _ => format!("{ratio:.3}"),
+        }
+    }
 }
 
 /// One design's responses over one suite (a yielding or P-Δ frame).
@@ -80,7 +116,9 @@ pub struct SuiteStats {
     pub peak_drift_ratio_mean: f64,
     /// Peak drift ratio: max over the records.
     pub peak_drift_ratio_max: f64,
-    /// Residual drift ratio (max over storeys): mean over the records.
+    /// Residual drift ratio (max over storeys): mean over the records run to their end
+    /// (`"collapsed"` when every run stopped on the collapse limit).
+    #[serde(with = "crate::collapse::objective_serde")]
     pub residual_drift_ratio_mean: f64,
     /// Peak storey ductility (max over storeys): mean over the records (`None` when no
     /// storey yields).
@@ -115,7 +153,7 @@ impl SuiteStats {
                 .iter()
                 .map(RecordMetrics::peak_drift_ratio)
                 .collect::<Vec<_>>()),
-            residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+            residual_drift_ratio_mean: residual_mean(r),
             peak_ductility_mean: opt_mean(mu),
             peak_ductility_max: mu_max,
             hysteretic_energy_mean: opt_mean(r.iter().map(|m| m.energy_plastic).collect()),
@@ -166,6 +204,31 @@ fn stat_by_storey(
         .collect()
 }
 
+/// Mean residual drift ratio over the runs that reached the record's end (a run that
+/// stopped on the collapse limit has no residual drift); +∞ (`collapsed`) when none did.
+fn residual_mean(r: &[RecordMetrics]) -> f64 {
+    let v: Vec<f64> = r
+        .iter()
+        .filter(|m| !m.collapsed())
+        .map(RecordMetrics::residual)
+        .collect();
+    if v.is_empty() {
+        f64::INFINITY
+    } else {
+        Statistic::Mean.of(&v)
+    }
+}
+
+/// Peak drift ratio of runs for a reduction: +∞ when a run collapsed (its peak is where
+/// it stopped, not a response to compare).
+fn drift_for_reduction(r: &[RecordMetrics]) -> f64 {
+    if r.iter().any(RecordMetrics::collapsed) {
+        f64::INFINITY
+    } else {
+        mean(r.iter().map(RecordMetrics::peak_drift_ratio))
+    }
+}
+
 fn mean(v: impl Iterator<Item = f64>) -> f64 {
     let v: Vec<f64> = v.collect();
     Statistic::Mean.of(&v)
@@ -174,9 +237,9 @@ fn mean(v: impl Iterator<Item = f64>) -> f64 {
 impl DesignTable {
     /// Runs every design (slip loads, N) and its ±25 % variants at the check fidelity.
     /// The bare frame is added as the reference row if it is not among the designs.
-    pub fn build(
+    pub fn build<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<DesignTable, OptError> {
         Self::build_with_runs(study, designs, tick).map(|(table, _)| table)
@@ -186,9 +249,9 @@ impl DesignTable {
     /// no extra simulations), each over every record of the study: `runs[0]` the bare
     /// frame, then for design `k` `runs[1 + 3k]` (its slip loads), `runs[2 + 3k]` (× 0.75)
     /// and `runs[3 + 3k]` (× 1.25).
-    pub fn build_with_runs(
+    pub fn build_with_runs<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         tick: &(dyn Fn() + Sync),
     ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         Self::build_journalled(study, designs, None, tick)
@@ -196,31 +259,36 @@ impl DesignTable {
 
     /// As [`DesignTable::build_with_runs`], taking finished runs from `journal` (the
     /// check fidelity's task journal) and appending the others.
-    pub fn build_journalled(
+    pub fn build_journalled<D: Clone + Into<DesignLoads>>(
         study: &Study,
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, D)],
         journal: Option<&TaskJournal>,
         tick: &(dyn Fn() + Sync),
     ) -> Result<(DesignTable, Vec<Vec<RecordMetrics>>), OptError> {
         let fid = Fidelity::check(study);
         let m = study.space.dampers.len();
-        let mut all: Vec<Vec<f64>> = vec![vec![0.0; m]];
-        for (_, s) in designs {
+        let designs: Vec<(String, DesignLoads)> = designs
+            .iter()
+            .map(|(n, d)| (n.clone(), d.clone().into()))
+            .collect();
+        let mut all: Vec<DesignLoads> = vec![DesignLoads::from(vec![0.0; m])];
+        for (_, s) in &designs {
             all.push(s.clone());
-            all.push(s.iter().map(|v| 0.75 * v).collect());
-            all.push(s.iter().map(|v| 1.25 * v).collect());
+            all.push(s.scaled(0.75));
+            all.push(s.scaled(1.25));
         }
         let runs = run_designs_journalled(study, &all, &fid, journal, tick)?;
         let bare = &runs[0];
         let ranges = suite_ranges(study);
         let objective = |rows: &[RecordMetrics]| study.objective.value(rows, Some(bare), &ranges);
         let f_bare = objective(bare)?;
-        let pdr_bare = mean(bare.iter().map(RecordMetrics::peak_drift_ratio));
+        let pdr_bare = drift_for_reduction(bare);
         let masses: Vec<f64> = (0..study.building.floors())
             .map(|i| study.building.mass.row(i).sum())
             .collect();
         let mut rows = Vec::new();
-        for (k, (name, loads)) in designs.iter().enumerate() {
+        for (k, (name, design)) in designs.iter().enumerate() {
+            let loads = &design.slip_loads_n;
             let r = &runs[1 + 3 * k];
             let f = objective(r)?;
             let pdr = mean(r.iter().map(RecordMetrics::peak_drift_ratio));
@@ -236,6 +304,10 @@ impl DesignTable {
             rows.push(TableRow {
                 design: name.clone(),
                 slip_load_kn: loads.iter().map(|v| v / 1e3).collect(),
+                friction_kn: design
+                    .friction_n
+                    .as_ref()
+                    .map(|l| l.iter().map(|x| x.scaled(1e-3)).collect()),
                 ratio_to_floor_weight: study
                     .space
                     .dampers
@@ -254,14 +326,10 @@ impl DesignTable {
                 drift_ratio_p84: stat_by_storey(r, Statistic::P84, |m| &m.drift_ratio),
                 drift_ratio_max: stat_by_storey(r, Statistic::Max, |m| &m.drift_ratio),
                 objective: f,
-                objective_reduction: if f_bare != 0.0 { 1.0 - f / f_bare } else { 0.0 },
+                objective_reduction: reduction(f, f_bare),
                 peak_drift_ratio_mean: pdr,
-                peak_drift_reduction: if pdr_bare != 0.0 {
-                    1.0 - pdr / pdr_bare
-                } else {
-                    0.0
-                },
-                residual_drift_ratio_mean: mean(r.iter().map(RecordMetrics::residual)),
+                peak_drift_reduction: reduction(drift_for_reduction(r), pdr_bare),
+                residual_drift_ratio_mean: residual_mean(r),
                 peak_floor_acceleration_mean: mean(r.iter().map(|m| m.peak_floor_acceleration)),
                 base_shear_mean: mean(r.iter().map(|m| m.peak_base_shear)),
                 stroke_max: stat_by_storey(r, Statistic::Max, |m| &m.stroke),
@@ -321,35 +389,58 @@ impl DesignTable {
         s.push_str(",energy_ratio_mean,rpi_mean,objective_at_75pct,objective_at_125pct\n");
         for r in &self.rows {
             let _ = write!(s, "{}", r.design);
+            // a friction law the slip loads cannot say is written as it is, ratios too
+            match &r.friction_kn {
+                Some(laws) => {
+                    for l in laws {
+                        let _ = write!(s, ",{}", l.text(1.0));
+                    }
+                    for ratios in [&r.ratio_to_floor_weight, &r.ratio_to_weight_above] {
+                        for (l, v) in laws.iter().zip(ratios) {
+                            let _ = write!(s, ",{}", r.ratio_cell(*l, *v));
+                        }
+                    }
+                }
+                None => {
+                    for v in r
+                        .slip_load_kn
+                        .iter()
+                        .chain(&r.ratio_to_floor_weight)
+                        .chain(&r.ratio_to_weight_above)
+                    {
+                        let _ = write!(s, ",{v}");
+                    }
+                }
+            }
             for v in r
-                .slip_load_kn
+                .drift_ratio_mean
                 .iter()
-                .chain(&r.ratio_to_floor_weight)
-                .chain(&r.ratio_to_weight_above)
-                .chain(&r.drift_ratio_mean)
                 .chain(&r.drift_ratio_p84)
                 .chain(&r.drift_ratio_max)
             {
                 let _ = write!(s, ",{v}");
             }
-            for v in [
-                r.objective,
-                r.objective_reduction,
+            let _ = write!(
+                s,
+                ",{},{},{},{},{},{},{}",
+                objective_text(r.objective, None),
+                reduction_text(r.objective_reduction, None),
                 r.peak_drift_ratio_mean,
-                r.peak_drift_reduction,
-                r.residual_drift_ratio_mean,
+                reduction_text(r.peak_drift_reduction, None),
+                objective_text(r.residual_drift_ratio_mean, None),
                 r.peak_floor_acceleration_mean,
-                r.base_shear_mean,
-            ] {
-                let _ = write!(s, ",{v}");
-            }
+                r.base_shear_mean
+            );
             for v in &r.stroke_max {
                 let _ = write!(s, ",{v}");
             }
             let _ = writeln!(
                 s,
                 ",{},{},{},{}",
-                r.energy_ratio_mean, r.rpi_mean, r.objective_at_75pct, r.objective_at_125pct
+                r.energy_ratio_mean,
+                r.rpi_mean,
+                objective_text(r.objective_at_75pct, None),
+                objective_text(r.objective_at_125pct, None)
             );
         }
         s
@@ -380,9 +471,13 @@ impl DesignTable {
                 let damper = self.damper_floors.iter().position(|&f| f == i + 1);
                 let (load, w, sw, stroke) = match damper {
                     Some(k) => (
-                        format!("{:.1}", r.slip_load_kn[k]),
-                        format!("{:.3}", r.ratio_to_floor_weight[k]),
-                        format!("{:.3}", r.ratio_to_weight_above[k]),
+                        match r.friction_kn.as_ref().map(|l| l[k]) {
+                            Some(FrictionLaw::Locked) => "locked".to_string(),
+                            Some(FrictionLaw::Bounds([lo, hi])) => format!("{lo:.1}..{hi:.1}"),
+                            None => format!("{:.1}", r.slip_load_kn[k]),
+                        },
+                        r.ratio_md(k, r.ratio_to_floor_weight[k]),
+                        r.ratio_md(k, r.ratio_to_weight_above[k]),
                         format!("{:.1}", 1e3 * r.stroke_max[i]),
                     ),
                     None => (
@@ -408,19 +503,19 @@ impl DesignTable {
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {:.5} | {:.1} % | {:.3} | {:.1} % | {:.4} | {:.2} | {:.2} | {:.2} | {:.3} | {:.5} / {:.5} |",
+                "| {} | {} | {} | {:.3} | {} | {} | {:.2} | {:.2} | {:.2} | {:.3} | {} / {} |",
                 r.design,
-                r.objective,
-                100.0 * r.objective_reduction,
+                objective_text(r.objective, Some(5)),
+                reduction_text(r.objective_reduction, Some(1)),
                 100.0 * r.peak_drift_ratio_mean,
-                100.0 * r.peak_drift_reduction,
-                100.0 * r.residual_drift_ratio_mean,
+                reduction_text(r.peak_drift_reduction, Some(1)),
+                objective_text(100.0 * r.residual_drift_ratio_mean, Some(4)),
                 r.peak_floor_acceleration_mean,
                 r.base_shear_mean / 1e6,
                 r.energy_ratio_mean,
                 r.rpi_mean,
-                r.objective_at_75pct,
-                r.objective_at_125pct
+                objective_text(r.objective_at_75pct, Some(5)),
+                objective_text(r.objective_at_125pct, Some(5))
             );
         }
         if self.rows.iter().any(|r| r.by_suite.is_some()) {
@@ -434,14 +529,14 @@ impl DesignTable {
                 for (k, st) in r.by_suite.iter().flatten().enumerate() {
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {} | {} | {:.3} | {:.3} | {:.4} | {} | {} | {} | {} |",
+                        "| {} | {} | {} | {} | {:.3} | {:.3} | {} | {} | {} | {} | {} |",
                         if k == 0 { r.design.as_str() } else { "" },
                         st.suite,
                         st.records,
                         st.collapses,
                         100.0 * st.peak_drift_ratio_mean,
                         100.0 * st.peak_drift_ratio_max,
-                        100.0 * st.residual_drift_ratio_mean,
+                        objective_text(100.0 * st.residual_drift_ratio_mean, Some(4)),
                         opt(st.peak_ductility_mean, 1.0, 2),
                         opt(st.peak_ductility_max, 1.0, 2),
                         opt(st.hysteretic_energy_mean, 1e-3, 1),
@@ -455,9 +550,10 @@ impl DesignTable {
 }
 
 /// The standard candidates around an optimum (slip loads N): the optimum, the uniform and
-/// storey-shear-proportional designs with the same total, the building file's slip
-/// loads, and the bare frame.
-pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>)> {
+/// storey-shear-proportional designs with the same total, the building file's design as
+/// written ([`DesignLoads::file`]: a locked or asymmetric damper stays so), and the bare
+/// frame.
+pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, DesignLoads)> {
     let total: f64 = optimum.iter().sum();
     let m = optimum.len();
     let shaped = |shape: crate::space::Shape| {
@@ -466,23 +562,28 @@ pub fn standard_designs(study: &Study, optimum: &[f64]) -> Vec<(String, Vec<f64>
         let sum: f64 = sh.iter().sum();
         sh.iter().map(|v| v / sum * total).collect::<Vec<f64>>()
     };
-    let all = vec![
-        ("optimum".to_string(), optimum.to_vec()),
-        ("uniform".to_string(), shaped(crate::space::Shape::Uniform)),
+    let all: Vec<(String, DesignLoads)> = vec![
+        ("optimum".to_string(), optimum.to_vec().into()),
+        (
+            "uniform".to_string(),
+            shaped(crate::space::Shape::Uniform).into(),
+        ),
         (
             "storey-shear".to_string(),
-            shaped(crate::space::Shape::StoreyShear),
+            shaped(crate::space::Shape::StoreyShear).into(),
         ),
-        ("file".to_string(), study.file_slip_loads()),
-        ("bare".to_string(), vec![0.0; m]),
+        ("file".to_string(), DesignLoads::file(study)),
+        ("bare".to_string(), vec![0.0; m].into()),
     ];
     // a profile optimum already is its profile at that total: keep the first of equals
-    let same = |a: &[f64], b: &[f64]| {
-        a.iter()
-            .zip(b)
-            .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+    let same = |a: &DesignLoads, b: &DesignLoads| {
+        a.friction_n == b.friction_n
+            && a.slip_loads_n
+                .iter()
+                .zip(&b.slip_loads_n)
+                .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
     };
-    let mut out: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut out: Vec<(String, DesignLoads)> = Vec::new();
     for (name, loads) in all {
         if !out.iter().any(|(_, l)| same(l, &loads)) {
             out.push((name, loads));

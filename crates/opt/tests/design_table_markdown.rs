@@ -10,6 +10,7 @@ fn table() -> DesignTable {
     let row = |name: &str, loads: [f64; 2]| TableRow {
         design: name.into(),
         slip_load_kn: loads.to_vec(),
+        friction_kn: None,
         ratio_to_floor_weight: vec![0.41567, 0.2],
         ratio_to_weight_above: vec![0.135, 0.2],
         drift_ratio_mean: vec![0.004961, 0.005452, 0.004321],

@@ -920,6 +920,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 (0..study.records.len()).map(move |r| Task {
                     label: format!("#{d}"),
                     slip_loads: vec![250e3 * (d + 1) as f64; 3],
+                    friction: None,
                     record: r,
                 })
             })

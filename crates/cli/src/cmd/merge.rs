@@ -18,6 +18,9 @@ pub struct MergeArgs {
 /// Runs `slipload merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
+    slipload_opt::sweep::check_merge_folders(&dirs, &args.out)?;
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let run = merge_shards(&dirs, &args.out)?;
     eprintln!(
         "merged {} folders, {} tasks: wrote {}/{{{}}}",

@@ -5,6 +5,7 @@
 
 use super::study_args::{PhaseBars, discard_journals, load_study};
 use crate::study_figures;
+use slipload_opt::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::pipeline::{MapRequest, OptimizeOptions, StudyReport, optimize_study};
 use slipload_opt::study::RefineMethod;
 use slipload_opt::{OnBound, Study};
@@ -32,9 +33,10 @@ pub struct OptimizeArgs {
     /// Grid points per axis of the objective map
     #[arg(long, default_value_t = 11)]
     pub map_grid: usize,
-    /// Discard the output folder's journals (sweep, refine, check) and start afresh;
-    /// without it the journals of the same study (by fingerprint) are continued and those
-    /// of another study refused
+    /// Remove every file a slipload command wrote in the output folder (journals — sweep,
+    /// refine, check —, tables, figures, rankings, report; any other file is kept and
+    /// named) and start afresh; without it the journals of the same study (by
+    /// fingerprint) are continued and those of another study refused
     #[arg(long)]
     pub fresh: bool,
 }
@@ -143,6 +145,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     };
     // a bad map fails before --fresh discards anything
     options.check(&study)?;
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     if args.fresh {
         discard_journals(&args.out)?;
     }
@@ -227,15 +231,38 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             on_bound_text(study, &r.optimum_loads, &report.on_bound)
         );
     }
-    let pct = |f: f64, g: f64| 100.0 * (1.0 - f / g);
+    // a collapse is said in words, never as a number or a "100 % lower"
+    let obj = |f: f64| objective_text(f, Some(6));
+    // "collapsed", or the value and how much lower the optimum is
+    let against = |g: f64| {
+        if g.is_finite() {
+            format!(
+                "{} ({} lower)",
+                obj(g),
+                reduction_text(reduction(r.optimum.f, g), Some(1))
+            )
+        } else {
+            obj(g)
+        }
+    };
+    let file_design = match study.file_friction() {
+        Some(laws) => format!(
+            "building file's design (friction law {} kN)",
+            laws.iter()
+                .map(|l| l.text(1e3))
+                .collect::<Vec<_>>()
+                .join(" / ")
+        ),
+        None => format!(
+            "building file's slip loads {} kN",
+            kn(&study.file_slip_loads())
+        ),
+    };
     outln!(
-        "objective {:.6} — bare frame {:.6} ({:.1} % lower), building file's slip loads {} kN: {:.6} ({:.1} % lower)",
-        r.optimum.f,
-        r.bare_objective,
-        pct(r.optimum.f, r.bare_objective),
-        kn(&study.file_slip_loads()),
-        r.file_objective,
-        pct(r.optimum.f, r.file_objective)
+        "objective {} — bare frame {}, {file_design}: {}",
+        obj(r.optimum.f),
+        against(r.bare_objective),
+        against(r.file_objective)
     );
     if let Some(line) = costs_line(report) {
         outln!("{line}");
@@ -254,10 +281,10 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     for f in &r.finalists {
         outln!(
-            "  {} kN: objective {:.6} (sweep {:.6})",
+            "  {} kN: objective {} (sweep {})",
             kn(&f.slip_loads_n),
-            f.f_check,
-            f.f_sweep
+            obj(f.f_check),
+            obj(f.f_sweep)
         );
     }
 }

@@ -61,6 +61,8 @@ pub fn run(args: RankArgs) -> anyhow::Result<()> {
     );
     slipload_opt::rank::to_newtons(&study, &designs)
         .with_context(|| format!("checking {}", args.designs.display()))?;
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let r = rank_study(
         &study,
         &designs,

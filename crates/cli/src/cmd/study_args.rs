@@ -79,14 +79,21 @@ impl Progress for PhaseBars {
     }
 }
 
-/// `--fresh`: removes the journals of `out` (and the tables built from them), saying what
-/// went.
+/// `--fresh`: removes every file a slipload command wrote into `out` (journals, tables,
+/// figures, rankings, the report), saying what went and which other files stay.
 pub fn discard_journals(out: &Path) -> anyhow::Result<()> {
-    let removed = slipload_opt::journal::discard_journals(out)?;
-    if !removed.is_empty() {
+    let d = slipload_opt::journal::discard_journals(out)?;
+    if !d.removed.is_empty() {
         eprintln!(
             "--fresh: removed {} from {}",
-            removed.join(", "),
+            d.removed.join(", "),
+            out.display()
+        );
+    }
+    if !d.kept.is_empty() {
+        eprintln!(
+            "--fresh: kept {} in {} (not written by slipload)",
+            d.kept.join(", "),
             out.display()
         );
     }

@@ -25,8 +25,8 @@ pub struct SweepArgs {
     /// a journal of the same study, by its fingerprint)
     #[arg(long, conflicts_with = "fresh")]
     pub resume: bool,
-    /// Discard the output folder's journals (and the tables built from them) and start
-    /// afresh
+    /// Remove every file a slipload command wrote in the output folder (journals, tables,
+    /// figures, rankings, report; any other file is kept and named) and start afresh
     #[arg(long)]
     pub fresh: bool,
 }
@@ -38,6 +38,8 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
     };
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     if args.fresh {
         discard_journals(&args.out)?;
     }
@@ -58,6 +60,13 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         secs,
         report.ran as f64 / secs.max(1e-9)
     );
+    if report.distrusted > 0 {
+        eprintln!(
+            "{} line(s) of {}/journal.jsonl failed their checksum or had none (an older slipload's): not trusted, their tasks ran again",
+            report.distrusted,
+            args.out.display()
+        );
+    }
     eprintln!(
         "sweep method {} ({})",
         report.manifest.method.as_str(),

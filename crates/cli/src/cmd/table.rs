@@ -30,6 +30,8 @@ pub struct TableArgs {
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
+    // one folder, one writer: refused at once if another command holds it
+    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let report = family_study(
         &study,
         &args.period_scales,

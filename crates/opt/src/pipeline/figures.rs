@@ -333,7 +333,7 @@ impl FigureData {
     /// returns them), with the refiners' paths and the objective map given.
     pub fn of_design_table(
         records: &[String],
-        designs: &[(String, Vec<f64>)],
+        designs: &[(String, crate::evaluate::DesignLoads)],
         table: &DesignTable,
         runs: &[Vec<RecordMetrics>],
         convergence: Vec<Convergence>,

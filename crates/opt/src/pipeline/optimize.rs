@@ -54,6 +54,7 @@ pub fn optimize_study(
     progress: &dyn Progress,
 ) -> Result<StudyReport, OptError> {
     options.check(study)?;
+    let _lock = crate::folder_lock::FolderLock::acquire(out)?;
     let method = options.refine.unwrap_or(study.config.refine.method);
     // every journal of the folder must be this study's: never mix another study's numbers
     let manifest = Manifest::of(study);
@@ -178,7 +179,11 @@ pub fn optimize_study(
             .iter()
             .map(|(name, loads)| NamedDesign {
                 name: name.clone(),
-                slip_loads_kn: loads.iter().map(|v| v / 1e3).collect(),
+                slip_loads_kn: loads.slip_loads_n.iter().map(|v| v / 1e3).collect(),
+                friction_kn: loads
+                    .friction_n
+                    .as_ref()
+                    .map(|l| l.iter().map(|x| x.scaled(1e-3)).collect()),
             })
             .collect(),
         designs,

@@ -4,6 +4,7 @@
 use super::progress::{Phase, Progress, phase};
 use crate::error::OptError;
 use crate::family::{FamilyReport, family};
+use crate::folder_lock::FolderLock;
 use crate::rank::{NamedDesign, Ranking, rank};
 use crate::study::{RefineMethod, Study};
 use std::path::Path;
@@ -19,6 +20,7 @@ pub fn rank_study(
     out: &Path,
     progress: &dyn Progress,
 ) -> Result<Ranking, OptError> {
+    let _lock = FolderLock::acquire(out)?;
     let work = (designs.len() + 1) * study.records.len();
     let ranking = phase(progress, Phase::Rank, work, |tick| {
         rank(study, designs, bootstrap, seed, tick)
@@ -38,6 +40,7 @@ pub fn family_study(
     out: &Path,
     progress: &dyn Progress,
 ) -> Result<FamilyReport, OptError> {
+    let _lock = FolderLock::acquire(out)?;
     let cells = phase(progress, Phase::Family, 0, |tick| {
         family(study, period_scales, intensity_scales, method, tick)
     })?;

@@ -71,7 +71,7 @@ pub struct StudyReport {
     pub on_bound: Vec<OnBound>,
     /// The design table's designs (slip loads, N): the optimum first, then uniform and
     /// storey-shear designs of the same total, the building file's, the bare frame.
-    pub designs: Vec<(String, Vec<f64>)>,
+    pub designs: Vec<(String, crate::evaluate::DesignLoads)>,
     /// The design table at the check fidelity.
     pub table: DesignTable,
     /// The table's runs: `[0]` the bare frame, then per design its slip loads, × 0.75,
@@ -90,7 +90,9 @@ pub struct StudyReport {
 struct FinalistEntry {
     #[serde(rename = "slip_loads_kN")]
     slip_loads_kn: Vec<f64>,
+    #[serde(with = "crate::collapse::objective_serde")]
     objective_sweep: f64,
+    #[serde(with = "crate::collapse::objective_serde")]
     objective_check: f64,
 }
 
@@ -104,8 +106,11 @@ struct OptimumFile<'a> {
     #[serde(rename = "slip_loads_kN")]
     slip_loads_kn: Vec<f64>,
     on_bound: &'a [OnBound],
+    #[serde(with = "crate::collapse::objective_serde")]
     objective_value: f64,
+    #[serde(with = "crate::collapse::objective_serde")]
     bare_objective: f64,
+    #[serde(with = "crate::collapse::objective_serde")]
     file_objective: f64,
     sweep_designs: usize,
     refine_evaluations: usize,
@@ -153,7 +158,14 @@ impl StudyReport {
         let mut best = self.refine.best_sweep.f;
         for (i, (p, loads)) in self.refine.log.iter().zip(&self.refine_loads_n).enumerate() {
             best = best.min(p.f);
-            let _ = write!(s, "{},{},{},{}", i + 1, self.method.as_str(), p.f, best);
+            let _ = write!(
+                s,
+                "{},{},{},{}",
+                i + 1,
+                self.method.as_str(),
+                crate::collapse::objective_text(p.f, None),
+                crate::collapse::objective_text(best, None)
+            );
             for v in loads {
                 let _ = write!(s, ",{}", v / 1e3);
             }

@@ -5,6 +5,7 @@
 use super::figures::FigureData;
 use super::progress::{Phase, Progress, phase};
 use crate::error::OptError;
+use crate::folder_lock::FolderLock;
 use crate::shard::Shard;
 use crate::study::Study;
 use crate::sweep::{self, Manifest, SweepReport};
@@ -48,6 +49,7 @@ pub fn sweep_study(
     resume: bool,
     progress: &dyn Progress,
 ) -> Result<SweepRun, OptError> {
+    let _lock = FolderLock::acquire(out)?;
     let manifest = Manifest::of(study);
     let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
     let report = phase(progress, Phase::Sweep, mine, |tick| {
@@ -60,12 +62,15 @@ pub fn sweep_study(
 /// Joins the shard folders `dirs` into `out` ([`crate::sweep::merge`]): the bytes one run
 /// writes, and the same figure data.
 pub fn merge_shards(dirs: &[&Path], out: &Path) -> Result<SweepRun, OptError> {
+    sweep::check_merge_folders(dirs, out)?;
+    let _lock = FolderLock::acquire(out)?;
     let (manifest, rows) = sweep::merge(dirs, out)
         .map_err(|e| e.context(format!("merging into {}", out.display())))?;
     SweepRun::complete(SweepReport {
         shard_tasks: manifest.tasks(),
         resumed: manifest.tasks(),
         ran: 0,
+        distrusted: 0,
         manifest,
         rows: Some(rows),
     })

@@ -1,0 +1,121 @@
+//! Contract: `--fresh` removes every file a previous run of any slipload command wrote
+//! in the output folder (journals, tables, figures, rankings, the report, a temporary
+//! file an interrupted write left), so no stale figure shows up in the next report; it
+//! names what it removes and keeps, and never removes another file. An output path that
+//! is a symbolic link is never written through: the command is refused before it runs,
+//! the link and its target untouched.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{root, slipload_within};
+
+const T: u64 = 300;
+
+/// The benchmark building on two 2-s synthetic records, two Halton points.
+fn study(dir: &Path) -> PathBuf {
+    let building = root().join("configs/benchmark-3story.json");
+    let text = format!(
+        r#"{{ "building": {building:?},
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 11, "pga_g": 0.4, "duration_s": 2 }} }} ],
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark" }},
+  "sweep": {{ "sampler": "halton", "points": 2, "seed": 5 }} }}"#
+    );
+    let p = dir.join("study.json");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn run(args: &[&str]) -> (bool, String) {
+    let o = slipload_within(T, args);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!err.contains("panicked"), "{err}");
+    (o.status.success(), err)
+}
+
+#[test]
+fn fresh_removes_every_file_slipload_wrote_and_names_what_it_keeps() {
+    let dir = common::scratch("fresh", "all");
+    let st = study(&dir);
+    let out = dir.join("out");
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--quiet"]);
+    assert!(ok, "{err}");
+    let fresh_bytes = std::fs::read(out.join("responses.csv")).unwrap();
+    // what other commands left here: optimize's figures and tables, a ranking, a
+    // family table, the report, a temporary file of an interrupted write
+    let stale = [
+        "convergence.svg",
+        "convergence.csv",
+        "objective-map.png",
+        "design-table.md",
+        "optimum.json",
+        "refine-trust-region.jsonl",
+        "check.jsonl",
+        "rank.md",
+        "family.csv",
+        "report.html",
+        ".designs.csv.tmp",
+    ];
+    for f in stale {
+        std::fs::write(out.join(f), "stale").unwrap();
+    }
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"]);
+    assert!(ok, "{err}");
+    for f in stale {
+        assert!(!out.join(f).exists(), "{f} survived --fresh");
+        assert!(
+            err.contains(f),
+            "--fresh does not say it removed {f}: {err}"
+        );
+    }
+    assert!(err.contains("--fresh: removed"), "{err}");
+    assert!(
+        err.contains("--fresh: kept notes.txt"),
+        "it names what it keeps: {err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    assert!(std::fs::read(out.join("responses.csv")).unwrap() == fresh_bytes);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_a_symlink_is_refused_and_its_target_untouched() {
+    let dir = common::scratch("fresh", "symlink");
+    let st = study(&dir);
+    let target = dir.join("elsewhere.csv");
+    std::fs::write(&target, "precious").unwrap();
+    for name in ["responses.csv", "journal.jsonl"] {
+        let out = dir.join(format!("out-{name}"));
+        std::fs::create_dir_all(&out).unwrap();
+        let link = out.join(name);
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--quiet"]);
+        assert!(!ok, "{name}: ran through a symlink");
+        assert!(
+            err.contains("is a symbolic link") && err.contains("refusing to write through it"),
+            "{name}: {err}"
+        );
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "precious");
+        // refused before anything ran: no journal, no table
+        assert!(!out.join("manifest.json").exists(), "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,136 @@
+//! Contract: one study folder, one writer. While a command holds a folder's lock
+//! (`.slipload.lock`, an OS file lock), a second `sweep`, `optimize`, `rank` or `merge`
+//! into it is refused at once with a message that says the folder is in use — and
+//! `--fresh` removes nothing — and `merge` refuses a shard folder still being written.
+//! The first run's files stay intact, and once the lock is released (as the OS does when
+//! a run dies, `kill -9` included) the folder takes the next command.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{root, slipload_within};
+
+/// Seconds a refused command may take at most: it must not wait for the lock.
+const T: u64 = 60;
+
+/// The benchmark building on two 2-s synthetic records, two Halton points.
+fn study(dir: &Path) -> PathBuf {
+    let building = root().join("configs/benchmark-3story.json");
+    let text = format!(
+        r#"{{ "building": {building:?},
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 11, "pga_g": 0.4, "duration_s": 2 }} }} ],
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark" }},
+  "sweep": {{ "sampler": "halton", "points": 2, "seed": 5 }} }}"#
+    );
+    let p = dir.join("study.json");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Every file of `dir` with its bytes, sorted by name.
+fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| e.file_type().unwrap().is_file())
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+fn ok(args: &[&str]) {
+    let o = slipload_within(T * 5, args);
+    assert!(
+        o.status.success(),
+        "slipload {args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// Refused at once, saying the folder is in use.
+fn refused_busy(args: &[&str], dir: &Path) {
+    let o = slipload_within(T, args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "slipload {args:?} ran: {err}");
+    assert!(
+        err.contains(&format!(
+            "{} is in use by another slipload command",
+            dir.display()
+        )),
+        "slipload {args:?}: {err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+/// Holds the lock of `dir` as a running command does.
+fn hold(dir: &Path) -> std::fs::File {
+    let f = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(dir.join(".slipload.lock"))
+        .unwrap();
+    f.try_lock().unwrap();
+    f
+}
+
+#[test]
+fn a_second_command_into_a_folder_in_use_is_refused_and_the_first_is_intact() {
+    let dir = common::scratch("lock", "busy");
+    let st = study(&dir);
+    let out = dir.join("out");
+    ok(&["sweep", s(&st), "--out", s(&out), "--quiet"]);
+    let before = snapshot(&out);
+    assert!(before.iter().any(|(n, _)| n == "responses.csv"));
+    let lock = hold(&out);
+    refused_busy(
+        &["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"],
+        &out,
+    );
+    refused_busy(
+        &["sweep", s(&st), "--out", s(&out), "--resume", "--quiet"],
+        &out,
+    );
+    refused_busy(&["optimize", s(&st), "--out", s(&out), "--quiet"], &out);
+    let cands = dir.join("cands.json");
+    std::fs::write(
+        &cands,
+        r#"[{"name": "a", "slip_loads_kn": [100, 100, 100]}]"#,
+    )
+    .unwrap();
+    refused_busy(
+        &[
+            "rank",
+            s(&st),
+            "--designs",
+            s(&cands),
+            "--out",
+            s(&out),
+            "--quiet",
+        ],
+        &out,
+    );
+    assert!(snapshot(&out) == before, "the first run's files are intact");
+    // a shard folder still being written is not merged
+    let merged = dir.join("merged");
+    refused_busy(&["merge", "--out", s(&merged), s(&out)], &out);
+    assert!(!merged.join("responses.csv").exists());
+    // released (as when the holder ends, however it ends): the folder takes the next run
+    drop(lock);
+    ok(&["sweep", s(&st), "--out", s(&out), "--resume", "--quiet"]);
+    ok(&["merge", "--out", s(&merged), s(&out)]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
