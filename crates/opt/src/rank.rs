@@ -66,9 +66,19 @@ fn ranks(obj: &[f64]) -> Vec<usize> {
     r
 }
 
-/// Checks candidate designs against the study's space (count, finite, ≥ 0); N out.
+/// Checks candidate designs against the study's space (count, finite, ≥ 0) and that
+/// their names are unique (the tables and the ranking name each design once); N out.
 pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<Vec<f64>>, OptError> {
     let m = study.space.dampers.len();
+    let mut seen = std::collections::HashMap::new();
+    for (i, d) in designs.iter().enumerate() {
+        if let Some(first) = seen.insert(d.name.as_str(), i) {
+            return Err(OptError::Argument(format!(
+                "designs[{i}]: the name {:?} is already the name of designs[{first}]; give each candidate its own name",
+                d.name
+            )));
+        }
+    }
     designs
         .iter()
         .enumerate()
