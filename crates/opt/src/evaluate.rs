@@ -82,6 +82,7 @@ pub fn simulate_one(
             histories: false,
         },
         reduce: true,
+        notes: Vec::new(),
     };
     let wrap = |source| OptError::Simulation {
         design: label.to_string(),
