@@ -16,7 +16,9 @@
 //!   ([`Scene::notes`]) that says how many seconds have no ground motion.
 //! - **Quantities with units.** Times (`duration`, `window`, `method.dt`, a record's
 //!   `dt`, a synthetic record's `duration` and `dt`) are a number of seconds or a string
-//!   with a unit (`"10 s"`, `"5 ms"`), parsed by [`crate::units::parse_quantity`].
+//!   with a unit (`"10 s"`, `"5 ms"`); so are a harmonic force's `omega` (`"2.5 Hz"`) and
+//!   `phase` (`"90 deg"`) and the initial velocities (`"50 cm/s"`), all parsed by
+//!   [`crate::units::parse_quantity`].
 //! - **Method options.** Each method reads only some of the `method` fields
 //!   ([`MethodName::options`]); one it does not read is refused, naming the option, the
 //!   method and the options it takes.
@@ -26,7 +28,7 @@
 use crate::building::{Building, BuildingConfig};
 use crate::error::SimError;
 use crate::kind::Expected;
-use crate::units::{Force, Length, Time, is_positive};
+use crate::units::{Angle, AngularFrequency, Force, Length, Time, Velocity, is_positive};
 use serde::{Deserialize, Serialize};
 use slipload_motion::{G, Record, Units};
 use std::path::{Path, PathBuf};
@@ -150,11 +152,15 @@ pub struct HarmonicConfig {
     pub floor: usize,
     /// Amplitude, N.
     pub amplitude: Force,
-    /// Circular frequency ω, rad/s.
-    pub omega: f64,
-    /// Phase, rad (default 0).
-    #[serde(default)]
-    pub phase: f64,
+    /// Circular frequency ω, rad/s (`"2.5 Hz"` is 2π·2.5 rad/s).
+    pub omega: AngularFrequency,
+    /// Phase, rad (default 0; `"90 deg"` accepted).
+    #[serde(default = "zero_angle")]
+    pub phase: Angle,
+}
+
+fn zero_angle() -> Angle {
+    Angle(0.0)
 }
 
 /// Initial state (relative to the ground); missing vectors are zero.
@@ -166,13 +172,13 @@ pub struct InitialConfig {
     pub floor_displacement: Option<Vec<Length>>,
     /// Floor velocities (m/s).
     #[serde(default)]
-    pub floor_velocity: Option<Vec<f64>>,
+    pub floor_velocity: Option<Vec<Velocity>>,
     /// Dissipator displacements x′₀ (m); floors without a dissipator ignore theirs.
     #[serde(default)]
     pub dissipator_displacement: Option<Vec<Length>>,
     /// Dissipator velocities (m/s).
     #[serde(default)]
-    pub dissipator_velocity: Option<Vec<f64>>,
+    pub dissipator_velocity: Option<Vec<Velocity>>,
 }
 
 /// The integration methods.
@@ -833,7 +839,7 @@ impl Scene {
                         format!("must be a floor from 1 to {n}, got {}", h.floor),
                     ));
                 }
-                if !h.amplitude.0.is_finite() || !h.omega.is_finite() || !h.phase.is_finite() {
+                if !h.amplitude.0.is_finite() || !h.omega.0.is_finite() || !h.phase.0.is_finite() {
                     return Err(SimError::invalid(
                         path,
                         "excitation.harmonic",
@@ -843,8 +849,8 @@ impl Scene {
                 Some(Harmonic {
                     floor: h.floor - 1,
                     amplitude: h.amplitude.0,
-                    omega: h.omega,
-                    phase: h.phase,
+                    omega: h.omega.0,
+                    phase: h.phase.0,
                 })
             }
         };
@@ -861,7 +867,7 @@ impl Scene {
                 floor_velocity: vec_or_zero(
                     path,
                     "excitation.initial.floor_velocity",
-                    ic.floor_velocity,
+                    ic.floor_velocity.map(|v| v.iter().map(|x| x.0).collect()),
                     n,
                 )?,
                 dissipator_displacement: vec_or_zero(
@@ -874,7 +880,8 @@ impl Scene {
                 dissipator_velocity: vec_or_zero(
                     path,
                     "excitation.initial.dissipator_velocity",
-                    ic.dissipator_velocity,
+                    ic.dissipator_velocity
+                        .map(|v| v.iter().map(|x| x.0).collect()),
                     n,
                 )?,
             },

@@ -443,3 +443,63 @@ fn check_refuses_what_simulate_refuses_with_the_same_words() {
     .unwrap();
     slipload_sim::simulate::check(&Plan::compile(&ok).unwrap()).unwrap();
 }
+
+#[test]
+fn frequencies_angles_and_velocities_take_units() {
+    let scene = |omega: &str, phase: &str, v: &str| {
+        format!(
+            r#"{{ "building": {{ "floor_masses": [1000, 1000], "storey_stiffness": [1e5, 1e5] }},
+                 "excitation": {{ "harmonic": {{ "floor": 2, "amplitude": "1 kN", "omega": {omega}, "phase": {phase} }},
+                                  "initial": {{ "floor_velocity": [{v}, 0] }} }},
+                 "duration": 1 }}"#
+        )
+    };
+    let tau = std::f64::consts::TAU;
+    let plain = load(
+        &scene(&format!("{}", 2.0 * tau), &format!("{}", tau / 4.0), "0.5"),
+        &SceneOverrides::default(),
+    )
+    .unwrap();
+    let units = load(
+        &scene(r#""2 Hz""#, r#""90 deg""#, r#""50 cm/s""#),
+        &SceneOverrides::default(),
+    )
+    .unwrap();
+    let (a, b) = (plain.harmonic.unwrap(), units.harmonic.unwrap());
+    // "2 Hz" is 2·2π rad/s and "90 deg" π/2 rad, to the round-off of one product
+    assert!(
+        (a.omega - b.omega).abs() <= 1e-15 * a.omega,
+        "{} {}",
+        a.omega,
+        b.omega
+    );
+    assert!(
+        (a.phase - b.phase).abs() <= 1e-15,
+        "{} {}",
+        a.phase,
+        b.phase
+    );
+    assert_eq!(plain.initial.floor_velocity, units.initial.floor_velocity);
+    for bad in [
+        scene(r#""2 kg""#, "0", "0"),
+        scene("1", r#""2 s""#, "0"),
+        scene("1", "0", r#""5 m""#),
+    ] {
+        refused(
+            &bad,
+            &SceneOverrides::default(),
+            &["rules.json", "expected"],
+        );
+    }
+    // the messages say what was expected
+    refused(
+        &scene(r#""2 kg""#, "0", "0"),
+        &SceneOverrides::default(),
+        &["a circular frequency in rad/s"],
+    );
+    refused(
+        &scene("1", "0", r#""5 m""#),
+        &SceneOverrides::default(),
+        &["a velocity in m/s"],
+    );
+}
