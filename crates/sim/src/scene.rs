@@ -13,7 +13,8 @@
 //!   starts at or past the record's end is refused. One that runs past the end is padded
 //!   with the ground at rest, the same rule as a `duration` longer than the record: the
 //!   simulated time defaults to the window's duration, and the scene carries a note
-//!   ([`Scene::notes`]) that says how many seconds have no ground motion.
+//!   ([`Scene::notes`]) that says how many seconds have no ground motion. (A window inside
+//!   the record lasts the whole sample intervals it keeps, as before.)
 //! - **Quantities with units.** Times (`duration`, `window`, `method.dt`, a record's
 //!   `dt`, a synthetic record's `duration` and `dt`) are a number of seconds or a string
 //!   with a unit (`"10 s"`, `"5 ms"`); so are a harmonic force's `omega` (`"2.5 Hz"`) and
@@ -762,9 +763,16 @@ impl Scene {
             )),
             _ => None,
         };
+        // Set when the window reaches past the record's end: the run then lasts the
+        // window's duration, padded with the ground at rest. (A window inside the record
+        // lasts what it keeps: whole sample intervals from its start.)
+        let past_end = std::cell::Cell::new(false);
         let cut = |r: Record| -> Result<Record, SimError> {
             match &window {
-                Some((s, d, what)) => apply_window(&r, (*s, *d), what),
+                Some((s, d, what)) => {
+                    past_end.set(s + d > r.duration() + 1e-9 * r.dt());
+                    apply_window(&r, (*s, *d), what)
+                }
                 None => Ok(r),
             }
         };
@@ -897,8 +905,8 @@ impl Scene {
             }
             Some(d) => d,
             None => match (&record, &window) {
-                (Some(_), Some((_, d, _))) => *d,
-                (Some(r), None) => r.duration(),
+                (Some(_), Some((_, d, _))) if past_end.get() => *d,
+                (Some(r), _) => r.duration(),
                 (None, _) if over.plan_only => {
                     let t1 = building.t1();
                     notes.push(format!(

@@ -503,3 +503,17 @@ fn frequencies_angles_and_velocities_take_units() {
         &["a velocity in m/s"],
     );
 }
+
+#[test]
+fn a_window_inside_the_record_lasts_what_it_keeps_without_a_note() {
+    // [0.7, 2.55] on a 0.02 s record keeps 127 intervals (2.54 s): no padding, no note
+    let s = load(
+        &syl_scene_json(r#", "window": [0.7, 2.55]"#, ""),
+        &SceneOverrides::default(),
+    )
+    .unwrap();
+    let r = s.record.as_ref().unwrap();
+    assert!((r.duration() - 2.54).abs() < 1e-9, "{}", r.duration());
+    assert_eq!(s.duration, r.duration());
+    assert!(s.notes.is_empty(), "{:?}", s.notes);
+}
