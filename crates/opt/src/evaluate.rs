@@ -175,6 +175,7 @@ pub fn simulate_design(
             histories: false,
         },
         reduce: true,
+        notes: Vec::new(),
     };
     let wrap = |source| OptError::Simulation {
         design: label.to_string(),

@@ -74,9 +74,19 @@ fn ranks(obj: &[f64]) -> Vec<usize> {
 }
 
 /// Checks candidate designs against the study's space (count, finite, ≥ 0; a friction
-/// law with F⁻ ≤ 0 ≤ F⁺); N out, friction laws carried.
+/// law with F⁻ ≤ 0 ≤ F⁺) and that their names are unique (the tables and the ranking name
+/// each design once); N out, friction laws carried.
 pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<DesignLoads>, OptError> {
     let m = study.space.dampers.len();
+    let mut seen = std::collections::HashMap::new();
+    for (i, d) in designs.iter().enumerate() {
+        if let Some(first) = seen.insert(d.name.as_str(), i) {
+            return Err(OptError::Argument(format!(
+                "designs[{i}]: the name {:?} is already the name of designs[{first}]; give each candidate its own name",
+                d.name
+            )));
+        }
+    }
     designs
         .iter()
         .enumerate()

@@ -72,6 +72,7 @@ fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
             histories: false,
         },
         reduce: true,
+        notes: Vec::new(),
     };
     let out = run_plan(&Plan::compile(&scene).unwrap()).unwrap();
     RecordMetrics::from_outcome(&out, study.building.storey_heights.as_deref().unwrap())

@@ -343,9 +343,35 @@ fn per_floor(
     }
 }
 
+/// The own stiffness of storey `i` (from 0) in a frame of stiffness matrix `k` (N/m, SPD):
+/// the storey shear over the storey drift when equal and opposite forces act on the
+/// storey's two floors (one force on the first floor for the first storey),
+/// 1 / (eᵀ K⁻¹ e) with e = e(floor i) − e(floor i−1). For a shear building (a chain of
+/// storey springs) it is exactly the storey's spring: the floors above move with the top
+/// floor and the storeys below carry no shear. For a full condensed matrix it is what the
+/// whole frame offers between those two floors; a spring k between them can be taken out
+/// of K (as a storey that yields takes out (1−α)k) and leave K − k e eᵀ positive
+/// semi-definite exactly when k ≤ 1/(eᵀK⁻¹e).
+/// `None` when `k` is not positive definite or `i` is not a storey.
+pub fn storey_stiffness(k: &DMatrix<f64>, i: usize) -> Option<f64> {
+    let n = k.nrows();
+    if i >= n {
+        return None;
+    }
+    let mut e = nalgebra::DVector::zeros(n);
+    e[i] = 1.0;
+    if i > 0 {
+        e[i - 1] = -1.0;
+    }
+    let chol = k.clone().cholesky()?;
+    let flex = e.dot(&chol.solve(&e));
+    (flex > 0.0 && flex.is_finite()).then(|| 1.0 / flex)
+}
+
 /// Validates `storey_yield` against the frame: one entry per listed storey, Fy or the
 /// yield drift, α in [0, 1), and the spring's stiffness (from `storey_stiffness`, or given
-/// for a matrix frame, where it must not exceed the matrix's own coupling of the storey).
+/// for a matrix frame), which must not exceed the storey's own stiffness in the frame
+/// ([`storey_stiffness`]).
 fn storey_yield(
     cfg: &BuildingConfig,
     path: &Path,
@@ -391,19 +417,29 @@ fn storey_yield(
                 format!("must be positive and finite, got {k}"),
             ));
         }
-        // The spring is part of the frame: its coupling of floors i−1 and i (or, for the
-        // first storey, the first floor's diagonal) must hold it.
-        let coupling = if i == 0 {
-            stiffness[(0, 0)]
-        } else {
-            -stiffness[(i, i - 1)]
-        };
-        if k > coupling * (1.0 + 1e-9) {
+        // The spring is part of the frame: it cannot be stiffer than the storey it sits in.
+        let own = storey_stiffness(stiffness, i).ok_or_else(|| {
+            SimError::invalid(
+                path,
+                if cfg.stiffness_matrix.is_some() {
+                    "stiffness_matrix"
+                } else {
+                    "storey_stiffness"
+                },
+                "frame stiffness must be positive definite (the bare frame must be stable)",
+            )
+        })?;
+        if k > own * (1.0 + 1e-9) {
+            let floors = if i == 0 {
+                "a force on floor 1, the ground fixed".to_string()
+            } else {
+                format!("equal and opposite forces on floors {i} and {}", i + 1)
+            };
             return Err(SimError::invalid(
                 path,
                 f("stiffness"),
                 format!(
-                    "{k:.6e} N/m is more than the frame matrix couples storey {} with ({coupling:.6e} N/m)",
+                    "storey {}: the yielding spring's stiffness {k:.6e} N/m is stiffer than the storey it sits in, whose own stiffness in the frame is {own:.6e} N/m (storey shear over storey drift under {floors}); give at most {own:.6e} N/m",
                     y.storey
                 ),
             ));

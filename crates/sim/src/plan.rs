@@ -473,6 +473,7 @@ impl Plan {
             )),
             None => notes.push("ground motion: none".into()),
         }
+        notes.extend(scene.notes.iter().cloned());
         if let Some(h) = &scene.harmonic {
             notes.push(format!(
                 "harmonic force on floor {}: {:.6e} N at {} rad/s",
@@ -520,6 +521,38 @@ impl Plan {
             collapse_drift: b.collapse_drift.clone(),
             notes,
         })
+    }
+
+    /// What the plan's method cannot model, refused before its first step. Every
+    /// integrator calls it as its run starts, and `explain` through
+    /// [`crate::simulate::check`], so both refuse the same scenes with the same words:
+    /// - `delacruz`: yielding storeys (its three-level iteration is written for
+    ///   dissipators on braces; a storey's own plastic element is not among the cases it
+    ///   resolves), and zero-mass dissipator DOFs (unreduced plans), where its dissipator
+    ///   equation degenerates;
+    /// - `exact`: zero-mass dissipator DOFs, which it cannot integrate (it needs M⁻¹).
+    pub fn check_method(&self) -> Result<(), SimError> {
+        let name = self.method.name;
+        if name == MethodName::Delacruz && self.has_yielding_storeys() {
+            return Err(SimError::Scene(
+                "delacruz does not model yielding storeys; use exact (the reference) or newmark, which treat a storey's plastic element like a massless dissipator".into(),
+            ));
+        }
+        let massless_dof = self
+            .contacts
+            .iter()
+            .find(|ct| matches!(ct.kind, ContactKind::Dof { dof } if self.mass[(dof, dof)] <= 0.0));
+        match (name, massless_dof) {
+            (MethodName::Delacruz, Some(ct)) => Err(SimError::Scene(format!(
+                "delacruz: the dissipator of floor {} is a zero-mass DOF of an unreduced plan, where the method's dissipator equation degenerates; set \"reduce\": true to model it as an elastic-perfectly plastic contact",
+                ct.floor + 1
+            ))),
+            (MethodName::Exact, Some(ct)) => Err(SimError::Scene(format!(
+                "exact: the dissipator of floor {} has zero mass but keeps a DOF (unreduced plan); compile the scene with \"reduce\": true so it becomes the equivalent elastic-perfectly plastic element",
+                ct.floor + 1
+            ))),
+            _ => Ok(()),
+        }
     }
 
     /// Whether a storey yields (its plastic element is a [`ContactRole::Storey`] contact).

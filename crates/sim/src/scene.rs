@@ -1,14 +1,35 @@
 //! Scenes: a building, an excitation, what is asked for, and a method with its settings.
 //!
 //! A scene file names a building (inline or by path relative to the scene file) and may
-//! name a record, a member of the embedded synthetic suite, a harmonic floor force and an
+//! name a record or a synthetic ground motion (not both), a harmonic floor force and an
 //! initial state. A building file alone is a valid scene (no excitation: give a record or
 //! a duration through [`SceneOverrides`]). Overrides (the CLI's flags) win over the file.
+//!
+//! Rules a scene is held to (each refusal names the file, the field and what was expected):
+//! - **Window.** A record's `window` `[start, duration]` keeps that span of the ground
+//!   motion; the `--window` flag ([`SceneOverrides::window`]) *replaces* the scene's
+//!   window (it is not applied on top of it), and applies to whichever ground motion the
+//!   scene ends up with (a record, `--record`'s file, or a synthetic one). A window that
+//!   starts at or past the record's end is refused. One that runs past the end is padded
+//!   with the ground at rest, the same rule as a `duration` longer than the record: the
+//!   simulated time defaults to the window's duration, and the scene carries a note
+//!   ([`Scene::notes`]) that says how many seconds have no ground motion. (A window inside
+//!   the record lasts the whole sample intervals it keeps, as before.)
+//! - **Quantities with units.** Times (`duration`, `window`, `method.dt`, a record's
+//!   `dt`, a synthetic record's `duration` and `dt`) are a number of seconds or a string
+//!   with a unit (`"10 s"`, `"5 ms"`); so are a harmonic force's `omega` (`"2.5 Hz"`) and
+//!   `phase` (`"90 deg"`) and the initial velocities (`"50 cm/s"`), all parsed by
+//!   [`crate::units::parse_quantity`].
+//! - **Method options.** Each method reads only some of the `method` fields
+//!   ([`MethodName::options`]); one it does not read is refused, naming the option, the
+//!   method and the options it takes.
+//! - **Exclusive excitation fields.** `record` and `synthetic`; a record's `scale` and
+//!   `scale_pga_g`; a synthetic's `index` and `seed`.
 
 use crate::building::{Building, BuildingConfig};
 use crate::error::SimError;
 use crate::kind::Expected;
-use crate::units::{Force, Length, Time, is_positive};
+use crate::units::{Angle, AngularFrequency, Force, Length, Time, Velocity, is_positive};
 use serde::{Deserialize, Serialize};
 use slipload_motion::{G, Record, Units};
 use std::path::{Path, PathBuf};
@@ -29,7 +50,8 @@ pub struct SceneConfig {
     /// Loads and initial state; default: none.
     #[serde(default)]
     pub excitation: ExcitationConfig,
-    /// Simulated time (s); default: the record's duration.
+    /// Simulated time (s); default: the window's duration when the record has a window,
+    /// else the record's duration. Past the ground motion's end the ground is at rest.
     #[serde(default)]
     pub duration: Option<Time>,
     /// Integration method and its accuracy settings.
@@ -87,16 +109,18 @@ pub struct RecordConfig {
     pub units: Option<String>,
     /// Sample interval (s) for one-column text files.
     #[serde(default)]
-    pub dt: Option<f64>,
+    pub dt: Option<Time>,
     /// Scale factor on the accelerations.
     #[serde(default)]
     pub scale: Option<f64>,
     /// Scale to this peak ground acceleration, in g.
     #[serde(default)]
     pub scale_pga_g: Option<f64>,
-    /// Window [start, duration] in s.
+    /// Window [start, duration] in s (`[0, 10]`, `["2 s", "10 s"]`): the span of the
+    /// record that is used; past the record's end the ground is at rest (see the module
+    /// docs). `--window` replaces it.
     #[serde(default)]
-    pub window: Option<[f64; 2]>,
+    pub window: Option<[Time; 2]>,
 }
 
 /// A synthetic ground motion: a member of the embedded suite (`index`), or a fresh
@@ -129,11 +153,15 @@ pub struct HarmonicConfig {
     pub floor: usize,
     /// Amplitude, N.
     pub amplitude: Force,
-    /// Circular frequency ω, rad/s.
-    pub omega: f64,
-    /// Phase, rad (default 0).
-    #[serde(default)]
-    pub phase: f64,
+    /// Circular frequency ω, rad/s (`"2.5 Hz"` is 2π·2.5 rad/s).
+    pub omega: AngularFrequency,
+    /// Phase, rad (default 0; `"90 deg"` accepted).
+    #[serde(default = "zero_angle")]
+    pub phase: Angle,
+}
+
+fn zero_angle() -> Angle {
+    Angle(0.0)
 }
 
 /// Initial state (relative to the ground); missing vectors are zero.
@@ -145,13 +173,13 @@ pub struct InitialConfig {
     pub floor_displacement: Option<Vec<Length>>,
     /// Floor velocities (m/s).
     #[serde(default)]
-    pub floor_velocity: Option<Vec<f64>>,
+    pub floor_velocity: Option<Vec<Velocity>>,
     /// Dissipator displacements x′₀ (m); floors without a dissipator ignore theirs.
     #[serde(default)]
     pub dissipator_displacement: Option<Vec<Length>>,
     /// Dissipator velocities (m/s).
     #[serde(default)]
-    pub dissipator_velocity: Option<Vec<f64>>,
+    pub dissipator_velocity: Option<Vec<Velocity>>,
 }
 
 /// The integration methods.
@@ -186,6 +214,131 @@ impl MethodName {
             MethodName::Exact => "exact",
         }
     }
+}
+
+impl MethodName {
+    /// Every method, in the order the docs list them.
+    pub const ALL: [MethodName; 5] = [
+        MethodName::Newmark,
+        MethodName::Hht,
+        MethodName::Delacruz,
+        MethodName::Exact,
+        MethodName::Bilinear,
+    ];
+
+    /// The `method` fields (beyond `name`) this method reads; any other is refused.
+    pub fn options(self) -> &'static [&'static str] {
+        match self {
+            MethodName::Newmark | MethodName::Bilinear | MethodName::Exact => &["dt"],
+            MethodName::Hht => &["dt", "alpha"],
+            MethodName::Delacruz => &["dt", "eps_a", "eps_f", "max_iterations"],
+        }
+    }
+}
+
+impl MethodConfig {
+    /// The option fields that are set, by name.
+    fn given(&self) -> Vec<&'static str> {
+        [
+            ("dt", self.dt.is_some()),
+            ("alpha", self.alpha.is_some()),
+            ("eps_a", self.eps_a.is_some()),
+            ("eps_f", self.eps_f.is_some()),
+            ("max_iterations", self.max_iterations.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, set)| set.then_some(name))
+        .collect()
+    }
+}
+
+/// Refuses a `method` option that `name` does not read: it would be ignored, and the run
+/// would not be the one asked for. `from_flag`: the method was chosen with `--method`.
+fn check_method_options(
+    cfg: &MethodConfig,
+    name: MethodName,
+    from_flag: bool,
+    path: &Path,
+) -> Result<(), SimError> {
+    let takes = name.options();
+    let Some(unused) = cfg.given().into_iter().find(|o| !takes.contains(o)) else {
+        return Ok(());
+    };
+    let users: Vec<&str> = MethodName::ALL
+        .iter()
+        .filter(|m| m.options().contains(&unused))
+        .map(|m| m.as_str())
+        .collect();
+    Err(SimError::invalid(
+        path,
+        format!("method.{unused}"),
+        format!(
+            "method {}{} does not use {unused} (it takes {}); {unused} is an option of {}: remove it or choose that method",
+            name.as_str(),
+            if from_flag { " (from --method)" } else { "" },
+            takes.join(", "),
+            users.join(", ")
+        ),
+    ))
+}
+
+/// Cuts `window = (start, duration)` out of `r`, refusing a start at or past the record's
+/// end (nothing of it would be left). A window that runs past the end keeps what there is:
+/// the simulated duration then defaults to the window's, with the ground at rest after the
+/// record ([`pad_note`] says so). `what` names the window in errors.
+fn apply_window(r: &Record, window: (f64, f64), what: &str) -> Result<Record, SimError> {
+    let (start, duration) = window;
+    if !(start.is_finite() && start >= 0.0 && duration.is_finite() && duration > 0.0) {
+        return Err(SimError::Scene(format!(
+            "{what}: a window needs a start >= 0 s and a duration > 0 s, got [{start}, {duration}]"
+        )));
+    }
+    let end = r.duration();
+    // at the end to round-off (39.98 against 1999 × 0.02 = 39.980000000000004) is at it
+    if start >= end - 1e-9 * r.dt() {
+        return Err(SimError::Scene(format!(
+            "{what}: the window starts at {} s, at or past the end of {} ({} s long): no ground motion would be left; give a start below {} s",
+            secs(start),
+            r.name(),
+            secs(end),
+            secs(end)
+        )));
+    }
+    Ok(r.window(start, duration)?)
+}
+
+/// Seconds as people write them: round-off below a nanosecond dropped (39.98, not
+/// 39.980000000000004).
+fn secs(t: f64) -> String {
+    format!("{}", (t * 1e9).round() / 1e9)
+}
+
+/// The note of a run longer than its ground motion (a `duration` or a window past the
+/// record's end): the ground is at rest for the rest, which is free vibration.
+fn pad_note(record: &Record, duration: f64, window: Option<(f64, f64, &str)>) -> Option<String> {
+    let end = record.duration();
+    // the same slack as Scene::steps: a duration that is the record's to round-off is it
+    if duration <= end * (1.0 + 1e-9) + 1e-12 {
+        return None;
+    }
+    let rest = secs(duration - end);
+    Some(match window {
+        Some((s, d, what)) => format!(
+            "{what} [{} s, {} s] runs past the end of {}: {} s of ground motion from {} s, then the ground at rest for the last {rest} s of the {} s run (free vibration), as with a duration longer than the record",
+            secs(s),
+            secs(d),
+            record.name(),
+            secs(end),
+            secs(s),
+            secs(duration)
+        ),
+        None => format!(
+            "the run lasts {} s but the ground motion {} lasts {} s: the ground is at rest for the last {rest} s (free vibration)",
+            secs(duration),
+            record.name(),
+            secs(end)
+        ),
+    })
 }
 
 impl std::str::FromStr for MethodName {
@@ -259,7 +412,8 @@ pub struct SceneOverrides {
     pub units: Option<Units>,
     /// Scale to this PGA, g.
     pub scale_pga_g: Option<f64>,
-    /// Window (start, duration), s.
+    /// Window (start, duration), s: replaces the scene's record window and applies to
+    /// whichever ground motion the scene has (record, `record` above, or synthetic).
     pub window: Option<(f64, f64)>,
     /// Method.
     pub method: Option<MethodName>,
@@ -271,6 +425,10 @@ pub struct SceneOverrides {
     pub histories: Option<bool>,
     /// Accumulate energies.
     pub energies: Option<bool>,
+    /// The scene is compiled to be explained, not run: with no ground motion and no
+    /// duration it is planned over one bare-frame period T₁ (and a note says so) instead
+    /// of being refused.
+    pub plan_only: bool,
 }
 
 /// A harmonic floor force.
@@ -368,6 +526,9 @@ pub struct Scene {
     pub outputs: OutputsConfig,
     /// Compile into a reduced plan.
     pub reduce: bool,
+    /// What the scene decided that the user should hear about (a window or duration
+    /// past the record's end, a nominal duration for `explain`), one sentence each.
+    pub notes: Vec<String>,
 }
 
 /// Default time step of `method`: T₁/400 of the bare frame (the paper's own T₁/200 for
@@ -569,12 +730,55 @@ impl Scene {
             BuildingRef::Inline(b) => Building::from_config(b, path)?,
         };
         let n = building.floors();
-        // Ground motion: the override's file, else the scene's record, else its synthetic member.
-        let record = if let Some(file) = &over.record {
-            let mut r = slipload_motion::read_record(file, over.units, None)?;
-            if let Some((s, d)) = over.window {
-                r = r.window(s, d)?;
+        if cfg.excitation.record.is_some() && cfg.excitation.synthetic.is_some() {
+            return Err(SimError::invalid(
+                path,
+                "excitation.synthetic",
+                "give either record (a ground-motion file) or synthetic (a generated ground motion), not both",
+            ));
+        }
+        if let Some(rc) = &cfg.excitation.record
+            && rc.scale.is_some()
+            && rc.scale_pga_g.is_some()
+        {
+            return Err(SimError::invalid(
+                path,
+                "excitation.record.scale",
+                "give either scale or scale_pga_g, not both",
+            ));
+        }
+        // The window in force: `--window` replaces the scene's record window.
+        let scene_window = cfg
+            .excitation
+            .record
+            .as_ref()
+            .and_then(|rc| rc.window)
+            .map(|[s, d]| (s.0, d.0));
+        let window: Option<(f64, f64, String)> = match (over.window, scene_window) {
+            (Some((s, d)), _) => Some((s, d, "--window".to_string())),
+            (None, Some((s, d))) if over.record.is_none() => Some((
+                s,
+                d,
+                format!("{}: field `excitation.record.window`", path.display()),
+            )),
+            _ => None,
+        };
+        // Set when the window reaches past the record's end: the run then lasts the
+        // window's duration, padded with the ground at rest. (A window inside the record
+        // lasts what it keeps: whole sample intervals from its start.)
+        let past_end = std::cell::Cell::new(false);
+        let cut = |r: Record| -> Result<Record, SimError> {
+            match &window {
+                Some((s, d, what)) => {
+                    past_end.set(s + d > r.duration() + 1e-9 * r.dt());
+                    apply_window(&r, (*s, *d), what)
+                }
+                None => Ok(r),
             }
+        };
+        // Ground motion: the override's file, else the scene's record, else its synthetic one.
+        let record = if let Some(file) = &over.record {
+            let mut r = cut(slipload_motion::read_record(file, over.units, None)?)?;
             if let Some(pga) = over.scale_pga_g {
                 r = r.scaled_to_pga(pga * G)?;
             }
@@ -586,20 +790,11 @@ impl Scene {
                     SimError::invalid(path, "excitation.record.units", e.to_string())
                 })?),
             };
-            let mut r = slipload_motion::read_record(&base.join(&rc.file), units, rc.dt)?;
-            if let Some([s, d]) = rc.window {
-                r = r.window(s, d)?;
-            }
-            if let Some((s, d)) = over.window {
-                r = r.window(s, d)?;
-            }
-            if rc.scale.is_some() && rc.scale_pga_g.is_some() {
-                return Err(SimError::invalid(
-                    path,
-                    "excitation.record.scale",
-                    "give either scale or scale_pga_g, not both",
-                ));
-            }
+            let mut r = cut(slipload_motion::read_record(
+                &base.join(&rc.file),
+                units,
+                rc.dt.map(|d| d.0),
+            )?)?;
             if let Some(f) = rc.scale {
                 if !f.is_finite() {
                     return Err(SimError::invalid(
@@ -623,8 +818,23 @@ impl Scene {
             }
             Some(Arc::new(r))
         } else if let Some(syn) = &cfg.excitation.synthetic {
-            Some(Arc::new(synthetic_record(syn, path, over)?))
+            // windowed before scaling, as a record is: the PGA is the window's
+            let r = synthetic_record(syn, path, over)?;
+            let r = match &window {
+                Some(_) => {
+                    let pga = r.pga();
+                    cut(r)?.scaled_to_pga(pga)?
+                }
+                None => r,
+            };
+            Some(Arc::new(r))
         } else {
+            if window.is_some() {
+                return Err(SimError::Scene(format!(
+                    "--window: {} has no ground motion to window; give a record (--record) or a duration (--duration)",
+                    path.display()
+                )));
+            }
             None
         };
         let harmonic = match &cfg.excitation.harmonic {
@@ -637,7 +847,7 @@ impl Scene {
                         format!("must be a floor from 1 to {n}, got {}", h.floor),
                     ));
                 }
-                if !h.amplitude.0.is_finite() || !h.omega.is_finite() || !h.phase.is_finite() {
+                if !h.amplitude.0.is_finite() || !h.omega.0.is_finite() || !h.phase.0.is_finite() {
                     return Err(SimError::invalid(
                         path,
                         "excitation.harmonic",
@@ -647,8 +857,8 @@ impl Scene {
                 Some(Harmonic {
                     floor: h.floor - 1,
                     amplitude: h.amplitude.0,
-                    omega: h.omega,
-                    phase: h.phase,
+                    omega: h.omega.0,
+                    phase: h.phase.0,
                 })
             }
         };
@@ -665,7 +875,7 @@ impl Scene {
                 floor_velocity: vec_or_zero(
                     path,
                     "excitation.initial.floor_velocity",
-                    ic.floor_velocity,
+                    ic.floor_velocity.map(|v| v.iter().map(|x| x.0).collect()),
                     n,
                 )?,
                 dissipator_displacement: vec_or_zero(
@@ -678,11 +888,13 @@ impl Scene {
                 dissipator_velocity: vec_or_zero(
                     path,
                     "excitation.initial.dissipator_velocity",
-                    ic.dissipator_velocity,
+                    ic.dissipator_velocity
+                        .map(|v| v.iter().map(|x| x.0).collect()),
                     n,
                 )?,
             },
         };
+        let mut notes = Vec::new();
         let duration = match over.duration.or(cfg.duration.map(|d| d.0)) {
             Some(d) if !is_positive(d) => {
                 return Err(SimError::invalid(
@@ -692,9 +904,17 @@ impl Scene {
                 ));
             }
             Some(d) => d,
-            None => match &record {
-                Some(r) => r.duration(),
-                None => {
+            None => match (&record, &window) {
+                (Some(_), Some((_, d, _))) if past_end.get() => *d,
+                (Some(r), _) => r.duration(),
+                (None, _) if over.plan_only => {
+                    let t1 = building.t1();
+                    notes.push(format!(
+                        "no ground motion and no duration: the steps are planned over one bare-frame period T1 = {t1:.6} s; give a record (--record) or a duration (--duration) to plan a run"
+                    ));
+                    t1
+                }
+                (None, _) => {
                     return Err(SimError::Scene(format!(
                         "{}: no record and no duration: give a record (--record) or a duration (--duration)",
                         path.display()
@@ -702,7 +922,17 @@ impl Scene {
                 }
             },
         };
+        if let Some(r) = &record
+            && let Some(note) = pad_note(
+                r,
+                duration,
+                window.as_ref().map(|(s, d, what)| (*s, *d, what.as_str())),
+            )
+        {
+            notes.push(note);
+        }
         let name = over.method.unwrap_or(cfg.method.name);
+        check_method_options(&cfg.method, name, over.method.is_some(), path)?;
         let alpha = match name {
             MethodName::Newmark
             | MethodName::Bilinear
@@ -776,6 +1006,7 @@ impl Scene {
             },
             outputs,
             reduce: cfg.reduce,
+            notes,
         })
     }
 

@@ -15,6 +15,21 @@ pub fn integrator(name: MethodName) -> Box<dyn Integrator + Send + Sync> {
     }
 }
 
+/// What [`run_plan`] would refuse before its first step, found without stepping: the
+/// method's own refusals ([`Plan::check_method`]), an initial state outside the friction
+/// bounds, and (for `exact`) the substep budget. These are the checks the integrators make
+/// as they start, called here rather than restated, so `slipload explain` refuses what
+/// `slipload simulate` refuses.
+pub fn check(plan: &Plan) -> Result<(), SimError> {
+    plan.check_method()?;
+    // the step-by-step methods' start; `exact` refuses the same inconsistent states
+    crate::integrator::state::initial_state(plan)?;
+    if plan.method.name == MethodName::Exact {
+        crate::integrator::exact::check(plan)?;
+    }
+    Ok(())
+}
+
 /// Compiles and runs a scene; `cpu_seconds` is the wall-clock time of the run.
 pub fn simulate(scene: &Scene) -> Result<Outcome, SimError> {
     let plan = Plan::compile(scene)?;

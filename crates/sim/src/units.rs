@@ -22,6 +22,12 @@ pub enum Dimension {
     Length,
     /// Time, s.
     Time,
+    /// Velocity, m/s.
+    Velocity,
+    /// Circular frequency, rad/s.
+    AngularFrequency,
+    /// Angle, rad.
+    Angle,
 }
 
 impl Dimension {
@@ -51,6 +57,9 @@ impl Dimension {
             ],
             Dimension::Length => &[("m", 1.0), ("cm", 1e-2), ("mm", 1e-3)],
             Dimension::Time => &[("s", 1.0), ("ms", 1e-3)],
+            Dimension::Velocity => &[("m/s", 1.0), ("cm/s", 1e-2), ("mm/s", 1e-3)],
+            Dimension::AngularFrequency => &[("rad/s", 1.0), ("Hz", std::f64::consts::TAU)],
+            Dimension::Angle => &[("rad", 1.0), ("deg", std::f64::consts::PI / 180.0)],
         }
     }
 
@@ -65,6 +74,11 @@ impl Dimension {
             }
             Dimension::Length => "a length in m, or a string like \"3.96 m\"",
             Dimension::Time => "a time in s, or a string like \"10 s\"",
+            Dimension::Velocity => "a velocity in m/s, or a string like \"50 cm/s\"",
+            Dimension::AngularFrequency => {
+                "a circular frequency in rad/s, or a string like \"15.98 rad/s\" or \"2.5 Hz\""
+            }
+            Dimension::Angle => "an angle in rad, or a string like \"0.5 rad\" or \"90 deg\"",
         }
     }
 }
@@ -175,6 +189,21 @@ quantity!(
     Time,
     Dimension::Time
 );
+quantity!(
+    /// A velocity in m/s (config value).
+    Velocity,
+    Dimension::Velocity
+);
+quantity!(
+    /// A circular frequency in rad/s (config value; `"2.5 Hz"` is 2π·2.5 rad/s).
+    AngularFrequency,
+    Dimension::AngularFrequency
+);
+quantity!(
+    /// An angle in rad (config value).
+    Angle,
+    Dimension::Angle
+);
 
 /// True for a finite x > 0 (false for NaN and ±∞).
 #[inline]
@@ -215,6 +244,23 @@ mod tests {
             parse_quantity("13.12177 kN·s/m", Dimension::Damping).unwrap(),
             13121.77
         );
+    }
+
+    #[test]
+    fn parses_times_velocities_frequencies_and_angles() {
+        assert_eq!(parse_quantity("2s", Dimension::Time).unwrap(), 2.0);
+        assert_eq!(parse_quantity("5 ms", Dimension::Time).unwrap(), 5e-3);
+        assert_eq!(parse_quantity("50 cm/s", Dimension::Velocity).unwrap(), 0.5);
+        assert_eq!(
+            parse_quantity("2 Hz", Dimension::AngularFrequency).unwrap(),
+            4.0 * std::f64::consts::PI
+        );
+        assert_eq!(
+            parse_quantity("180 deg", Dimension::Angle).unwrap(),
+            std::f64::consts::PI
+        );
+        let e = parse_quantity("2 m", Dimension::Time).unwrap_err();
+        assert!(e.contains("a time in s"), "{e}");
     }
 
     #[test]

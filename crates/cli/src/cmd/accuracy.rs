@@ -31,8 +31,8 @@ pub struct AccuracyArgs {
     /// Scale every record to this peak ground acceleration, in g
     #[arg(long, allow_negative_numbers = true)]
     pub scale_pga_g: Option<f64>,
-    /// Simulated time, s (default: the record's duration)
-    #[arg(long, allow_negative_numbers = true)]
+    /// Simulated time, in s or with a unit (`10`, `10s`) (default: the record's duration)
+    #[arg(long, value_parser = super::scene_args::parse_time, allow_hyphen_values = true)]
     pub duration: Option<f64>,
     /// Methods to compare, comma-separated
     #[arg(

@@ -19,7 +19,9 @@ pub mod table;
 pub enum Command {
     /// Simulate one building under one excitation
     Simulate(simulate::SimulateArgs),
-    /// Print the plan a scene compiles into: DOFs, contacts, which effects are on and why
+    /// Print the bare frame's periods and modes and the plan a scene (or a building file
+    /// alone) compiles into: DOFs, contacts, which effects are on and why; refuses what
+    /// simulate refuses
     Explain(explain::ExplainArgs),
     /// Ground-motion records: read, measure, synthesise
     Record(record::RecordArgs),

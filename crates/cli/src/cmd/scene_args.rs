@@ -5,6 +5,7 @@
 use anyhow::Context;
 use slipload_motion::Units;
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
+use slipload_sim::units::{Dimension, parse_quantity};
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
 
@@ -26,17 +27,23 @@ pub struct SceneArgs {
     /// Scale the record to this peak ground acceleration, in g
     #[arg(long, allow_negative_numbers = true)]
     pub scale_pga_g: Option<f64>,
-    /// Use only the window START,DURATION of the record (seconds)
+    /// Use only the window START,DURATION of the ground motion, in s or with a unit
+    /// (`2,10`, `2s,10s`, `"500 ms,10 s"`). Replaces the scene's window; a window past the
+    /// record's end is padded with the ground at rest, as a longer --duration is (a note
+    /// on stderr says so)
     #[arg(long, value_parser = parse_window, allow_hyphen_values = true)]
     pub window: Option<(f64, f64)>,
     /// Integration method
     #[arg(long, value_enum)]
     pub method: Option<MethodArg>,
-    /// Time step, s (default: T1/400, delacruz T1/200, rounded to divide the record's dt)
-    #[arg(long, allow_negative_numbers = true)]
+    /// Time step, in s or with a unit (`0.005`, `5ms`) (default: T1/400, delacruz T1/200,
+    /// rounded to divide the record's dt)
+    #[arg(long, value_parser = parse_time, allow_hyphen_values = true)]
     pub dt: Option<f64>,
-    /// Simulated time, s (default: the record's duration)
-    #[arg(long, allow_negative_numbers = true)]
+    /// Simulated time, in s or with a unit (`10`, `10s`) (default: the window's duration,
+    /// else the record's; past the record's end the ground is at rest, and a note on
+    /// stderr says so)
+    #[arg(long, value_parser = parse_time, allow_hyphen_values = true)]
     pub duration: Option<f64>,
 }
 
@@ -67,18 +74,18 @@ impl From<MethodArg> for MethodName {
     }
 }
 
+/// A time: seconds, or a number with a unit (`"10 s"`, `"5ms"`), by the units parser
+/// of the scene files.
+pub(crate) fn parse_time(s: &str) -> Result<f64, String> {
+    parse_quantity(s, Dimension::Time)
+}
+
 fn parse_window(s: &str) -> Result<(f64, f64), String> {
-    let (a, b) = s
-        .split_once(',')
-        .ok_or_else(|| format!("expected START,DURATION in seconds, got {s:?}"))?;
-    let a: f64 = a
-        .trim()
-        .parse()
-        .map_err(|_| format!("window start {a:?} is not a number"))?;
-    let b: f64 = b
-        .trim()
-        .parse()
-        .map_err(|_| format!("window duration {b:?} is not a number"))?;
+    let (a, b) = s.split_once(',').ok_or_else(|| {
+        format!("expected START,DURATION in seconds or with a unit (2,10 or 2s,10s), got {s:?}")
+    })?;
+    let a = parse_time(a).map_err(|e| format!("window start: {e}"))?;
+    let b = parse_time(b).map_err(|e| format!("window duration: {e}"))?;
     if !(a >= 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
         return Err(format!(
             "window needs START >= 0 and DURATION > 0, got {a},{b}"
@@ -88,8 +95,23 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
 }
 
 impl SceneArgs {
-    /// Resolves the scene with `histories` as asked.
+    /// Resolves the scene with `histories` as asked, printing its notes (a run past the
+    /// record's end) on stderr.
     pub fn load(&self, histories: bool) -> anyhow::Result<Scene> {
+        let scene = self.resolve(histories, false)?;
+        for note in &scene.notes {
+            eprintln!("note: {note}");
+        }
+        Ok(scene)
+    }
+
+    /// Resolves the scene to be explained: a building alone (no ground motion, no
+    /// duration) is planned over one period instead of refused.
+    pub fn load_to_explain(&self) -> anyhow::Result<Scene> {
+        self.resolve(false, true)
+    }
+
+    fn resolve(&self, histories: bool, plan_only: bool) -> anyhow::Result<Scene> {
         let over = SceneOverrides {
             record: self.record.clone(),
             units: self.units,
@@ -100,6 +122,7 @@ impl SceneArgs {
             duration: self.duration,
             histories: Some(histories),
             energies: None,
+            plan_only,
         };
         match &self.scene {
             Some(path) => Scene::load(path, &over)

@@ -249,16 +249,7 @@ impl Setup {
         let n = plan.dofs();
         let nf = plan.floors;
         let dt = plan.method.dt;
-        for ct in &plan.contacts {
-            if let ContactKind::Dof { dof } = ct.kind
-                && plan.mass[(dof, dof)] <= 0.0
-            {
-                return Err(SimError::Scene(format!(
-                    "delacruz: the dissipator of floor {} is a zero-mass DOF of an unreduced plan, where the method's dissipator equation degenerates; set \"reduce\": true to model it as an elastic-perfectly plastic contact",
-                    ct.floor + 1
-                )));
-            }
-        }
+        // zero-mass dissipator DOFs were refused by Plan::check_method
         let d = &plan.damping * (0.5 * dt) + &plan.stiffness * (dt * dt / 6.0);
         let mff = plan
             .mass
@@ -557,13 +548,7 @@ impl Integrator for DelaCruz {
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
-        if plan.has_yielding_storeys() {
-            // Its three-level iteration is written for dissipators on braces; a storey's
-            // own plastic element is not among the cases it resolves.
-            return Err(SimError::Scene(
-                "delacruz does not model yielding storeys; use exact (the reference) or newmark, which treat a storey's plastic element like a massless dissipator".into(),
-            ));
-        }
+        plan.check_method()?;
         let start = initial_state(plan)?;
         let s = Setup::build(plan, &start.a)?;
         let (n, nf, nc) = (s.n, s.nf, plan.contacts.len());

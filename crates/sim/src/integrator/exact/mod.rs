@@ -239,6 +239,38 @@ fn piece_end(plan: &Plan, ta: f64, t_end: f64) -> f64 {
     }
 }
 
+/// Refuses a run that would need more than `MAX_SUBSTEPS` substeps of at most a phase of
+/// `SUBSTEP_PHASE` of the fastest mode.
+fn substep_budget(model: &Model, plan: &Plan) -> Result<(), SimError> {
+    let rho = model.spectral_bound();
+    let delta_max = if rho > 0.0 {
+        SUBSTEP_PHASE / rho
+    } else {
+        f64::INFINITY
+    };
+    let duration = plan.steps as f64 * plan.method.dt;
+    let needed = (duration / delta_max).ceil();
+    if needed > MAX_SUBSTEPS as f64 {
+        return Err(SimError::ExactBudget {
+            what: "substeps".into(),
+            t: 0.0,
+            needed: needed as u64,
+            limit: MAX_SUBSTEPS,
+            hint: format!(
+                "the fastest mode rings at {rho:.3e} rad/s (very light or very stiff dissipators); use newmark, or the massless limit (mass 0)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// What [`Exact`] refuses before its first step beyond [`Plan::check_method`], without
+/// stepping: a model it cannot build, and a substep budget it would exceed.
+pub(crate) fn check(plan: &Plan) -> Result<(), SimError> {
+    let model = Model::new(plan)?;
+    substep_budget(&model, plan)
+}
+
 impl Integrator for Exact {
     fn name(&self) -> &'static str {
         "exact"
@@ -250,30 +282,14 @@ impl Integrator for Exact {
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
+        plan.check_method()?;
         let model = Model::new(plan)?;
         let lay = &model.lay;
         let (n, dim) = (lay.n, lay.dim);
         let nf = plan.floors;
         let nc = plan.contacts.len();
-        let rho = model.spectral_bound();
-        let delta_max = if rho > 0.0 {
-            SUBSTEP_PHASE / rho
-        } else {
-            f64::INFINITY
-        };
+        substep_budget(&model, plan)?;
         let duration = plan.steps as f64 * dt;
-        let needed = (duration / delta_max).ceil();
-        if needed > MAX_SUBSTEPS as f64 {
-            return Err(SimError::ExactBudget {
-                what: "substeps".into(),
-                t: 0.0,
-                needed: needed as u64,
-                limit: MAX_SUBSTEPS,
-                hint: format!(
-                    "the fastest mode rings at {rho:.3e} rad/s (very light or very stiff dissipators); use newmark, or the massless limit (mass 0)"
-                ),
-            });
-        }
         let energies = plan.outputs.energies;
 
         // Initial state.

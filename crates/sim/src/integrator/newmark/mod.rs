@@ -358,6 +358,7 @@ impl Integrator for Newmark {
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
+        plan.check_method()?;
         let ops = Operators::build(plan)?;
         if fixed::applies(plan) {
             let links = links(plan, &ops);
