@@ -49,13 +49,36 @@ fn default_true() -> bool {
 }
 
 /// A building given by path or inline.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize)]
 #[serde(untagged)]
 pub enum BuildingRef {
     /// Path relative to the scene file.
     Path(PathBuf),
     /// The building itself.
     Inline(Box<BuildingConfig>),
+}
+
+/// A string is a path, an object an inline building, read by [`BuildingConfig`]'s own
+/// deserializer so that its errors (an unknown field, a wrong type) surface as they do
+/// in a building file instead of "did not match any variant".
+impl<'de> Deserialize<'de> for BuildingRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = BuildingRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a building file's path (a string) or a building object")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<BuildingRef, E> {
+                Ok(BuildingRef::Path(PathBuf::from(v)))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<BuildingRef, A::Error> {
+                BuildingConfig::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(|b| BuildingRef::Inline(Box::new(b)))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 /// Loads acting on the building.
@@ -514,10 +537,11 @@ fn vec_or_zero(
 impl Scene {
     /// Loads a scene file — or a building file, which is a scene with no excitation.
     pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = slipload_motion::limits::read_input_text(
+            path,
+            "scene",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
         Scene::from_json(&text, path, over)
     }
 
@@ -561,6 +585,20 @@ impl Scene {
         {
             return Err(SimError::Scene(format!(
                 "--scale-pga-g must be positive and finite, got {pga}"
+            )));
+        }
+        if let Some(d) = over.duration
+            && !is_positive(d)
+        {
+            return Err(SimError::Scene(format!(
+                "--duration: the simulated time must be positive, got {d} (give a finite number of seconds)"
+            )));
+        }
+        if let Some(dt) = over.dt
+            && !is_positive(dt)
+        {
+            return Err(SimError::Scene(format!(
+                "--dt: time step {dt} s must be positive and finite"
             )));
         }
         let base = path.parent().unwrap_or(Path::new("."));
