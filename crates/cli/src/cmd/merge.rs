@@ -17,6 +17,7 @@ pub struct MergeArgs {
 
 /// Runs `slipload merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    super::output_folder("--out", &args.out)?;
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
     let run = merge_shards(&dirs, &args.out)?;
     eprintln!(

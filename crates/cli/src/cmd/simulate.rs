@@ -50,9 +50,11 @@ pub struct SimulateArgs {
 
 /// Runs `slipload simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
-    if args.plot.is_some() {
+    if let Some(dir) = &args.plot {
+        super::output_folder("--plot", dir)?;
         crate::plot::raster::check_fonts()?;
     }
+    super::count_flag("--repeat", args.repeat as usize, super::MAX_REPEATS)?;
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
         slipload_opt::output::write_target(path)

@@ -28,6 +28,7 @@ pub struct TableArgs {
 
 /// Runs `slipload table`.
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
+    super::output_folder("--out", &args.out)?;
     let study = load_study(args.study.as_deref())?;
     let method = args.refine.unwrap_or(study.config.refine.method);
     let report = family_study(
