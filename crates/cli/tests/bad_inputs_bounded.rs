@@ -231,3 +231,30 @@ fn an_output_folder_flag_naming_an_existing_file_says_so() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn fresh_is_not_suggested_when_fresh_was_given() {
+    let dir = scratch("bounded", "fresh");
+    let out = dir.join("out");
+    // a folder under a journal's name: --fresh cannot discard it and says so
+    std::fs::create_dir_all(out.join("journal.jsonl")).unwrap();
+    let err = refused(
+        &["sweep", STUDY, "--out", s(&out), "--fresh"],
+        &["journal.jsonl", "a folder", "remove it by hand"],
+    );
+    assert!(!err.contains("pass --fresh"), "{err}");
+    std::fs::remove_dir_all(out.join("journal.jsonl")).unwrap();
+    // a FIFO under a journal's name is refused by kind, without blocking, with or
+    // without --fresh
+    fifo(&out, "journal.jsonl");
+    let err = refused(
+        &["sweep", STUDY, "--out", s(&out), "--fresh"],
+        &["journal.jsonl", "not a regular file"],
+    );
+    assert!(!err.contains("pass --fresh"), "{err}");
+    refused(
+        &["sweep", STUDY, "--out", s(&out)],
+        &["journal.jsonl", "not a regular file"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

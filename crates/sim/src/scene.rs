@@ -441,6 +441,10 @@ pub fn check_step_against_record(
     Ok(())
 }
 
+/// Most iterations of each `delacruz` fixed-point loop a scene may ask for
+/// (`method.max_iterations`): the loops converge in a handful when they converge at all.
+pub const MAX_LOOP_ITERATIONS: u32 = 10_000;
+
 /// Steps per bare-frame fundamental period of the default time step ([`default_dt`]).
 pub const DEFAULT_STEPS_PER_PERIOD: f64 = 400.0;
 
@@ -782,6 +786,19 @@ impl Scene {
                     format!("tolerance must be positive and finite, got {v}"),
                 ));
             }
+        }
+        if let Some(cap) = cfg.method.max_iterations
+            && cap > MAX_LOOP_ITERATIONS
+            && !crate::limits::allow_large()
+        {
+            return Err(SimError::invalid(
+                path,
+                "method.max_iterations",
+                format!(
+                    "{cap} iterations per loop per step is more than any converging loop needs (limit {MAX_LOOP_ITERATIONS}; the default is 100): a loop that does not converge would run for days; {}",
+                    crate::limits::OVERRIDE_HINT
+                ),
+            ));
         }
         if cfg.method.max_iterations == Some(0) {
             return Err(SimError::invalid(

@@ -262,3 +262,15 @@ fn a_scene_path_that_is_a_fifo_device_or_folder_is_refused_by_kind() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_iteration_cap_beyond_any_converging_loop_is_refused() {
+    let json = r#"{ "building": { "floor_masses": [1000], "storey_stiffness": [1e5] },
+                    "duration": 1, "method": { "name": "delacruz", "max_iterations": 4000000000 } }"#;
+    let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("field `method.max_iterations`"), "{msg}");
+    assert!(msg.contains("limit 10000"), "{msg}");
+    assert!(msg.contains("--allow-large"), "{msg}");
+}
