@@ -92,9 +92,16 @@ pub const FLOOR_MASS_BAND_KG: (f64, f64) = (1e-3, 1e12);
 pub const MAX_DAMPING_RATIO: f64 = 10.0;
 
 /// Largest slip load (or friction bound) as a multiple of the building's weight (M·g,
-/// all floors): real slip loads are a few per cent of it per storey; a contact that
+/// all floors). Real slip loads are a few per cent of it per storey, and far larger ones
+/// are legitimate ways to approach the locked limit; but a bound F carries a rounding
+/// error of F × 2.2e-16, which beyond 10¹¹ × the weight exceeds 2·10⁻⁵ of the weight,
+/// so the forces near it (and tolerances scaled by it) lose their digits. A contact that
 /// must never slip is written `"locked"`.
-pub const MAX_SLIP_LOAD_PER_WEIGHT: f64 = 100.0;
+pub const MAX_SLIP_LOAD_PER_WEIGHT: f64 = 1e11;
+
+/// Largest harmonic floor force of a scene as a multiple of the building's weight: no
+/// shaker or service load comes near a hundred times the weight.
+pub const MAX_HARMONIC_FORCE_PER_WEIGHT: f64 = 100.0;
 
 /// The band of a storey height, m.
 pub const STOREY_HEIGHT_BAND_M: (f64, f64) = (1e-3, 1e3);
@@ -273,7 +280,7 @@ fn check_magnitudes(
                     path,
                     f(field),
                     format!(
-                        "{value:e} N is more than {MAX_SLIP_LOAD_PER_WEIGHT} × the building's weight ({weight:.4e} N): no record makes it slip; write \"locked\" for a contact that never slips, else check the units"
+                        "{value:e} N is more than {MAX_SLIP_LOAD_PER_WEIGHT:e} × the building's weight ({weight:.4e} N), where its rounding alone exceeds 2e-5 of the weight: write \"locked\" for a contact that never slips, else check the units"
                     ),
                 ));
             }

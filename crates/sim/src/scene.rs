@@ -514,6 +514,10 @@ fn synthetic_record(
     Ok(record.scaled_to_pga(pga_g * G)?)
 }
 
+/// Largest |initial displacement| (m) or |initial velocity| (m/s) of a floor or
+/// dissipator: no structure moves a kilometre or at a kilometre per second.
+pub const MAX_INITIAL_STATE: f64 = 1e3;
+
 fn vec_or_zero(
     path: &Path,
     field: &str,
@@ -533,7 +537,17 @@ fn vec_or_zero(
                 format!("{field}[{i}]"),
                 "must be finite",
             )),
-            None => Ok(v),
+            None => match v.iter().position(|x| x.abs() > MAX_INITIAL_STATE) {
+                Some(i) => Err(SimError::invalid(
+                    path,
+                    format!("{field}[{i}]"),
+                    format!(
+                        "{:e} is beyond any structure's motion (at most {MAX_INITIAL_STATE:e} m or m/s; check the units)",
+                        v[i]
+                    ),
+                )),
+                None => Ok(v),
+            },
         },
     }
 }
@@ -684,6 +698,19 @@ impl Scene {
                         path,
                         "excitation.harmonic",
                         "amplitude, omega and phase must be finite",
+                    ));
+                }
+                let weight = building.mass.sum() * G;
+                let limit = crate::building::MAX_HARMONIC_FORCE_PER_WEIGHT * weight;
+                if h.amplitude.0.abs() > limit {
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.harmonic.amplitude",
+                        format!(
+                            "{:e} N is more than {} × the building's weight ({weight:.4e} N): no shaker or load comes near it (check the units)",
+                            h.amplitude.0,
+                            crate::building::MAX_HARMONIC_FORCE_PER_WEIGHT
+                        ),
                     ));
                 }
                 Some(Harmonic {

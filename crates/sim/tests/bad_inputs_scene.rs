@@ -60,9 +60,13 @@ fn an_overflowing_response_is_an_error_for_every_method() {
         MethodName::Delacruz,
         MethodName::Exact,
     ] {
+        // a scene file refuses so absurd a force (excitation.harmonic.amplitude is
+        // bounded by the weight); set on the compiled scene, it exercises the overflow
+        // checks every method must still have
         let mut s = one_storey(
-            r#", "duration": 0.5, "excitation": { "harmonic": { "floor": 1, "amplitude": 1e300, "omega": 6 } }"#,
+            r#", "duration": 0.5, "excitation": { "harmonic": { "floor": 1, "amplitude": 1e3, "omega": 6 } }"#,
         );
+        s.harmonic.as_mut().unwrap().amplitude = 1e300;
         s.method.name = method;
         s.method.dt = 1e-3;
         match simulate(&s) {
@@ -273,4 +277,21 @@ fn an_iteration_cap_beyond_any_converging_loop_is_refused() {
     assert!(msg.contains("field `method.max_iterations`"), "{msg}");
     assert!(msg.contains("limit 10000"), "{msg}");
     assert!(msg.contains("--allow-large"), "{msg}");
+}
+
+#[test]
+fn an_absurd_harmonic_force_or_initial_state_is_refused_naming_the_field() {
+    let json = r#"{ "building": { "floor_masses": [1000], "storey_stiffness": [1e5] }, "duration": 1,
+                    "excitation": { "harmonic": { "floor": 1, "amplitude": 1e150, "omega": 6 } } }"#;
+    let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("field `excitation.harmonic.amplitude`"), "{msg}");
+    assert!(msg.contains("weight"), "{msg}");
+    let json = r#"{ "building": { "floor_masses": [1000], "storey_stiffness": [1e5] }, "duration": 1,
+                    "excitation": { "initial": { "floor_velocity": [1e200] } } }"#;
+    let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("field `excitation.initial.floor_velocity[0]`"), "{msg}");
 }
