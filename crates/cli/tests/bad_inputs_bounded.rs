@@ -69,7 +69,10 @@ fn a_scene_or_study_that_is_a_fifo_or_a_device_is_refused_by_kind() {
     let dir = scratch("bounded", "config-kinds");
     let f = fifo(&dir, "scene.json");
     refused(&["simulate", s(&f)], &["scene file", "named pipe (FIFO)"]);
-    refused(&["simulate", "/dev/zero"], &["scene file", "character device"]);
+    refused(
+        &["simulate", "/dev/zero"],
+        &["scene file", "character device"],
+    );
     refused(&["explain", s(&f)], &["named pipe (FIFO)"]);
     refused(
         &["accuracy", s(&f), "--synthetic", "1"],
@@ -89,7 +92,10 @@ fn a_scene_or_study_that_is_a_fifo_or_a_device_is_refused_by_kind() {
     let scene = dir.join("s.json");
     let bf = fifo(&dir, "b.json");
     std::fs::write(&scene, r#"{ "building": "b.json", "duration": 1 }"#).unwrap();
-    refused(&["simulate", s(&scene)], &["building file", "named pipe (FIFO)"]);
+    refused(
+        &["simulate", s(&scene)],
+        &["building file", "named pipe (FIFO)"],
+    );
     let _ = bf;
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -184,7 +190,10 @@ fn absurd_building_magnitudes_are_refused_never_a_1e256_energy() {
             "dissipators[0].brace_stiffness",
         ),
         ("/dissipators/0/slip_load", "dissipators[0].slip_load"),
-        ("/dissipators/0/brace_damping", "dissipators[0].brace_damping"),
+        (
+            "/dissipators/0/brace_damping",
+            "dissipators[0].brace_damping",
+        ),
     ] {
         let mut v = base.clone();
         *v.pointer_mut(edit).unwrap() = 1e300.into();

@@ -63,7 +63,13 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
     }
     // a value takes at least two bytes (a digit and a separator; the last one may lack
     // its separator): a header that announces more cannot describe this file
-    let max_values = text.len().saturating_sub(lines[..=header.line_index].iter().map(|l| l.len() + 1).sum::<usize>()) / 2 + 1;
+    let max_values = text.len().saturating_sub(
+        lines[..=header.line_index]
+            .iter()
+            .map(|l| l.len() + 1)
+            .sum::<usize>(),
+    ) / 2
+        + 1;
     if header.npts > max_values {
         return Err(MotionError::NptsBeyondFile {
             file: name.to_string(),

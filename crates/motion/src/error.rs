@@ -20,7 +20,9 @@ pub enum MotionError {
         source: std::io::Error,
     },
     /// A path given as an input file is a folder, a FIFO, a device or a socket.
-    #[error("{path}: the {what} file is {kind}, not a regular file: give the path of a {what} file")]
+    #[error(
+        "{path}: the {what} file is {kind}, not a regular file: give the path of a {what} file"
+    )]
     NotAFile {
         /// The path.
         path: PathBuf,

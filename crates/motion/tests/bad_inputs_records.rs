@@ -134,10 +134,9 @@ fn a_fifo_is_refused_by_kind_without_blocking() {
 
 #[test]
 fn dev_zero_is_refused_as_a_device_without_reading_it() {
-    let e = within_20s(|| {
-        slipload_motion::read_record(std::path::Path::new("/dev/zero"), None, None)
-    })
-    .unwrap_err();
+    let e =
+        within_20s(|| slipload_motion::read_record(std::path::Path::new("/dev/zero"), None, None))
+            .unwrap_err();
     assert!(matches!(e, MotionError::NotAFile { .. }), "{e:?}");
     assert!(e.to_string().contains("character device"), "{e}");
 }
@@ -261,5 +260,8 @@ fn a_synthetic_suite_beyond_the_count_limit_is_refused_before_generating() {
         ..Synthetic::default()
     };
     let e = synthetic_suite(&long, 1000, 1, SuiteTarget::Unscaled).unwrap_err();
-    assert!(e.to_string().contains("samples in 1000 synthetic records"), "{e}");
+    assert!(
+        e.to_string().contains("samples in 1000 synthetic records"),
+        "{e}"
+    );
 }

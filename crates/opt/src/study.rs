@@ -711,7 +711,12 @@ impl StudyConfig {
         let r = &self.refine;
         for (field, v, limit, unit) in [
             ("refine.starts", r.starts, MAX_REFINE_STARTS, "starts"),
-            ("refine.finalists", r.finalists, MAX_REFINE_STARTS, "finalists"),
+            (
+                "refine.finalists",
+                r.finalists,
+                MAX_REFINE_STARTS,
+                "finalists",
+            ),
             (
                 "refine.max_evaluations",
                 r.max_evaluations,
@@ -719,7 +724,12 @@ impl StudyConfig {
                 "evaluations",
             ),
         ] {
-            too_large(format!("{p}: field `{field}`"), v as f64, limit as f64, unit)?;
+            too_large(
+                format!("{p}: field `{field}`"),
+                v as f64,
+                limit as f64,
+                unit,
+            )?;
         }
         for (i, s) in self.suites.iter().enumerate() {
             if let Some(syn) = &s.synthetic {

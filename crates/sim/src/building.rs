@@ -167,7 +167,7 @@ fn check_magnitudes(
         ));
     }
     // modal damping ratios ζ_k = φ_kᵀ C φ_k / (2 ω_k) (mass-normalised shapes)
-    for k in 0..n {
+    for (k, period) in periods.iter().enumerate() {
         let phi = modes.shapes.column(k);
         let zeta = (phi.transpose() * damping * phi)[(0, 0)] / (2.0 * modes.omega[k]);
         if !(zeta.is_finite() && zeta <= MAX_DAMPING_RATIO) {
@@ -177,7 +177,7 @@ fn check_magnitudes(
                 format!(
                     "gives mode {} (T = {:.3e} s) a damping ratio of {zeta:.3e}; at most {MAX_DAMPING_RATIO} is physical (check the damping values and their units)",
                     k + 1,
-                    periods[k]
+                    period
                 ),
             ));
         }
@@ -228,7 +228,8 @@ fn check_magnitudes(
                     format!(
                         "k′ = {k:e} N/m gives the frame with its braces locked a natural period of {}; a building's must lie within {:e} … {:e} s (check k′ and its units)",
                         found.map_or_else(|| "no real value".to_string(), |t| format!("{t:.3e} s")),
-                        PERIOD_BAND_S.0, PERIOD_BAND_S.1
+                        PERIOD_BAND_S.0,
+                        PERIOD_BAND_S.1
                     ),
                 ));
             }
@@ -241,7 +242,10 @@ fn check_magnitudes(
                     f("mass"),
                     format!(
                         "the dissipator's period on its brace, 2π√(m′/k′) = {t:.3e} s (m′ = {:e} kg, k′ = {:e} N/m), is outside {:e} … {:e} s: give m′ = 0 for a massless dissipator, else check m′ and k′ and their units",
-                        d.mass, d.brace_stiffness, DISSIPATOR_PERIOD_BAND_S.0, DISSIPATOR_PERIOD_BAND_S.1
+                        d.mass,
+                        d.brace_stiffness,
+                        DISSIPATOR_PERIOD_BAND_S.0,
+                        DISSIPATOR_PERIOD_BAND_S.1
                     ),
                 ));
             }

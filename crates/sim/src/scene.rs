@@ -72,7 +72,10 @@ impl<'de> Deserialize<'de> for BuildingRef {
             fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<BuildingRef, E> {
                 Ok(BuildingRef::Path(PathBuf::from(v)))
             }
-            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<BuildingRef, A::Error> {
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<BuildingRef, A::Error> {
                 BuildingConfig::deserialize(serde::de::value::MapAccessDeserializer::new(map))
                     .map(|b| BuildingRef::Inline(Box::new(b)))
             }

@@ -112,10 +112,14 @@ fn building_error(frame: &str, dissipator: &str) -> String {
 #[test]
 fn a_stiffness_of_1e300_is_refused_naming_the_field_and_the_period_band() {
     let json = r#"{ "floor_masses": [1000], "storey_stiffness": [1e300] }"#;
-    let e = Scene::from_json(json, &configs().join("b.json"), &SceneOverrides {
-        duration: Some(1.0),
-        ..Default::default()
-    })
+    let e = Scene::from_json(
+        json,
+        &configs().join("b.json"),
+        &SceneOverrides {
+            duration: Some(1.0),
+            ..Default::default()
+        },
+    )
     .unwrap_err();
     let msg = e.to_string();
     assert!(msg.contains("b.json: field `storey_stiffness`"), "{msg}");
@@ -126,10 +130,14 @@ fn a_stiffness_of_1e300_is_refused_naming_the_field_and_the_period_band() {
 #[test]
 fn a_floor_mass_of_1e_300_is_refused_naming_the_floor() {
     let json = r#"{ "floor_masses": [1000, 1e-300], "storey_stiffness": [1e5, 1e5] }"#;
-    let e = Scene::from_json(json, &configs().join("b.json"), &SceneOverrides {
-        duration: Some(1.0),
-        ..Default::default()
-    })
+    let e = Scene::from_json(
+        json,
+        &configs().join("b.json"),
+        &SceneOverrides {
+            duration: Some(1.0),
+            ..Default::default()
+        },
+    )
     .unwrap_err();
     let msg = e.to_string();
     assert!(msg.contains("field `floor_masses[1]`"), "{msg}");
@@ -156,10 +164,16 @@ fn a_dissipator_mass_of_1e_300_is_refused_with_the_massless_advice() {
 
 #[test]
 fn damping_of_1e300_is_refused_with_the_damping_ratio() {
-    let msg = building_error(r#""damping": { "storey": [1e300] },"#, r#""mass": 10, "slip_load": 500"#);
+    let msg = building_error(
+        r#""damping": { "storey": [1e300] },"#,
+        r#""mass": 10, "slip_load": 500"#,
+    );
     assert!(msg.contains("field `damping`"), "{msg}");
     assert!(msg.contains("damping ratio"), "{msg}");
-    let msg = building_error("", r#""mass": 10, "slip_load": 500, "brace_damping": 1e300"#);
+    let msg = building_error(
+        "",
+        r#""mass": 10, "slip_load": 500, "brace_damping": 1e300"#,
+    );
     assert!(msg.contains("dissipators[0].brace_damping"), "{msg}");
     assert!(msg.contains("critical"), "{msg}");
 }
@@ -182,10 +196,14 @@ fn physical_extremes_are_accepted() {
           "damping": { "modal": { "ratio": 0.05 } },
           "dissipators": [ { "floor": 1, "brace_stiffness": 4.4812e8, "mass": 350.11,
                              "slip_load": 4.7e6 } ] }"#;
-    Scene::from_json(json, &configs().join("b.json"), &SceneOverrides {
-        duration: Some(0.5),
-        ..Default::default()
-    })
+    Scene::from_json(
+        json,
+        &configs().join("b.json"),
+        &SceneOverrides {
+            duration: Some(0.5),
+            ..Default::default()
+        },
+    )
     .unwrap();
 }
 
@@ -212,17 +230,24 @@ fn an_inline_building_error_names_the_field_as_a_building_file_does() {
     let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
         .unwrap_err()
         .to_string();
-    assert!(msg.contains("a building file's path (a string) or a building object"), "{msg}");
+    assert!(
+        msg.contains("a building file's path (a string) or a building object"),
+        "{msg}"
+    );
 }
 
 #[test]
 fn a_non_finite_duration_override_blames_the_flag_not_the_file() {
     for d in [f64::INFINITY, f64::NAN, -1.0] {
         let json = r#"{ "floor_masses": [1000], "storey_stiffness": [1e5] }"#;
-        let msg = Scene::from_json(json, &configs().join("b.json"), &SceneOverrides {
-            duration: Some(d),
-            ..Default::default()
-        })
+        let msg = Scene::from_json(
+            json,
+            &configs().join("b.json"),
+            &SceneOverrides {
+                duration: Some(d),
+                ..Default::default()
+            },
+        )
         .unwrap_err()
         .to_string();
         assert!(msg.contains("--duration: "), "{d}: {msg}");
@@ -286,12 +311,18 @@ fn an_absurd_harmonic_force_or_initial_state_is_refused_naming_the_field() {
     let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
         .unwrap_err()
         .to_string();
-    assert!(msg.contains("field `excitation.harmonic.amplitude`"), "{msg}");
+    assert!(
+        msg.contains("field `excitation.harmonic.amplitude`"),
+        "{msg}"
+    );
     assert!(msg.contains("weight"), "{msg}");
     let json = r#"{ "building": { "floor_masses": [1000], "storey_stiffness": [1e5] }, "duration": 1,
                     "excitation": { "initial": { "floor_velocity": [1e200] } } }"#;
     let msg = Scene::from_json(json, &configs().join("s.json"), &SceneOverrides::default())
         .unwrap_err()
         .to_string();
-    assert!(msg.contains("field `excitation.initial.floor_velocity[0]`"), "{msg}");
+    assert!(
+        msg.contains("field `excitation.initial.floor_velocity[0]`"),
+        "{msg}"
+    );
 }

@@ -407,11 +407,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     if count == 0 {
         bail!("--count must be at least 1");
     }
-    super::count_flag(
-        "--count",
-        count,
-        slipload_motion::limits::MAX_SUITE_RECORDS,
-    )?;
+    super::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
     if args.count.is_some() {
         super::output_folder("--out", &args.out)?;
     }
