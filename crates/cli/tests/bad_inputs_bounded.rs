@@ -267,3 +267,21 @@ fn fresh_is_not_suggested_when_fresh_was_given() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_study_slip_load_bound_of_1e300_is_refused_naming_the_field() {
+    let dir = scratch("bounded", "space");
+    let study = dir.join("study.json");
+    let out = dir.join("out");
+    let text = std::fs::read_to_string(root().join(STUDY)).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["building"] = serde_json::Value::String(s(&root().join(B)).into());
+    v["space"]["free"]["upper_kn"][2] = 1e300.into();
+    std::fs::write(&study, v.to_string()).unwrap();
+    refused(
+        &["sweep", s(&study), "--out", s(&out)],
+        &["field `space.free.upper_kn[2]`", "weight", "\"locked\""],
+    );
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
