@@ -285,3 +285,24 @@ fn a_study_slip_load_bound_of_1e300_is_refused_naming_the_field() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn absurd_scales_and_spectrum_settings_are_refused_naming_the_flag() {
+    let dir = scratch("bounded", "scales");
+    let out = dir.join("out");
+    refused(
+        &["table", "--period-scales", "1e300", "--out", s(&out)],
+        &["--period-scales 1e300", "periods"],
+    );
+    assert!(!out.exists());
+    let syl = root().join("records/SYL090.AT2");
+    refused(
+        &["record", "spectrum", s(&syl), "--damping", "1e300"],
+        &["damping ratio = 1e300 is invalid", "at most 10"],
+    );
+    refused(
+        &["record", "spectrum", s(&syl), "--periods", "1e300"],
+        &["period (s) = 1e300 is invalid", "at most 1e4 s"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

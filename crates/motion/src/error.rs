@@ -279,7 +279,7 @@ pub enum MotionError {
         given: String,
     },
     /// An argument is outside its valid range.
-    #[error("{what} = {value} is invalid: {expected}")]
+    #[error("{what} = {} is invalid: {expected}", readable(*value))]
     InvalidArgument {
         /// Which argument.
         what: &'static str,
@@ -296,6 +296,16 @@ pub enum MotionError {
         /// The measure (e.g. "PGA").
         measure: &'static str,
     },
+}
+
+/// A number for people: as written for ordinary magnitudes, in exponent form for very
+/// large or small ones (1e300, not 301 digits).
+pub(crate) fn readable(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Shortens user text quoted in an error to at most 40 characters.

@@ -265,3 +265,16 @@ fn a_synthetic_suite_beyond_the_count_limit_is_refused_before_generating() {
         "{e}"
     );
 }
+
+#[test]
+fn spectrum_settings_beyond_any_structure_are_refused_in_readable_numbers() {
+    let r = Record::new("r", 0.01, vec![0.0, 1.0, -1.0, 0.5]).unwrap();
+    let e = slipload_motion::Spectrum::compute(&r, 1e300, &[1.0]).unwrap_err();
+    assert!(e.to_string().contains("damping ratio = 1e300"), "{e}");
+    let e = slipload_motion::Spectrum::compute(&r, 0.05, &[1e300]).unwrap_err();
+    assert!(e.to_string().contains("period (s) = 1e300"), "{e}");
+    let e = slipload_motion::Spectrum::compute(&r, 0.05, &[1e-300]).unwrap_err();
+    assert!(e.to_string().contains("period (s) = 1e-300"), "{e}");
+    // the band's ends are still answers
+    assert!(slipload_motion::Spectrum::compute(&r, 10.0, &[1e4]).is_ok());
+}
