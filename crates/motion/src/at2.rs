@@ -10,7 +10,10 @@
 //! The lines before it are free text (no fixed count). Exactly NPTS values are read from
 //! the lines after it, any number per line; more values than NPTS is an error
 //! ([`MotionError::NptsMismatch`]), text after the NPTS-th value is ignored. A value beyond
-//! [`crate::MAX_ABS_ACCEL_G`] is an error ([`MotionError::Implausible`]).
+//! [`crate::MAX_ABS_ACCEL_G`] is an error ([`MotionError::Implausible`]). A header DT
+//! that is not finite and positive, below [`crate::MIN_RECORD_DT_S`] or beyond
+//! [`crate::MAX_RECORD_DT_S`] is refused, and so is an NPTS of zero or larger than the
+//! text after the header can hold (two bytes a value) — before any value is read.
 //! Values are in g and are converted with [`crate::G`]. Numbers may lack a leading zero
 //! (`-.64E-02`) or use a `D` exponent. A line whose blank-separated tokens are not all
 //! numbers is read as fixed-width columns (the width taken from the first data line,
@@ -46,14 +49,39 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
             min_s: crate::MIN_RECORD_DT_S,
         });
     }
+    if header.dt_s > crate::MAX_RECORD_DT_S {
+        return Err(MotionError::ImplausibleLongTimeStep {
+            file: name.to_string(),
+            dt_s: header.dt_s,
+            max_s: crate::MAX_RECORD_DT_S,
+        });
+    }
     if header.npts == 0 {
         return Err(MotionError::Empty {
             file: name.to_string(),
         });
     }
+    // a value takes at least two bytes (a digit and a separator; the last one may lack
+    // its separator): a header that announces more cannot describe this file
+    let max_values = text.len().saturating_sub(
+        lines[..=header.line_index]
+            .iter()
+            .map(|l| l.len() + 1)
+            .sum::<usize>(),
+    ) / 2
+        + 1;
+    if header.npts > max_values {
+        return Err(MotionError::NptsBeyondFile {
+            file: name.to_string(),
+            line: header.line_index + 1,
+            npts: header.npts,
+            file_bytes: text.len(),
+            max_values,
+        });
+    }
     let factor = units.to_m_s2();
     // Never trust NPTS for an allocation: a value takes at least two bytes.
-    let mut values = Vec::with_capacity(header.npts.min(text.len() / 2 + 1));
+    let mut values = Vec::with_capacity(header.npts);
     let mut width: Option<usize> = None;
     let limit = crate::max_abs_accel_m_s2();
     // values beyond NPTS: counted (a header that disagrees with its data is an error)

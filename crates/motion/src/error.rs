@@ -19,6 +19,74 @@ pub enum MotionError {
         #[source]
         source: std::io::Error,
     },
+    /// A path given as an input file is a folder, a FIFO, a device or a socket.
+    #[error(
+        "{path}: the {what} file is {kind}, not a regular file: give the path of a {what} file"
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What the file should hold ("record", "scene", …).
+        what: &'static str,
+        /// What the path is ("a folder", "a named pipe (FIFO)", "a character device", …).
+        kind: &'static str,
+    },
+    /// An input file is larger than any real one ([`crate::limits`]).
+    #[error(
+        "{path}: the {what} file is {size}, more than any real {what} file (limit {limit}): not a {what}, or {hint}",
+        hint = crate::limits::OVERRIDE_HINT
+    )]
+    FileTooLarge {
+        /// The path.
+        path: PathBuf,
+        /// What the file should hold.
+        what: &'static str,
+        /// Its size, for people.
+        size: String,
+        /// The limit, for people.
+        limit: String,
+    },
+    /// A count a user gave is beyond any real study's ([`crate::limits`]).
+    #[error(
+        "{count} {what} is more than any real study needs (limit {limit}); {hint}",
+        hint = crate::limits::OVERRIDE_HINT
+    )]
+    TooMany {
+        /// What is counted.
+        what: String,
+        /// The count asked for.
+        count: f64,
+        /// The limit.
+        limit: f64,
+    },
+    /// An AT2 header announces more values than the file can hold.
+    #[error(
+        "{file}:{line}: the header announces NPTS = {npts} values, but a file of {file_bytes} bytes can hold at most {max_values} (each value takes at least two bytes): the header is wrong or the file is cut short"
+    )]
+    NptsBeyondFile {
+        /// The file or record name.
+        file: String,
+        /// 1-based line of the header.
+        line: usize,
+        /// NPTS from the header.
+        npts: usize,
+        /// The size of the text, bytes.
+        file_bytes: usize,
+        /// The most values it can hold.
+        max_values: usize,
+    },
+    /// A file's sample interval is longer than any accelerograph's.
+    #[error(
+        "{file}: sample interval {dt_s} s is longer than any accelerograph's (at most {max_s} s; records are sampled at 50-1000 Hz): check the header's or time column's units"
+    )]
+    ImplausibleLongTimeStep {
+        /// The file or record name.
+        file: String,
+        /// The sample interval, s.
+        dt_s: f64,
+        /// The bound, s.
+        max_s: f64,
+    },
     /// No line of an AT2 file holds the NPTS/DT header.
     #[error(
         "{file}: no header line with NPTS and DT (expected `NPTS= n, DT= dt SEC` or `n dt NPTS, DT`)"
@@ -211,7 +279,7 @@ pub enum MotionError {
         given: String,
     },
     /// An argument is outside its valid range.
-    #[error("{what} = {value} is invalid: {expected}")]
+    #[error("{what} = {} is invalid: {expected}", readable(*value))]
     InvalidArgument {
         /// Which argument.
         what: &'static str,
@@ -228,6 +296,16 @@ pub enum MotionError {
         /// The measure (e.g. "PGA").
         measure: &'static str,
     },
+}
+
+/// A number for people: as written for ordinary magnitudes, in exponent form for very
+/// large or small ones (1e300, not 301 digits).
+pub(crate) fn readable(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Shortens user text quoted in an error to at most 40 characters.

@@ -25,6 +25,7 @@ mod design_spectrum;
 mod envelope;
 mod error;
 mod intensity;
+pub mod limits;
 mod number;
 mod propagator;
 mod reader;
@@ -44,7 +45,9 @@ pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
 pub use reader::{RecordFormat, read_record};
-pub use record::{G, MAX_ABS_ACCEL_G, MIN_RECORD_DT_S, Record, StepSampler, max_abs_accel_m_s2};
+pub use record::{
+    G, MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, max_abs_accel_m_s2,
+};
 pub use scaling::{
     ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
     scale_to_spectral_acceleration,

@@ -3,7 +3,9 @@
 //! Contract ([`read_record`]): a file whose extension is `at2` in any case is read by
 //! [`crate::parse_at2_in`] (units default g), anything else by [`crate::parse_text`]
 //! (units default m/s²). The record is named by the path as given. Bytes that are not
-//! UTF-8 (e.g. Latin-1 station names in a header) are replaced, not rejected.
+//! UTF-8 (e.g. Latin-1 station names in a header) are replaced, not rejected. A path that
+//! is not a regular file (a folder, a FIFO, a device) is refused by kind, and a file
+//! larger than [`crate::limits::MAX_RECORD_BYTES`] by size, before anything is read.
 
 use crate::{MotionError, Record, Units};
 use std::path::Path;
@@ -36,10 +38,7 @@ pub fn read_record(
     units: Option<Units>,
     dt_s: Option<f64>,
 ) -> Result<Record, MotionError> {
-    let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = crate::limits::read_input_file(path, "record", crate::limits::MAX_RECORD_BYTES)?;
     let text = String::from_utf8_lossy(&bytes);
     let name = path.display().to_string();
     match RecordFormat::of_path(path) {

@@ -22,6 +22,11 @@ pub const MAX_ABS_ACCEL_G: f64 = 20.0;
 /// a typo) that would make every default time step as short.
 pub const MIN_RECORD_DT_S: f64 = 1e-6;
 
+/// The longest sample interval a reader accepts, s: accelerographs sample at 50 Hz or
+/// faster (0.02 s; old digitised records at 0.02–0.05 s), so a step beyond a second is a
+/// units slip or a corrupt header.
+pub const MAX_RECORD_DT_S: f64 = 1.0;
+
 /// [`MAX_ABS_ACCEL_G`] in m/s².
 pub fn max_abs_accel_m_s2() -> f64 {
     MAX_ABS_ACCEL_G * G

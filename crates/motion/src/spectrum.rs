@@ -147,6 +147,14 @@ fn peak_displacement(record: &Record, period_s: f64, damping: f64) -> Result<f64
     Ok(peak)
 }
 
+/// Largest damping ratio of a spectrum's oscillator (ratios beyond 1–2 are overdamped;
+/// beyond 10 is a units slip, and the answer would be a meaningless zero).
+pub const MAX_SPECTRUM_DAMPING: f64 = 10.0;
+
+/// Longest period of a spectrum's oscillator, s (the physical band of building periods
+/// ends at 10⁴ s; beyond it the oscillator only follows the ground).
+pub const MAX_SPECTRUM_PERIOD_S: f64 = 1e4;
+
 /// Runs the oscillator through the record, calling `visit(at_sample, u)` at t = 0 and after
 /// every (sub-)step.
 fn integrate(
@@ -155,18 +163,18 @@ fn integrate(
     damping: f64,
     mut visit: impl FnMut(bool, f64),
 ) -> Result<(), MotionError> {
-    if !(damping.is_finite() && damping >= 0.0) {
+    if !(damping.is_finite() && (0.0..=MAX_SPECTRUM_DAMPING).contains(&damping)) {
         return Err(MotionError::InvalidArgument {
             what: "damping ratio",
             value: damping,
-            expected: "finite and >= 0",
+            expected: "finite, >= 0 and at most 10 (beyond any structure's damping)",
         });
     }
-    if !(period_s.is_finite() && period_s >= 0.0) {
+    if !(period_s.is_finite() && (0.0..=MAX_SPECTRUM_PERIOD_S).contains(&period_s)) {
         return Err(MotionError::InvalidArgument {
             what: "period (s)",
             value: period_s,
-            expected: "finite and >= 0",
+            expected: "finite, >= 0 and at most 1e4 s (beyond any structure's period)",
         });
     }
     let a = record.samples();

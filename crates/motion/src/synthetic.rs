@@ -169,13 +169,27 @@ pub fn derive_seed(seed: u64, index: u64) -> u64 {
 }
 
 /// `count` records from `params`, record i generated from `derive_seed(seed, i)` and named
-/// `synthetic-{seed}-{i:03}`, then scaled to `target`.
+/// `synthetic-{seed}-{i:03}`, then scaled to `target`. A count beyond
+/// [`crate::limits::MAX_SUITE_RECORDS`], or a suite of more than
+/// [`crate::limits::MAX_SUITE_SAMPLES`] samples, is refused
+/// ([`MotionError::TooMany`]) unless the limits are lifted.
 pub fn synthetic_suite(
     params: &Synthetic,
     count: usize,
     seed: u64,
     target: SuiteTarget,
 ) -> Result<Vec<Record>, MotionError> {
+    use crate::limits;
+    limits::check_count("synthetic records", count, limits::MAX_SUITE_RECORDS)?;
+    params.validate()?;
+    let samples = count as f64 * ((params.duration_s / params.dt_s).round() + 1.0);
+    if samples > limits::MAX_SUITE_SAMPLES && !limits::allow_large() {
+        return Err(MotionError::TooMany {
+            what: format!("samples in {count} synthetic records"),
+            count: samples,
+            limit: limits::MAX_SUITE_SAMPLES,
+        });
+    }
     (0..count)
         .map(|i| {
             let r = params.generate(

@@ -9,7 +9,8 @@
 //! (printed time columns carry rounding; a larger deviation means a non-uniform grid,
 //! which a [`Record`] cannot represent). The record starts at its first sample: a time
 //! column that starts at t₀ ≠ 0 is shifted to 0 (noted in the provenance). Values are
-//! converted from `units` to m/s²; a value beyond [`crate::MAX_ABS_ACCEL_G`] is an error.
+//! converted from `units` to m/s²; a value beyond [`crate::MAX_ABS_ACCEL_G`] is an error,
+//! and so is a step outside [`crate::MIN_RECORD_DT_S`] … [`crate::MAX_RECORD_DT_S`].
 //! Malformed input gives a [`MotionError`]; the reader
 //! never panics. [`format_csv`] writes `time_s,accel_m_s2` that reads back bit for bit.
 
@@ -142,6 +143,13 @@ pub fn parse_text(
             file: file(),
             dt_s: dt,
             min_s: crate::MIN_RECORD_DT_S,
+        });
+    }
+    if dt > crate::MAX_RECORD_DT_S {
+        return Err(MotionError::ImplausibleLongTimeStep {
+            file: file(),
+            dt_s: dt,
+            max_s: crate::MAX_RECORD_DT_S,
         });
     }
     notes.push(format!("values in {units} converted to m/s2"));

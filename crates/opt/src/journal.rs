@@ -185,6 +185,19 @@ pub fn read(path: &Path) -> Result<(Vec<Entry>, u64), OptError> {
     })
 }
 
+/// The bytes of a journal; a FIFO, device or folder under its name is an error of kind
+/// `InvalidInput` instead of a read that blocks or never ends.
+fn read_journal_bytes(path: &Path) -> std::io::Result<Vec<u8>> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a folder, FIFO or device under a journal's name): remove it or choose another --out",
+        ));
+    }
+    std::fs::read(path)
+}
+
 /// The message for a journal that cannot be checked or belongs to another study.
 fn refuse(path: &Path, line: usize, why: String) -> OptError {
     OptError::Journal {
@@ -214,7 +227,7 @@ type Counted<T> = (Header, Vec<T>, u64, usize);
 fn read_journal_counted<T: serde::de::DeserializeOwned>(
     path: &Path,
 ) -> Result<Option<Counted<T>>, OptError> {
-    let text = match std::fs::read(path) {
+    let text = match read_journal_bytes(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(source) => {
@@ -270,7 +283,7 @@ fn read_journal_counted<T: serde::de::DeserializeOwned>(
 /// Reads a file of one JSON `T` per line; a last line that does not parse (torn write)
 /// is dropped. Returns the values and the byte length of the intact part.
 pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>, u64), OptError> {
-    let text = match std::fs::read(path) {
+    let text = match read_journal_bytes(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
         Err(source) => {
@@ -534,17 +547,33 @@ pub fn discard_journals(dir: &Path) -> Result<Discarded, OptError> {
         if name == crate::folder_lock::LOCK_FILE {
             continue;
         }
-        // a link named like an output is removed (the link, never its target)
-        let removable = e.file_type().is_ok_and(|t| t.is_file() || t.is_symlink());
-        if removable && is_output_name(&name) {
-            std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
-                path: e.path(),
-                source,
-            })?;
-            out.removed.push(name);
-        } else {
+        if !is_output_name(&name) {
             out.kept.push(name);
+            continue;
         }
+        // a file or a symbolic link named like an output is removed (the link, never its
+        // target); anything else under such a name is refused here, so that no later
+        // error asks for the --fresh that was given
+        let t = e.file_type().map_err(|source| OptError::Io {
+            path: e.path(),
+            source,
+        })?;
+        if !(t.is_file() || t.is_symlink()) {
+            return Err(OptError::Argument(format!(
+                "--fresh: {} is {}, not a file slipload wrote: remove it by hand or choose another --out",
+                e.path().display(),
+                if t.is_dir() {
+                    "a folder"
+                } else {
+                    "not a regular file (a FIFO, device or socket)"
+                }
+            )));
+        }
+        std::fs::remove_file(e.path()).map_err(|source| OptError::Io {
+            path: e.path(),
+            source,
+        })?;
+        out.removed.push(name);
     }
     out.removed.sort();
     out.kept.sort();

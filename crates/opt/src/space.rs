@@ -261,6 +261,26 @@ impl DesignSpace {
                 )
             }
         };
+        // the building's own bound on a slip load (its rounding must stay far below the
+        // weight), so a sweep never builds a contact the building file would refuse
+        let weight = building.mass.sum() * slipload_motion::G;
+        let max_slip = slipload_sim::building::MAX_SLIP_LOAD_PER_WEIGHT * weight;
+        if let Some(i) = upper.iter().position(|&u| u > max_slip) {
+            let field = match cfg {
+                SpaceConfig::Free { .. } => format!("space.free.upper_kn[{i}]"),
+                SpaceConfig::Profile { .. } => "space.profile.scale_kn".to_string(),
+            };
+            return Err(OptError::invalid(
+                path,
+                field,
+                format!(
+                    "gives a slip load of {:e} kN, more than {:e} × the building's weight ({:.4e} kN): write the dissipator \"locked\" in the building instead, else check the units",
+                    upper[i] / 1e3,
+                    slipload_sim::building::MAX_SLIP_LOAD_PER_WEIGHT,
+                    weight / 1e3
+                ),
+            ));
+        }
         // Constraints on s = offset + basis z, turned into rows on z.
         let d = basis.ncols();
         let mut rows: Vec<(Vec<f64>, f64)> = Vec::new();

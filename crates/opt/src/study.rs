@@ -352,10 +352,11 @@ pub struct Study {
 }
 
 fn read_text(path: &Path) -> Result<String, OptError> {
-    std::fs::read_to_string(path).map_err(|source| OptError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    Ok(slipload_motion::limits::read_input_text(
+        path,
+        "study",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )?)
 }
 
 /// `*` matching of one file name (no other wildcards).
@@ -439,6 +440,10 @@ fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
 pub const MAX_DESIGNS: f64 = 1e6;
 /// Most (design, record) tasks of a sweep (each keeps a row of responses in memory).
 pub const MAX_TASKS: f64 = 5e6;
+/// Most refine starts (and finalists) of a study: real studies use a handful.
+pub const MAX_REFINE_STARTS: usize = 1000;
+/// Most design evaluations per refine start: real studies use tens to hundreds.
+pub const MAX_REFINE_EVALUATIONS: usize = 100_000;
 /// Most integration steps of a whole sweep (about half a day of one core on a small
 /// building).
 pub const MAX_SWEEP_STEPS: f64 = 1e12;
@@ -694,6 +699,47 @@ impl StudyConfig {
                     r.initial_radius, r.tolerance
                 ),
             ));
+        }
+        self.check_counts(path)
+    }
+
+    /// Every count the study gives against the limits no real study comes near
+    /// ([`MAX_REFINE_STARTS`], [`MAX_REFINE_EVALUATIONS`],
+    /// [`slipload_motion::limits::MAX_SUITE_RECORDS`]), liftable with `--allow-large`.
+    fn check_counts(&self, path: &Path) -> Result<(), OptError> {
+        let p = path.display();
+        let r = &self.refine;
+        for (field, v, limit, unit) in [
+            ("refine.starts", r.starts, MAX_REFINE_STARTS, "starts"),
+            (
+                "refine.finalists",
+                r.finalists,
+                MAX_REFINE_STARTS,
+                "finalists",
+            ),
+            (
+                "refine.max_evaluations",
+                r.max_evaluations,
+                MAX_REFINE_EVALUATIONS,
+                "evaluations",
+            ),
+        ] {
+            too_large(
+                format!("{p}: field `{field}`"),
+                v as f64,
+                limit as f64,
+                unit,
+            )?;
+        }
+        for (i, s) in self.suites.iter().enumerate() {
+            if let Some(syn) = &s.synthetic {
+                too_large(
+                    format!("{p}: field `suites[{i}].synthetic.count`"),
+                    syn.count as f64,
+                    slipload_motion::limits::MAX_SUITE_RECORDS as f64,
+                    "records",
+                )?;
+            }
         }
         Ok(())
     }

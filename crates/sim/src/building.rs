@@ -3,7 +3,11 @@
 //!
 //! A [`BuildingConfig`] is what a JSON file says (unknown fields rejected, units accepted
 //! as strings); [`Building::from_config`] validates it into SI matrices with errors that
-//! name the file and field.
+//! name the file and field. Beyond signs and finiteness, magnitudes must be physical:
+//! the natural periods of the bare frame and of the frame with its braces locked lie in
+//! [`PERIOD_BAND_S`], floor masses in [`FLOOR_MASS_BAND_KG`], damping ratios are at most
+//! [`MAX_DAMPING_RATIO`], slip loads at most [`MAX_SLIP_LOAD_PER_WEIGHT`] × the weight
+//! (so a stiffness of 1e300 N/m or a mass of 1e-300 kg is refused, naming the field).
 
 use crate::error::SimError;
 use crate::modes::Modes;
@@ -65,6 +69,229 @@ pub struct BuildingConfig {
 /// Default collapse limit: storey drift ratio past which a yielding or P-Δ frame is taken
 /// to have collapsed.
 pub const DEFAULT_COLLAPSE_DRIFT_RATIO: f64 = 0.10;
+
+/// The physical band of a building's natural periods, s: [`PERIOD_BAND_S`].0 … .1. Real
+/// structures (from a shake-table model to a kilometre-tall tower) have periods of a few
+/// hundredths of a second to about ten seconds; a period outside 10⁻⁴ … 10⁴ s means a
+/// units slip or a typo in a mass or a stiffness (a stiffness of 1e300 N/m), which would
+/// give numbers but not answers. Applies to the bare frame and to the frame with every
+/// brace locked.
+pub const PERIOD_BAND_S: (f64, f64) = (1e-4, 1e4);
+
+/// The band of a dissipator's own period 2π√(m′/k′) (mass on its brace), s, when
+/// m′ > 0: wider below than [`PERIOD_BAND_S`] because light dissipators on stiff braces
+/// are a real study (m′ → 0 tends to the massless model; give m′ = 0 for that limit).
+pub const DISSIPATOR_PERIOD_BAND_S: (f64, f64) = (1e-6, 1e4);
+
+/// The band of a floor mass, kg (1 g … 10⁹ t): from laboratory models to the heaviest floors.
+pub const FLOOR_MASS_BAND_KG: (f64, f64) = (1e-3, 1e12);
+
+/// Largest damping ratio of any mode of the frame (from `damping`) and of any brace
+/// (c′ against its floor's mass on k′): heavily overdamped is ζ ≈ 1–2, beyond 10 is a
+/// units slip.
+pub const MAX_DAMPING_RATIO: f64 = 10.0;
+
+/// Largest slip load (or friction bound) as a multiple of the building's weight (M·g,
+/// all floors). Real slip loads are a few per cent of it per storey, and far larger ones
+/// are legitimate ways to approach the locked limit; but a bound F carries a rounding
+/// error of F × 2.2e-16, which beyond 10¹¹ × the weight exceeds 2·10⁻⁵ of the weight,
+/// so the forces near it (and tolerances scaled by it) lose their digits. A contact that
+/// must never slip is written `"locked"`.
+pub const MAX_SLIP_LOAD_PER_WEIGHT: f64 = 1e11;
+
+/// Largest harmonic floor force of a scene as a multiple of the building's weight: no
+/// shaker or service load comes near a hundred times the weight.
+pub const MAX_HARMONIC_FORCE_PER_WEIGHT: f64 = 100.0;
+
+/// The band of a storey height, m.
+pub const STOREY_HEIGHT_BAND_M: (f64, f64) = (1e-3, 1e3);
+
+fn in_band(v: f64, band: (f64, f64)) -> bool {
+    v >= band.0 && v <= band.1
+}
+
+/// The magnitudes of a validated building against the physical bands above; errors
+/// name the field, the value and the band.
+#[allow(clippy::too_many_arguments)] // the validated parts of one building
+fn check_magnitudes(
+    cfg: &BuildingConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    damping: &DMatrix<f64>,
+    modes: &Modes,
+    dissipators: &[Option<Dissipator>],
+    storey_heights: Option<&[f64]>,
+) -> Result<(), SimError> {
+    let n = mass.nrows();
+    let (mass_field, stiffness_field) = (
+        if cfg.mass_matrix.is_some() {
+            "mass_matrix"
+        } else {
+            "floor_masses"
+        },
+        if cfg.stiffness_matrix.is_some() {
+            "stiffness_matrix"
+        } else {
+            "storey_stiffness"
+        },
+    );
+    for i in 0..n {
+        let m = mass[(i, i)];
+        if !in_band(m, FLOOR_MASS_BAND_KG) {
+            let field = if cfg.mass_matrix.is_some() {
+                format!("mass_matrix[{i}][{i}]")
+            } else {
+                format!("floor_masses[{i}]")
+            };
+            return Err(SimError::invalid(
+                path,
+                field,
+                format!(
+                    "a floor mass of {m:e} kg is outside the physical band {:e} … {:e} kg (check the units)",
+                    FLOOR_MASS_BAND_KG.0, FLOOR_MASS_BAND_KG.1
+                ),
+            ));
+        }
+    }
+    let periods = modes.periods();
+    let (t_long, t_short) = (periods[0], periods[periods.len() - 1]);
+    if !(in_band(t_short, PERIOD_BAND_S) && in_band(t_long, PERIOD_BAND_S)) {
+        return Err(SimError::invalid(
+            path,
+            stiffness_field,
+            format!(
+                "the bare frame's natural periods are {t_long:.3e} … {t_short:.3e} s; a building's must lie within {:e} … {:e} s: a mass or a stiffness is absurd (check `{mass_field}` and `{stiffness_field}` and their units)",
+                PERIOD_BAND_S.0, PERIOD_BAND_S.1
+            ),
+        ));
+    }
+    // modal damping ratios ζ_k = φ_kᵀ C φ_k / (2 ω_k) (mass-normalised shapes)
+    for (k, period) in periods.iter().enumerate() {
+        let phi = modes.shapes.column(k);
+        let zeta = (phi.transpose() * damping * phi)[(0, 0)] / (2.0 * modes.omega[k]);
+        if !(zeta.is_finite() && zeta <= MAX_DAMPING_RATIO) {
+            return Err(SimError::invalid(
+                path,
+                "damping",
+                format!(
+                    "gives mode {} (T = {:.3e} s) a damping ratio of {zeta:.3e}; at most {MAX_DAMPING_RATIO} is physical (check the damping values and their units)",
+                    k + 1,
+                    period
+                ),
+            ));
+        }
+    }
+    if let Some(hs) = storey_heights
+        && let Some(i) = hs.iter().position(|&h| !in_band(h, STOREY_HEIGHT_BAND_M))
+    {
+        return Err(SimError::invalid(
+            path,
+            format!("storey_heights[{i}]"),
+            format!(
+                "a storey height of {:e} m is outside {:e} … {:e} m (check the units)",
+                hs[i], STOREY_HEIGHT_BAND_M.0, STOREY_HEIGHT_BAND_M.1
+            ),
+        ));
+    }
+    let weight = mass.sum() * slipload_motion::G;
+    let max_slip = MAX_SLIP_LOAD_PER_WEIGHT * weight;
+    // the cfg index of each floor's dissipator, to name fields
+    let index_of = |floor: usize| {
+        cfg.dissipators
+            .iter()
+            .position(|d| d.floor == floor + 1)
+            .unwrap_or(floor)
+    };
+    let mut braced = stiffness.clone();
+    let mut braced_mass = mass.clone();
+    for (floor, d) in dissipators.iter().enumerate() {
+        let Some(d) = d else { continue };
+        let f = |name: &str| format!("dissipators[{}].{name}", index_of(floor));
+        // the brace locked: k′ between floor i−1 (or the ground) and floor i, m′ on floor i
+        let k = d.brace_stiffness;
+        braced[(floor, floor)] += k;
+        if floor > 0 {
+            braced[(floor - 1, floor - 1)] += k;
+            braced[(floor, floor - 1)] -= k;
+            braced[(floor - 1, floor)] -= k;
+        }
+        braced_mass[(floor, floor)] += d.mass;
+        let shortest = Modes::compute(&braced_mass, &braced)
+            .map(|m| 2.0 * std::f64::consts::PI / m.omega[m.omega.len() - 1]);
+        match shortest {
+            Some(t) if in_band(t, PERIOD_BAND_S) => {}
+            found => {
+                return Err(SimError::invalid(
+                    path,
+                    f("brace_stiffness"),
+                    format!(
+                        "k′ = {k:e} N/m gives the frame with its braces locked a natural period of {}; a building's must lie within {:e} … {:e} s (check k′ and its units)",
+                        found.map_or_else(|| "no real value".to_string(), |t| format!("{t:.3e} s")),
+                        PERIOD_BAND_S.0,
+                        PERIOD_BAND_S.1
+                    ),
+                ));
+            }
+        }
+        if d.mass > 0.0 {
+            let t = 2.0 * std::f64::consts::PI * (d.mass / d.brace_stiffness).sqrt();
+            if !in_band(t, DISSIPATOR_PERIOD_BAND_S) {
+                return Err(SimError::invalid(
+                    path,
+                    f("mass"),
+                    format!(
+                        "the dissipator's period on its brace, 2π√(m′/k′) = {t:.3e} s (m′ = {:e} kg, k′ = {:e} N/m), is outside {:e} … {:e} s: give m′ = 0 for a massless dissipator, else check m′ and k′ and their units",
+                        d.mass,
+                        d.brace_stiffness,
+                        DISSIPATOR_PERIOD_BAND_S.0,
+                        DISSIPATOR_PERIOD_BAND_S.1
+                    ),
+                ));
+            }
+        }
+        let critical = 2.0 * (d.brace_stiffness * (mass[(floor, floor)] + d.mass)).sqrt();
+        let zeta = d.brace_damping / critical;
+        if !(zeta.is_finite() && zeta <= MAX_DAMPING_RATIO) {
+            return Err(SimError::invalid(
+                path,
+                f("brace_damping"),
+                format!(
+                    "c′ = {:e} N·s/m is {zeta:.3e} × critical for the brace and its floor's mass (2√(k′·m) = {critical:.3e} N·s/m); at most {MAX_DAMPING_RATIO} is physical (check the units)",
+                    d.brace_damping
+                ),
+            ));
+        }
+        if !d.is_locked() {
+            let (field, value) = if d.upper >= -d.lower {
+                (
+                    if cfg
+                        .dissipators
+                        .get(index_of(floor))
+                        .is_some_and(|c| c.bounds.is_some())
+                    {
+                        "bounds[1]"
+                    } else {
+                        "slip_load"
+                    },
+                    d.upper,
+                )
+            } else {
+                ("bounds[0]", d.lower)
+            };
+            if value.abs() > max_slip {
+                return Err(SimError::invalid(
+                    path,
+                    f(field),
+                    format!(
+                        "{value:e} N is more than {MAX_SLIP_LOAD_PER_WEIGHT:e} × the building's weight ({weight:.4e} N), where its rounding alone exceeds 2e-5 of the weight: write \"locked\" for a contact that never slips, else check the units"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
 
 /// A yielding storey, as written: initial stiffness k, yield shear Fy (or yield drift
 /// Fy/k) and post-yield ratio α (0 = elastic–perfectly plastic).
@@ -549,10 +776,11 @@ fn chain(values: &[f64]) -> DMatrix<f64> {
 impl Building {
     /// Reads and validates a building JSON file.
     pub fn load(path: &Path) -> Result<Building, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = slipload_motion::limits::read_input_text(
+            path,
+            "building",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
         let cfg: BuildingConfig = crate::kind::parse(&text, path, crate::kind::Expected::Building)?;
         Building::from_config(&cfg, path)
     }
@@ -805,6 +1033,16 @@ impl Building {
                 upper,
             });
         }
+        check_magnitudes(
+            cfg,
+            path,
+            &mass,
+            &stiffness,
+            &damping,
+            &modes,
+            &dissipators,
+            storey_heights.as_deref(),
+        )?;
         let storey_yield = storey_yield(cfg, path, n, &stiffness)?;
         let gravity_loads = match &cfg.p_delta {
             None => None,

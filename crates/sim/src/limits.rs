@@ -5,7 +5,6 @@
 //! variable [`ALLOW_LARGE_ENV`]`=1`.
 
 use crate::error::SimError;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Most integration steps of one simulation (10⁸: a 100 s record at Δt = 1 µs).
 pub const MAX_STEPS: f64 = 1e8;
@@ -17,23 +16,20 @@ pub const MAX_HISTORY_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
 pub const HISTORY_BYTES_PER_VALUE: f64 = 25.0;
 
 /// The environment variable that lifts the limits (`1`, `true` or `yes`).
-pub const ALLOW_LARGE_ENV: &str = "SLIPLOAD_ALLOW_LARGE";
+pub const ALLOW_LARGE_ENV: &str = slipload_motion::limits::ALLOW_LARGE_ENV;
 
 /// How to go beyond a limit, for error messages.
-pub const OVERRIDE_HINT: &str =
-    "pass --allow-large (or set SLIPLOAD_ALLOW_LARGE=1) to run it anyway";
+pub const OVERRIDE_HINT: &str = slipload_motion::limits::OVERRIDE_HINT;
 
-static ALLOW_LARGE: AtomicBool = AtomicBool::new(false);
-
-/// Lifts (or restores) the limits for this process.
+/// Lifts (or restores) the limits for this process: these and the input limits of
+/// [`slipload_motion::limits`] (file sizes, suite sizes) share one switch.
 pub fn set_allow_large(on: bool) {
-    ALLOW_LARGE.store(on, Ordering::Relaxed);
+    slipload_motion::limits::set_allow_large(on);
 }
 
 /// Whether the limits are lifted (by [`set_allow_large`] or [`ALLOW_LARGE_ENV`]).
 pub fn allow_large() -> bool {
-    ALLOW_LARGE.load(Ordering::Relaxed)
-        || std::env::var(ALLOW_LARGE_ENV).is_ok_and(|v| matches!(v.trim(), "1" | "true" | "yes"))
+    slipload_motion::limits::allow_large()
 }
 
 /// A number of bytes for people (KiB … TiB).

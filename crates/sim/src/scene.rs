@@ -71,13 +71,39 @@ fn default_true() -> bool {
 }
 
 /// A building given by path or inline.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize)]
 #[serde(untagged)]
 pub enum BuildingRef {
     /// Path relative to the scene file.
     Path(PathBuf),
     /// The building itself.
     Inline(Box<BuildingConfig>),
+}
+
+/// A string is a path, an object an inline building, read by [`BuildingConfig`]'s own
+/// deserializer so that its errors (an unknown field, a wrong type) surface as they do
+/// in a building file instead of "did not match any variant".
+impl<'de> Deserialize<'de> for BuildingRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = BuildingRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a building file's path (a string) or a building object")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<BuildingRef, E> {
+                Ok(BuildingRef::Path(PathBuf::from(v)))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<BuildingRef, A::Error> {
+                BuildingConfig::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(|b| BuildingRef::Inline(Box::new(b)))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 /// Loads acting on the building.
@@ -579,6 +605,10 @@ pub fn check_step_against_record(
     Ok(())
 }
 
+/// Most iterations of each `delacruz` fixed-point loop a scene may ask for
+/// (`method.max_iterations`): the loops converge in a handful when they converge at all.
+pub const MAX_LOOP_ITERATIONS: u32 = 10_000;
+
 /// Steps per bare-frame fundamental period of the default time step ([`default_dt`]).
 pub const DEFAULT_STEPS_PER_PERIOD: f64 = 400.0;
 
@@ -648,6 +678,10 @@ fn synthetic_record(
     Ok(record.scaled_to_pga(pga_g * G)?)
 }
 
+/// Largest |initial displacement| (m) or |initial velocity| (m/s) of a floor or
+/// dissipator: no structure moves a kilometre or at a kilometre per second.
+pub const MAX_INITIAL_STATE: f64 = 1e3;
+
 fn vec_or_zero(
     path: &Path,
     field: &str,
@@ -667,7 +701,17 @@ fn vec_or_zero(
                 format!("{field}[{i}]"),
                 "must be finite",
             )),
-            None => Ok(v),
+            None => match v.iter().position(|x| x.abs() > MAX_INITIAL_STATE) {
+                Some(i) => Err(SimError::invalid(
+                    path,
+                    format!("{field}[{i}]"),
+                    format!(
+                        "{:e} is beyond any structure's motion (at most {MAX_INITIAL_STATE:e} m or m/s; check the units)",
+                        v[i]
+                    ),
+                )),
+                None => Ok(v),
+            },
         },
     }
 }
@@ -675,10 +719,11 @@ fn vec_or_zero(
 impl Scene {
     /// Loads a scene file — or a building file, which is a scene with no excitation.
     pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = slipload_motion::limits::read_input_text(
+            path,
+            "scene",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
         Scene::from_json(&text, path, over)
     }
 
@@ -722,6 +767,20 @@ impl Scene {
         {
             return Err(SimError::Scene(format!(
                 "--scale-pga-g must be positive and finite, got {pga}"
+            )));
+        }
+        if let Some(d) = over.duration
+            && !is_positive(d)
+        {
+            return Err(SimError::Scene(format!(
+                "--duration: the simulated time must be positive, got {d} (give a finite number of seconds)"
+            )));
+        }
+        if let Some(dt) = over.dt
+            && !is_positive(dt)
+        {
+            return Err(SimError::Scene(format!(
+                "--dt: time step {dt} s must be positive and finite"
             )));
         }
         let base = path.parent().unwrap_or(Path::new("."));
@@ -854,6 +913,19 @@ impl Scene {
                         "amplitude, omega and phase must be finite",
                     ));
                 }
+                let weight = building.mass.sum() * G;
+                let limit = crate::building::MAX_HARMONIC_FORCE_PER_WEIGHT * weight;
+                if h.amplitude.0.abs() > limit {
+                    return Err(SimError::invalid(
+                        path,
+                        "excitation.harmonic.amplitude",
+                        format!(
+                            "{:e} N is more than {} × the building's weight ({weight:.4e} N): no shaker or load comes near it (check the units)",
+                            h.amplitude.0,
+                            crate::building::MAX_HARMONIC_FORCE_PER_WEIGHT
+                        ),
+                    ));
+                }
                 Some(Harmonic {
                     floor: h.floor - 1,
                     amplitude: h.amplitude.0,
@@ -974,6 +1046,19 @@ impl Scene {
                     format!("tolerance must be positive and finite, got {v}"),
                 ));
             }
+        }
+        if let Some(cap) = cfg.method.max_iterations
+            && cap > MAX_LOOP_ITERATIONS
+            && !crate::limits::allow_large()
+        {
+            return Err(SimError::invalid(
+                path,
+                "method.max_iterations",
+                format!(
+                    "{cap} iterations per loop per step is more than any converging loop needs (limit {MAX_LOOP_ITERATIONS}; the default is 100): a loop that does not converge would run for days; {}",
+                    crate::limits::OVERRIDE_HINT
+                ),
+            ));
         }
         if cfg.method.max_iterations == Some(0) {
             return Err(SimError::invalid(

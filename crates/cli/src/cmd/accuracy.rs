@@ -73,8 +73,12 @@ fn overrides(args: &AccuracyArgs, record: Option<PathBuf>) -> SceneOverrides {
 /// The scene with member `index` of the embedded synthetic suite as its excitation.
 fn synthetic_scene(args: &AccuracyArgs, index: usize) -> anyhow::Result<Scene> {
     let path = &args.scene;
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("reading scene {}", path.display()))?;
+    let text = slipload_motion::limits::read_input_text(
+        path,
+        "scene",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )
+    .with_context(|| format!("reading scene {}", path.display()))?;
     let value: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("parsing scene {}", path.display()))?;
     let mut cfg: SceneConfig = if value.get("building").is_some() {
@@ -114,6 +118,16 @@ fn stem(path: &Path) -> String {
 pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
     if args.methods.is_empty() || args.dts.is_empty() {
         anyhow::bail!("--methods and --dts need at least one value each");
+    }
+    super::output_folder("--out", &args.out)?;
+    super::count_flag("--repeats", args.repeats, super::MAX_REPEATS)?;
+    if let Some(n) = args.synthetic {
+        let size = slipload_motion::DEFAULT_SUITE_SIZE;
+        if n == 0 || n > size {
+            anyhow::bail!(
+                "--synthetic {n}: the embedded suite has {size} records (1 to {size} allowed)"
+            );
+        }
     }
     // The figures need a font: find out before the study runs.
     crate::plot::raster::check_fonts()?;

@@ -17,6 +17,7 @@ pub struct MergeArgs {
 
 /// Runs `slipload merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    super::output_folder("--out", &args.out)?;
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
     slipload_opt::sweep::check_merge_folders(&dirs, &args.out)?;
     // one folder, one writer: refused at once if another command holds it

@@ -59,3 +59,39 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Report(args) => report::run(args),
     }
 }
+
+/// Refuses an output folder flag (`--out`, `--plot`) that names an existing file, a FIFO
+/// or a device: said before any work, naming the flag (a folder that does not exist yet
+/// is created later).
+pub(crate) fn output_folder(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(m) => anyhow::bail!(
+            "{flag} {}: {} is {}, not a folder: give a folder (created if missing) for the output files",
+            dir.display(),
+            dir.display(),
+            if m.is_file() {
+                "an existing file"
+            } else {
+                "not a regular folder (a FIFO, device or socket)"
+            }
+        ),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(anyhow::Error::new(e).context(format!("{flag} {}", dir.display()))),
+    }
+}
+
+/// Refuses a count flag beyond `limit` (unless `--allow-large`), naming the flag.
+pub(crate) fn count_flag(flag: &str, n: usize, limit: usize) -> anyhow::Result<()> {
+    if n <= limit || slipload_sim::limits::allow_large() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{flag} {n}: more than any real run needs (limit {limit}); {}",
+        slipload_sim::limits::OVERRIDE_HINT
+    )
+}
+
+/// Most timed repeats (`accuracy --repeats`, `simulate --repeat`): a median of a few
+/// runs is what timing needs.
+pub(crate) const MAX_REPEATS: usize = 1000;

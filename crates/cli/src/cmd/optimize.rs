@@ -131,6 +131,11 @@ pub fn costs_line(report: &StudyReport) -> Option<String> {
 /// Runs `slipload optimize`.
 pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
+    super::output_folder("--out", &args.out)?;
+    if args.map {
+        // GRID² designs × every record: the sweep's own design limit, per axis
+        super::count_flag("--map-grid", args.map_grid, 1000)?;
+    }
     let study = load_study(args.study.as_deref())?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],

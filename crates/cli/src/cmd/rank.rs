@@ -32,8 +32,13 @@ pub struct RankArgs {
 /// Runs `slipload rank`.
 pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let study = load_study(Some(&args.study))?;
-    let text = std::fs::read_to_string(&args.designs)
-        .with_context(|| format!("reading {}", args.designs.display()))?;
+    super::output_folder("--out", &args.out)?;
+    let text = slipload_motion::limits::read_input_text(
+        &args.designs,
+        "designs",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )
+    .with_context(|| format!("reading {}", args.designs.display()))?;
     let designs: Vec<NamedDesign> = match serde_json::from_str(&text) {
         Ok(d) => d,
         Err(e) => match FileKind::of_json(&text) {

@@ -414,6 +414,10 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     if count == 0 {
         bail!("--count must be at least 1");
     }
+    super::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
+    if args.count.is_some() {
+        super::output_folder("--out", &args.out)?;
+    }
     let target = SuiteTarget::Pga {
         pga_m_s2: args.pga_g * G,
     };

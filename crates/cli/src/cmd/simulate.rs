@@ -54,6 +54,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         crate::plot::check_plot_folder(dir)?;
         crate::plot::raster::check_fonts()?;
     }
+    super::count_flag("--repeat", args.repeat as usize, super::MAX_REPEATS)?;
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
         slipload_opt::output::write_target(path)

@@ -31,8 +31,15 @@ pub struct SweepArgs {
     pub fresh: bool,
 }
 
+/// Most shards of `--shards` (job arrays of real clusters stop at tens of thousands).
+const MAX_SHARDS: usize = 100_000;
+
 /// Runs `slipload sweep`.
 pub fn run(args: SweepArgs) -> anyhow::Result<()> {
+    super::output_folder("--out", &args.out)?;
+    if let Some(n) = args.shards {
+        super::count_flag("--shards", n, MAX_SHARDS)?;
+    }
     let study = load_study(Some(&args.study))?;
     let shard = match &args.shard {
         None => Shard::ALL,

@@ -28,7 +28,24 @@ pub struct TableArgs {
 
 /// Runs `slipload table`.
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
+    super::output_folder("--out", &args.out)?;
     let study = load_study(args.study.as_deref())?;
+    // every scaled frame must stay a building: its periods within the physical band
+    let (lo, hi) = slipload_sim::building::PERIOD_BAND_S;
+    let periods = study.building.modes.periods();
+    let (t_long, t_short) = (periods[0], periods[periods.len() - 1]);
+    for &p in &args.period_scales {
+        if !(p.is_finite() && p > 0.0 && t_short * p >= lo && t_long * p <= hi) {
+            anyhow::bail!(
+                "--period-scales {p:e}: must be positive and keep the frame's periods ({t_short:.3} … {t_long:.3} s) within {lo:e} … {hi:e} s"
+            );
+        }
+    }
+    for &i in &args.intensity_scales {
+        if !(i.is_finite() && i > 0.0) {
+            anyhow::bail!("--intensity-scales {i:e}: must be positive and finite");
+        }
+    }
     let method = args.refine.unwrap_or(study.config.refine.method);
     // one folder, one writer: refused at once if another command holds it
     let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;

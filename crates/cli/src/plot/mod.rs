@@ -233,13 +233,9 @@ impl Figure {
 /// (created when missing; the figures and their data go into it). An existing file there
 /// is refused, with what to give instead.
 pub fn check_plot_folder(dir: &Path) -> anyhow::Result<()> {
-    if dir.exists() && !dir.is_dir() {
-        anyhow::bail!(
-            "--plot {}: that is an existing file, not a folder; --plot takes a folder (created when missing) that the figures and their data are written into",
-            dir.display()
-        );
-    }
-    Ok(())
+    crate::cmd::output_folder("--plot", dir).context(
+        "--plot takes a folder (created when missing) that the figures and their data are written into",
+    )
 }
 
 /// `stem` without a trailing `.svg` or `.png`.
