@@ -87,7 +87,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         } else {
             None
         };
-        let scene_json = crate::figures::scene_file::resolved(&args.scene, &scene)
+        let scene_json = crate::figures::scene_file::resolved(&args.scene, &scene, dir)
             .context("writing down the scene that ran")?;
         let files =
             crate::figures::simulation::write_all(dir, &scene, &scene_json, &out, bare.as_ref())

@@ -1,8 +1,10 @@
 //! The scene a `simulate --plot DIR` run ran, kept in `DIR/scene.json`: the scene (or
 //! building) file with the command line's overrides applied, the building inlined, the
-//! record's path made absolute, and the method, time step and duration written out as
-//! resolved. `slipload simulate DIR/scene.json` runs it again from anywhere; the report
-//! of the folder reads its building, record and scaling from it.
+//! record's path written relative to DIR (as a scene file's paths resolve), and the
+//! method, time step and duration written out as resolved. `slipload simulate
+//! DIR/scene.json` runs it again from anywhere, and the folder can move with the records
+//! beside it (a clone's `results/` and `records/`); the report of the folder reads its
+//! building, record and scaling from it.
 
 use crate::cmd::scene_args::{BENCHMARK_BUILDING, SceneArgs};
 use anyhow::Context;
@@ -17,6 +19,27 @@ fn absolute(p: &Path) -> PathBuf {
             .map(|d| d.join(p))
             .unwrap_or_else(|_| p.to_path_buf())
     })
+}
+
+/// `target` as a path relative to the folder `from` (both made absolute first): `..` up
+/// to their common ancestor, then down. Absolute when they share no root.
+fn relative_to(target: &Path, from: &Path) -> PathBuf {
+    use std::path::Component;
+    let (t, f) = (absolute(target), absolute(from));
+    let tc: Vec<Component> = t.components().collect();
+    let fc: Vec<Component> = f.components().collect();
+    let common = tc.iter().zip(&fc).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return t;
+    }
+    let mut out = PathBuf::new();
+    for _ in common..fc.len() {
+        out.push("..");
+    }
+    for c in &tc[common..] {
+        out.push(c.as_os_str());
+    }
+    out
 }
 
 fn read_json(path: &Path) -> anyhow::Result<Value> {
@@ -37,9 +60,10 @@ fn object_at<'a>(obj: &'a mut Map<String, Value>, key: &str) -> &'a mut Map<Stri
     }
 }
 
-/// The resolved scene of `args` as JSON (see the module's doc); `scene` is what it
-/// resolved to (its name, method, time step and duration are written out).
-pub fn resolved(args: &SceneArgs, scene: &Scene) -> anyhow::Result<Value> {
+/// The resolved scene of `args` as JSON (see the module's doc), to be written into the
+/// folder `dir`; `scene` is what it resolved to (its name, method, time step and duration
+/// are written out).
+pub fn resolved(args: &SceneArgs, scene: &Scene, dir: &Path) -> anyhow::Result<Value> {
     let (mut root, base) = match &args.scene {
         Some(path) => {
             let v = read_json(path)?;
@@ -89,7 +113,7 @@ pub fn resolved(args: &SceneArgs, scene: &Scene) -> anyhow::Result<Value> {
         let mut r = Map::new();
         r.insert(
             "file".into(),
-            Value::String(absolute(file).to_string_lossy().into_owned()),
+            Value::String(relative_to(file, dir).to_string_lossy().into_owned()),
         );
         if let Some(u) = args.units {
             r.insert("units".into(), Value::String(u.to_string()));
@@ -104,10 +128,10 @@ pub fn resolved(args: &SceneArgs, scene: &Scene) -> anyhow::Result<Value> {
         excitation.insert("record".into(), Value::Object(r));
     } else if let Some(Value::Object(r)) = excitation.get_mut("record") {
         if let Some(Value::String(f)) = r.get("file") {
-            let abs = absolute(&base.join(f));
+            let rel = relative_to(&base.join(f), dir);
             r.insert(
                 "file".into(),
-                Value::String(abs.to_string_lossy().into_owned()),
+                Value::String(rel.to_string_lossy().into_owned()),
             );
         }
         if r.get("units").is_none_or(Value::is_null)
@@ -115,17 +139,9 @@ pub fn resolved(args: &SceneArgs, scene: &Scene) -> anyhow::Result<Value> {
         {
             r.insert("units".into(), Value::String(u.to_string()));
         }
-        if let Some((s2, d2)) = args.window {
-            // a window of the scene's window
-            let w = match r.get("window").and_then(|w| w.as_array()) {
-                Some(w) if w.len() == 2 => {
-                    let s1 = w[0].as_f64().unwrap_or(0.0);
-                    let d1 = w[1].as_f64().unwrap_or(f64::INFINITY);
-                    json!([s1 + s2, d2.min(d1 - s2)])
-                }
-                _ => json!([s2, d2]),
-            };
-            r.insert("window".into(), w);
+        if let Some((s, d)) = args.window {
+            // --window replaces the scene's window (docs/MODEL.md, scenes and plans)
+            r.insert("window".into(), json!([s, d]));
         }
         if let Some(p) = args.scale_pga_g {
             r.remove("scale");
