@@ -110,3 +110,34 @@ fn merge_refuses_its_own_shards_and_another_studys_folder() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A `manifest.json` that is a FIFO — in a shard folder or in the output folder — is
+/// refused by kind, never opened for reading (which would block the merge for ever).
+#[test]
+fn a_manifest_that_is_a_fifo_is_refused_without_blocking() {
+    let dir = common::scratch("merge", "fifo");
+    let shard = dir.join("shard-0");
+    std::fs::create_dir_all(&shard).unwrap();
+    let fifo = shard.join("manifest.json");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    // 60 s: a blocking read would hang until the guard kills it
+    let o = slipload_within(60, &["merge", s(&shard), "--out", s(&dir.join("merged"))]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "merge ran: {err}");
+    assert!(
+        err.contains("FIFO") && err.contains("manifest.json"),
+        "{err}"
+    );
+    // the same FIFO in the output folder, with a real shard to merge
+    let st = study(&dir, "a.json", 0.4);
+    let real = dir.join("real-shard");
+    ok(&["sweep", s(&st), "--out", s(&real), "--quiet"]);
+    let o = slipload_within(60, &["merge", s(&real), "--out", s(&shard)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "merge ran: {err}");
+    assert!(err.contains("FIFO"), "{err}");
+}

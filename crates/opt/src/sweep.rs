@@ -525,7 +525,17 @@ pub fn check_merge_folders(dirs: &[&Path], out: &Path) -> Result<(), OptError> {
 /// studies' files.
 fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
     let path = out.join("manifest.json");
-    if let Ok(text) = std::fs::read_to_string(&path) {
+    // read through the bounded reader: a FIFO or device under that name is refused by
+    // kind instead of blocking the merge
+    let existing = match std::fs::symlink_metadata(&path) {
+        Ok(_) => Some(slipload_motion::limits::read_input_text(
+            &path,
+            "sweep manifest",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?),
+        Err(_) => None,
+    };
+    if let Some(text) = existing {
         let theirs = serde_json::from_str::<Manifest>(&text).ok();
         if theirs
             .as_ref()
@@ -560,10 +570,11 @@ pub fn merge(dirs: &[&Path], out: &Path) -> Result<(Manifest, Vec<RecordMetrics>
         // a shard still being written would be merged half done
         crate::folder_lock::FolderLock::check_idle(dir)?;
         let path = dir.join("manifest.json");
-        let text = std::fs::read_to_string(&path).map_err(|source| OptError::Io {
-            path: path.clone(),
-            source,
-        })?;
+        let text = slipload_motion::limits::read_input_text(
+            &path,
+            "sweep manifest",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
         let m: Manifest = serde_json::from_str(&text).map_err(|source| OptError::Json {
             path: path.clone(),
             source,
