@@ -597,6 +597,20 @@ pub fn storey_stiffness(k: &DMatrix<f64>, i: usize) -> Option<f64> {
     (flex > 0.0 && flex.is_finite()).then(|| 1.0 / flex)
 }
 
+/// The error of a frame whose stiffness is not positive definite, naming the field that
+/// gave it.
+fn unstable_frame(cfg: &BuildingConfig, path: &Path) -> SimError {
+    SimError::invalid(
+        path,
+        if cfg.stiffness_matrix.is_some() {
+            "stiffness_matrix"
+        } else {
+            "storey_stiffness"
+        },
+        "frame stiffness must be positive definite (the bare frame must be stable)",
+    )
+}
+
 /// Validates `storey_yield` against the frame: one entry per listed storey, Fy or the
 /// yield drift, α in [0, 1), and the spring's stiffness (from `storey_stiffness`, or given
 /// for a matrix frame), which must not exceed the storey's own stiffness in the frame
@@ -647,17 +661,7 @@ fn storey_yield(
             ));
         }
         // The spring is part of the frame: it cannot be stiffer than the storey it sits in.
-        let own = storey_stiffness(stiffness, i).ok_or_else(|| {
-            SimError::invalid(
-                path,
-                if cfg.stiffness_matrix.is_some() {
-                    "stiffness_matrix"
-                } else {
-                    "storey_stiffness"
-                },
-                "frame stiffness must be positive definite (the bare frame must be stable)",
-            )
-        })?;
+        let own = storey_stiffness(stiffness, i).ok_or_else(|| unstable_frame(cfg, path))?;
         if k > own * (1.0 + 1e-9) {
             let floors = if i == 0 {
                 "a force on floor 1, the ground fixed".to_string()
@@ -854,17 +858,7 @@ impl Building {
             }
             (None, Some(rows)) => square(path, "stiffness_matrix", rows, Some(n))?,
         };
-        let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| {
-            SimError::invalid(
-                path,
-                if cfg.stiffness_matrix.is_some() {
-                    "stiffness_matrix"
-                } else {
-                    "storey_stiffness"
-                },
-                "frame stiffness must be positive definite (the bare frame must be stable)",
-            )
-        })?;
+        let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| unstable_frame(cfg, path))?;
         let damping = match &cfg.damping {
             None | Some(DampingConfig::None) => DMatrix::zeros(n, n),
             Some(DampingConfig::Rayleigh { alpha, beta }) => {

@@ -32,20 +32,9 @@ pub fn allow_large() -> bool {
     slipload_motion::limits::allow_large()
 }
 
-/// A number of bytes for people (KiB … TiB).
+/// A number of bytes for people (KiB … EiB), as [`slipload_motion::limits::bytes`].
 pub fn bytes(b: f64) -> String {
-    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    let mut v = b;
-    let mut u = 0;
-    while v >= 1024.0 && u + 1 < units.len() {
-        v /= 1024.0;
-        u += 1;
-    }
-    if u == 0 {
-        format!("{v:.0} B")
-    } else {
-        format!("{v:.1} {}", units[u])
-    }
+    slipload_motion::limits::bytes(b)
 }
 
 /// [`SimError::TooLarge`] unless `estimate <= limit` or the limits are lifted.
