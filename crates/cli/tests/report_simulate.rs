@@ -1,5 +1,5 @@
 //! Contract: the `simulate --plot DIR` folder keeps the scene it ran (`DIR/scene.json`:
-//! the overrides applied, the building inline, the record's path absolute, method, Δt and
+//! the overrides applied, the building inline, the record's path relative to DIR, method, Δt and
 //! duration as resolved), and running that file again gives the same responses from any
 //! folder; `slipload report DIR` is titled by the scene, states building, record,
 //! scaling, method and Δt, and shows the responses per storey in engineering units
@@ -58,8 +58,12 @@ fn plot_folder_keeps_the_scene_and_its_report_states_the_run_per_storey() {
     assert_eq!(scene["name"], "paper-benchmark-sylmar");
     assert_eq!(scene["building"]["name"], "benchmark-3story", "inline");
     let record = scene["excitation"]["record"]["file"].as_str().unwrap();
-    assert!(
-        std::path::Path::new(record).is_absolute() && record.ends_with("SYL090.AT2"),
+    // relative to the folder, as a scene file's paths resolve: no machine's path in it,
+    // and it names the repository's record
+    assert!(!std::path::Path::new(record).is_absolute(), "{record}");
+    assert_eq!(
+        plot.join(record).canonicalize().unwrap(),
+        root().join("records/SYL090.AT2").canonicalize().unwrap(),
         "{record}"
     );
     assert_eq!(scene["excitation"]["record"]["scale_pga_g"], 0.3);
