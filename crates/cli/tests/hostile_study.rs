@@ -275,3 +275,80 @@ fn optimize_map_floors_of_one_floor_is_refused_without_debug_output() {
     assert!(err.contains("got 1 floor(s): 1"), "{err}");
     assert!(!err.contains("[1]"), "{err}");
 }
+
+/// A study of one suite of record files (`records`, JSON array text, paths from the
+/// repository root) with `scale` spliced into the suite (JSON text after a comma, or "").
+fn record_study(dir: &Path, file: &str, records: &[&str], scale: &str) -> PathBuf {
+    let list: Vec<String> = records
+        .iter()
+        .map(|r| format!("{:?}", s(&root().join(r))))
+        .collect();
+    let suites = format!(
+        r#"[ {{ "name": "rec", "records": [{}]{scale} }} ]"#,
+        list.join(", ")
+    );
+    study(dir, file, "", &suites, SPACE)
+}
+
+#[test]
+fn one_record_file_twice_in_a_suite_is_refused() {
+    let d = scratch("hostile-study", "dup-record");
+    let p = record_study(
+        &d,
+        "twice.json",
+        &["records/SYL360.AT2", "records/SYL360.AT2"],
+        "",
+    );
+    sweep_refused(
+        &d,
+        &p,
+        &[
+            "twice.json",
+            "suites[0].records[1]",
+            "SYL360.AT2 is already in this suite (suites[0].records[0])",
+        ],
+    );
+}
+
+#[test]
+fn a_folder_named_as_a_record_file_is_called_a_folder() {
+    let d = scratch("hostile-study", "record-folder");
+    let p = record_study(&d, "folder.json", &["records"], "");
+    sweep_refused(
+        &d,
+        &p,
+        &[
+            "folder.json",
+            "suites[0].records[0]",
+            "is a folder, not a record file",
+        ],
+    );
+}
+
+#[test]
+fn a_scale_factor_that_leaves_no_shaking_is_refused() {
+    let d = scratch("hostile-study", "tiny-factor");
+    let p = record_study(
+        &d,
+        "factor.json",
+        &["records/SYL360.AT2"],
+        r#", "scale": { "factor": 1e-9 }"#,
+    );
+    sweep_refused(
+        &d,
+        &p,
+        &["factor.json", "suites[0].scale.factor", "below 0.001 g"],
+    );
+}
+
+#[test]
+fn shards_without_shard_auto_is_refused_rather_than_ignored() {
+    let d = scratch("hostile-study", "shards-alone");
+    let p = study(&d, "study.json", "", SUITE, SPACE);
+    for extra in [&[][..], &["--shard", "0/2"][..]] {
+        let out = d.join("out");
+        let mut args = vec!["--quiet", "sweep", s(&p), "--out", s(&out), "--shards", "3"];
+        args.extend_from_slice(extra);
+        refused(&args, &out, &["--shards 3 applies to `--shard auto` only"]);
+    }
+}

@@ -388,10 +388,17 @@ fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<Path
         .unwrap_or_default();
     if !name.contains('*') {
         if !full.is_file() {
+            let what = if full.is_dir() {
+                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2)"
+            } else if full.exists() {
+                "is not a regular file"
+            } else {
+                "does not exist"
+            };
             return Err(OptError::invalid(
                 path,
                 field,
-                format!("record file {} does not exist", full.display()),
+                format!("record file {} {what}", full.display()),
             ));
         }
         return Ok(vec![full]);
@@ -955,13 +962,41 @@ impl Study {
                     })?),
                     None => None,
                 };
+                // one file twice in a suite would count its record twice in every statistic
+                let mut seen: Vec<(PathBuf, usize)> = Vec::new();
                 for (j, entry) in s.records.iter().enumerate() {
                     let field = format!("suites[{i}].records[{j}]");
                     for file in expand(base, entry, path, &field)? {
+                        let key = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+                        if let Some((_, k)) = seen.iter().find(|(f, _)| *f == key) {
+                            return Err(OptError::invalid(
+                                path,
+                                field,
+                                format!(
+                                    "{} is already in this suite (suites[{i}].records[{k}]): a record counts once in a suite's statistics; name it once",
+                                    file.display()
+                                ),
+                            ));
+                        }
+                        seen.push((key, j));
                         let r = slipload_motion::read_record(&file, units, s.dt_s)?;
                         let r = match s.scale {
                             None => r,
-                            Some(ScaleConfig::Factor(f)) => r.try_scaled(f)?,
+                            Some(ScaleConfig::Factor(f)) => {
+                                let r = r.try_scaled(f)?;
+                                let pga_g = r.pga() / G;
+                                if pga_g < MIN_STUDY_PGA_G {
+                                    return Err(OptError::invalid(
+                                        path,
+                                        format!("suites[{i}].scale.factor"),
+                                        format!(
+                                            "scales {} to a PGA of {pga_g:.3e} g, below {MIN_STUDY_PGA_G} g: no dissipator slips and every design is the bare frame (give scale.pga_g, or check the factor)",
+                                            file.display()
+                                        ),
+                                    ));
+                                }
+                                r
+                            }
                             Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(p * G)?,
                             Some(ScaleConfig::SaT1G(sa)) => {
                                 slipload_motion::scale_to_spectral_acceleration(
