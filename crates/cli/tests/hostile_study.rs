@@ -352,3 +352,21 @@ fn shards_without_shard_auto_is_refused_rather_than_ignored() {
         refused(&args, &out, &["--shards 3 applies to `--shard auto` only"]);
     }
 }
+
+#[test]
+fn merge_refuses_one_shard_folder_named_twice() {
+    let d = scratch("hostile-study", "merge-twice");
+    let p = study(&d, "study.json", "", SUITE, SPACE);
+    let (s0, s1) = (d.join("s0"), d.join("s1"));
+    for (shard, dir) in [("0/2", &s0), ("1/2", &s1)] {
+        let args = ["--quiet", "sweep", s(&p), "--out", s(dir), "--shard", shard];
+        let o = slipload_within(T, &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let out = d.join("merged");
+    refused(
+        &["merge", s(&s0), s(&s1), s(&s1), "--out", s(&out)],
+        &out,
+        &["s1 is named twice", "name each shard folder once"],
+    );
+}

@@ -676,16 +676,16 @@ impl StudyConfig {
     pub fn validate(&self, path: &Path) -> Result<(), OptError> {
         // The name heads the summaries, tables and report: blank or holding a newline it
         // prints as nothing or splits their lines (leave it out to take the file's stem).
-        if let Some(name) = &self.name {
-            if name.trim().is_empty() || name.chars().any(char::is_control) {
-                return Err(OptError::invalid(
-                    path,
-                    "name",
-                    format!(
-                        "{name:?} is blank or holds a control character: give a name on one line, or leave it out to take the file's name"
-                    ),
-                ));
-            }
+        if let Some(name) = &self.name
+            && (name.trim().is_empty() || name.chars().any(char::is_control))
+        {
+            return Err(OptError::invalid(
+                path,
+                "name",
+                format!(
+                    "{name:?} is blank or holds a control character: give a name on one line, or leave it out to take the file's name"
+                ),
+            ));
         }
         if self.suites.is_empty() {
             return Err(OptError::invalid(
