@@ -78,8 +78,17 @@ fn ranks(obj: &[f64]) -> Vec<usize> {
 /// each design once); N out, friction laws carried.
 pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<DesignLoads>, OptError> {
     let m = study.space.dampers.len();
+    // the building's own bound on a slip load, as the study's space holds its bounds to
+    let weight = study.building.mass.sum() * slipload_motion::G;
+    let max_slip_kn = slipload_sim::building::MAX_SLIP_LOAD_PER_WEIGHT * weight / 1e3;
     let mut seen = std::collections::HashMap::new();
     for (i, d) in designs.iter().enumerate() {
+        if let Some(problem) = crate::study::label_problem(&d.name) {
+            return Err(OptError::Argument(format!(
+                "designs[{i}].name: {:?} {problem} (a design name labels rows of the CSV and Markdown tables)",
+                d.name
+            )));
+        }
         if let Some(first) = seen.insert(d.name.as_str(), i) {
             return Err(OptError::Argument(format!(
                 "designs[{i}]: the name {:?} is already the name of designs[{first}]; give each candidate its own name",
@@ -107,6 +116,15 @@ pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<DesignLo
                     d.name
                 )));
             }
+            if let Some(j) = d.slip_loads_kn.iter().position(|&v| v > max_slip_kn) {
+                return Err(OptError::Missing(format!(
+                    "designs[{i}] ({}): slip_loads_kn[{j}] = {:e} kN is more than {:e} × the building's weight ({:.4e} kN): write the dissipator \"locked\" (friction_kn) instead, else check the units",
+                    d.name,
+                    d.slip_loads_kn[j],
+                    slipload_sim::building::MAX_SLIP_LOAD_PER_WEIGHT,
+                    weight / 1e3
+                )));
+            }
             if let Some(laws) = &d.friction_kn {
                 if laws.len() != m {
                     return Err(OptError::Missing(format!(
@@ -125,6 +143,18 @@ pub fn to_newtons(study: &Study, designs: &[NamedDesign]) -> Result<Vec<DesignLo
                     return Err(OptError::Missing(format!(
                         "designs[{i}] ({}): friction_kn bounds must be finite with lower <= 0 <= upper",
                         d.name
+                    )));
+                }
+                let too_large = laws.iter().position(|l| match *l {
+                    FrictionLaw::Bounds([lo, hi]) => -lo > max_slip_kn || hi > max_slip_kn,
+                    FrictionLaw::Locked => false,
+                });
+                if let Some(j) = too_large {
+                    return Err(OptError::Missing(format!(
+                        "designs[{i}] ({}): friction_kn[{j}] bounds more than {:e} × the building's weight ({:.4e} kN): write \"locked\" instead, else check the units",
+                        d.name,
+                        slipload_sim::building::MAX_SLIP_LOAD_PER_WEIGHT,
+                        weight / 1e3
                     )));
                 }
             }

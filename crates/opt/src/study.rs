@@ -388,10 +388,17 @@ fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<Path
         .unwrap_or_default();
     if !name.contains('*') {
         if !full.is_file() {
+            let what = if full.is_dir() {
+                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2)"
+            } else if full.exists() {
+                "is not a regular file"
+            } else {
+                "does not exist"
+            };
             return Err(OptError::invalid(
                 path,
                 field,
-                format!("record file {} does not exist", full.display()),
+                format!("record file {} {what}", full.display()),
             ));
         }
         return Ok(vec![full]);
@@ -434,6 +441,28 @@ fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
             format!("must be finite and > 0, got {v}"),
         ))
     }
+}
+
+/// The smallest peak ground acceleration a study's suites may ask for, g: about the
+/// threshold of perceptible shaking. Below it no dissipator of a real frame slips, every
+/// design answers as the bare frame and an optimum would be rounding noise (at 1e-300 g
+/// the responses are subnormal numbers).
+pub const MIN_STUDY_PGA_G: f64 = 1e-3;
+
+/// A suite's target intensity (g) within [[`MIN_STUDY_PGA_G`], `MAX_ABS_ACCEL_G`].
+fn intensity_g(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
+    finite_positive(path, field, v)?;
+    let max = slipload_motion::MAX_ABS_ACCEL_G;
+    if !(MIN_STUDY_PGA_G..=max).contains(&v) {
+        return Err(OptError::invalid(
+            path,
+            field,
+            format!(
+                "{v:e} g is outside {MIN_STUDY_PGA_G} … {max} g: below it no dissipator slips and every design is the bare frame, beyond it no ground has shaken (wrong units?)"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Most designs of a sweep (grid levels^variables, or points), bare and file included.
@@ -545,6 +574,89 @@ fn check_work(
     )
 }
 
+/// Longest suite or design name, characters: a label of tables, not a text.
+pub const MAX_LABEL_CHARS: usize = 200;
+
+/// What is wrong with a suite or design name, if anything. Names label rows of the CSV
+/// and Markdown tables, which write them as they are: an empty name prints as nothing,
+/// and a comma, double quote, `|` or control character (a newline) would split or shift
+/// the row it labels.
+pub fn label_problem(name: &str) -> Option<String> {
+    if name.trim().is_empty() {
+        return Some("is empty: give it a name".into());
+    }
+    let n = name.chars().count();
+    if n > MAX_LABEL_CHARS {
+        return Some(format!("has {n} characters, more than {MAX_LABEL_CHARS}"));
+    }
+    if let Some(c) = name
+        .chars()
+        .find(|c| c.is_control() || matches!(c, ',' | '"' | '|'))
+    {
+        return Some(format!(
+            "holds {c:?}: a name may not hold a comma, double quote, `|` or control character"
+        ));
+    }
+    None
+}
+
+/// A study whose JSON is well formed but not shaped as a study, said in the file's own
+/// terms (serde would name Rust types, or stop at `}` with "expected value").
+fn shape_error(text: &str, path: &Path) -> Option<OptError> {
+    let v: serde_json::Value = serde_json::from_str(text).ok()?;
+    let kind = |v: &serde_json::Value| match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
+    };
+    let Some(obj) = v.as_object() else {
+        return Some(OptError::invalid(
+            path,
+            "(top level)",
+            format!(
+                "a study is a JSON object {{\"building\", \"suites\", \"space\", \"objective\", …}}, got {}",
+                kind(&v)
+            ),
+        ));
+    };
+    for (field, expected) in [
+        ("space", "an object with one key, \"free\" or \"profile\""),
+        ("objective", "an object {\"terms\": [...]}"),
+        ("sweep", "an object {\"sampler\", \"points\", \"seed\"}"),
+        ("refine", "an object"),
+        ("fidelity", "an object"),
+        ("constraints", "an object"),
+    ] {
+        let Some(x) = obj.get(field) else { continue };
+        let bad = match x.as_object() {
+            None => true,
+            Some(o) => field == "space" && o.len() != 1,
+        };
+        if bad {
+            let got = match x.as_object() {
+                Some(o) if o.is_empty() => "an empty object".to_string(),
+                Some(o) => format!(
+                    "an object with the keys {}",
+                    o.keys()
+                        .map(|k| format!("{k:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                None => kind(x).to_string(),
+            };
+            return Some(OptError::invalid(
+                path,
+                field,
+                format!("expected {expected}, got {got}"),
+            ));
+        }
+    }
+    None
+}
+
 impl StudyConfig {
     /// Parses a study from JSON text; `path` names it in errors.
     pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
@@ -552,16 +664,29 @@ impl StudyConfig {
             // A building or scene given as a study: say so, and what to run.
             match slipload_sim::kind::wrong_kind(text, path, slipload_sim::kind::Expected::Study) {
                 Some(e) => OptError::from(e),
-                None => OptError::Json {
+                None => shape_error(text, path).unwrap_or(OptError::Json {
                     path: path.to_path_buf(),
                     source,
-                },
+                }),
             }
         })
     }
 
     /// Checks what can be checked without files: counts, ranges, settings.
     pub fn validate(&self, path: &Path) -> Result<(), OptError> {
+        // The name heads the summaries, tables and report: blank or holding a newline it
+        // prints as nothing or splits their lines (leave it out to take the file's stem).
+        if let Some(name) = &self.name
+            && (name.trim().is_empty() || name.chars().any(char::is_control))
+        {
+            return Err(OptError::invalid(
+                path,
+                "name",
+                format!(
+                    "{name:?} is blank or holds a control character: give a name on one line, or leave it out to take the file's name"
+                ),
+            ));
+        }
         if self.suites.is_empty() {
             return Err(OptError::invalid(
                 path,
@@ -571,6 +696,29 @@ impl StudyConfig {
         }
         for (i, s) in self.suites.iter().enumerate() {
             let f = |x: &str| format!("suites[{i}].{x}");
+            // Results, statistics and tables are keyed by suite name: an empty name
+            // prints as nothing and two suites of one name would be pooled as one.
+            if let Some(problem) = label_problem(&s.name) {
+                return Err(OptError::invalid(
+                    path,
+                    f("name"),
+                    format!(
+                        "{:?} {problem} (a suite name labels rows of the CSV and Markdown tables)",
+                        s.name
+                    ),
+                ));
+            }
+            if let Some(j) = self.suites[..i].iter().position(|o| o.name == s.name) {
+                return Err(OptError::invalid(
+                    path,
+                    f("name"),
+                    format!(
+                        "{:?} is already the name of suites[{j}]: suite names must be distinct \
+                         (results are grouped by suite name)",
+                        s.name
+                    ),
+                ));
+            }
             match (&s.synthetic, s.records.is_empty()) {
                 (Some(_), false) => {
                     return Err(OptError::invalid(
@@ -594,7 +742,7 @@ impl StudyConfig {
                             "the suite is empty: count must be at least 1",
                         ));
                     }
-                    finite_positive(path, &f("synthetic.pga_g"), syn.pga_g)?;
+                    intensity_g(path, &f("synthetic.pga_g"), syn.pga_g)?;
                     finite_positive(path, &f("synthetic.duration_s"), syn.duration_s)?;
                     if s.scale.is_some() || s.units.is_some() || s.dt_s.is_some() {
                         return Err(OptError::invalid(
@@ -615,8 +763,8 @@ impl StudyConfig {
             }
             match s.scale {
                 Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), v)?,
-                Some(ScaleConfig::PgaG(v)) => finite_positive(path, &f("scale.pga_g"), v)?,
-                Some(ScaleConfig::SaT1G(v)) => finite_positive(path, &f("scale.sa_t1_g"), v)?,
+                Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), v)?,
+                Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), v)?,
                 None => {}
             }
         }
@@ -814,13 +962,41 @@ impl Study {
                     })?),
                     None => None,
                 };
+                // one file twice in a suite would count its record twice in every statistic
+                let mut seen: Vec<(PathBuf, usize)> = Vec::new();
                 for (j, entry) in s.records.iter().enumerate() {
                     let field = format!("suites[{i}].records[{j}]");
                     for file in expand(base, entry, path, &field)? {
+                        let key = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+                        if let Some((_, k)) = seen.iter().find(|(f, _)| *f == key) {
+                            return Err(OptError::invalid(
+                                path,
+                                field,
+                                format!(
+                                    "{} is already in this suite (suites[{i}].records[{k}]): a record counts once in a suite's statistics; name it once",
+                                    file.display()
+                                ),
+                            ));
+                        }
+                        seen.push((key, j));
                         let r = slipload_motion::read_record(&file, units, s.dt_s)?;
                         let r = match s.scale {
                             None => r,
-                            Some(ScaleConfig::Factor(f)) => r.try_scaled(f)?,
+                            Some(ScaleConfig::Factor(f)) => {
+                                let r = r.try_scaled(f)?;
+                                let pga_g = r.pga() / G;
+                                if pga_g < MIN_STUDY_PGA_G {
+                                    return Err(OptError::invalid(
+                                        path,
+                                        format!("suites[{i}].scale.factor"),
+                                        format!(
+                                            "scales {} to a PGA of {pga_g:.3e} g, below {MIN_STUDY_PGA_G} g: no dissipator slips and every design is the bare frame (give scale.pga_g, or check the factor)",
+                                            file.display()
+                                        ),
+                                    ));
+                                }
+                                r
+                            }
                             Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(p * G)?,
                             Some(ScaleConfig::SaT1G(sa)) => {
                                 slipload_motion::scale_to_spectral_acceleration(

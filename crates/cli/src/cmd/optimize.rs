@@ -139,7 +139,15 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let study = load_study(args.study.as_deref())?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],
-        other => anyhow::bail!("--map-floors takes two floors, like 1,2 (got {other:?})"),
+        other => anyhow::bail!(
+            "--map-floors takes two floors, like 1,2 (got {} floor(s): {})",
+            other.len(),
+            other
+                .iter()
+                .map(|f| f.to_string())
+                .collect::<Vec<_>>()
+                .join(",")
+        ),
     };
     let options = OptimizeOptions {
         refine: args.refine,

@@ -39,6 +39,15 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
     super::output_folder("--out", &args.out)?;
     if let Some(n) = args.shards {
         super::count_flag("--shards", n, MAX_SHARDS)?;
+        // without `--shard auto` the count would be ignored and the whole sweep run
+        if args.shard.as_deref() != Some("auto") {
+            anyhow::bail!(
+                "--shards {n} applies to `--shard auto` only (given: {}): give --shard auto --shards {n}, or --shard I/{n}",
+                args.shard
+                    .as_deref()
+                    .map_or("no --shard".to_string(), |s| format!("--shard {s}"))
+            );
+        }
     }
     let study = load_study(Some(&args.study))?;
     let shard = match &args.shard {
