@@ -157,3 +157,45 @@ fn accuracy_name_is_a_base_name_inside_out() {
     assert!(!out.exists(), "nothing written for a refused --name");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A harmonic force of 1e300 rad/s ran and exited 0 with a response to an aliased load
+/// (the step sampled sin(ωt) far fewer than twice per period).
+#[test]
+fn a_harmonic_force_faster_than_the_step_can_sample_is_refused() {
+    let dir = scratch("hostile-single", "omega");
+    std::fs::copy(
+        common::root().join("configs/paper-1story.json"),
+        dir.join("paper-1story.json"),
+    )
+    .unwrap();
+    let f = dir.join("fast.json");
+    std::fs::write(
+        &f,
+        r#"{"building":"paper-1story.json","excitation":{"harmonic":{"floor":1,"amplitude":"1 kN","omega":1e300}},"duration":"5 s"}"#,
+    )
+    .unwrap();
+    refused(
+        &["simulate", s(&f)],
+        &[
+            "fast.json",
+            "excitation.harmonic.omega",
+            "1e300 rad/s",
+            "fewer than twice per period",
+        ],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A record of one sample lasts 0 s: the refusal used to read "scene: duration 0 s must
+/// be positive and finite", naming neither the record nor why.
+#[test]
+fn a_single_sample_record_is_named() {
+    let dir = scratch("hostile-single", "one-sample");
+    let f = dir.join("one.at2");
+    std::fs::write(&f, "HDR\nHDR\nHDR\nNPTS=  1, DT= .01000 SEC\n 0.1\n").unwrap();
+    refused(
+        &["simulate", "configs/paper-1story.json", "--record", s(&f)],
+        &["one.at2", "single sample", "at least two samples"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
