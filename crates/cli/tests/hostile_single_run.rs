@@ -54,7 +54,11 @@ fn a_subnormal_floor_mass_is_named_as_the_mass() {
     building_refused(
         "subnormal-mass-matrix",
         r#"{"mass_matrix":[[1e-320]],"storey_stiffness":[1e6],"dissipators":[]}"#,
-        &["mass_matrix[0][0]", "1e-320 kg", "outside the physical band"],
+        &[
+            "mass_matrix[0][0]",
+            "1e-320 kg",
+            "outside the physical band",
+        ],
         &["storey_stiffness", "positive definite"],
     );
 }
@@ -84,7 +88,16 @@ fn a_synthetic_record_shorter_than_its_step_names_duration_and_step() {
     let dir = scratch("hostile-single", "synth-short");
     let out = dir.join("s.csv");
     let err = refused(
-        &["record", "synth", "--out", s(&out), "--dt", "5", "--duration", "1"],
+        &[
+            "record",
+            "synth",
+            "--out",
+            s(&out),
+            "--dt",
+            "5",
+            "--duration",
+            "1",
+        ],
         &["duration / time step", "0.2", "must span one time step"],
     );
     assert!(!err.contains("PGA is zero"), "{err}");
@@ -111,11 +124,19 @@ fn a_tiny_record_step_is_quoted_readably() {
 #[test]
 fn bench_only_refuses_an_empty_text_and_one_no_case_matches() {
     refused(&["bench", "--only", ""], &["--only", "empty", "every case"]);
-    refused(&["bench", "--only", "memory", "--only", " "], &["--only", "value 2 is empty"]);
+    refused(
+        &["bench", "--only", "memory", "--only", " "],
+        &["--only", "value 2 is empty"],
+    );
     // the refusal lists the cases there are, so the next attempt can be right
     refused(
         &["bench", "--only", "no-such-case"],
-        &["`no-such-case`", "no bench case's name contains it", "memory:", "sweep:"],
+        &[
+            "`no-such-case`",
+            "no bench case's name contains it",
+            "memory:",
+            "sweep:",
+        ],
     );
 }
 

@@ -114,7 +114,11 @@ fn in_band(v: f64, band: (f64, f64)) -> bool {
 
 /// The floor masses against [`FLOOR_MASS_BAND_KG`], before any eigen solve: a subnormal
 /// or absurd mass must be named as such, not surface as an unstable stiffness.
-fn check_floor_masses(cfg: &BuildingConfig, path: &Path, mass: &DMatrix<f64>) -> Result<(), SimError> {
+fn check_floor_masses(
+    cfg: &BuildingConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+) -> Result<(), SimError> {
     let n = mass.nrows();
     for i in 0..n {
         let m = mass[(i, i)];

@@ -68,16 +68,23 @@ fn base_name(s: &str) -> Result<String, String> {
         return Err("the base name of the output files is empty: give one (e.g. `--name benchmark`), or leave --name out for the scene file's stem".into());
     }
     if s.contains(['/', '\\']) {
-        return Err(format!("`{s}` holds a path separator: --name is the base name of files inside --out, not a path (give the folder with --out)"));
+        return Err(format!(
+            "`{s}` holds a path separator: --name is the base name of files inside --out, not a path (give the folder with --out)"
+        ));
     }
     if s.starts_with('.') {
-        return Err(format!("`{s}` starts with a dot, which would hide the files or leave --out: give a name starting with a letter or digit"));
+        return Err(format!(
+            "`{s}` starts with a dot, which would hide the files or leave --out: give a name starting with a letter or digit"
+        ));
     }
     if s.chars().any(char::is_control) {
         return Err("the base name holds a control character: give a plain file name".into());
     }
     if s.chars().count() > MAX {
-        return Err(format!("the base name has {} characters; at most {MAX} make file names every file system takes", s.chars().count()));
+        return Err(format!(
+            "the base name has {} characters; at most {MAX} make file names every file system takes",
+            s.chars().count()
+        ));
     }
     Ok(s.to_string())
 }
