@@ -109,6 +109,13 @@ impl Synthetic {
         positive("ground damping ratio", self.ground_damping)?;
         positive("high-pass frequency (rad/s)", self.highpass_freq_rad_s)?;
         positive("high-pass damping ratio", self.highpass_damping)?;
+        if self.duration_s < self.dt_s {
+            return Err(MotionError::InvalidArgument {
+                what: "duration / time step",
+                value: self.duration_s / self.dt_s,
+                expected: "at least 1: the duration must span one time step (a single sample is the ground at rest)",
+            });
+        }
         if self.duration_s / self.dt_s > MAX_SAMPLES {
             return Err(MotionError::InvalidArgument {
                 what: "duration / time step",

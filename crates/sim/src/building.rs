@@ -112,32 +112,14 @@ fn in_band(v: f64, band: (f64, f64)) -> bool {
     v >= band.0 && v <= band.1
 }
 
-/// The magnitudes of a validated building against the physical bands above; errors
-/// name the field, the value and the band.
-#[allow(clippy::too_many_arguments)] // the validated parts of one building
-fn check_magnitudes(
+/// The floor masses against [`FLOOR_MASS_BAND_KG`], before any eigen solve: a subnormal
+/// or absurd mass must be named as such, not surface as an unstable stiffness.
+fn check_floor_masses(
     cfg: &BuildingConfig,
     path: &Path,
     mass: &DMatrix<f64>,
-    stiffness: &DMatrix<f64>,
-    damping: &DMatrix<f64>,
-    modes: &Modes,
-    dissipators: &[Option<Dissipator>],
-    storey_heights: Option<&[f64]>,
 ) -> Result<(), SimError> {
     let n = mass.nrows();
-    let (mass_field, stiffness_field) = (
-        if cfg.mass_matrix.is_some() {
-            "mass_matrix"
-        } else {
-            "floor_masses"
-        },
-        if cfg.stiffness_matrix.is_some() {
-            "stiffness_matrix"
-        } else {
-            "storey_stiffness"
-        },
-    );
     for i in 0..n {
         let m = mass[(i, i)];
         if !in_band(m, FLOOR_MASS_BAND_KG) {
@@ -156,6 +138,34 @@ fn check_magnitudes(
             ));
         }
     }
+    Ok(())
+}
+
+/// The magnitudes of a validated building against the physical bands above; errors
+/// name the field, the value and the band.
+#[allow(clippy::too_many_arguments)] // the validated parts of one building
+fn check_magnitudes(
+    cfg: &BuildingConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    damping: &DMatrix<f64>,
+    modes: &Modes,
+    dissipators: &[Option<Dissipator>],
+    storey_heights: Option<&[f64]>,
+) -> Result<(), SimError> {
+    let (mass_field, stiffness_field) = (
+        if cfg.mass_matrix.is_some() {
+            "mass_matrix"
+        } else {
+            "floor_masses"
+        },
+        if cfg.stiffness_matrix.is_some() {
+            "stiffness_matrix"
+        } else {
+            "storey_stiffness"
+        },
+    );
     let periods = modes.periods();
     let (t_long, t_short) = (periods[0], periods[periods.len() - 1]);
     if !(in_band(t_short, PERIOD_BAND_S) && in_band(t_long, PERIOD_BAND_S)) {
@@ -830,6 +840,7 @@ impl Building {
                 "must be positive definite",
             ));
         }
+        check_floor_masses(cfg, path, &mass)?;
         let stiffness = match (&cfg.storey_stiffness, &cfg.stiffness_matrix) {
             (Some(_), Some(_)) => {
                 return Err(SimError::invalid(

@@ -978,6 +978,13 @@ impl Scene {
             Some(d) => d,
             None => match (&record, &window) {
                 (Some(_), Some((_, d, _))) if past_end.get() => *d,
+                (Some(r), _) if r.len() < 2 => {
+                    return Err(SimError::Scene(format!(
+                        "{}: record {} holds a single sample, which lasts 0 s: give a record of at least two samples, or a duration (--duration) to run free vibration past it",
+                        path.display(),
+                        r.name()
+                    )));
+                }
                 (Some(r), _) => r.duration(),
                 (None, _) if over.plan_only => {
                     let t1 = building.t1();
@@ -1032,6 +1039,23 @@ impl Scene {
         }
         if let Some(r) = &record {
             check_step_against_record(name, dt, r)?;
+        }
+        // A step of half the forcing period or more samples sin(ωt) at the same phase or
+        // aliases it to a slower force: the run would answer a different load.
+        if let Some(h) = &harmonic
+            && name != MethodName::Exact
+            && h.omega.abs() * dt >= std::f64::consts::PI
+        {
+            return Err(SimError::invalid(
+                path,
+                "excitation.harmonic.omega",
+                format!(
+                    "{omega:e} rad/s has a period of {period:e} s, at most twice the time step {dt:e} s: {method} would sample the force fewer than twice per period and answer a different load; give a physical frequency (check the units: rad/s, or \"Hz\") or a step below half the period",
+                    omega = h.omega,
+                    period = 2.0 * std::f64::consts::PI / h.omega.abs(),
+                    method = name.as_str(),
+                ),
+            ));
         }
         for (field, v) in [
             ("method.eps_a", cfg.method.eps_a),

@@ -56,8 +56,37 @@ pub struct AccuracyArgs {
     #[arg(long, default_value = "out/accuracy")]
     pub out: PathBuf,
     /// Base name of the output files (default: the scene file's stem)
-    #[arg(long)]
+    #[arg(long, value_parser = base_name)]
     pub name: Option<String>,
+}
+
+/// `--name` is the start of file names inside `--out`: it must name files there, not a
+/// folder elsewhere (`../x`, `a/b`) nor a hidden or empty stem.
+fn base_name(s: &str) -> Result<String, String> {
+    const MAX: usize = 200;
+    if s.trim().is_empty() {
+        return Err("the base name of the output files is empty: give one (e.g. `--name benchmark`), or leave --name out for the scene file's stem".into());
+    }
+    if s.contains(['/', '\\']) {
+        return Err(format!(
+            "`{s}` holds a path separator: --name is the base name of files inside --out, not a path (give the folder with --out)"
+        ));
+    }
+    if s.starts_with('.') {
+        return Err(format!(
+            "`{s}` starts with a dot, which would hide the files or leave --out: give a name starting with a letter or digit"
+        ));
+    }
+    if s.chars().any(char::is_control) {
+        return Err("the base name holds a control character: give a plain file name".into());
+    }
+    if s.chars().count() > MAX {
+        return Err(format!(
+            "the base name has {} characters; at most {MAX} make file names every file system takes",
+            s.chars().count()
+        ));
+    }
+    Ok(s.to_string())
 }
 
 fn overrides(args: &AccuracyArgs, record: Option<PathBuf>) -> SceneOverrides {

@@ -464,7 +464,18 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             repeats: 5,
         }
     };
-    let want = |case: &str| args.only.is_empty() || args.only.iter().any(|o| case.contains(o));
+    if let Some(i) = args.only.iter().position(|o| o.trim().is_empty()) {
+        bail!(
+            "--only: value {} is empty, which every case's name contains: give part of a case's name (e.g. `--only memory`), or leave --only out to run every case",
+            i + 1
+        );
+    }
+    // every case's name asked about, to say which exist when --only matches none
+    let cases = std::cell::RefCell::new(Vec::<String>::new());
+    let want = |case: &str| {
+        cases.borrow_mut().push(case.to_string());
+        args.only.is_empty() || args.only.iter().any(|o| case.contains(o))
+    };
     let clock = Clock::new();
     let mut figs: Vec<Figure> = Vec::new();
     let b3 = BENCHMARK_BUILDING;
@@ -974,6 +985,14 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         );
     }
 
+    if figs.is_empty() && !args.only.is_empty() {
+        let only: Vec<String> = args.only.iter().map(|o| format!("`{o}`")).collect();
+        bail!(
+            "--only {}: no bench case's name contains it; the cases are:\n  {}",
+            only.join(", "),
+            cases.borrow().join("\n  ")
+        );
+    }
     let clock_note = "process CPU time";
     match args.format {
         Format::Json => outln!("{}", serde_json::to_string_pretty(&figs)?),

@@ -418,6 +418,12 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     if args.count.is_some() {
         super::output_folder("--out", &args.out)?;
     }
+    if !(args.pga_g.is_finite() && args.pga_g > 0.0) {
+        bail!(
+            "--pga-g: the peak ground acceleration must be positive and finite, got {} g (a PGA of 0 is the ground at rest)",
+            args.pga_g
+        );
+    }
     let target = SuiteTarget::Pga {
         pga_m_s2: args.pga_g * G,
     };
