@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-use common::{scratch, slipload_within, stderr};
+use common::{root, scratch, slipload_within, stderr};
 use std::path::Path;
 
 const NIS: &str = "records/NIS000.AT2";
@@ -217,6 +217,55 @@ fn a_single_sample_record_is_named() {
     refused(
         &["simulate", "configs/paper-1story.json", "--record", s(&f)],
         &["one.at2", "single sample", "at least two samples"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A target PGA of 1e-300 g (`--scale-pga-g`, a scene's `scale_pga_g`, `record synth
+/// --pga-g`) ran to an all-but-zero response and printed 300-digit numbers: a target
+/// below perceptible shaking (1e-3 g) or beyond any ground motion (20 g) is refused,
+/// naming the flag or field and quoting the value readably.
+#[test]
+fn a_target_pga_outside_the_band_of_real_shaking_is_refused() {
+    let syl = root().join("records/SYL090.AT2");
+    for pga in ["1e-300", "0.0005", "25"] {
+        let err = refused(
+            &[
+                "simulate",
+                "configs/benchmark-3story.json",
+                "--record",
+                s(&syl),
+                "--scale-pga-g",
+                pga,
+            ],
+            &["--scale-pga-g", "0.001 … 20 g"],
+        );
+        assert!(!err.contains("00000000000"), "{err}");
+        let dir = scratch("hostile-single", &format!("synth-band{pga}"));
+        let out = dir.join("s.csv");
+        let flag = format!("--pga-g={pga}");
+        refused(
+            &["record", "synth", "--out", s(&out), &flag],
+            &["--pga-g", "0.001 … 20 g"],
+        );
+        assert!(!out.exists(), "no record written for --pga-g {pga}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    // the same band in a scene file's field
+    let dir = scratch("hostile-single", "scene-band");
+    let scene = dir.join("scene.json");
+    std::fs::write(
+        &scene,
+        format!(
+            r#"{{ "building": {:?}, "excitation": {{ "record": {{ "file": {:?}, "scale_pga_g": 1e-300 }} }} }}"#,
+            root().join("configs/benchmark-3story.json"),
+            syl
+        ),
+    )
+    .unwrap();
+    refused(
+        &["simulate", s(&scene)],
+        &["excitation.record.scale_pga_g", "0.001 … 20 g", "1e-300"],
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }

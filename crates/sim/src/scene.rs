@@ -609,6 +609,32 @@ pub fn check_step_against_record(
 /// (`method.max_iterations`): the loops converge in a handful when they converge at all.
 pub const MAX_LOOP_ITERATIONS: u32 = 10_000;
 
+/// The band of a target peak ground acceleration, g (`scale_pga_g`, a synthetic record's
+/// `pga_g`, `--scale-pga-g`): from about the threshold of perceptible shaking (below it
+/// no damper slips and every response is the bare frame's at a scale no study needs, a
+/// units slip) to the largest ground acceleration any record holds
+/// ([`slipload_motion::MAX_ABS_ACCEL_G`]).
+pub const TARGET_PGA_BAND_G: (f64, f64) = (1e-3, slipload_motion::MAX_ABS_ACCEL_G);
+
+/// Whether `pga_g` lies in [`TARGET_PGA_BAND_G`].
+pub fn target_pga_in_band(pga_g: f64) -> bool {
+    pga_g.is_finite() && (TARGET_PGA_BAND_G.0..=TARGET_PGA_BAND_G.1).contains(&pga_g)
+}
+
+/// What [`TARGET_PGA_BAND_G`] asks for, for error messages.
+fn target_pga_expected(pga_g: f64) -> String {
+    format!(
+        "must be positive and finite, within {} … {} g (perceptible shaking to the strongest ground motion recorded), got {} g",
+        TARGET_PGA_BAND_G.0,
+        TARGET_PGA_BAND_G.1,
+        if pga_g != 0.0 && pga_g.is_finite() && !(1e-4..1e6).contains(&pga_g.abs()) {
+            format!("{pga_g:e}")
+        } else {
+            format!("{pga_g}")
+        }
+    )
+}
+
 /// Steps per bare-frame fundamental period of the default time step ([`default_dt`]).
 pub const DEFAULT_STEPS_PER_PERIOD: f64 = 400.0;
 
@@ -623,11 +649,11 @@ fn synthetic_record(
         .scale_pga_g
         .or(syn.pga_g)
         .unwrap_or(slipload_motion::DEFAULT_SUITE_PGA_G);
-    if !is_positive(pga_g) {
+    if !target_pga_in_band(pga_g) {
         return Err(SimError::invalid(
             path,
             format!("{field}.pga_g"),
-            format!("must be positive, got {pga_g}"),
+            target_pga_expected(pga_g),
         ));
     }
     let record = match (syn.index, syn.seed) {
@@ -763,10 +789,11 @@ impl Scene {
         over: &SceneOverrides,
     ) -> Result<Scene, SimError> {
         if let Some(pga) = over.scale_pga_g
-            && !is_positive(pga)
+            && !target_pga_in_band(pga)
         {
             return Err(SimError::Scene(format!(
-                "--scale-pga-g must be positive and finite, got {pga}"
+                "--scale-pga-g {}",
+                target_pga_expected(pga)
             )));
         }
         if let Some(d) = over.duration
@@ -865,11 +892,11 @@ impl Scene {
                 r = r.try_scaled(f)?;
             }
             match over.scale_pga_g.or(rc.scale_pga_g) {
-                Some(pga) if !is_positive(pga) => {
+                Some(pga) if !target_pga_in_band(pga) => {
                     return Err(SimError::invalid(
                         path,
                         "excitation.record.scale_pga_g",
-                        format!("must be positive, got {pga}"),
+                        target_pga_expected(pga),
                     ));
                 }
                 Some(pga) => r = r.scaled_to_pga(pga * G)?,

@@ -418,10 +418,12 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     if args.count.is_some() {
         super::output_folder("--out", &args.out)?;
     }
-    if !(args.pga_g.is_finite() && args.pga_g > 0.0) {
+    if !slipload_sim::scene::target_pga_in_band(args.pga_g) {
         bail!(
-            "--pga-g: the peak ground acceleration must be positive and finite, got {} g (a PGA of 0 is the ground at rest)",
-            args.pga_g
+            "--pga-g: the peak ground acceleration must be positive and finite, within {} … {} g (perceptible shaking to the strongest ground motion recorded; a PGA of 0 is the ground at rest), got {} g",
+            slipload_sim::scene::TARGET_PGA_BAND_G.0,
+            slipload_sim::scene::TARGET_PGA_BAND_G.1,
+            readable(args.pga_g)
         );
     }
     let target = SuiteTarget::Pga {
@@ -550,5 +552,15 @@ mod tests {
         assert_eq!(r.len(), 201);
         assert_eq!(r.pga(), 0.25 * G);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+/// `v` as people read it: plain for ordinary magnitudes, in exponent form for the
+/// absurd ones (never 300 digits).
+fn readable(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
