@@ -459,6 +459,16 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `v` as people read it: plain for ordinary magnitudes, in exponent form for the
+/// absurd ones (never 300 digits).
+fn readable(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -552,15 +562,5 @@ mod tests {
         assert_eq!(r.len(), 201);
         assert_eq!(r.pga(), 0.25 * G);
         std::fs::remove_dir_all(&dir).unwrap();
-    }
-}
-
-/// `v` as people read it: plain for ordinary magnitudes, in exponent form for the
-/// absurd ones (never 300 digits).
-fn readable(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
     }
 }
