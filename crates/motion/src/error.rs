@@ -300,7 +300,7 @@ pub enum MotionError {
 
 /// A number for people: as written for ordinary magnitudes, in exponent form for very
 /// large or small ones (1e300, not 301 digits).
-pub(crate) fn readable(v: f64) -> String {
+pub fn readable(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
         format!("{v}")
     } else {

@@ -40,7 +40,7 @@ mod units;
 pub use at2::{parse_at2, parse_at2_in};
 pub use design_spectrum::DesignSpectrum;
 pub use envelope::Envelope;
-pub use error::MotionError;
+pub use error::{MotionError, readable};
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };

@@ -627,11 +627,7 @@ fn target_pga_expected(pga_g: f64) -> String {
         "must be positive and finite, within {} … {} g (perceptible shaking to the strongest ground motion recorded), got {} g",
         TARGET_PGA_BAND_G.0,
         TARGET_PGA_BAND_G.1,
-        if pga_g != 0.0 && pga_g.is_finite() && !(1e-4..1e6).contains(&pga_g.abs()) {
-            format!("{pga_g:e}")
-        } else {
-            format!("{pga_g}")
-        }
+        slipload_motion::readable(pga_g)
     )
 }
 

@@ -423,7 +423,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
             "--pga-g: the peak ground acceleration must be positive and finite, within {} … {} g (perceptible shaking to the strongest ground motion recorded; a PGA of 0 is the ground at rest), got {} g",
             slipload_sim::scene::TARGET_PGA_BAND_G.0,
             slipload_sim::scene::TARGET_PGA_BAND_G.1,
-            readable(args.pga_g)
+            slipload_motion::readable(args.pga_g)
         );
     }
     let target = SuiteTarget::Pga {
@@ -457,16 +457,6 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// `v` as people read it: plain for ordinary magnitudes, in exponent form for the
-/// absurd ones (never 300 digits).
-fn readable(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
 }
 
 #[cfg(test)]
