@@ -9,29 +9,14 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-use common::{root, scratch, slipload_within, stderr};
+use common::{refused, root, scratch};
 use std::path::{Path, PathBuf};
 
 const B: &str = "configs/benchmark-3story.json";
 const STUDY: &str = "configs/study-benchmark.json";
-/// Seconds any refusal may take: they are all up-front (a regression that blocks on a
-/// FIFO or reads /dev/zero is killed after this and fails).
-const T: u64 = 60;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn refused(args: &[&str], needles: &[&str]) -> String {
-    let o = slipload_within(T, args);
-    let err = stderr(&o);
-    assert!(!o.status.success(), "slipload {args:?} succeeded: {err}");
-    assert!(o.stdout.is_empty(), "no answer on stdout: {args:?}");
-    for n in needles {
-        assert!(err.contains(n), "slipload {args:?}: {n:?} not in: {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-    err
 }
 
 fn fifo(dir: &Path, name: &str) -> PathBuf {

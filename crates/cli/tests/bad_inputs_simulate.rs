@@ -7,7 +7,7 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-use common::{scratch, slipload_within, stderr};
+use common::{refused, scratch, slipload_within, stderr};
 use std::path::Path;
 
 const B: &str = "configs/benchmark-3story.json";
@@ -17,18 +17,6 @@ const T: u64 = 60;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn refused(args: &[&str], needles: &[&str]) -> String {
-    let o = slipload_within(T, args);
-    let err = stderr(&o);
-    assert!(!o.status.success(), "slipload {args:?} succeeded: {err}");
-    assert!(o.stdout.is_empty(), "no answer on stdout: {args:?}");
-    for n in needles {
-        assert!(err.contains(n), "slipload {args:?}: {n:?} not in: {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-    err
 }
 
 /// `simulate` of the benchmark under a record file `name` holding `text` (written to a

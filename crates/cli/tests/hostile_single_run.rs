@@ -5,27 +5,13 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-use common::{root, scratch, slipload_within, stderr};
+use common::{refused, root, scratch};
 use std::path::Path;
 
 const NIS: &str = "records/NIS000.AT2";
-/// Seconds any refusal may take (they are all up-front; this is generous).
-const T: u64 = 60;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn refused(args: &[&str], needles: &[&str]) -> String {
-    let o = slipload_within(T, args);
-    let err = stderr(&o);
-    assert!(!o.status.success(), "slipload {args:?} succeeded: {err}");
-    assert!(o.stdout.is_empty(), "no answer on stdout: {args:?}");
-    for n in needles {
-        assert!(err.contains(n), "slipload {args:?}: {n:?} not in: {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-    err
 }
 
 /// `simulate` of the building `json` (written to a scratch file) under NIS000: refused,

@@ -80,3 +80,19 @@ pub fn slipload_within(secs: u64, args: &[&str]) -> Output {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// Runs `slipload ARGS` at the repository root under a 60 s guard (every refusal is
+/// up front; one that blocks on a FIFO or reads a device for ever is killed and fails)
+/// and asserts the refusal: non-zero exit, nothing on stdout, no panic, and each of
+/// `needles` in the message. Returns the message.
+pub fn refused(args: &[&str], needles: &[&str]) -> String {
+    let o = slipload_within(60, args);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "slipload {args:?} succeeded: {err}");
+    assert!(o.stdout.is_empty(), "no answer on stdout: {args:?}");
+    for n in needles {
+        assert!(err.contains(n), "slipload {args:?}: {n:?} not in: {err}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
