@@ -447,7 +447,8 @@ fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
 /// threshold of perceptible shaking. Below it no dissipator of a real frame slips, every
 /// design answers as the bare frame and an optimum would be rounding noise (at 1e-300 g
 /// the responses are subnormal numbers).
-pub const MIN_STUDY_PGA_G: f64 = 1e-3;
+/// The same floor as a scene's target PGA ([`slipload_sim::scene::TARGET_PGA_BAND_G`]).
+pub const MIN_STUDY_PGA_G: f64 = slipload_sim::scene::TARGET_PGA_BAND_G.0;
 
 /// A suite's target intensity (g) within [[`MIN_STUDY_PGA_G`], `MAX_ABS_ACCEL_G`].
 fn intensity_g(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
