@@ -908,9 +908,8 @@ impl Study {
         let name = Path::new(BENCHMARK_STUDY_ORIGIN);
         let mut cfg = StudyConfig::from_json(BENCHMARK_STUDY, name)?;
         let b: slipload_sim::BuildingConfig =
-            serde_json::from_str(slipload_sim::scene::BENCHMARK_BUILDING).map_err(|e| {
-                OptError::Argument(format!("the embedded benchmark building: {e}"))
-            })?;
+            serde_json::from_str(slipload_sim::scene::BENCHMARK_BUILDING)
+                .map_err(|e| OptError::Argument(format!("the embedded benchmark building: {e}")))?;
         cfg.building = slipload_sim::scene::BuildingRef::Inline(Box::new(b));
         Study::from_config(cfg, name)
     }

@@ -768,6 +768,36 @@ fn vec_or_zero(
     }
 }
 
+impl SceneConfig {
+    /// Parses a scene file's text — or a building file's, which is a scene with no
+    /// excitation. `path` names it in errors.
+    pub fn from_json(text: &str, path: &Path) -> Result<SceneConfig, SimError> {
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|source| SimError::Json {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        let is_scene = value
+            .as_object()
+            .is_some_and(|o| o.contains_key("building"));
+        Ok(if is_scene {
+            crate::kind::parse::<SceneConfig>(text, path, Expected::SceneOrBuilding)?
+        } else {
+            let b: BuildingConfig = crate::kind::parse(text, path, Expected::SceneOrBuilding)?;
+            SceneConfig {
+                name: b.name.clone(),
+                description: None,
+                building: BuildingRef::Inline(Box::new(b)),
+                excitation: ExcitationConfig::default(),
+                duration: None,
+                method: MethodConfig::default(),
+                outputs: OutputsConfig::default(),
+                reduce: true,
+            }
+        })
+    }
+}
+
 impl Scene {
     /// Loads a scene file — or a building file, which is a scene with no excitation.
     pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
@@ -782,30 +812,7 @@ impl Scene {
     /// Parses a scene (or building) from JSON text; `path` names it in errors and anchors
     /// relative paths.
     pub fn from_json(text: &str, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
-        let value: serde_json::Value =
-            serde_json::from_str(text).map_err(|source| SimError::Json {
-                path: path.to_path_buf(),
-                source,
-            })?;
-        let is_scene = value
-            .as_object()
-            .is_some_and(|o| o.contains_key("building"));
-        let cfg = if is_scene {
-            crate::kind::parse::<SceneConfig>(text, path, Expected::SceneOrBuilding)?
-        } else {
-            let b: BuildingConfig = crate::kind::parse(text, path, Expected::SceneOrBuilding)?;
-            SceneConfig {
-                name: b.name.clone(),
-                description: None,
-                building: BuildingRef::Inline(Box::new(b)),
-                excitation: ExcitationConfig::default(),
-                duration: None,
-                method: MethodConfig::default(),
-                outputs: OutputsConfig::default(),
-                reduce: true,
-            }
-        };
-        Scene::from_config(cfg, path, over)
+        Scene::from_config(SceneConfig::from_json(text, path)?, path, over)
     }
 
     /// Resolves a config: loads the building and the record, applies overrides, validates.

@@ -19,19 +19,7 @@ pub struct MergeArgs {
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     super::output_folder("--out", &args.out)?;
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
-    // one folder named twice (or through a link) would be counted as two shards
-    let mut seen: Vec<(PathBuf, &std::path::Path)> = Vec::new();
-    for d in &dirs {
-        let key = std::fs::canonicalize(d).unwrap_or_else(|_| d.to_path_buf());
-        if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
-            anyhow::bail!(
-                "shard folder {} is named twice (first as {}): name each shard folder once",
-                d.display(),
-                first.display()
-            );
-        }
-        seen.push((key, d));
-    }
+    // a folder named twice, or the output among the shards, is refused
     slipload_opt::sweep::check_merge_folders(&dirs, &args.out)?;
     // one folder, one writer: refused at once if another command holds it
     let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;

@@ -4,8 +4,8 @@
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use slipload_opt::pipeline::{Phase, Progress};
 use slipload_opt::Study;
+use slipload_opt::pipeline::{Phase, Progress};
 use std::path::Path;
 use std::sync::Mutex;
 
