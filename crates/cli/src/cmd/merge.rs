@@ -1,6 +1,5 @@
 //! `slipload merge`: joins the journals of sweep shards into the files one run writes.
 
-use crate::study_figures;
 use slipload_opt::pipeline::{SweepRun, merge_shards};
 use std::path::PathBuf;
 
@@ -33,7 +32,7 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     );
     // the figures a single sweep draws, from the same manifest and rows
     if let Some(figures) = &run.figures {
-        let written = study_figures::write(figures, &args.out)?;
+        let written = slipload_figures::study::write(figures, &args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),
