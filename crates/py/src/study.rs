@@ -179,6 +179,7 @@ pub fn optimize<'py>(
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
     slipload_opt::output::check_output_folder("out", &out).py()?;
+    crate::figures::check_fonts()?;
     let options = OptimizeOptions {
         refine: refine_method(refine)?,
         map: map_floors.map(|(a, b)| MapRequest {
@@ -244,6 +245,7 @@ pub fn sweep<'py>(
         ));
     }
     slipload_opt::output::check_output_folder("out", &out).py()?;
+    crate::figures::check_fonts()?;
     let shard = match shard {
         None => slipload_opt::Shard::ALL,
         Some(spec) => slipload_opt::Shard::parse(spec, None, &|k| std::env::var(k).ok()).py()?,
@@ -290,6 +292,7 @@ pub fn merge<'py>(
     slipload_opt::output::check_output_folder("out", &out).py()?;
     let refs: Vec<&Path> = dirs.iter().map(PathBuf::as_path).collect();
     slipload_opt::sweep::check_merge_folders(&refs, &out).py()?;
+    crate::figures::check_fonts()?;
     let (run, written) = watched(py, None, None, |_| {
         let run = merge_shards(&refs, &out).py()?;
         let written = match &run.figures {

@@ -20,6 +20,8 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
     // a folder named twice, or the output among the shards, is refused
     slipload_opt::sweep::check_merge_folders(&dirs, &args.out)?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     // one folder, one writer: refused at once if another command holds it
     let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let run = merge_shards(&dirs, &args.out)?;

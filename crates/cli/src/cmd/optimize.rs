@@ -136,6 +136,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         super::count_flag("--map-grid", args.map_grid, 1000)?;
     }
     let study = load_study(args.study.as_deref())?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],
         other => anyhow::bail!(

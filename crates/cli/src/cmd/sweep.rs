@@ -49,6 +49,8 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         }
     }
     let study = load_study(Some(&args.study))?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     let shard = match &args.shard {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
