@@ -340,7 +340,9 @@ def batch_designs(
     would), unless ``method``/``dt`` say otherwise.
 
     Args:
-        scene: the building (a scene; its ground motion is replaced by each record).
+        scene: the building: a :class:`Scene`, a scene or building file, a dict, or
+            ``None`` for the benchmark building (its ground motion is replaced by each
+            record).
         records: the suite.
         slip_loads: 2-D float64 array, shape (designs, dissipators): the slip loads, N,
             of the floors that carry a dissipator, in floor order (``scene.damper_floors``).
@@ -357,11 +359,15 @@ def batch_designs(
         ``energy_friction``, ``energy_viscous``, ``energy_balance_error`` (J); and
         ``records`` (names), ``slip_loads``, ``damper_floors``.
     """
+    records = list(records)
+    if not isinstance(scene, Scene):
+        # a building alone has no ground motion to resolve with: the first record stands in
+        scene = load_scene(scene, record=records[0] if records else None)
     return _watched(
         _slipload.batch_designs,
         progress,
-        _scene(scene),
-        list(records),
+        scene,
+        records,
         slip_loads,
         method=method,
         dt=dt,
