@@ -136,3 +136,42 @@ def test_rank_and_table_write_the_cli_bytes(tmp_path, cli_optimized):
     same_folders(tmp_path / "table", tmp_path / "cli-table")
     with pytest.raises(slipload.InputError, match="given twice"):
         slipload.table(str(STUDY), tmp_path / "t2", intensity_scales=[1.0, 1.0], progress=False)
+
+
+def test_ctrl_c_stops_a_sweep_and_resume_finishes_it(tmp_path):
+    import signal
+    import threading
+
+    study = json.loads(STUDY.read_text())
+    study["sweep"]["points"] = 400
+    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
+    for s in study["suites"]:
+        if "records" in s:
+            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    out = tmp_path / "sweep"
+    seen = []
+    fired = threading.Event()
+
+    def progress(phase, done, total):
+        seen.append(done)
+        if done > 0 and not fired.is_set():
+            fired.set()
+            threading.Timer(0.02, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+
+    with pytest.raises(KeyboardInterrupt):
+        slipload.sweep(str(path), out, progress=progress, threads=1)
+    journalled = len((out / "journal.jsonl").read_text().splitlines())
+    assert 0 < journalled < 402 * 5, "stopped part-way, every finished task journalled"
+    assert not (out / "manifest.json").exists() or not (out / "responses.csv").exists()
+    resumed = slipload.sweep(str(path), out, resume=True, progress=False)
+    assert resumed.details["resumed"] >= journalled - 1
+    run_cli("sweep", path, "--out", tmp_path / "cli", "--quiet")
+    same_folders(out, tmp_path / "cli")
+
+
+def test_a_tqdm_bar_when_asked(tmp_path, capsys):
+    pytest.importorskip("tqdm")
+    slipload.sweep(str(STUDY), tmp_path / "o", progress=True)
+    assert "sweep" in capsys.readouterr().err
