@@ -165,9 +165,9 @@ def main():
         "slipload from Python beside the command line (one run, one machine)",
         "",
         f"simulate: {s['scene']}",
-        f"  command line in process (simulate --repeat {s['calls']}, median): {1e3 * s['cli_in_process_s']:.3f} ms",
-        f"  Python per call (median of {s['calls']}):                        {1e3 * s['python_per_call_s']:.3f} ms  ({100 * s['overhead']:+.1f} %, target at most +5 %)",
-        f"  the engine's own time inside those calls (median):              {1e3 * s['python_engine_s']:.3f} ms",
+        "  " + f"command line, in process (simulate --repeat {s['calls']}, median):".ljust(64) + f"{1e3 * s['cli_in_process_s']:.3f} ms",
+        "  " + f"Python, per call (median of {s['calls']} calls):".ljust(64) + f"{1e3 * s['python_per_call_s']:.3f} ms ({100 * s['overhead']:+.1f} %, target at most +5 %)",
+        "  " + "the engine's own time inside those calls (median):".ljust(64) + f"{1e3 * s['python_engine_s']:.3f} ms",
         "",
         "batch_designs vs slipload sweep (same designs x records, fidelity, threads):",
     ]

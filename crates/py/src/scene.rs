@@ -495,11 +495,14 @@ pub fn simulate(
 #[derive(Debug)]
 pub struct PyOutcome {
     out: Outcome,
+    // taken out of `out`: shared with the History objects handed out, never copied
+    history: Option<Arc<slipload_sim::History>>,
 }
 
 impl PyOutcome {
-    pub(crate) fn of(out: Outcome) -> PyOutcome {
-        PyOutcome { out }
+    pub(crate) fn of(mut out: Outcome) -> PyOutcome {
+        let history = out.history.take().map(Arc::new);
+        PyOutcome { out, history }
     }
 }
 
@@ -626,10 +629,7 @@ impl PyOutcome {
     /// The histories (None unless asked for with outputs=["histories"]).
     #[getter]
     fn history(&self) -> Option<PyHistory> {
-        self.out.history.as_ref().map(|h| PyHistory {
-            columns: h.columns.clone(),
-            rows: h.rows.clone(),
-        })
+        self.history.clone().map(|inner| PyHistory { inner })
     }
     /// The output contract's JSON text, as `slipload simulate --format json` prints it.
     fn to_json(&self) -> PyResult<String> {
@@ -661,8 +661,7 @@ impl PyOutcome {
 #[pyclass(name = "History", module = "slipload", frozen)]
 #[derive(Debug)]
 pub struct PyHistory {
-    columns: Vec<String>,
-    rows: Vec<f64>,
+    inner: Arc<slipload_sim::History>,
 }
 
 #[pymethods]
@@ -670,13 +669,13 @@ impl PyHistory {
     /// Column names with their units.
     #[getter]
     fn columns(&self) -> Vec<String> {
-        self.columns.clone()
+        self.inner.columns.clone()
     }
     /// The values, shape (steps + 1, columns).
     #[getter]
     fn array<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let w = self.columns.len().max(1);
-        array2(py, self.rows.len() / w, w, self.rows.clone())
+        let w = self.inner.columns.len().max(1);
+        array2(py, self.inner.rows.len() / w, w, self.inner.rows.clone())
     }
     /// Time, s (the first column).
     #[getter]
@@ -684,7 +683,7 @@ impl PyHistory {
         self.column(py, 0)
     }
     fn __len__(&self) -> usize {
-        self.rows.len() / self.columns.len().max(1)
+        self.inner.rows.len() / self.inner.columns.len().max(1)
     }
     /// One column by name.
     fn __getitem__<'py>(
@@ -692,12 +691,17 @@ impl PyHistory {
         py: Python<'py>,
         name: &str,
     ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-        let j = self.columns.iter().position(|c| c == name).ok_or_else(|| {
-            pyo3::exceptions::PyKeyError::new_err(format!(
-                "{name:?}: no such column; the columns are {}",
-                self.columns.join(", ")
-            ))
-        })?;
+        let j = self
+            .inner
+            .columns
+            .iter()
+            .position(|c| c == name)
+            .ok_or_else(|| {
+                pyo3::exceptions::PyKeyError::new_err(format!(
+                    "{name:?}: no such column; the columns are {}",
+                    self.inner.columns.join(", ")
+                ))
+            })?;
         self.column(py, j)
     }
     /// A pandas DataFrame of the histories (needs pandas).
@@ -706,31 +710,30 @@ impl PyHistory {
             pyo3::exceptions::PyImportError::new_err("to_pandas needs pandas: pip install pandas")
         })?;
         let kwargs = PyDict::new(py);
-        kwargs.set_item("columns", PyList::new(py, &self.columns)?)?;
+        kwargs.set_item("columns", PyList::new(py, &self.inner.columns)?)?;
         pandas
             .getattr("DataFrame")?
             .call((self.array(py)?,), Some(&kwargs))
     }
     /// The history as CSV text, as `slipload simulate --history` writes it.
     fn to_csv(&self) -> String {
-        slipload_sim::History {
-            columns: self.columns.clone(),
-            rows: self.rows.clone(),
-        }
-        .to_csv()
+        self.inner.to_csv()
     }
     fn __repr__(&self) -> String {
         format!(
             "History({} steps × {} columns)",
             self.__len__(),
-            self.columns.len()
+            self.inner.columns.len()
         )
     }
 }
 
 impl PyHistory {
     fn column<'py>(&self, py: Python<'py>, j: usize) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-        let w = self.columns.len().max(1);
-        Ok(array1(py, self.rows.chunks(w).map(|r| r[j]).collect()))
+        let w = self.inner.columns.len().max(1);
+        Ok(array1(
+            py,
+            self.inner.rows.chunks(w).map(|r| r[j]).collect(),
+        ))
     }
 }
