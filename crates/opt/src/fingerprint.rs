@@ -261,7 +261,6 @@ pub fn of_study(study: &crate::Study, designs: &[crate::sampler::Design]) -> Fin
         let p = study.config.pareto.unwrap_or_default();
         h.u64(p.designs as u64)
             .u64(p.batch as u64)
-            .u64(p.seed)
             .f64(p.initial_radius);
         part(
             "objectives",

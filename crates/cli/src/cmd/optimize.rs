@@ -41,7 +41,7 @@ pub struct OptimizeArgs {
     pub fresh: bool,
 }
 
-fn kn(v: &[f64]) -> String {
+pub(crate) fn kn(v: &[f64]) -> String {
     v.iter()
         .map(|x| format!("{:.1}", x / 1e3))
         .collect::<Vec<_>>()
@@ -50,7 +50,7 @@ fn kn(v: &[f64]) -> String {
 
 /// The design variables of the optimum that sit on a bound of the study's space, said
 /// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
-fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
+pub(crate) fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
     let load_of = |floor: usize| {
         study
             .space
@@ -166,11 +166,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let report = optimize_study(&study, &args.out, &options, &PhaseBars::default())?;
     let written = study_figures::write(&report.figures, &args.out)?;
     print_summary(&study, &report, started.elapsed().as_secs_f64());
-    outln!(
-        "wrote {}/{{{}}}",
-        args.out.display(),
-        StudyReport::FILES.join(",")
-    );
+    let mut files: Vec<&str> = StudyReport::FILES.to_vec();
+    if report.pareto.is_some() {
+        files.extend(slipload_opt::pareto::ParetoReport::FILES);
+    }
+    outln!("wrote {}/{{{}}}", args.out.display(), files.join(","));
     outln!(
         "figures (SVG, PNG, CSV): {}/{{{}}}",
         args.out.display(),
@@ -299,5 +299,17 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             obj(f.f_check),
             obj(f.f_sweep)
         );
+    }
+    match &report.pareto {
+        Some(p) => {
+            for line in super::pareto_summary::front_lines(study, report, p) {
+                outln!("{line}");
+            }
+        }
+        None => {
+            if let Some(line) = super::pareto_summary::sweep_trade_off(report) {
+                outln!("{line}");
+            }
+        }
     }
 }

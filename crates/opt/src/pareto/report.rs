@@ -54,6 +54,10 @@ pub struct Certified {
     pub check_ranks: Vec<usize>,
     /// Each front design's largest relative change of an objective, check against sweep.
     pub moved: Vec<f64>,
+    /// How far each front design is dominated at the check fidelity: over the front
+    /// designs that dominate it there, the largest relative amount by which one is
+    /// better in some objective (0 for a design still non-dominated).
+    pub dominated_by: Vec<f64>,
     /// Simulations run now and taken from `check.jsonl`.
     pub ran: usize,
     /// Simulations taken from `check.jsonl`.
@@ -119,8 +123,24 @@ pub fn certify(
                 .fold(0.0, f64::max)
         })
         .collect();
+    let dominated_by = check
+        .iter()
+        .map(|ci| {
+            check
+                .iter()
+                .filter(|cj| super::front::dominates(cj, ci))
+                .map(|cj| {
+                    ci.iter()
+                        .zip(cj)
+                        .map(|(a, b)| (a - b) / a.abs().max(f64::MIN_POSITIVE))
+                        .fold(0.0, f64::max)
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect();
     Ok(Certified {
         front,
+        dominated_by,
         ran: designs.len() * study.records.len() - reused,
         reused,
         check,
@@ -257,7 +277,7 @@ struct ParetoFile<'a> {
     reference_point: &'a [f64],
     hypervolume: f64,
     held: bool,
-    dominated_at_check: Vec<String>,
+    dominated_at_check: Vec<(String, f64)>,
     largest_move: f64,
     bare: &'a [f64],
     file: &'a [f64],
@@ -386,9 +406,9 @@ impl ParetoReport {
             dominated_at_check: c
                 .front
                 .iter()
-                .zip(&c.check_ranks)
-                .filter(|(_, r)| **r > 1)
-                .map(|(&i, _)| ev[i].label.clone())
+                .zip(c.check_ranks.iter().zip(&c.dominated_by))
+                .filter(|(_, (r, _))| **r > 1)
+                .map(|(&i, (_, by))| (ev[i].label.clone(), *by))
                 .collect(),
             largest_move: c.moved.iter().copied().fold(0.0, f64::max),
             bare: &self.search.bare,
