@@ -140,7 +140,8 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
             values(&p.objectives, &ev[i].objectives)
         ));
     }
-    let bounds: Vec<String> = [("the first optimum", best), ("the knee", k)]
+    let first_optimum = format!("the {} optimum", first.metric.as_str());
+    let bounds: Vec<String> = [(first_optimum.as_str(), best), ("the knee", k)]
         .into_iter()
         .map(|(what, i)| {
             let on = study.space.on_bounds(&ev[i].z);
@@ -165,7 +166,7 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
         .iter()
         .zip(c.check_ranks.iter().zip(&c.dominated_by))
         .filter(|(_, (r, _))| **r > 1)
-        .map(|(&i, (_, by))| format!("{} (by {:.2} %)", ev[i].label, by * 100.0))
+        .map(|(&i, (_, by))| format!("{} (within {:.2} %)", ev[i].label, by * 100.0))
         .collect();
     out.push(format!(
         "  front at reference accuracy ({}): {}; largest change of an objective {:.2} % ({})",
@@ -174,7 +175,7 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
             "held, no design became dominated".to_string()
         } else {
             format!(
-                "{} of {} designs dominated now (by how much a design beside it is better): {}",
+                "{} of {} designs dominated now (within: the improvement in every objective that would make it non-dominated again): {}",
                 dominated.len(),
                 front.len(),
                 dominated.join(", ")

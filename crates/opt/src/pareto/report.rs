@@ -54,9 +54,10 @@ pub struct Certified {
     pub check_ranks: Vec<usize>,
     /// Each front design's largest relative change of an objective, check against sweep.
     pub moved: Vec<f64>,
-    /// How far each front design is dominated at the check fidelity: over the front
-    /// designs that dominate it there, the largest relative amount by which one is
-    /// better in some objective (0 for a design still non-dominated).
+    /// How far each front design is dominated at the check fidelity: the least
+    /// relative improvement in every objective that would leave it dominated by none of
+    /// the front designs that dominate it there (the multiplicative ε of ε-dominance;
+    /// 0 for a design still non-dominated).
     pub dominated_by: Vec<f64>,
     /// Simulations run now and taken from `check.jsonl`.
     pub ran: usize,
@@ -133,7 +134,7 @@ pub fn certify(
                     ci.iter()
                         .zip(cj)
                         .map(|(a, b)| (a - b) / a.abs().max(f64::MIN_POSITIVE))
-                        .fold(0.0, f64::max)
+                        .fold(f64::INFINITY, f64::min)
                 })
                 .fold(0.0, f64::max)
         })
