@@ -4,7 +4,11 @@
 #   - DejaVu Sans (PNG figures render their text with it; Debian's fonts-dejavu-core),
 #   - Debian's chromium, and Node.js with npm when missing (the report test loads a page in
 #     a real headless browser),
-#   - the check script's npm packages (`npm ci` in scripts/check-report, from its lock file).
+#   - the check script's npm packages (`npm ci` in scripts/check-report, from its lock file),
+#   - for the Python package's tests: a virtual environment it creates (target/py-venv)
+#     with maturin, pytest, numpy, pandas, matplotlib, nbclient, ipykernel and tqdm from the
+#     package index, into which it installs the package the README's way
+#     (`pip install ./crates/py`, built from this checkout).
 # Installing needs root or sudo and Debian's apt-get; without them it stops and says what
 # to install. Arguments are passed to `cargo test` (e.g. `scripts/test.sh -p slipload-sim`).
 # Usage: bash scripts/test.sh   (from anywhere)
@@ -30,6 +34,12 @@ if [ ! -x "${CHROMIUM:-/usr/bin/chromium}" ]; then
 fi
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
     pkgs+=(nodejs npm)
+fi
+python=${PYTHON:-python3}
+if ! command -v "$python" >/dev/null 2>&1; then
+    pkgs+=(python3 python3-venv)
+elif ! "$python" -c "import venv, ensurepip" >/dev/null 2>&1; then
+    pkgs+=(python3-venv)
 fi
 if [ ${#pkgs[@]} -gt 0 ]; then
     if [ "$(id -u)" -eq 0 ]; then
@@ -61,4 +71,20 @@ fi
 # The real-browser report test runs here, never skipped.
 unset SLIPLOAD_SKIP_BROWSER
 echo "== cargo test --workspace $*" >&2
-exec cargo test --workspace "$@"
+cargo test --workspace "$@"
+
+# The Python package: installed as the README says into a virtual environment of its
+# own, then its tests, which compare it with the release command line.
+venv=target/py-venv
+if [ ! -x "$venv/bin/python" ]; then
+    echo "== creating $venv" >&2
+    "$python" -m venv "$venv"
+fi
+echo "== pip install the test tools and ./crates/py into $venv" >&2
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    "maturin>=1.9.4,<2" pytest numpy pandas matplotlib nbclient nbformat ipykernel tqdm
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./crates/py
+echo "== cargo build --release -p slipload (the command line the Python tests compare with)" >&2
+cargo build --release -p slipload --quiet
+echo "== pytest crates/py/tests" >&2
+SLIPLOAD_BIN="$PWD/target/release/slipload" exec "$venv/bin/python" -m pytest -q crates/py/tests

@@ -15,8 +15,6 @@ mod cmd;
 mod figures;
 mod html;
 mod output;
-mod plot;
-mod study_figures;
 
 use clap::Parser;
 

@@ -10,10 +10,8 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
-#[path = "../src/plot/meta.rs"]
-#[allow(dead_code)] // the writer half of the module is not used by a reader
-mod meta;
 use common::{root, scratch, slipload_in};
+use slipload_figures::plot::meta;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -205,3 +205,57 @@ impl FamilyReport {
         write_atomic(&out.join("family.md"), self.to_markdown().as_bytes())
     }
 }
+
+/// Checks the scales of a family table before anything runs: every period scale keeps the
+/// frame's periods within the physical band, every intensity scale keeps the records'
+/// PGA within the study's band, and no scale is given twice.
+pub fn check_scales(
+    study: &Study,
+    period_scales: &[f64],
+    intensity_scales: &[f64],
+) -> Result<(), OptError> {
+    // every scaled frame must stay a building: its periods within the physical band
+    let (lo, hi) = slipload_sim::building::PERIOD_BAND_S;
+    let periods = study.building.modes.periods();
+    let (t_long, t_short) = (periods[0], periods[periods.len() - 1]);
+    for &p in period_scales {
+        if !(p.is_finite() && p > 0.0 && t_short * p >= lo && t_long * p <= hi) {
+            return Err(OptError::Argument(format!(
+                "--period-scales {p:e}: must be positive and keep the frame's periods ({t_short:.3} … {t_long:.3} s) within {lo:e} … {hi:e} s"
+            )));
+        }
+    }
+    // every scaled record must stay a ground motion: its PGA within the study's band
+    let pgas = study.records.iter().map(|r| r.pga() / slipload_motion::G);
+    let (pga_lo, pga_hi) = pgas.fold((f64::INFINITY, 0.0_f64), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
+    let (min_g, max_g) = (
+        crate::study::MIN_STUDY_PGA_G,
+        slipload_motion::MAX_ABS_ACCEL_G,
+    );
+    for &i in intensity_scales {
+        if !(i.is_finite() && i > 0.0 && pga_lo * i >= min_g && pga_hi * i <= max_g) {
+            return Err(OptError::Argument(format!(
+                "--intensity-scales {i:e}: must be positive and keep the records' PGA ({pga_lo:.3} … {pga_hi:.3} g) within {min_g} … {max_g} g (below, no dissipator slips; beyond, no ground has shaken)"
+            )));
+        }
+    }
+    for (name, scales) in [
+        ("--period-scales", period_scales),
+        ("--intensity-scales", intensity_scales),
+    ] {
+        if let Some((k, v)) = scales
+            .iter()
+            .enumerate()
+            .find(|(k, v)| scales[..*k].contains(v))
+        {
+            return Err(OptError::Argument(format!(
+                "{name}: {v} is given twice (values {} and {}): each scale is one row of the table; give each once",
+                scales.iter().position(|x| x == v).map_or(0, |p| p + 1),
+                k + 1
+            )));
+        }
+    }
+    Ok(())
+}

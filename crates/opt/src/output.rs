@@ -112,6 +112,31 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OptError> {
     result.map_err(io)
 }
 
+/// Checks an output folder before anything runs: a folder, or nothing yet (it is created);
+/// an existing file, FIFO, device or socket is refused. `what` names the option that gave
+/// it (`--out`, `out`).
+pub fn check_output_folder(what: &str, dir: &Path) -> Result<(), OptError> {
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(m) => Err(OptError::Argument(format!(
+            "{what} {}: {} is {}, not a folder: give a folder (created if missing) for the output files",
+            dir.display(),
+            dir.display(),
+            if m.is_file() {
+                "an existing file"
+            } else {
+                "not a regular folder (a FIFO, device or socket)"
+            }
+        ))),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OptError::Io {
+            path: dir.to_path_buf(),
+            source,
+        }
+        .context(format!("{what} {}", dir.display()))),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test

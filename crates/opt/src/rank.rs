@@ -73,6 +73,42 @@ fn ranks(obj: &[f64]) -> Vec<usize> {
     r
 }
 
+/// Reads candidate designs from `path` (`[{"name", "slip_loads_kn"}, …]`, as `optimize`
+/// writes `candidates.json`) and checks them against `study` ([`to_newtons`]). A study,
+/// scene or building given instead is named as such; an empty list is refused.
+pub fn load_designs(study: &Study, path: &std::path::Path) -> Result<Vec<NamedDesign>, OptError> {
+    let shown = path.display();
+    let text = slipload_motion::limits::read_input_text(
+        path,
+        "designs",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )
+    .map_err(|e| OptError::from(e).context(format!("reading {shown}")))?;
+    let designs: Vec<NamedDesign> = match serde_json::from_str(&text) {
+        Ok(d) => d,
+        Err(e) => {
+            return Err(match slipload_sim::FileKind::of_json(&text) {
+                // a study, scene or building given as the candidates: say what it is
+                Some(kind) if kind != slipload_sim::FileKind::Designs => {
+                    OptError::Argument(format!(
+                        "{shown} is {}, not a list of candidate designs ([{{\"name\", \"slip_loads_kn\"}}, …], as optimize writes in candidates.json): {}",
+                        kind.article(),
+                        kind.advice(path)
+                    ))
+                }
+                _ => OptError::Argument(format!(
+                    "{shown}: expected [{{\"name\", \"slip_loads_kn\"}}, …]: {e}"
+                )),
+            });
+        }
+    };
+    if designs.is_empty() {
+        return Err(OptError::Argument(format!("{shown}: no designs")));
+    }
+    to_newtons(study, &designs).map_err(|e| e.context(format!("checking {shown}")))?;
+    Ok(designs)
+}
+
 /// Checks candidate designs against the study's space (count, finite, ≥ 0; a friction
 /// law with F⁻ ≤ 0 ≤ F⁺) and that their names are unique (the tables and the ranking name
 /// each design once); N out, friction laws carried.

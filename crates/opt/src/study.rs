@@ -587,6 +587,13 @@ fn check_work(
 /// Longest suite or design name, characters: a label of tables, not a text.
 pub const MAX_LABEL_CHARS: usize = 200;
 
+/// The benchmark study (`configs/study-benchmark.json`), embedded so that every front
+/// runs the main job with no files; its building is the embedded benchmark building.
+pub const BENCHMARK_STUDY: &str = include_str!("../../../configs/study-benchmark.json");
+
+/// How errors name the embedded benchmark study.
+pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
+
 /// What is wrong with a suite or design name, if anything. Names label rows of the CSV
 /// and Markdown tables, which write them as they are: an empty name prints as nothing,
 /// and a comma, double quote, `|` or control character (a newline) would split or shift
@@ -920,6 +927,18 @@ impl StudyConfig {
 }
 
 impl Study {
+    /// The embedded benchmark study (`configs/study-benchmark.json` with the embedded
+    /// benchmark building inlined): what every front optimises when no study is named.
+    pub fn benchmark() -> Result<Study, OptError> {
+        let name = Path::new(BENCHMARK_STUDY_ORIGIN);
+        let mut cfg = StudyConfig::from_json(BENCHMARK_STUDY, name)?;
+        let b: slipload_sim::BuildingConfig =
+            serde_json::from_str(slipload_sim::scene::BENCHMARK_BUILDING)
+                .map_err(|e| OptError::Argument(format!("the embedded benchmark building: {e}")))?;
+        cfg.building = slipload_sim::scene::BuildingRef::Inline(Box::new(b));
+        Study::from_config(cfg, name)
+    }
+
     /// Reads, validates and resolves a study file.
     pub fn load(path: &Path) -> Result<Study, OptError> {
         let text = read_text(path)?;

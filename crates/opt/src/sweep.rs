@@ -498,7 +498,22 @@ fn resolved(p: &Path) -> std::path::PathBuf {
 /// Refuses a merge whose output folder is one of its shard folders, lies inside one, or
 /// holds one: the merged files would overwrite or mix with a shard's own (and a shard
 /// merged into itself keeps a partial journal beside complete tables).
+///
+/// A shard folder named twice (or through a link) is refused too: it would be counted as
+/// two shards.
 pub fn check_merge_folders(dirs: &[&Path], out: &Path) -> Result<(), OptError> {
+    let mut seen: Vec<(std::path::PathBuf, &Path)> = Vec::new();
+    for d in dirs {
+        let key = std::fs::canonicalize(d).unwrap_or_else(|_| d.to_path_buf());
+        if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
+            return Err(OptError::Argument(format!(
+                "shard folder {} is named twice (first as {}): name each shard folder once",
+                d.display(),
+                first.display()
+            )));
+        }
+        seen.push((key, d));
+    }
     let o = resolved(out);
     for d in dirs {
         let r = resolved(d);

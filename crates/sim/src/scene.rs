@@ -605,6 +605,36 @@ pub fn check_step_against_record(
     Ok(())
 }
 
+/// The benchmark building (`configs/benchmark-3story.json`), embedded so that every
+/// front (the command line, the Python package) runs with no files.
+pub const BENCHMARK_BUILDING: &str = include_str!("../../../configs/benchmark-3story.json");
+
+/// How errors and relative paths name the embedded benchmark building.
+pub const BENCHMARK_ORIGIN: &str = "configs/benchmark-3story.json (embedded)";
+
+/// The default scene of every front: the embedded benchmark building under the first
+/// record of the embedded synthetic suite, the default method and outputs.
+pub fn benchmark_scene_config() -> Result<SceneConfig, SimError> {
+    let building: BuildingConfig =
+        serde_json::from_str(BENCHMARK_BUILDING).map_err(|source| SimError::Json {
+            path: PathBuf::from(BENCHMARK_ORIGIN),
+            source,
+        })?;
+    Ok(SceneConfig {
+        name: Some("benchmark-3story, synthetic record 0".into()),
+        description: None,
+        building: BuildingRef::Inline(Box::new(building)),
+        excitation: ExcitationConfig {
+            synthetic: Some(SyntheticConfig::default()),
+            ..Default::default()
+        },
+        duration: None,
+        method: Default::default(),
+        outputs: Default::default(),
+        reduce: true,
+    })
+}
+
 /// Most iterations of each `delacruz` fixed-point loop a scene may ask for
 /// (`method.max_iterations`): the loops converge in a handful when they converge at all.
 pub const MAX_LOOP_ITERATIONS: u32 = 10_000;
@@ -738,6 +768,36 @@ fn vec_or_zero(
     }
 }
 
+impl SceneConfig {
+    /// Parses a scene file's text — or a building file's, which is a scene with no
+    /// excitation. `path` names it in errors.
+    pub fn from_json(text: &str, path: &Path) -> Result<SceneConfig, SimError> {
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|source| SimError::Json {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        let is_scene = value
+            .as_object()
+            .is_some_and(|o| o.contains_key("building"));
+        Ok(if is_scene {
+            crate::kind::parse::<SceneConfig>(text, path, Expected::SceneOrBuilding)?
+        } else {
+            let b: BuildingConfig = crate::kind::parse(text, path, Expected::SceneOrBuilding)?;
+            SceneConfig {
+                name: b.name.clone(),
+                description: None,
+                building: BuildingRef::Inline(Box::new(b)),
+                excitation: ExcitationConfig::default(),
+                duration: None,
+                method: MethodConfig::default(),
+                outputs: OutputsConfig::default(),
+                reduce: true,
+            }
+        })
+    }
+}
+
 impl Scene {
     /// Loads a scene file — or a building file, which is a scene with no excitation.
     pub fn load(path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
@@ -752,30 +812,7 @@ impl Scene {
     /// Parses a scene (or building) from JSON text; `path` names it in errors and anchors
     /// relative paths.
     pub fn from_json(text: &str, path: &Path, over: &SceneOverrides) -> Result<Scene, SimError> {
-        let value: serde_json::Value =
-            serde_json::from_str(text).map_err(|source| SimError::Json {
-                path: path.to_path_buf(),
-                source,
-            })?;
-        let is_scene = value
-            .as_object()
-            .is_some_and(|o| o.contains_key("building"));
-        let cfg = if is_scene {
-            crate::kind::parse::<SceneConfig>(text, path, Expected::SceneOrBuilding)?
-        } else {
-            let b: BuildingConfig = crate::kind::parse(text, path, Expected::SceneOrBuilding)?;
-            SceneConfig {
-                name: b.name.clone(),
-                description: None,
-                building: BuildingRef::Inline(Box::new(b)),
-                excitation: ExcitationConfig::default(),
-                duration: None,
-                method: MethodConfig::default(),
-                outputs: OutputsConfig::default(),
-                reduce: true,
-            }
-        };
-        Scene::from_config(cfg, path, over)
+        Scene::from_config(SceneConfig::from_json(text, path)?, path, over)
     }
 
     /// Resolves a config: loads the building and the record, applies overrides, validates.
@@ -783,6 +820,20 @@ impl Scene {
         cfg: SceneConfig,
         path: &Path,
         over: &SceneOverrides,
+    ) -> Result<Scene, SimError> {
+        Scene::from_config_with_record(cfg, path, over, None)
+    }
+
+    /// As [`Scene::from_config`], with a ground motion already in memory (a record a
+    /// notebook built from an array, say): when given, it replaces the scene's excitation
+    /// record or synthetic motion as an `over.record` file would, and goes through the
+    /// same rules — the window, `over.scale_pga_g`, the default step from its Δt, the
+    /// duration from its length.
+    pub fn from_config_with_record(
+        cfg: SceneConfig,
+        path: &Path,
+        over: &SceneOverrides,
+        given: Option<Arc<Record>>,
     ) -> Result<Scene, SimError> {
         if let Some(pga) = over.scale_pga_g
             && !target_pga_in_band(pga)
@@ -838,7 +889,7 @@ impl Scene {
             .map(|[s, d]| (s.0, d.0));
         let window: Option<(f64, f64, String)> = match (over.window, scene_window) {
             (Some((s, d)), _) => Some((s, d, "--window".to_string())),
-            (None, Some((s, d))) if over.record.is_none() => Some((
+            (None, Some((s, d))) if over.record.is_none() && given.is_none() => Some((
                 s,
                 d,
                 format!("{}: field `excitation.record.window`", path.display()),
@@ -859,7 +910,16 @@ impl Scene {
             }
         };
         // Ground motion: the override's file, else the scene's record, else its synthetic one.
-        let record = if let Some(file) = &over.record {
+        let record = if let Some(r) = given {
+            let mut r = match &window {
+                Some(_) => Arc::new(cut(Record::clone(&r))?),
+                None => r,
+            };
+            if let Some(pga) = over.scale_pga_g {
+                r = Arc::new(r.scaled_to_pga(pga * G)?);
+            }
+            Some(r)
+        } else if let Some(file) = &over.record {
             let mut r = cut(slipload_motion::read_record(file, over.units, None)?)?;
             if let Some(pga) = over.scale_pga_g {
                 r = r.scaled_to_pga(pga * G)?;

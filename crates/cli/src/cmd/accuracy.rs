@@ -159,7 +159,7 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         }
     }
     // The figures need a font: find out before the study runs.
-    crate::plot::raster::check_fonts()?;
+    slipload_figures::check_fonts()?;
     let mut scenes = Vec::new();
     if let Some(count) = args.synthetic {
         for i in 0..count {

@@ -1,6 +1,5 @@
 //! `slipload merge`: joins the journals of sweep shards into the files one run writes.
 
-use crate::study_figures;
 use slipload_opt::pipeline::{SweepRun, merge_shards};
 use std::path::PathBuf;
 
@@ -19,20 +18,10 @@ pub struct MergeArgs {
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     super::output_folder("--out", &args.out)?;
     let dirs: Vec<&std::path::Path> = args.dirs.iter().map(PathBuf::as_path).collect();
-    // one folder named twice (or through a link) would be counted as two shards
-    let mut seen: Vec<(PathBuf, &std::path::Path)> = Vec::new();
-    for d in &dirs {
-        let key = std::fs::canonicalize(d).unwrap_or_else(|_| d.to_path_buf());
-        if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
-            anyhow::bail!(
-                "shard folder {} is named twice (first as {}): name each shard folder once",
-                d.display(),
-                first.display()
-            );
-        }
-        seen.push((key, d));
-    }
+    // a folder named twice, or the output among the shards, is refused
     slipload_opt::sweep::check_merge_folders(&dirs, &args.out)?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     // one folder, one writer: refused at once if another command holds it
     let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let run = merge_shards(&dirs, &args.out)?;
@@ -45,7 +34,7 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     );
     // the figures a single sweep draws, from the same manifest and rows
     if let Some(figures) = &run.figures {
-        let written = study_figures::write(figures, &args.out)?;
+        let written = slipload_figures::study::write(figures, &args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),

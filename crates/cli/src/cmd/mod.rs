@@ -65,24 +65,9 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 /// or a device: said before any work, naming the flag (a folder that does not exist yet
 /// is created later).
 pub(crate) fn output_folder(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
-    match std::fs::metadata(dir) {
-        Ok(m) if m.is_dir() => Ok(()),
-        Ok(m) => anyhow::bail!(
-            "{flag} {}: {} is {}, not a folder: give a folder (created if missing) for the output files",
-            dir.display(),
-            dir.display(),
-            if m.is_file() {
-                "an existing file"
-            } else {
-                "not a regular folder (a FIFO, device or socket)"
-            }
-        ),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(anyhow::Error::new(e).context(format!("{flag} {}", dir.display()))),
-    }
+    Ok(slipload_opt::output::check_output_folder(flag, dir)?)
 }
 
-/// Refuses a count flag beyond `limit` (unless `--allow-large`), naming the flag.
 pub(crate) fn count_flag(flag: &str, n: usize, limit: usize) -> anyhow::Result<()> {
     if n <= limit || slipload_sim::limits::allow_large() {
         return Ok(());

@@ -4,7 +4,6 @@
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
 use super::study_args::{PhaseBars, discard_journals, load_study};
-use crate::study_figures;
 use slipload_opt::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::pipeline::{MapRequest, OptimizeOptions, StudyReport, optimize_study};
 use slipload_opt::study::RefineMethod;
@@ -137,6 +136,8 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         super::count_flag("--map-grid", args.map_grid, 1000)?;
     }
     let study = load_study(args.study.as_deref())?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],
         other => anyhow::bail!(
@@ -164,7 +165,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         discard_journals(&args.out)?;
     }
     let report = optimize_study(&study, &args.out, &options, &PhaseBars::default())?;
-    let written = study_figures::write(&report.figures, &args.out)?;
+    let written = slipload_figures::study::write(&report.figures, &args.out)?;
     print_summary(&study, &report, started.elapsed().as_secs_f64());
     let mut files: Vec<&str> = StudyReport::FILES.to_vec();
     if report.pareto.is_some() {

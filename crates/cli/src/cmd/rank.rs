@@ -2,10 +2,8 @@
 //! rank and how stable the ranking is under a bootstrap over the records.
 
 use super::study_args::{PhaseBars, load_study};
-use anyhow::Context;
 use slipload_opt::pipeline::rank_study;
-use slipload_opt::rank::{NamedDesign, Ranking};
-use slipload_sim::FileKind;
+use slipload_opt::rank::Ranking;
 use std::path::PathBuf;
 
 /// Arguments of `slipload rank`.
@@ -33,39 +31,7 @@ pub struct RankArgs {
 pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let study = load_study(Some(&args.study))?;
     super::output_folder("--out", &args.out)?;
-    let text = slipload_motion::limits::read_input_text(
-        &args.designs,
-        "designs",
-        slipload_motion::limits::MAX_CONFIG_BYTES,
-    )
-    .with_context(|| format!("reading {}", args.designs.display()))?;
-    let designs: Vec<NamedDesign> = match serde_json::from_str(&text) {
-        Ok(d) => d,
-        Err(e) => match FileKind::of_json(&text) {
-            // A study, scene or building given as the candidates: say what it is.
-            Some(kind) if kind != FileKind::Designs => anyhow::bail!(
-                "{} is {}, not a list of candidate designs ([{{\"name\", \"slip_loads_kn\"}}, …], as optimize writes in candidates.json): {}",
-                args.designs.display(),
-                kind.article(),
-                kind.advice(&args.designs)
-            ),
-            _ => {
-                return Err(e).with_context(|| {
-                    format!(
-                        "{}: expected [{{\"name\", \"slip_loads_kn\"}}, …]",
-                        args.designs.display()
-                    )
-                });
-            }
-        },
-    };
-    anyhow::ensure!(
-        !designs.is_empty(),
-        "{}: no designs",
-        args.designs.display()
-    );
-    slipload_opt::rank::to_newtons(&study, &designs)
-        .with_context(|| format!("checking {}", args.designs.display()))?;
+    let designs = slipload_opt::rank::load_designs(&study, &args.designs)?;
     // one folder, one writer: refused at once if another command holds it
     let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
     let r = rank_study(

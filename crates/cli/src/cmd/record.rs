@@ -269,8 +269,8 @@ fn info_table(rows: &[InfoRow]) -> String {
 
 fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
     if let Some(dir) = &args.plot {
-        crate::plot::check_plot_folder(dir)?;
-        crate::plot::raster::check_fonts()?;
+        crate::figures::check_plot_folder(dir)?;
+        slipload_figures::check_fonts()?;
     }
     let periods = args.periods.clone().unwrap_or_else(default_periods);
     if periods.is_empty() {

@@ -4,13 +4,12 @@
 
 use anyhow::Context;
 use slipload_motion::Units;
-use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
 use slipload_sim::units::{Dimension, parse_quantity};
-use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
+use slipload_sim::{MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
 
 /// The benchmark building, embedded so the program runs with no files.
-pub const BENCHMARK_BUILDING: &str = include_str!("../../../../configs/benchmark-3story.json");
+pub use slipload_sim::scene::BENCHMARK_BUILDING;
 
 /// Flags that pick and override a scene.
 #[derive(Debug, clap::Args)]
@@ -128,22 +127,8 @@ impl SceneArgs {
             Some(path) => Scene::load(path, &over)
                 .with_context(|| format!("loading scene {}", path.display())),
             None => {
-                let origin = Path::new("configs/benchmark-3story.json (embedded)");
-                let building: BuildingConfig = serde_json::from_str(BENCHMARK_BUILDING)
-                    .context("embedded benchmark building")?;
-                let cfg = SceneConfig {
-                    name: Some("benchmark-3story, synthetic record 0".into()),
-                    description: None,
-                    building: BuildingRef::Inline(Box::new(building)),
-                    excitation: ExcitationConfig {
-                        synthetic: Some(SyntheticConfig::default()),
-                        ..Default::default()
-                    },
-                    duration: None,
-                    method: Default::default(),
-                    outputs: Default::default(),
-                    reduce: true,
-                };
+                let origin = Path::new(slipload_sim::scene::BENCHMARK_ORIGIN);
+                let cfg = slipload_sim::scene::benchmark_scene_config()?;
                 Ok(Scene::from_config(cfg, origin, &over)?)
             }
         }

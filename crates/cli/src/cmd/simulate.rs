@@ -51,8 +51,8 @@ pub struct SimulateArgs {
 /// Runs `slipload simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     if let Some(dir) = &args.plot {
-        crate::plot::check_plot_folder(dir)?;
-        crate::plot::raster::check_fonts()?;
+        crate::figures::check_plot_folder(dir)?;
+        slipload_figures::check_fonts()?;
     }
     super::count_flag("--repeat", args.repeat as usize, super::MAX_REPEATS)?;
     if let Some(path) = &args.history {

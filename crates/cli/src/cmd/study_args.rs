@@ -1,33 +1,20 @@
 //! Study selection shared by `sweep`, `optimize`, `rank` and `table`: a study file, or
-//! the embedded benchmark study (`configs/study-benchmark.json` with the benchmark
-//! building inlined), plus the progress bars these commands draw on stderr, one per phase
+//! the embedded benchmark study ([`slipload_opt::Study::benchmark`]), plus the progress bars these commands draw on stderr, one per phase
 //! of the study run.
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use slipload_opt::Study;
 use slipload_opt::pipeline::{Phase, Progress};
-use slipload_opt::{Study, StudyConfig};
-use slipload_sim::BuildingConfig;
-use slipload_sim::scene::BuildingRef;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Mutex;
-
-/// The benchmark study, embedded so `slipload optimize` runs with no files.
-pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchmark.json");
 
 /// Loads `path`, or the embedded benchmark study. Every check runs here, before any
 /// simulation.
 pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
     match path {
         Some(p) => Study::load(p).with_context(|| format!("loading study {}", p.display())),
-        None => {
-            let name = PathBuf::from("configs/study-benchmark.json (embedded)");
-            let mut cfg = StudyConfig::from_json(BENCHMARK_STUDY, &name)?;
-            let b: BuildingConfig = serde_json::from_str(super::scene_args::BENCHMARK_BUILDING)
-                .context("the embedded benchmark building")?;
-            cfg.building = BuildingRef::Inline(Box::new(b));
-            Ok(Study::from_config(cfg, &name)?)
-        }
+        None => Ok(Study::benchmark()?),
     }
 }
 

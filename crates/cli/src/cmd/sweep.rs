@@ -2,7 +2,6 @@
 //! output folder (`--resume` continues it), optionally one shard of a job array.
 
 use super::study_args::{PhaseBars, discard_journals, load_study};
-use crate::study_figures;
 use slipload_opt::Shard;
 use slipload_opt::pipeline::{SweepRun, sweep_study};
 use std::path::PathBuf;
@@ -50,6 +49,8 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         }
     }
     let study = load_study(Some(&args.study))?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    slipload_figures::check_fonts()?;
     let shard = match &args.shard {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
@@ -94,7 +95,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
             args.out.display(),
             SweepRun::FILES.join(",")
         );
-        let written = study_figures::write(figures, &args.out)?;
+        let written = slipload_figures::study::write(figures, &args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),

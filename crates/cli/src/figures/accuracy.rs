@@ -3,7 +3,7 @@
 //! `NAME.csv` whose scene is the report drawn (the median over records when there are
 //! several, else the one record).
 
-use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
+use slipload_figures::plot::{Figure, Legend, Marker, Panel, Series, style};
 use slipload_sim::accuracy::{Entry, Errors, StudyReport};
 use std::path::{Path, PathBuf};
 

@@ -7,8 +7,8 @@
 //! contract), `response-bare.json`, and `scene.json`, the scene that ran
 //! ([`super::scene_file`]).
 
-use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
 use anyhow::Context;
+use slipload_figures::plot::{Figure, Legend, Marker, Panel, Series, style};
 use slipload_opt::output::write_atomic;
 use slipload_sim::{History, Outcome, Scene};
 use std::fmt::Write as _;
@@ -53,7 +53,7 @@ pub fn write_all(
     out: &Outcome,
     bare: Option<&Outcome>,
 ) -> anyhow::Result<Vec<PathBuf>> {
-    crate::plot::raster::check_fonts()?;
+    slipload_figures::check_fonts()?;
     let h = out
         .history
         .as_ref()

@@ -2,7 +2,7 @@
 //! their mean and the design target (`DIR/spectra.svg`, `.png`), with the data in
 //! `DIR/spectra.csv`.
 
-use crate::plot::{
+use slipload_figures::plot::{
     Figure, Legend, Panel, RGBColor, Series, strip_image_extension, style, with_suffix,
 };
 use slipload_motion::{DesignSpectrum, G, Spectrum};

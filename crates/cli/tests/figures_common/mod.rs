@@ -1,10 +1,9 @@
-//! Helpers of the figure tests: read a figure's SVG back (through the metadata the plot
-//! module writes), check its PNG, read the CSV beside it.
+//! Helpers of the figure tests: read a figure's SVG back (through the metadata
+//! `slipload_figures::plot` writes), check its PNG, read the CSV beside it.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 #![allow(dead_code)] // each figure test uses its own subset
 
-#[path = "../../src/plot/meta.rs"]
-pub mod meta;
+pub use slipload_figures::plot::meta;
 
 use meta::{FigureMeta, PanelMeta, SeriesMeta};
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! folders (Debian/Ubuntu package `fonts-dejavu-core`), or the file named by the
 //! environment variable `SLIPLOAD_FONT`. No font is embedded in the program.
 
-use anyhow::{Context, anyhow};
+use crate::{FigureError, FontError};
 use resvg::{tiny_skia, usvg};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
@@ -23,37 +23,30 @@ pub const FONT_PATHS: [&str; 6] = [
 ];
 
 /// The fonts for PNG text (found once per process).
-fn fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
-    static FONTS: OnceLock<Result<Arc<usvg::fontdb::Database>, String>> = OnceLock::new();
-    FONTS
-        .get_or_init(|| load_fonts().map_err(|e| format!("{e:#}")))
-        .clone()
-        .map_err(|e| anyhow!(e))
+fn fonts() -> Result<Arc<usvg::fontdb::Database>, FontError> {
+    static FONTS: OnceLock<Result<Arc<usvg::fontdb::Database>, FontError>> = OnceLock::new();
+    FONTS.get_or_init(load_fonts).clone()
 }
 
 /// Fails with the message `save` would give when no font can be found: commands call it
 /// before any work or output, so a missing font costs nothing and leaves no files.
-pub fn check_fonts() -> anyhow::Result<()> {
+pub fn check_fonts() -> Result<(), FontError> {
     fonts().map(|_| ())
 }
 
-fn font_files() -> anyhow::Result<Vec<PathBuf>> {
+fn font_files() -> Result<Vec<PathBuf>, FontError> {
     if let Some(p) = std::env::var_os(FONT_ENV) {
         let p = PathBuf::from(p);
-        anyhow::ensure!(p.is_file(), "{FONT_ENV}={} is not a font file", p.display());
+        if !p.is_file() {
+            return Err(FontError::NotAFile { path: p });
+        }
         return Ok(vec![p]);
     }
     let regular = FONT_PATHS
         .iter()
         .map(Path::new)
         .find(|p| p.is_file())
-        .ok_or_else(|| {
-            anyhow!(
-                "no DejaVu Sans font for the PNG figures: looked at {}; install it \
-                 (Debian/Ubuntu: apt-get install fonts-dejavu-core) or set {FONT_ENV} to a .ttf file",
-                FONT_PATHS.join(", ")
-            )
-        })?;
+        .ok_or(FontError::NotFound)?;
     let mut files = vec![regular.to_path_buf()];
     let bold = regular.with_file_name("DejaVuSans-Bold.ttf");
     if bold.is_file() {
@@ -62,17 +55,18 @@ fn font_files() -> anyhow::Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-fn load_fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
+fn load_fonts() -> Result<Arc<usvg::fontdb::Database>, FontError> {
     let mut db = usvg::fontdb::Database::new();
     for f in font_files()? {
-        let bytes = std::fs::read(&f).with_context(|| format!("reading font {}", f.display()))?;
+        let bytes = std::fs::read(&f).map_err(|e| FontError::Read {
+            path: f.clone(),
+            reason: e.to_string(),
+        })?;
         let before = db.len();
         db.load_font_data(bytes);
-        anyhow::ensure!(
-            db.len() > before,
-            "{} holds no font resvg can read",
-            f.display()
-        );
+        if db.len() <= before {
+            return Err(FontError::Unreadable { path: f });
+        }
     }
     let family = db
         .faces()
@@ -86,7 +80,7 @@ fn load_fonts() -> anyhow::Result<Arc<usvg::fontdb::Database>> {
 }
 
 /// Renders `svg` to PNG bytes at its own size (white background).
-pub fn svg_to_png(svg: &str) -> anyhow::Result<Vec<u8>> {
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
     let fontdb = fonts()?;
     let family = fontdb
         .faces()
@@ -98,15 +92,20 @@ pub fn svg_to_png(svg: &str) -> anyhow::Result<Vec<u8>> {
         fontdb,
         ..Default::default()
     };
-    let tree = usvg::Tree::from_str(svg, &opt).context("parsing the SVG we drew")?;
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(FigureError::SvgParse)?;
     let size = tree.size().to_int_size();
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| anyhow!("figure size {}×{} px", size.width(), size.height()))?;
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or(FigureError::PixmapSize {
+            width: size.width(),
+            height: size.height(),
+        })?;
     pixmap.fill(tiny_skia::Color::WHITE);
     resvg::render(
         &tree,
         tiny_skia::Transform::identity(),
         &mut pixmap.as_mut(),
     );
-    pixmap.encode_png().context("encoding the PNG")
+    pixmap
+        .encode_png()
+        .map_err(|e| FigureError::PngEncode(Box::new(e)))
 }

@@ -4,6 +4,7 @@ use super::axis::Scale;
 use super::meta::{AxisMeta, FigureMeta, HeatMapMeta, PanelMeta, SeriesMeta, range_of};
 use super::style::{self, INK, font_size};
 use super::{Figure, HeatMap, Kind, Legend, Marker, Panel, Series};
+use crate::FigureError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -18,12 +19,12 @@ fn font(px: f64) -> TextStyle<'static> {
 }
 
 /// Draws `fig` and returns the SVG (metadata included) and the metadata.
-pub fn svg(fig: &Figure) -> anyhow::Result<(String, FigureMeta)> {
-    anyhow::ensure!(
-        !fig.panels.is_empty(),
-        "figure \"{}\" has no panels",
-        fig.title
-    );
+pub fn svg(fig: &Figure) -> Result<(String, FigureMeta), FigureError> {
+    if fig.panels.is_empty() {
+        return Err(FigureError::NoPanels {
+            title: fig.title.clone(),
+        });
+    }
     let (w, h) = fig.pixel_size();
     let mut out = String::new();
     let mut panels = Vec::new();
@@ -47,9 +48,7 @@ pub fn svg(fig: &Figure) -> anyhow::Result<(String, FigureMeta)> {
         height: h,
         panels,
     };
-    let end = out
-        .rfind("</svg>")
-        .ok_or_else(|| anyhow::anyhow!("plotters wrote no </svg>"))?;
+    let end = out.rfind("</svg>").ok_or(FigureError::UnterminatedSvg)?;
     out.insert_str(end, &meta.to_svg_element());
     Ok((out, meta))
 }
@@ -73,20 +72,20 @@ fn data_range(vals: impl Iterator<Item = f64>, log: bool) -> Option<(f64, f64)> 
 }
 
 /// Stacked tops of the panel's `Area` series (each band on the previous one).
-fn stacked_tops(p: &Panel) -> anyhow::Result<Vec<Vec<f64>>> {
+fn stacked_tops(p: &Panel) -> Result<Vec<Vec<f64>>, FigureError> {
     let mut base: Option<Vec<f64>> = None;
     let mut tops = Vec::new();
     for s in p.series.iter().filter(|s| s.kind == Kind::Area) {
         let top: Vec<f64> = match &base {
             None => s.y.clone(),
             Some(b) => {
-                anyhow::ensure!(
-                    b.len() == s.y.len(),
-                    "stacked band \"{}\" has {} points, the band below {}",
-                    s.name,
-                    s.y.len(),
-                    b.len()
-                );
+                if b.len() != s.y.len() {
+                    return Err(FigureError::BandLengths {
+                        name: s.name.clone(),
+                        points: s.y.len(),
+                        below: b.len(),
+                    });
+                }
                 b.iter().zip(&s.y).map(|(b, y)| b + y).collect()
             }
         };
@@ -112,24 +111,24 @@ fn heat_edges(c: &[f64]) -> Vec<f64> {
     }
 }
 
-fn check_lengths(p: &Panel) -> anyhow::Result<()> {
+fn check_lengths(p: &Panel) -> Result<(), FigureError> {
     for s in &p.series {
-        anyhow::ensure!(
-            s.x.len() == s.y.len(),
-            "series \"{}\" has {} x values and {} y values",
-            s.name,
-            s.x.len(),
-            s.y.len()
-        );
+        if s.x.len() != s.y.len() {
+            return Err(FigureError::SeriesLengths {
+                name: s.name.clone(),
+                x: s.x.len(),
+                y: s.y.len(),
+            });
+        }
     }
-    if let Some(h) = &p.heatmap {
-        anyhow::ensure!(
-            h.z.len() == h.y.len() && h.z.iter().all(|r| r.len() == h.x.len()),
-            "heat map \"{}\" needs {} rows of {} values",
-            h.label,
-            h.y.len(),
-            h.x.len()
-        );
+    if let Some(h) = &p.heatmap
+        && (h.z.len() != h.y.len() || h.z.iter().any(|r| r.len() != h.x.len()))
+    {
+        return Err(FigureError::HeatMapShape {
+            label: h.label.clone(),
+            rows: h.y.len(),
+            columns: h.x.len(),
+        });
     }
     Ok(())
 }
@@ -192,7 +191,7 @@ fn tick_label_width(s: Scale) -> u32 {
     (chars as f64 * style::TICK_PX * style::CHAR_WIDTH).ceil() as u32
 }
 
-fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> anyhow::Result<PanelMeta> {
+fn draw_panel(root: &Area, cell: &Area, p: &Panel) -> Result<PanelMeta, FigureError> {
     check_lengths(p)?;
     let tops = stacked_tops(p)?;
     let (sx, sy) = scales(p, &tops);
@@ -385,10 +384,10 @@ fn draw_line(
     sx: Scale,
     sy: Scale,
     width_px: usize,
-) -> anyhow::Result<()> {
+) -> Result<(), FigureError> {
     // Split at points the axes cannot show (NaN gaps, non-positive values on log axes).
     let mut seg: Vec<(f64, f64)> = Vec::new();
-    let flush = |seg: &mut Vec<(f64, f64)>, chart: &mut Chart| -> anyhow::Result<()> {
+    let flush = |seg: &mut Vec<(f64, f64)>, chart: &mut Chart| -> Result<(), FigureError> {
         if seg.len() >= 2 {
             let pts = thin(seg, sx, width_px);
             if s.dashed {
@@ -423,7 +422,7 @@ fn draw_band(
     color: RGBColor,
     (sx, sy): (Scale, Scale),
     width_px: usize,
-) -> anyhow::Result<()> {
+) -> Result<(), FigureError> {
     let ok = |x: f64, y: f64| sx.accepts(x) && sy.accepts(y);
     let upper: Vec<(f64, f64)> = xs
         .iter()
@@ -470,7 +469,7 @@ fn draw_markers(
     pts: &[(f64, f64)],
     s: &Series,
     color: RGBColor,
-) -> anyhow::Result<()> {
+) -> Result<(), FigureError> {
     let m = s.marker.unwrap_or(Marker::Circle);
     let st = marker_style(s, color);
     let plot = chart.plotting_area();
@@ -530,7 +529,7 @@ fn draw_legend(
     root: &Area,
     (x0, y0): (i32, i32),
     entries: &[(&Series, RGBColor)],
-) -> anyhow::Result<()> {
+) -> Result<(), FigureError> {
     if entries.is_empty() {
         return Ok(());
     }
@@ -602,7 +601,11 @@ fn draw_legend(
     Ok(())
 }
 
-fn draw_heatmap(chart: &mut Chart, h: &HeatMap, bar: Option<&Area>) -> anyhow::Result<HeatMapMeta> {
+fn draw_heatmap(
+    chart: &mut Chart,
+    h: &HeatMap,
+    bar: Option<&Area>,
+) -> Result<HeatMapMeta, FigureError> {
     let finite = range_of(h.z.iter().flatten().copied().filter(|v| v.is_finite()));
     let (zlo, zhi) = h.z_range.unwrap_or(match finite {
         [Some(a), Some(b)] if b > a => (a, b),

@@ -8,6 +8,7 @@
 //!   percentile over the suite);
 //! - per-record peak drift ratio of the best design vs the bare frame.
 
+use crate::FigureError;
 use slipload_opt::collapse::objective_text;
 use slipload_opt::pipeline::{Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter};
 use std::fmt::Write as _;
@@ -81,11 +82,13 @@ fn csv_field(s: &str) -> String {
 }
 
 /// Writes every figure of `data` present (`NAME.svg`, `NAME.png`, in the shared plot
-/// style) with its data (`NAME.csv`) into `dir`; returns the names written.
-pub fn write(data: &FigureData, dir: &Path) -> anyhow::Result<Vec<String>> {
+/// style) with its data (`NAME.csv`) into `dir` (created when missing); returns the names
+/// written (stems, without extension), in the order above. Every file is written
+/// atomically; the PNGs need a font ([`crate::check_fonts`]).
+pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> {
     use crate::plot::{Figure, HeatMap, Legend, Marker, Panel, Series, style};
     let mut names = Vec::new();
-    let mut put = |stem: &str, csv: String, fig: Figure| -> anyhow::Result<()> {
+    let mut put = |stem: &str, csv: String, fig: Figure| -> Result<(), FigureError> {
         slipload_opt::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
         fig.save(&dir.join(stem))?;
         names.push(stem.to_string());

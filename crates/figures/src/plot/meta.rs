@@ -1,11 +1,10 @@
 //! What a figure shows, as data: written into every SVG we draw (a `<metadata
 //! id="slipload-figure">` element holding JSON) and read back by tests and reports.
 //!
-//! This file depends only on serde/serde_json/anyhow so that integration tests can include
-//! it with `#[path = "../src/plot/meta.rs"] mod meta;` and read figures back:
-//! `meta::FigureMeta::from_svg(&svg)?` gives every panel's axis ranges (data units) and
-//! every series' name, point count and data range.
+//! Tests and reports read figures back with `meta::FigureMeta::from_svg(&svg)?`: every
+//! panel's axis ranges (data units) and every series' name, point count and data range.
 
+use crate::FigureError;
 use serde::{Deserialize, Serialize};
 
 /// The id of the metadata element.
@@ -108,15 +107,12 @@ impl FigureMeta {
     }
 
     /// Reads the metadata back from an SVG this module's writer produced.
-    pub fn from_svg(svg: &str) -> anyhow::Result<Self> {
+    pub fn from_svg(svg: &str) -> Result<Self, FigureError> {
         let open = format!("<metadata id=\"{METADATA_ID}\">");
-        let start = svg
-            .find(&open)
-            .ok_or_else(|| anyhow::anyhow!("no <metadata id=\"{METADATA_ID}\"> in the SVG"))?
-            + open.len();
+        let start = svg.find(&open).ok_or(FigureError::NoMetadata)? + open.len();
         let len = svg[start..]
             .find("</metadata>")
-            .ok_or_else(|| anyhow::anyhow!("unterminated figure metadata"))?;
+            .ok_or(FigureError::UnterminatedMetadata)?;
         let json = xml_unescape(&svg[start..start + len]);
         Ok(serde_json::from_str(&json)?)
     }

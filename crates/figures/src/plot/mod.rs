@@ -11,8 +11,6 @@
 //! Adding a figure: build the panels from the data the command already has (axis labels
 //! "quantity (unit)", converted to the units shown), call `save(dir.join("name"))`, and
 //! write the data to a CSV beside it when no CSV there has it already.
-// Not every command uses every helper of this module (heat maps serve the study figures).
-#![allow(dead_code)]
 
 pub mod axis;
 pub mod meta;
@@ -24,7 +22,7 @@ pub use axis::Axis;
 pub use meta::FigureMeta;
 pub use plotters::style::RGBColor;
 
-use anyhow::Context;
+use crate::FigureError;
 use std::path::{Path, PathBuf};
 
 /// A figure: a title and panels laid out on a grid, row by row.
@@ -207,35 +205,29 @@ impl Figure {
     }
 
     /// The SVG text (with its metadata element) and the metadata.
-    pub fn to_svg(&self) -> anyhow::Result<(String, FigureMeta)> {
+    pub fn to_svg(&self) -> Result<(String, FigureMeta), FigureError> {
         render::svg(self)
     }
 
     /// Writes `STEM.svg` and `STEM.png` (a trailing `.svg`/`.png` on `stem` is ignored).
     /// Both are rendered before either is written, and each is written atomically, so a
     /// failure leaves no partial file. Returns the paths written (SVG, PNG).
-    pub fn save(&self, stem: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
+    pub fn save(&self, stem: &Path) -> Result<(PathBuf, PathBuf), FigureError> {
         let stem = strip_image_extension(stem);
-        let (svg, _) = self
-            .to_svg()
-            .with_context(|| format!("drawing figure {}", stem.display()))?;
-        let png = raster::svg_to_png(&svg)
-            .with_context(|| format!("rasterising figure {}", stem.display()))?;
+        let (svg, _) = self.to_svg().map_err(|e| FigureError::Draw {
+            stem: stem.clone(),
+            source: Box::new(e),
+        })?;
+        let png = raster::svg_to_png(&svg).map_err(|e| FigureError::Rasterise {
+            stem: stem.clone(),
+            source: Box::new(e),
+        })?;
         let svg_path = with_suffix(&stem, "svg");
         let png_path = with_suffix(&stem, "png");
         slipload_opt::output::write_atomic(&svg_path, svg.as_bytes())?;
         slipload_opt::output::write_atomic(&png_path, &png)?;
         Ok((svg_path, png_path))
     }
-}
-
-/// Checks a `--plot` argument before any work: `--plot` names a FOLDER in every command
-/// (created when missing; the figures and their data go into it). An existing file there
-/// is refused, with what to give instead.
-pub fn check_plot_folder(dir: &Path) -> anyhow::Result<()> {
-    crate::cmd::output_folder("--plot", dir).context(
-        "--plot takes a folder (created when missing) that the figures and their data are written into",
-    )
 }
 
 /// `stem` without a trailing `.svg` or `.png`.

@@ -1,0 +1,27 @@
+//! The figures slipload draws, shared by every front (the `slipload` program and the
+//! Python package), so that each writes the same files byte for byte.
+//!
+//! Public API:
+//! - [`plot`]: one look for every plot — a [`plot::Figure`] described as data (panels,
+//!   series, heat maps) and saved as `NAME.svg` + `NAME.png` ([`plot::Figure::save`]),
+//!   with a `<metadata>` element read back by [`plot::meta::FigureMeta::from_svg`]; the
+//!   axis ([`plot::axis`]) and style ([`plot::style`]) helpers; the SVG → PNG step
+//!   ([`plot::raster`]).
+//! - [`study::write`]: the study figures of `optimize`, `sweep` and `merge` (SVG, PNG and
+//!   the CSV of their data) from a [`slipload_opt::pipeline::FigureData`], returning the
+//!   names written; [`study::map_csv`], [`study::convergence_csv`],
+//!   [`study::drift_profiles_csv`], [`study::scatter_csv`] give the CSV texts alone.
+//! - [`check_fonts`]: whether the PNG text font can be found, checked before any work so
+//!   that a missing font costs nothing and leaves no files ([`FontError`]).
+//! - [`FigureError`]: every failure, typed; messages name the file and what was
+//!   expected.
+//!
+//! The dependency arrows: `slipload` (CLI) → `slipload-figures` → `slipload-opt` →
+//! `slipload-sim` → `slipload-motion`.
+
+mod error;
+pub mod plot;
+pub mod study;
+
+pub use error::{FigureError, FontError};
+pub use plot::raster::check_fonts;

@@ -1,0 +1,224 @@
+//! Contract: `slipload_figures::study::write`, the one call every front makes after a
+//! study, writes each figure present in the data as SVG + PNG + CSV into the folder and
+//! returns their names; the same data gives the same bytes; a folder that cannot be one
+//! is refused naming it, and a figure that cannot be drawn is refused naming the figure,
+//! with no file written.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use slipload_figures::plot::meta::FigureMeta;
+use slipload_figures::plot::{Figure, HeatMap, Panel};
+use slipload_figures::{FigureError, check_fonts, study};
+use slipload_opt::collapse::objective_text;
+use slipload_opt::pipeline::{Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter};
+use std::path::{Path, PathBuf};
+
+/// A fresh folder for one test (removed first if a previous run left it).
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("slipload-figures-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// Every figure: a 3 × 2 map with one collapsed design, two refiners, two profiles over
+/// three storeys, three records.
+fn data() -> FigureData {
+    FigureData {
+        map: Some(ObjectiveMap {
+            floors: [1, 3],
+            loads_a_kn: vec![0.0, 500.0, 1000.0],
+            loads_b_kn: vec![0.0, 400.0],
+            objective: vec![1.0, 0.8, 0.7, f64::INFINITY, 0.75, 0.9],
+            optimum_kn: [500.0, 400.0],
+            label: "mean peak drift ratio".into(),
+        }),
+        convergence: vec![
+            Convergence {
+                refiner: "trust-region".into(),
+                points: vec![(12, 0.8, 0.8), (15, 0.9, 0.8), (18, 0.7, 0.7)],
+            },
+            Convergence {
+                refiner: "nelder-mead, 2".into(),
+                points: vec![(12, 0.8, 0.8), (15, 0.75, 0.75)],
+            },
+        ],
+        profiles: vec![
+            DriftProfile {
+                design: "best".into(),
+                mean: vec![0.004, 0.005, 0.003],
+                p84: vec![0.006, 0.007, 0.004],
+            },
+            DriftProfile {
+                design: "bare".into(),
+                mean: vec![0.010, 0.012, 0.008],
+                p84: vec![0.014, 0.016, 0.011],
+            },
+        ],
+        scatter: Some(RecordScatter {
+            design: "best".into(),
+            records: vec!["a".into(), "b".into(), "c".into()],
+            bare: vec![0.010, 0.020, 0.015],
+            design_values: vec![0.004, 0.008, 0.006],
+        }),
+        fidelity: "newmark, dt 0.01 s".into(),
+    }
+}
+
+fn read(p: &Path) -> Vec<u8> {
+    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn files(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn every_figure_is_written_with_its_data_and_named() {
+    check_fonts().unwrap();
+    let dir = scratch("all");
+    let names = study::write(&data(), &dir).unwrap();
+    assert_eq!(
+        names,
+        [
+            "objective-map",
+            "convergence",
+            "drift-profiles",
+            "records-scatter"
+        ]
+    );
+    let mut expected: Vec<String> = names
+        .iter()
+        .flat_map(|n| ["csv", "png", "svg"].map(|e| format!("{n}.{e}")))
+        .collect();
+    expected.sort();
+    assert_eq!(
+        files(&dir),
+        expected,
+        "three files per figure, nothing else"
+    );
+
+    let svg = String::from_utf8(read(&dir.join("objective-map.svg"))).unwrap();
+    let m = FigureMeta::from_svg(&svg).unwrap();
+    let h = m.panels[0].heatmap.as_ref().unwrap();
+    assert_eq!(
+        (h.nx, h.ny, h.missing),
+        (3, 2, 1),
+        "the collapsed design is a grey cell"
+    );
+    assert_eq!(h.z, [Some(0.7), Some(1.0)]);
+    let png = read(&dir.join("objective-map.png"));
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+
+    let map = String::from_utf8(read(&dir.join("objective-map.csv"))).unwrap();
+    assert_eq!(
+        map.lines().next(),
+        Some("slip_load_kN_1,slip_load_kN_3,objective")
+    );
+    assert_eq!(map.lines().count(), 1 + 6);
+    // objective[i * 2 + j] at (a[i], b[j]): the infinite one is a[1] = 500, b[1] = 400
+    assert!(
+        map.contains(&format!(
+            "500,400,{}\n",
+            objective_text(f64::INFINITY, None)
+        )),
+        "{map}"
+    );
+    let conv = String::from_utf8(read(&dir.join("convergence.csv"))).unwrap();
+    assert!(conv.contains("\"nelder-mead, 2\",15,0.75,0.75\n"), "{conv}");
+    let prof = String::from_utf8(read(&dir.join("drift-profiles.csv"))).unwrap();
+    assert!(prof.contains("bare,2,0.012,0.016\n"), "{prof}");
+    let sc = String::from_utf8(read(&dir.join("records-scatter.csv"))).unwrap();
+    assert_eq!(
+        sc.lines().next(),
+        Some("record,bare_peak_drift_ratio,best_peak_drift_ratio")
+    );
+
+    let svg = String::from_utf8(read(&dir.join("drift-profiles.svg"))).unwrap();
+    let p = &FigureMeta::from_svg(&svg).unwrap().panels[0];
+    assert_eq!((p.y.min, p.y.max), (0.5, 3.5), "one row per storey");
+    assert_eq!(p.series.len(), 4, "mean and p84 per design");
+    assert_eq!(p.series[2].x, [Some(0.8), Some(1.2)], "percent");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_same_data_writes_the_same_bytes() {
+    let (a, b) = (scratch("same-a"), scratch("same-b"));
+    let names = study::write(&data(), &a).unwrap();
+    assert_eq!(study::write(&data(), &b).unwrap(), names);
+    assert_eq!(files(&a), files(&b));
+    for f in files(&a) {
+        assert!(read(&a.join(&f)) == read(&b.join(&f)), "{f} differs");
+    }
+    std::fs::remove_dir_all(&a).unwrap();
+    std::fs::remove_dir_all(&b).unwrap();
+}
+
+#[test]
+fn no_figure_data_writes_nothing() {
+    let dir = scratch("none");
+    let empty = FigureData {
+        map: None,
+        convergence: vec![],
+        profiles: vec![],
+        scatter: None,
+        fidelity: String::new(),
+    };
+    assert!(study::write(&empty, &dir).unwrap().is_empty());
+    assert!(!dir.exists() || files(&dir).is_empty());
+}
+
+#[test]
+fn a_file_where_the_folder_goes_is_refused_naming_it() {
+    let dir = scratch("file");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("out");
+    std::fs::write(&file, "a file").unwrap();
+    let e = study::write(&data(), &file).unwrap_err();
+    assert!(matches!(e, FigureError::Write(_)), "{e:?}");
+    assert!(e.to_string().contains(file.to_str().unwrap()), "{e}");
+    assert_eq!(files(&dir), ["out"], "nothing written");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_figure_that_cannot_be_drawn_is_refused_naming_it_and_writes_nothing() {
+    let dir = scratch("bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fig = Figure::new("bad map").panel(Panel::new("a (kN)", "b (kN)").heatmap(HeatMap {
+        x: vec![0.0, 1.0, 2.0],
+        y: vec![0.0, 1.0],
+        z: vec![vec![1.0, 2.0, 3.0]],
+        label: "objective (-)".into(),
+        z_range: None,
+    }));
+    let stem = dir.join("map");
+    let e = fig.save(&stem).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains(&format!("drawing figure {}", stem.display())),
+        "{e}"
+    );
+    let cause = std::error::Error::source(&e).unwrap().to_string();
+    assert_eq!(cause, "heat map \"objective (-)\" needs 2 rows of 3 values");
+    assert!(files(&dir).is_empty(), "no partial file");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_svg_without_figure_metadata_is_refused() {
+    let e = FigureMeta::from_svg("<svg></svg>").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "no <metadata id=\"slipload-figure\"> in the SVG"
+    );
+    let e = FigureMeta::from_svg("<svg><metadata id=\"slipload-figure\">{").unwrap_err();
+    assert_eq!(e.to_string(), "unterminated figure metadata");
+    let e = FigureMeta::from_svg("<svg><metadata id=\"slipload-figure\">{}</metadata></svg>")
+        .unwrap_err();
+    assert!(matches!(e, FigureError::MetadataJson(_)), "{e:?}");
+}

@@ -1,0 +1,611 @@
+"""slipload: choose friction-damper slip loads for buildings — the engine in Python.
+
+The same engine as the ``slipload`` command line, not a wrapper around it: scenes,
+buildings and studies load through the same validation, simulations run the same
+integrators, studies run the same journalled pipeline and write the same files.
+
+Units are SI throughout: metres, seconds, newtons, kilograms; accelerations in m/s²
+unless a name says ``_g``. Per-storey results are numpy arrays indexed from the first
+storey (index 0 = storey 1).
+
+Records
+    :func:`read_record`, :func:`record_from_array`, :func:`synthetic_suite`, :class:`Record`
+    (``.spectrum()``, ``.intensity()``).
+One simulation
+    :func:`load_scene`, :func:`simulate` → :class:`Result` (peaks, residuals, slips,
+    energies, transitions, ductility, collapse; ``.history`` when asked).
+Many simulations
+    :func:`batch` (a list of scenes), :func:`batch_designs` (one building × records ×
+    slip-load vectors → arrays shaped (designs, records, storeys)).
+Studies
+    :func:`load_study`, :func:`optimize`, :func:`sweep`, :func:`merge`, :func:`rank`,
+    :func:`table`.
+
+Errors are :class:`InputError` (a ``ValueError``: a file, field or argument is wrong, with
+the message the command line prints), :class:`FileError` (an ``OSError``),
+:class:`SimulationError` and :class:`InternalError` (``RuntimeError``); all are
+:class:`SlipLoadError`. Long calls release the GIL, report progress and stop on Ctrl-C
+with ``KeyboardInterrupt``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+from . import _slipload
+from ._errors import FileError, InputError, InternalError, SimulationError, SlipLoadError
+from ._slipload import History, Record, Result, Scene, Study
+
+__version__: str = _slipload.__version__
+"""The slipload version (the workspace's)."""
+
+NUMERICS_VERSION: int = _slipload.NUMERICS_VERSION
+"""Version of the integrators' numerics (part of every study's fingerprint)."""
+
+PathLike = Union[str, "os.PathLike[str]"]
+Progress = Union[None, bool, Callable[[str, int, int], Any]]
+
+__all__ = [
+    "__version__",
+    "NUMERICS_VERSION",
+    "SlipLoadError",
+    "InputError",
+    "FileError",
+    "SimulationError",
+    "InternalError",
+    "Record",
+    "Scene",
+    "Result",
+    "History",
+    "Study",
+    "StudyReport",
+    "read_record",
+    "record_from_array",
+    "synthetic_suite",
+    "load_scene",
+    "simulate",
+    "batch",
+    "batch_designs",
+    "load_study",
+    "optimize",
+    "sweep",
+    "merge",
+    "rank",
+    "table",
+    "allow_large",
+]
+
+
+# ----------------------------------------------------------------------------- progress
+
+
+class _Bars:
+    """Progress as tqdm bars, one per phase of a call."""
+
+    def __init__(self) -> None:
+        from tqdm.auto import tqdm  # noqa: F401  (checked by the caller)
+
+        self._tqdm = tqdm
+        self._bar = None
+        self._phase = None
+
+    def __call__(self, phase: str, done: int, total: int) -> None:
+        if phase != self._phase:
+            self.close()
+            self._phase = phase
+            self._bar = self._tqdm(total=total or None, desc=phase, leave=False)
+        if self._bar is not None:
+            self._bar.n = done
+            self._bar.refresh()
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+
+
+def _progress(progress: Progress) -> Tuple[Optional[Callable[[str, int, int], Any]], Optional[_Bars]]:
+    """The callback for ``progress``: a callable as given; ``True`` a tqdm bar; ``None`` a
+    tqdm bar when tqdm is installed, else nothing; ``False`` nothing."""
+    if progress is False:
+        return None, None
+    if callable(progress):
+        return progress, None
+    try:
+        bars = _Bars()
+    except ImportError:
+        if progress is True:
+            raise InputError("progress=True draws a tqdm bar: pip install tqdm") from None
+        return None, None
+    return bars, bars
+
+
+def _watched(call: Callable[..., Any], progress: Progress, *args: Any, **kwargs: Any) -> Any:
+    callback, bars = _progress(progress)
+    try:
+        return call(*args, progress=callback, **kwargs)
+    finally:
+        if bars is not None:
+            bars.close()
+
+
+# ------------------------------------------------------------------------------ records
+
+
+def read_record(path: PathLike, units: Optional[str] = None, dt: Optional[float] = None) -> Record:
+    """Reads a ground-motion record file: a PEER ``.AT2`` file (values in g) or a CSV/text
+    file (one column of accelerations with ``dt``, or time and acceleration columns;
+    values in m/s² unless ``units`` says otherwise).
+
+    Args:
+        path: the file.
+        units: units of the values: ``"g"``, ``"m/s2"``, ``"cm/s2"`` (default: the
+            format's — g for AT2, m/s² for text).
+        dt: time step of a one-column text file, s (for an AT2 file or a time column it
+            must agree with the file's step).
+
+    Returns:
+        The record, its accelerations held in m/s².
+
+    Raises:
+        InputError: the file is not a record (the message names the line and what was
+            expected). FileError: the file cannot be read.
+    """
+    return Record.read(os.fspath(path), units=units, dt=dt)
+
+
+def record_from_array(accel: Any, dt: float, units: str = "m/s2", name: str = "array") -> Record:
+    """A record from a numpy array of ground accelerations at a uniform step.
+
+    Args:
+        accel: 1-D float64 numpy array, C-contiguous, every value finite (an int array
+            or a strided view is refused, not silently converted).
+        dt: time step, s (> 0).
+        units: units of ``accel``: ``"m/s2"`` (default), ``"g"`` or ``"cm/s2"``.
+        name: the record's name in results and errors.
+
+    Raises:
+        InputError: an empty, non-finite, int or non-contiguous array, a bad step or unit,
+            or accelerations no ground has produced.
+    """
+    return Record.from_array(accel, dt, units=units, name=name)
+
+
+def synthetic_suite(
+    count: Optional[int] = None,
+    seed: Optional[int] = None,
+    pga_g: Optional[float] = None,
+    duration: Optional[float] = None,
+    dt: Optional[float] = None,
+) -> List[Record]:
+    """Synthetic (Clough–Penzien filtered, enveloped) ground motions.
+
+    With no arguments: the embedded suite the command line and the benchmark study use —
+    10 records, seed 2007, 20 s at dt = 0.01 s, each scaled to PGA 0.4 g.
+
+    Args:
+        count: number of records (default 10).
+        seed: the suite's seed (default 2007); record i is drawn from a seed derived
+            from it and i.
+        pga_g: peak ground acceleration each record is scaled to, g (default 0.4).
+        duration: duration of each record, s (default 20).
+        dt: time step, s (default 0.01).
+    """
+    return _slipload.synthetic_suite(count=count, seed=seed, pga_g=pga_g, duration=duration, dt=dt)
+
+
+# ------------------------------------------------------------------------------- scenes
+
+
+def _json_text(value: Dict[str, Any], what: str) -> str:
+    try:
+        return json.dumps(value, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{what}: cannot be written as JSON ({e}); give numbers, strings, lists and dicts, every number finite") from None
+
+
+def load_scene(
+    scene: Union[None, PathLike, Dict[str, Any], Scene] = None,
+    *,
+    record: Union[None, Record, PathLike] = None,
+    units: Optional[str] = None,
+    scale_pga_g: Optional[float] = None,
+    window: Optional[Tuple[float, float]] = None,
+    method: Optional[str] = None,
+    dt: Optional[float] = None,
+    duration: Optional[float] = None,
+) -> Scene:
+    """A scene: a building under a ground motion, a method and its outputs.
+
+    Args:
+        scene: a scene or building file (JSON), a dict with a scene's or building's
+            fields (relative paths resolve from the current folder), an existing
+            :class:`Scene` (re-resolved with the overrides), or ``None`` for the embedded
+            benchmark building under the first record of the embedded synthetic suite.
+        record: a :class:`Record` or a record file, replacing the scene's ground motion.
+        units: units of that record file's values (``"g"``, ``"m/s2"``, ``"cm/s2"``).
+        scale_pga_g: scale the ground motion to this PGA, g.
+        window: ``(start, duration)`` of the ground motion to use, s.
+        method: ``"newmark"`` (default), ``"hht"``, ``"bilinear"``, ``"delacruz"`` or
+            ``"exact"``.
+        dt: time step, s (default T1/400, delacruz T1/200, rounded to divide the record's
+            step).
+        duration: simulated time, s (default: the window's, else the record's).
+
+    Raises:
+        InputError: a bad file or field, with the message the command line prints.
+    """
+    kw = dict(record=record, units=units, scale_pga_g=scale_pga_g, window=window, method=method, dt=dt, duration=duration)
+    if isinstance(record, os.PathLike):
+        kw["record"] = os.fspath(record)
+    if scene is None:
+        return Scene.benchmark(**kw)
+    if isinstance(scene, Scene):
+        return scene.replace(**kw)
+    if isinstance(scene, dict):
+        return Scene.from_json(_json_text(scene, "scene"), "scene (a dict)", **kw)
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene.load(os.fspath(scene), **kw)
+    raise InputError(f"scene: expected a file path, a dict, a slipload.Scene or None, got a {type(scene).__name__}")
+
+
+def _scene(scene: Union[None, PathLike, Dict[str, Any], Scene]) -> Scene:
+    return scene if isinstance(scene, Scene) else load_scene(scene)
+
+
+def simulate(
+    scene: Union[None, PathLike, Dict[str, Any], Scene] = None,
+    *,
+    method: Optional[str] = None,
+    dt: Optional[float] = None,
+    duration: Optional[float] = None,
+    outputs: Optional[Iterable[str]] = None,
+) -> Result:
+    """Runs one simulation, as ``slipload simulate`` does.
+
+    Args:
+        scene: a :class:`Scene`, a scene or building file, a dict, or ``None`` for the
+            embedded default scene (see :func:`load_scene`).
+        method: integration method for this run (default: the scene's; ``"newmark"``
+            unless the scene says otherwise).
+        dt: time step for this run, s (default: the scene's).
+        duration: simulated time for this run, s (default: the scene's).
+        outputs: what to compute besides the peaks: any of ``"histories"`` (time
+            histories, see :class:`History`) and ``"energies"`` (the energy balance).
+            ``None`` keeps the scene's outputs (energies on, histories off); a list
+            computes exactly what it names — unasked outputs cost nothing.
+
+    Returns:
+        A :class:`Result`: per-storey numpy arrays in SI units (``peak_drift`` m,
+        ``peak_drift_ratio``, ``peak_abs_acceleration`` m/s², ``residual_drift`` m,
+        ``peak_slip`` m, ``transitions``), ``peak_base_shear`` N, ``energy`` (J),
+        ``peak_ductility``, ``collapse``, and ``history`` when asked.
+
+    Raises:
+        InputError: bad scene or argument. SimulationError: the run failed (a response
+            that is not finite, a solver that did not converge).
+    """
+    return _slipload.simulate(_scene(scene), method=method, dt=dt, duration=duration, outputs=_outputs(outputs))
+
+
+def _outputs(outputs: Optional[Iterable[str]]) -> Optional[List[str]]:
+    if outputs is None:
+        return None
+    if isinstance(outputs, str):
+        return [outputs]
+    return list(outputs)
+
+
+def batch(
+    scenes: Sequence[Union[Scene, PathLike, Dict[str, Any]]],
+    *,
+    outputs: Optional[Iterable[str]] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> List[Result]:
+    """Runs every scene of a list in parallel (rayon, the GIL released), results in the
+    list's order.
+
+    Args:
+        scenes: scenes (or files or dicts, loaded first).
+        outputs: as in :func:`simulate`, for every scene.
+        progress: a callable ``progress(phase, done, total)``, ``True`` for a tqdm bar,
+            ``None`` for a tqdm bar when tqdm is installed, ``False`` for none.
+        threads: worker threads (default: one per core).
+
+    Raises:
+        KeyboardInterrupt: on Ctrl-C (the simulations not started are skipped; nothing is
+            returned).
+    """
+    loaded = [_scene(s) for s in scenes]
+    return _watched(_slipload.batch, progress, loaded, outputs=_outputs(outputs), threads=threads)
+
+
+def batch_designs(
+    scene: Union[None, PathLike, Dict[str, Any], Scene],
+    records: Sequence[Record],
+    slip_loads: Any,
+    *,
+    method: Optional[str] = None,
+    dt: Optional[float] = None,
+    outputs: Optional[Iterable[str]] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]:
+    """Runs one building under every record for every slip-load vector, in parallel.
+
+    Each record runs with its own default step and duration (as a scene with that record
+    would), unless ``method``/``dt`` say otherwise.
+
+    Args:
+        scene: the building: a :class:`Scene`, a scene or building file, a dict, or
+            ``None`` for the benchmark building (its ground motion is replaced by each
+            record).
+        records: the suite.
+        slip_loads: 2-D float64 array, shape (designs, dissipators): the slip loads, N,
+            of the floors that carry a dissipator, in floor order (``scene.damper_floors``).
+        method, dt: as in :func:`simulate`.
+        outputs: ``None`` or ``["energies"]`` (histories are not collected here).
+        progress, threads: as in :func:`batch`.
+
+    Returns:
+        A dict of numpy arrays: per storey, shape (designs, records, storeys) —
+        ``peak_drift`` (m), ``peak_drift_ratio``, ``peak_displacement`` (m),
+        ``peak_abs_acceleration`` (m/s²), ``residual_drift`` (m), ``peak_slip`` (m),
+        ``transitions``; per run, shape (designs, records) — ``peak_base_shear`` (N),
+        ``collapsed`` (bool), ``cpu_seconds``, and with energies ``energy_input``,
+        ``energy_friction``, ``energy_viscous``, ``energy_balance_error`` (J); and
+        ``records`` (names), ``slip_loads``, ``damper_floors``.
+    """
+    records = list(records)
+    if not isinstance(scene, Scene):
+        # a building alone has no ground motion to resolve with: the first record stands in
+        scene = load_scene(scene, record=records[0] if records else None)
+    return _watched(
+        _slipload.batch_designs,
+        progress,
+        scene,
+        records,
+        slip_loads,
+        method=method,
+        dt=dt,
+        outputs=_outputs(outputs),
+        threads=threads,
+    )
+
+
+# ------------------------------------------------------------------------------ studies
+
+
+def load_study(study: Union[None, PathLike, Dict[str, Any], Study] = None) -> Study:
+    """A study: a building, suites of records, a design space and an objective.
+
+    Args:
+        study: a study file (JSON), a dict with a study's fields (relative paths resolve
+            from the current folder), a :class:`Study`, or ``None`` for the embedded
+            benchmark study (``configs/study-benchmark.json``, the command line's default).
+
+    Raises:
+        InputError: a bad file or field, with the message the command line prints.
+    """
+    if study is None:
+        return Study.benchmark()
+    if isinstance(study, Study):
+        return study
+    if isinstance(study, dict):
+        return Study.from_json(_json_text(study, "study"), "study (a dict)")
+    if isinstance(study, (str, os.PathLike)):
+        return Study.load(os.fspath(study))
+    raise InputError(f"study: expected a file path, a dict, a slipload.Study or None, got a {type(study).__name__}")
+
+
+class StudyReport:
+    """What a study call wrote and found.
+
+    Attributes:
+        out: the output folder.
+        files: name → text of every JSON, CSV and Markdown file written.
+        figures: names of the figure files written (SVG, PNG, CSV).
+        optimum: ``optimum.json`` as a dict (``optimize`` only): slip loads (kN), the
+            objective, finalists, which floors sit on a bound.
+        design_table: the rows of ``design-table.json`` (``optimize`` only), a list of
+            dicts; :meth:`design_table_frame` gives a pandas DataFrame.
+        candidates: ``candidates.json`` (``optimize`` only).
+        manifest: ``manifest.json`` (sweeps and optimizations).
+        ranking: ``rank.json`` (``rank`` only).
+        details: everything else the call reported (simulations run and reused, …).
+    """
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self.out: str = os.fspath(raw.pop("out"))
+        self.files: Dict[str, str] = raw.pop("files")
+        self.figures: List[str] = raw.pop("figures", [])
+        self.details: Dict[str, Any] = raw
+
+        def load(name: str) -> Any:
+            text = self.files.get(name)
+            return None if text is None else json.loads(text)
+
+        self.optimum: Optional[Dict[str, Any]] = load("optimum.json")
+        table = load("design-table.json")
+        self.design_table: Optional[List[Dict[str, Any]]] = None if table is None else table["rows"]
+        self.design_table_meta: Optional[Dict[str, Any]] = None if table is None else {k: v for k, v in table.items() if k != "rows"}
+        self.candidates: Optional[List[Dict[str, Any]]] = load("candidates.json")
+        self.manifest: Optional[Dict[str, Any]] = load("manifest.json")
+        self.ranking: Optional[Dict[str, Any]] = load("rank.json")
+
+    def design_table_frame(self) -> Any:
+        """The design table as a pandas DataFrame, one row per design (needs pandas)."""
+        import pandas as pd
+
+        if self.design_table is None:
+            raise InputError("this report has no design table (optimize writes one)")
+        return pd.DataFrame(self.design_table).set_index("design")
+
+    def __repr__(self) -> str:
+        what = ", ".join(sorted(self.files))
+        return f"StudyReport(out={self.out!r}, files: {what})"
+
+
+def optimize(
+    study: Union[None, PathLike, Dict[str, Any], Study] = None,
+    out: PathLike = "out/optimize",
+    *,
+    refine: Optional[str] = None,
+    map_floors: Optional[Tuple[int, int]] = None,
+    map_grid: int = 11,
+    fresh: bool = False,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> StudyReport:
+    """Optimises a study's slip loads, as ``slipload optimize`` does: sweep, refine from the
+    best sweep points, check the finalists at reference accuracy, build the design table,
+    draw the figures — into ``out``, journalled and resumable.
+
+    Args:
+        study: see :func:`load_study` (``None``: the embedded benchmark study).
+        out: output folder (created if missing). A finished sweep there is reused and
+            journalled refinement points replayed; a folder of another study is refused.
+        refine: ``"trust-region"``, ``"nelder-mead"`` or ``"random"`` (default: the
+            study's).
+        map_floors: also draw the objective map over these two floors' slip loads (from 1).
+        map_grid: grid points per axis of the map.
+        fresh: first remove every file a slipload command wrote in ``out``.
+        progress, threads: as in :func:`batch`.
+
+    Returns:
+        A :class:`StudyReport` (``optimum``, ``design_table``, ``candidates``, …). The files
+        are byte for byte those the command line writes for the same study.
+
+    Raises:
+        KeyboardInterrupt: on Ctrl-C; every simulation already finished is in the folder's
+            journals and is not run again by the next call.
+    """
+    raw = _watched(
+        _slipload.optimize,
+        progress,
+        load_study(study),
+        os.fspath(out),
+        refine=refine,
+        map_floors=map_floors,
+        map_grid=map_grid,
+        fresh=fresh,
+        threads=threads,
+    )
+    return StudyReport(raw)
+
+
+def sweep(
+    study: Union[PathLike, Dict[str, Any], Study],
+    out: PathLike = "out/sweep",
+    *,
+    shard: Optional[str] = None,
+    resume: bool = False,
+    fresh: bool = False,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> StudyReport:
+    """Sweeps a study's sample of designs over every record, as ``slipload sweep`` does.
+
+    Args:
+        study: see :func:`load_study`.
+        out: output folder: ``manifest.json``, ``responses.csv``, ``designs.csv``,
+            ``journal.jsonl`` and the sweep's figures.
+        shard: run one slice of the tasks, ``"I/N"`` (from 0) or ``"auto"`` (a job
+            array's environment).
+        resume: continue the journal in ``out`` (a journal of the same study only).
+        fresh: first remove every file a slipload command wrote in ``out``.
+        progress, threads: as in :func:`batch`.
+    """
+    raw = _watched(
+        _slipload.sweep,
+        progress,
+        load_study(study),
+        os.fspath(out),
+        shard=shard,
+        resume=resume,
+        fresh=fresh,
+        threads=threads,
+    )
+    return StudyReport(raw)
+
+
+def merge(dirs: Sequence[PathLike], out: PathLike) -> StudyReport:
+    """Joins the journals of sweep shards into the files one sweep writes, as
+    ``slipload merge`` does."""
+    return StudyReport(_slipload.merge([os.fspath(d) for d in dirs], os.fspath(out)))
+
+
+def rank(
+    study: Union[PathLike, Dict[str, Any], Study],
+    designs: Union[PathLike, List[Dict[str, Any]]],
+    out: PathLike = "out/rank",
+    *,
+    bootstrap: int = 200,
+    seed: int = 1,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> StudyReport:
+    """Ranks candidate designs over every suite of a study, with a bootstrap over the
+    records for how stable the ranking is, as ``slipload rank`` does.
+
+    Args:
+        study: see :func:`load_study`.
+        designs: a candidates file (as ``optimize`` writes ``candidates.json``) or a list
+            of ``{"name": ..., "slip_loads_kn": [...]}`` dicts.
+        out: output folder: ``rank.csv``, ``rank.md``, ``rank.json``.
+        bootstrap: resamples of the records.
+        seed: the bootstrap's seed.
+    """
+    if isinstance(designs, list):
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "designs.json")
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(_json_text(designs, "designs"))  # type: ignore[arg-type]
+            return rank(study, path, out, bootstrap=bootstrap, seed=seed, progress=progress, threads=threads)
+    raw = _watched(
+        _slipload.rank,
+        progress,
+        load_study(study),
+        os.fspath(designs),
+        os.fspath(out),
+        bootstrap=bootstrap,
+        seed=seed,
+        threads=threads,
+    )
+    return StudyReport(raw)
+
+
+def table(
+    study: Union[None, PathLike, Dict[str, Any], Study] = None,
+    out: PathLike = "out/table",
+    *,
+    period_scales: Sequence[float] = (0.8, 1.0, 1.25),
+    intensity_scales: Sequence[float] = (0.5, 1.0, 1.5),
+    refine: Optional[str] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> StudyReport:
+    """The optimum of a study over a family of buildings (periods scaled) and hazard levels
+    (records scaled), as ``slipload table`` does: ``family.csv`` and ``family.md``."""
+    raw = _watched(
+        _slipload.table,
+        progress,
+        load_study(study),
+        os.fspath(out),
+        period_scales=list(period_scales),
+        intensity_scales=list(intensity_scales),
+        refine=refine,
+        threads=threads,
+    )
+    return StudyReport(raw)
+
+
+def allow_large(on: bool = True) -> None:
+    """Lifts (``True``) or restores (``False``) the size limits on inputs — records,
+    suites, steps — as the command line's ``--allow-large`` does."""
+    _slipload.allow_large(on)
