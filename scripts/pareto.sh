@@ -5,7 +5,8 @@
 # of `slipload optimize` (pareto.{csv,json}, pareto-table.*, the design table, the front
 # figure) and its summary —, then the grid check: the 21 x 21 x 21 grid of the same box
 # at the sweep fidelity (9,261 designs x 10 records) and the hypervolume of front-2's
-# front against the grid's front (grid-check.json, reference point in docs/MODEL.md).
+# front against the grid's front (grid-check.json and its one line, grid-check.txt;
+# reference point in docs/MODEL.md).
 # Usage: scripts/pareto.sh [--skip-grid]   (from anywhere; the grid takes minutes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,5 +43,5 @@ PY
 "$bin" sweep "$tmp/grid.json" --out "$tmp/grid" --quiet > /dev/null
 python3 scripts/pareto_grid.py "$tmp/grid/responses.csv" "$out/front-2/pareto.csv" "$out/front-2/pareto.json" > "$out/grid-check.json.tmp"
 mv "$out/grid-check.json.tmp" "$out/grid-check.json"
-python3 -c "import json; d = json.load(open('$out/grid-check.json')); print('hypervolume ratio (search / 21^3 grid): %.4f' % d['ratio'])"
+python3 -c "import json; d = json.load(open('$out/grid-check.json')); print('hypervolume ratio (search front, %d simulations / 21^3 grid front, %d simulations): %.4f' % (d['search']['simulations'], d['grid']['simulations'], d['ratio']))" | tee "$out/grid-check.txt"
 echo "results in $out"
