@@ -82,6 +82,8 @@ pub fn crowding_distance(front: &[Vec<f64>]) -> Vec<f64> {
     }
     let k = front[0].len();
     let mut spread = false;
+    // m indexes the objective inside each point (front[a][m]), not the front
+    #[allow(clippy::needless_range_loop)]
     for m in 0..k {
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by(|&a, &b| front[a][m].total_cmp(&front[b][m]).then(a.cmp(&b)));

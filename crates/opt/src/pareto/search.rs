@@ -145,13 +145,17 @@ impl Search {
     }
 }
 
+/// The bare frame's objective vector, the file's design's, and the sweep's sampled
+/// designs ([`sweep_vectors`]).
+pub type SweepVectors = (Vec<f64>, Vec<f64>, Vec<Evaluated>);
+
 /// The objective vectors of the sweep's designs (`manifest`, its complete `rows`): the
 /// bare frame's, the file's, then the sampled designs as [`Evaluated`].
 pub fn sweep_vectors(
     study: &Study,
     manifest: &Manifest,
     rows: &[RecordMetrics],
-) -> Result<(Vec<f64>, Vec<f64>, Vec<Evaluated>), OptError> {
+) -> Result<SweepVectors, OptError> {
     let nr = manifest.records.len();
     let ranges = suite_ranges(study);
     let bare = &rows[..nr];
