@@ -33,7 +33,7 @@ pub struct OptimizeArgs {
     #[arg(long, default_value_t = 11)]
     pub map_grid: usize,
     /// Remove every file a slipload command wrote in the output folder (journals — sweep,
-    /// refine, check —, tables, figures, rankings, report; any other file is kept and
+    /// refine, check, pareto —, tables, figures, rankings, report; any other file is kept and
     /// named) and start afresh; without it the journals of the same study (by
     /// fingerprint) are continued and those of another study refused
     #[arg(long)]
@@ -218,10 +218,18 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         w.refine.run,
         w.check.run,
         w.table.run,
-        match w.map {
-            Some(m) => format!(", objective map {}", m.run),
-            None => String::new(),
-        },
+        format!(
+            "{}{}",
+            w.map
+                .map_or(String::new(), |m| format!(", objective map {}", m.run)),
+            w.pareto.map_or(String::new(), |[s, c, t]| format!(
+                ", front search {}, front check {}, front table {} ({} reused from pareto.jsonl and check.jsonl)",
+                s.run,
+                c.run,
+                t.run,
+                s.reused + c.reused + t.reused
+            ))
+        ),
         {
             let map_reused = w.map.map_or(0, |m| m.reused);
             match (w.check.reused + w.table.reused > 0, map_reused > 0) {
