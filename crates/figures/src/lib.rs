@@ -11,6 +11,8 @@
 //!   the CSV of their data) from a [`slipload_opt::pipeline::FigureData`], returning the
 //!   names written; [`study::map_csv`], [`study::convergence_csv`],
 //!   [`study::drift_profiles_csv`], [`study::scatter_csv`] give the CSV texts alone.
+//! - [`pareto::write_front`]: the front figure of a study with `objectives`
+//!   (`pareto-front.{svg,png,csv}`), [`pareto::front_csv`] its CSV text alone.
 //! - [`check_fonts`]: whether the PNG text font can be found, checked before any work so
 //!   that a missing font costs nothing and leaves no files ([`FontError`]).
 //! - [`FigureError`]: every failure, typed; messages name the file and what was
@@ -20,6 +22,7 @@
 //! `slipload-sim` → `slipload-motion`.
 
 mod error;
+pub mod pareto;
 pub mod plot;
 pub mod study;
 

@@ -276,7 +276,17 @@ impl TaskJournal {
     /// Opens (or starts) the task journal `path` of `study` (fingerprint `fp`); a journal
     /// of another study is refused ([`crate::journal::open_journal`]).
     pub fn open(study: &Study, path: &Path, fp: &Fingerprint) -> Result<TaskJournal, OptError> {
-        let (appender, entries) = open_journal::<TaskEntry>(path, "check", fp, Reuse::Resume)?;
+        Self::open_kind(study, path, "check", fp)
+    }
+
+    /// As [`TaskJournal::open`], for a task journal of kind `kind` (`check`, `pareto`).
+    pub fn open_kind(
+        study: &Study,
+        path: &Path,
+        kind: &str,
+        fp: &Fingerprint,
+    ) -> Result<TaskJournal, OptError> {
+        let (appender, entries) = open_journal::<TaskEntry>(path, kind, fp, Reuse::Resume)?;
         let mut known = HashMap::new();
         for (i, e) in entries.into_iter().enumerate() {
             let name = study.records.get(e.record).map(|r| r.name());

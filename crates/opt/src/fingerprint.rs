@@ -10,6 +10,8 @@
 //! - `method/step`: the sweep's method, time step and HHT α, whether energies are
 //!   accumulated, the check's method and time-step factor;
 //! - `objective`: every term's metric, statistic and weight;
+//! - `objectives` (only in a study that names them): the front's objectives and the
+//!   settings of its search ([`crate::pareto`]);
 //! - `design space`: the space's map from scaled variables to slip loads, its
 //!   constraints and the sweep's list of designs (sampler, points, seed resolved);
 //! - `integrator version`: [`slipload_sim::NUMERICS_VERSION`].
@@ -243,6 +245,29 @@ pub fn of_study(study: &crate::Study, designs: &[crate::sampler::Design]) -> Fin
             .f64(t.weight);
     }
     part("objective", "objective".into(), &h);
+
+    // the front's objectives and search, only when the study names them: a
+    // one-objective study keeps the fingerprint it had before they existed
+    if !study.objectives.is_empty() {
+        let mut h = Fnv64::default();
+        h.u64(study.objectives.len() as u64);
+        for o in &study.objectives {
+            h.str(o.metric.as_str());
+            match o.statistic {
+                Some(s) => h.u64(1).str(s.as_str()),
+                None => h.u64(0),
+            };
+        }
+        let p = study.config.pareto.unwrap_or_default();
+        h.u64(p.designs as u64)
+            .u64(p.batch as u64)
+            .f64(p.initial_radius);
+        part(
+            "objectives",
+            "objectives of the front and its search".into(),
+            &h,
+        );
+    }
 
     let sp = &study.space;
     let mut h = Fnv64::default();

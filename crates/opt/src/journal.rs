@@ -440,10 +440,11 @@ pub fn journal_text<T: Serialize>(kind: &str, fp: &Fingerprint, values: &[T]) ->
 }
 
 /// The journals `slipload` keeps in an output folder: `journal.jsonl` (sweep),
-/// `refine-METHOD.jsonl`, `check.jsonl`.
+/// `refine-METHOD.jsonl`, `check.jsonl`, `pareto.jsonl` (the front's search).
 pub fn is_journal_name(name: &str) -> bool {
     name == "journal.jsonl"
         || name == "check.jsonl"
+        || name == "pareto.jsonl"
         || (name.starts_with("refine-") && name.ends_with(".jsonl"))
 }
 
@@ -484,8 +485,13 @@ pub fn check_folder(dir: &Path, fp: &Fingerprint) -> Result<(), OptError> {
 /// report, and the hidden temporary file an interrupted atomic write leaves
 /// (`.NAME.tmp`).
 pub fn is_output_name(name: &str) -> bool {
-    const FILES: [&str; 15] = [
+    const FILES: [&str; 20] = [
         "manifest.json",
+        "pareto.csv",
+        "pareto.json",
+        "pareto-table.csv",
+        "pareto-table.md",
+        "pareto-table.json",
         "responses.csv",
         "designs.csv",
         "refine.csv",
@@ -501,7 +507,8 @@ pub fn is_output_name(name: &str) -> bool {
         "family.md",
         "report.html",
     ];
-    const FIGURES: [&str; 4] = [
+    const FIGURES: [&str; 5] = [
+        "pareto-front",
         "drift-profiles",
         "records-scatter",
         "convergence",

@@ -21,6 +21,7 @@ pub mod metrics;
 pub mod objective;
 pub mod optimize;
 pub mod output;
+pub mod pareto;
 pub mod pipeline;
 pub mod qp;
 pub mod rank;

@@ -52,6 +52,13 @@ pub struct StudyConfig {
     /// record), overriding the building's `collapse_drift_ratio` for this study.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collapse_drift_ratio: Option<f64>,
+    /// Two to four objectives whose trade-off (Pareto front) the study searches besides
+    /// its `objective` ([`crate::pareto`]); absent: a one-objective study, as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objectives: Option<Vec<crate::pareto::ParetoObjective>>,
+    /// Settings of the front's search (only with `objectives`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pareto: Option<crate::pareto::ParetoConfig>,
 }
 
 /// One suite of records.
@@ -349,6 +356,8 @@ pub struct Study {
     pub objective: Objective,
     /// The sweep's method, and why ([`crate::fidelity::choose_sweep_method`]).
     pub sweep_method: SweepMethod,
+    /// The objectives of the front (empty: a one-objective study).
+    pub objectives: Vec<crate::pareto::ParetoObjective>,
 }
 
 fn read_text(path: &Path) -> Result<String, OptError> {
@@ -856,6 +865,22 @@ impl StudyConfig {
                 ),
             ));
         }
+        match (&self.objectives, &self.pareto) {
+            (Some(list), pareto) => {
+                crate::pareto::objectives::validate(list, None, path)?;
+                if let Some(p) = pareto {
+                    p.validate(path)?;
+                }
+            }
+            (None, Some(_)) => {
+                return Err(OptError::invalid(
+                    path,
+                    "pareto",
+                    "sets the search of a front, but the study names no `objectives` (give 2 to 4, or leave `pareto` out)",
+                ));
+            }
+            (None, None) => {}
+        }
         self.check_counts(path)
     }
 
@@ -953,6 +978,11 @@ impl Study {
             building.collapse_drift = Some(heights.iter().map(|h| r * h).collect());
         }
         let space = DesignSpace::new(&cfg.space, &cfg.constraints, &building, path)?;
+        let objectives = cfg.objectives.clone().unwrap_or_default();
+        if !objectives.is_empty() {
+            let yielding = building.storey_yield.iter().any(Option::is_some);
+            crate::pareto::objectives::validate(&objectives, Some(yielding), path)?;
+        }
         let objective = Objective {
             terms: cfg.objective.terms.clone(),
         };
@@ -1053,6 +1083,7 @@ impl Study {
             suites,
             space,
             objective,
+            objectives,
             sweep_method: SweepMethod {
                 method: MethodName::Newmark,
                 reason: String::new(),
@@ -1064,15 +1095,16 @@ impl Study {
 
     /// Whether any objective term needs the energies.
     pub fn needs_energies(&self) -> bool {
-        self.objective.terms.iter().any(|t| {
-            matches!(
-                t.metric,
-                Metric::EnergyRatio
-                    | Metric::Rpi
-                    | Metric::HystereticEnergy
-                    | Metric::FrictionShare
-            )
-        })
+        self.objectives.iter().any(|o| o.needs_energies())
+            || self.objective.terms.iter().any(|t| {
+                matches!(
+                    t.metric,
+                    Metric::EnergyRatio
+                        | Metric::Rpi
+                        | Metric::HystereticEnergy
+                        | Metric::FrictionShare
+                )
+            })
     }
 
     /// The building file's friction law per dissipator of the space, when some

@@ -363,9 +363,17 @@ impl DesignTable {
 
     /// Writes `design-table.csv`, `design-table.md` and `design-table.json` into `out`.
     pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
-        write_atomic(&out.join("design-table.csv"), self.to_csv().as_bytes())?;
-        write_atomic(&out.join("design-table.md"), self.to_markdown().as_bytes())?;
-        write_atomic(&out.join("design-table.json"), self.to_json().as_bytes())
+        self.write_files_as(out, "design-table")
+    }
+
+    /// Writes `STEM.csv`, `STEM.md` and `STEM.json` into `out`.
+    pub fn write_files_as(&self, out: &Path, stem: &str) -> Result<(), OptError> {
+        write_atomic(&out.join(format!("{stem}.csv")), self.to_csv().as_bytes())?;
+        write_atomic(
+            &out.join(format!("{stem}.md")),
+            self.to_markdown().as_bytes(),
+        )?;
+        write_atomic(&out.join(format!("{stem}.json")), self.to_json().as_bytes())
     }
 
     /// CSV, full precision, one line per design.

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod explain;
 pub mod merge;
 pub mod optimize;
+pub mod pareto_summary;
 pub mod rank;
 pub mod record;
 pub mod report;

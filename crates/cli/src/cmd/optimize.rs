@@ -33,14 +33,14 @@ pub struct OptimizeArgs {
     #[arg(long, default_value_t = 11)]
     pub map_grid: usize,
     /// Remove every file a slipload command wrote in the output folder (journals — sweep,
-    /// refine, check —, tables, figures, rankings, report; any other file is kept and
+    /// refine, check, pareto —, tables, figures, rankings, report; any other file is kept and
     /// named) and start afresh; without it the journals of the same study (by
     /// fingerprint) are continued and those of another study refused
     #[arg(long)]
     pub fresh: bool,
 }
 
-fn kn(v: &[f64]) -> String {
+pub(crate) fn kn(v: &[f64]) -> String {
     v.iter()
         .map(|x| format!("{:.1}", x / 1e3))
         .collect::<Vec<_>>()
@@ -49,7 +49,7 @@ fn kn(v: &[f64]) -> String {
 
 /// The design variables of the optimum that sit on a bound of the study's space, said
 /// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
-fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
+pub(crate) fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
     let load_of = |floor: usize| {
         study
             .space
@@ -165,13 +165,16 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         discard_journals(&args.out)?;
     }
     let report = optimize_study(&study, &args.out, &options, &PhaseBars::default())?;
-    let written = slipload_figures::study::write(&report.figures, &args.out)?;
+    let mut written = slipload_figures::study::write(&report.figures, &args.out)?;
+    if let Some(p) = &report.pareto {
+        written.extend(slipload_figures::pareto::write_front(p, &args.out)?);
+    }
     print_summary(&study, &report, started.elapsed().as_secs_f64());
-    outln!(
-        "wrote {}/{{{}}}",
-        args.out.display(),
-        StudyReport::FILES.join(",")
-    );
+    let mut files: Vec<&str> = StudyReport::FILES.to_vec();
+    if report.pareto.is_some() {
+        files.extend(slipload_opt::pareto::ParetoReport::FILES);
+    }
+    outln!("wrote {}/{{{}}}", args.out.display(), files.join(","));
     outln!(
         "figures (SVG, PNG, CSV): {}/{{{}}}",
         args.out.display(),
@@ -215,10 +218,18 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         w.refine.run,
         w.check.run,
         w.table.run,
-        match w.map {
-            Some(m) => format!(", objective map {}", m.run),
-            None => String::new(),
-        },
+        format!(
+            "{}{}",
+            w.map
+                .map_or(String::new(), |m| format!(", objective map {}", m.run)),
+            w.pareto.map_or(String::new(), |[s, c, t]| format!(
+                ", front search {}, front check {}, front table {} ({} reused from pareto.jsonl and check.jsonl)",
+                s.run,
+                c.run,
+                t.run,
+                s.reused + c.reused + t.reused
+            ))
+        ),
         {
             let map_reused = w.map.map_or(0, |m| m.reused);
             match (w.check.reused + w.table.reused > 0, map_reused > 0) {
@@ -300,5 +311,17 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             obj(f.f_check),
             obj(f.f_sweep)
         );
+    }
+    match &report.pareto {
+        Some(p) => {
+            for line in super::pareto_summary::front_lines(study, report, p) {
+                outln!("{line}");
+            }
+        }
+        None => {
+            if let Some(line) = super::pareto_summary::sweep_trade_off(report) {
+                outln!("{line}");
+            }
+        }
     }
 }

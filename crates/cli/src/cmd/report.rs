@@ -247,7 +247,9 @@ fn details(summary: &str, inner: &str, open: bool) -> String {
 /// Markdown files in the order a reader wants them for this kind of folder.
 fn table_order(kind: FolderKind) -> &'static [&'static str] {
     match kind {
-        FolderKind::Optimize | FolderKind::Sweep => &["design-table.md", "rank.md", "family.md"],
+        FolderKind::Optimize | FolderKind::Sweep => {
+            &["design-table.md", "pareto-table.md", "rank.md", "family.md"]
+        }
         _ => &[],
     }
 }
@@ -314,6 +316,13 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
             let _ = writeln!(page.body, "<pre>{}</pre>", escape(&read(e)?));
             shown.push(e.name.clone());
         }
+        page.end();
+    }
+
+    // A study with objectives: its front, the knee and whether the check held it
+    if let Some(p) = by_name("pareto.json").and_then(read_json) {
+        page.section("trade-off", "Trade-off");
+        page.body.push_str(&pareto_section(&p));
         page.end();
     }
 
@@ -481,6 +490,83 @@ pub fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, String)
 }
 
 /// A key/value table.
+/// The trade-off of a study with objectives, from `pareto.json`: the objectives, the
+/// front's size and cost, the knee and each objective's optimum with their slip loads and
+/// objectives, and whether the front held at the check fidelity.
+fn pareto_section(p: &serde_json::Value) -> String {
+    let text = |v: &serde_json::Value| v.as_str().unwrap_or("").to_string();
+    let list = |v: &serde_json::Value, digits: usize| {
+        v.as_array()
+            .map(|a| {
+                a.iter()
+                    .map(|x| x.as_f64().map_or("—".into(), |f| format!("{f:.digits$}")))
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            })
+            .unwrap_or_default()
+    };
+    let names: Vec<String> = p["objectives"]
+        .as_array()
+        .map(|a| a.iter().map(text).collect())
+        .unwrap_or_default();
+    let front = p["front"].as_array().cloned().unwrap_or_default();
+    let entry = |label: &str| {
+        front
+            .iter()
+            .find(|e| e["label"].as_str() == Some(label))
+            .map(|e| {
+                format!(
+                    "{} — slip loads {} kN; objectives (sweep) {}; (check) {}",
+                    label,
+                    list(&e["slip_loads_kN"], 1),
+                    list(&e["sweep"], 5),
+                    list(&e["check"], 5)
+                )
+            })
+            .unwrap_or_else(|| label.to_string())
+    };
+    let mut rows = vec![
+        ("objectives".to_string(), names.join(" vs ")),
+        (
+            "front".to_string(),
+            format!(
+                "{} designs non-dominated of {} evaluated ({} sweep-fidelity simulations)",
+                front.len(),
+                p["sweep_designs"].as_u64().unwrap_or(0)
+                    + p["search_designs"].as_u64().unwrap_or(0),
+                p["sweep_fidelity_simulations"].as_u64().unwrap_or(0)
+            ),
+        ),
+        ("knee".to_string(), entry(&text(&p["knee"]))),
+    ];
+    if let Some(ext) = p["extremes"].as_array() {
+        for e in ext {
+            rows.push((format!("optimum of {}", text(&e[0])), entry(&text(&e[1]))));
+        }
+    }
+    let dominated: Vec<String> = p["dominated_at_check"]
+        .as_array()
+        .map(|a| a.iter().map(|d| text(&d[0])).collect())
+        .unwrap_or_default();
+    rows.push((
+        "at the check fidelity".to_string(),
+        if dominated.is_empty() {
+            "the front held: no design became dominated".to_string()
+        } else {
+            format!("dominated now: {}", dominated.join(", "))
+        },
+    ));
+    rows.push((
+        "hypervolume".to_string(),
+        format!(
+            "{:.6e} against the reference point {}",
+            p["hypervolume"].as_f64().unwrap_or(f64::NAN),
+            list(&p["reference_point"], 6)
+        ),
+    ));
+    kv_table(&rows)
+}
+
 fn kv_table(rows: &[(String, String)]) -> String {
     let mut out = String::from("<div class=\"scroll\"><table class=\"kv\"><tbody>\n");
     for (k, v) in rows {

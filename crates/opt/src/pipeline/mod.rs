@@ -16,10 +16,15 @@
 //! | [`Phase::Check`] | the finalists at the check fidelity | `check.jsonl` |
 //! | [`Phase::DesignTable`] | the standard designs and their ±25 % variants, check fidelity | `check.jsonl` |
 //! | [`Phase::ObjectiveMap`] | (when asked) a grid over two floors' slip loads, sweep fidelity | — |
+//! | [`Phase::Pareto`] | (a study with `objectives`) the front's search, sweep fidelity | `pareto.jsonl` |
+//! | [`Phase::ParetoCheck`] | the front's designs at the check fidelity | `check.jsonl` |
+//! | [`Phase::ParetoTable`] | the design table of the front's optima and knee | `check.jsonl` |
 //!
 //! then the candidates (the design table's designs), the figure data ([`figures`]) and
 //! the files ([`report`]): `refine.csv`, `optimum.json`, `design-table.{csv,md,json}`,
-//! `candidates.json`, beside the sweep's `manifest.json`, `designs.csv`, `responses.csv`.
+//! `candidates.json`, beside the sweep's `manifest.json`, `designs.csv`, `responses.csv`
+//! (and, with `objectives`, `pareto.{csv,json}` and `pareto-table.{csv,md,json}`:
+//! [`crate::pareto`]).
 //!
 //! Submodules, each importing only those above it: [`progress`] (phases and the progress
 //! callback), [`figures`] (figure data), [`report`] (the report and its files),

@@ -124,6 +124,19 @@ pub fn optimize_study(
     };
     let map_reused = check_journal.reused() - before_map;
 
+    let pareto = if study.objectives.is_empty() {
+        None
+    } else {
+        Some(pareto_phases(
+            study,
+            out,
+            &sweep.manifest,
+            rows,
+            &check_journal,
+            progress,
+        )?)
+    };
+
     let refine_run = (refined.log.len() - refined.replayed) * nr;
     // the bare frame and the finalists, unless the sweep ran the reference itself
     let check_total = if refined.check_reran {
@@ -153,6 +166,7 @@ pub fn optimize_study(
             run: m.objective.len() * nr - map_reused,
             reused: map_reused,
         }),
+        pareto: pareto.as_ref().map(|(_, w)| *w),
     };
     let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
     let figures = FigureData::of_design_table(
@@ -193,7 +207,80 @@ pub fn optimize_study(
         work,
         refine: refined,
         sweep,
+        pareto: pareto.map(|(p, _)| p),
     };
     report.write_files(out)?;
     Ok(report)
+}
+
+/// The front's phases ([`Phase::Pareto`], [`Phase::ParetoCheck`], [`Phase::ParetoTable`]):
+/// the search from the sweep (`pareto.jsonl`), its front at the check fidelity and the
+/// design table of a few front designs (`check.jsonl`), and the simulations of each.
+fn pareto_phases(
+    study: &Study,
+    out: &Path,
+    manifest: &Manifest,
+    rows: &[crate::metrics::RecordMetrics],
+    check_journal: &TaskJournal,
+    progress: &dyn Progress,
+) -> Result<(crate::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
+    use crate::pareto::report::{build, knee_and_extremes, table_designs};
+    let nr = study.records.len();
+    let cfg = study.config.pareto.unwrap_or_default();
+    let journal = TaskJournal::open_kind(
+        study,
+        &out.join("pareto.jsonl"),
+        "pareto",
+        &manifest.fingerprint,
+    )?;
+    let search = phase(progress, Phase::Pareto, cfg.designs * nr, |tick| {
+        crate::pareto::search(study, manifest, rows, Some(&journal), tick)
+            .map_err(|e| e.context("searching the front"))
+    })?;
+    let front_size = crate::pareto::first_front(
+        &search
+            .evaluated
+            .iter()
+            .map(|e| e.objectives.clone())
+            .collect::<Vec<_>>(),
+    )
+    .len();
+    let certified = phase(
+        progress,
+        Phase::ParetoCheck,
+        (front_size + 1) * nr,
+        |tick| {
+            crate::pareto::certify(study, &search, Some(check_journal), tick)
+                .map_err(|e| e.context("checking the front"))
+        },
+    )?;
+    let (knee, extremes) = knee_and_extremes(&search, &certified);
+    let designs = table_designs(study, &search, &certified, knee, &extremes);
+    let before = check_journal.reused();
+    let table = phase(
+        progress,
+        Phase::ParetoTable,
+        (designs.len() * 3 + 1) * nr,
+        |tick| {
+            DesignTable::build_journalled(study, &designs, Some(check_journal), tick)
+                .map_err(|e| e.context("the front's design table"))
+        },
+    )?;
+    let table_reused = check_journal.reused() - before;
+    let table_total: usize = table.1.iter().map(Vec::len).sum();
+    let work = [
+        PhaseWork {
+            run: search.ran,
+            reused: search.reused,
+        },
+        PhaseWork {
+            run: certified.ran,
+            reused: certified.reused,
+        },
+        PhaseWork {
+            run: table_total - table_reused,
+            reused: table_reused,
+        },
+    ];
+    Ok((build(study, search, certified, table, designs), work))
 }

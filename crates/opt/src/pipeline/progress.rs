@@ -19,6 +19,12 @@ pub enum Phase {
     Rank,
     /// Sweep and refinement of every member of a design family.
     Family,
+    /// The search of a front over the study's `objectives` (sweep fidelity).
+    Pareto,
+    /// The front's designs at reference accuracy.
+    ParetoCheck,
+    /// The design table of a few front designs at reference accuracy.
+    ParetoTable,
 }
 
 impl Phase {
@@ -32,6 +38,9 @@ impl Phase {
             Phase::ObjectiveMap => "objective map",
             Phase::Rank => "rank",
             Phase::Family => "family",
+            Phase::Pareto => "front search",
+            Phase::ParetoCheck => "front check",
+            Phase::ParetoTable => "front table",
         }
     }
 }

@@ -37,6 +37,9 @@ pub struct Work {
     pub table: PhaseWork,
     /// The objective map, when asked for (not journalled).
     pub map: Option<PhaseWork>,
+    /// A front's search (`pareto.jsonl`), check and design table (`check.jsonl`), when
+    /// the study names `objectives`.
+    pub pareto: Option<[PhaseWork; 3]>,
 }
 
 impl Work {
@@ -47,6 +50,7 @@ impl Work {
             + self.check.run
             + self.table.run
             + self.map.map_or(0, |m| m.run)
+            + self.pareto.map_or(0, |p| p.iter().map(|w| w.run).sum())
     }
 }
 
@@ -83,6 +87,8 @@ pub struct StudyReport {
     pub figures: FigureData,
     /// Simulations per phase, run now and reused.
     pub work: Work,
+    /// The front, when the study names `objectives` ([`crate::pareto`]).
+    pub pareto: Option<crate::pareto::ParetoReport>,
 }
 
 /// A finalist as `optimum.json` lists it.
@@ -220,7 +226,8 @@ impl StudyReport {
     }
 
     /// Writes `refine.csv`, `optimum.json`, `design-table.{csv,md,json}` and
-    /// `candidates.json` into `out` (the sweep wrote its own files as it finished).
+    /// `candidates.json` into `out` (the sweep wrote its own files as it finished), and
+    /// the front's files ([`crate::pareto::ParetoReport::write_files`]) when there is one.
     pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
         write_atomic(&out.join("refine.csv"), self.refine_csv().as_bytes())?;
         write_atomic(&out.join("optimum.json"), self.optimum_json()?.as_bytes())?;
@@ -228,6 +235,10 @@ impl StudyReport {
         write_atomic(
             &out.join("candidates.json"),
             self.candidates_json()?.as_bytes(),
-        )
+        )?;
+        if let Some(p) = &self.pareto {
+            p.write_files(out)?;
+        }
+        Ok(())
     }
 }

@@ -1,0 +1,129 @@
+//! Contract: `slipload optimize` on a study with `objectives` names the trade-off in
+//! words and numbers (the front, the first objective's optimum and its cost against the
+//! building file's design, the knee and its place, each other optimum, the bounds,
+//! whether the front held), writes the front's files and figure, and `slipload report`
+//! shows the trade-off; a one-objective study prints the free trade-off of its sweep.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+mod common;
+use common::{root, slipload_in};
+
+#[test]
+fn optimize_names_the_trade_off_and_writes_the_front() {
+    let dir = common::scratch("pareto", "front");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("configs/study-pareto.json")).unwrap(),
+    )
+    .unwrap();
+    v["building"] = root()
+        .join("configs/benchmark-3story.json")
+        .to_string_lossy()
+        .into_owned()
+        .into();
+    v["suites"][0]["synthetic"]["count"] = 2.into();
+    v["suites"][0]["synthetic"]["duration_s"] = 4.0.into();
+    v["sweep"]["points"] = 6.into();
+    v["refine"]["starts"] = 1.into();
+    v["refine"]["max_evaluations"] = 4.into();
+    v["refine"]["finalists"] = 1.into();
+    v["pareto"]["designs"] = 6.into();
+    v["pareto"]["batch"] = 3.into();
+    let study = dir.join("study.json");
+    std::fs::write(&study, v.to_string()).unwrap();
+    let out = slipload_in(
+        &dir,
+        &[
+            "optimize",
+            study.to_str().unwrap(),
+            "--out",
+            "res",
+            "--quiet",
+        ],
+    );
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in [
+        "front of mean peak_drift_ratio vs mean peak_floor_acceleration: ",
+        "of 12 evaluated (",
+        "  mean peak_drift_ratio optimum ",
+        "    what it costs against the building file's design (834.1 / 740.8 / 437.5 kN)",
+        "base shear ",
+        "floor acceleration ",
+        "  knee ",
+        " along the front by mean peak_drift_ratio",
+        "  mean peak_floor_acceleration optimum ",
+        "  on a bound of the design space — the peak_drift_ratio optimum: ",
+        "  front at reference accuracy (exact at 1 x the sweep time step): ",
+        "pareto.csv,pareto.json,pareto-table.csv,pareto-table.md,pareto-table.json}",
+        "pareto-front}",
+    ] {
+        assert!(text.contains(needle), "{needle:?} in:\n{text}");
+    }
+    // the one-objective trade-off line is for one-objective studies only
+    assert!(!text.contains("trade-off in the sweep's"), "{text}");
+    let res = dir.join("res");
+    for f in [
+        "pareto.csv",
+        "pareto.json",
+        "pareto-table.md",
+        "pareto-front.svg",
+        "pareto-front.png",
+        "pareto-front.csv",
+        "pareto.jsonl",
+    ] {
+        assert!(res.join(f).is_file(), "{f} written");
+    }
+    let csv = std::fs::read_to_string(res.join("pareto-front.csv")).unwrap();
+    assert!(csv.lines().any(|l| l.ends_with(",knee")), "{csv}");
+    assert!(csv.lines().any(|l| l.starts_with("bare,")), "{csv}");
+
+    // the report's trade-off section
+    let out = slipload_in(&dir, &["report", "res", "--quiet"]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let html = std::fs::read_to_string(res.join("report.html")).unwrap();
+    assert!(html.contains("id=\"trade-off\""), "trade-off section");
+    assert!(html.contains("optimum of mean peak_floor_acceleration"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_one_objective_study_prints_its_sweeps_trade_off() {
+    let dir = common::scratch("pareto", "one");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("configs/study-benchmark.json")).unwrap(),
+    )
+    .unwrap();
+    v["building"] = root()
+        .join("configs/benchmark-3story.json")
+        .to_string_lossy()
+        .into_owned()
+        .into();
+    v["suites"][0]["synthetic"]["count"] = 2.into();
+    v["suites"][0]["synthetic"]["duration_s"] = 4.0.into();
+    v["sweep"]["points"] = 6.into();
+    v["refine"]["max_evaluations"] = 4.into();
+    let study = dir.join("study.json");
+    std::fs::write(&study, v.to_string()).unwrap();
+    let out = slipload_in(
+        &dir,
+        &[
+            "optimize",
+            study.to_str().unwrap(),
+            "--out",
+            "res",
+            "--quiet",
+        ],
+    );
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("trade-off in the sweep's 6 designs (no extra simulation"))
+        .unwrap_or_else(|| panic!("the trade-off line in:\n{text}"));
+    assert!(line.contains("; knee s0"), "{line}");
+    assert!(!text.contains("front of "), "{text}");
+    assert!(!dir.join("res/pareto.csv").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
