@@ -11,6 +11,8 @@
 //!   the CSV of their data) from a [`slipload_opt::pipeline::FigureData`], returning the
 //!   names written; [`study::map_csv`], [`study::convergence_csv`],
 //!   [`study::drift_profiles_csv`], [`study::scatter_csv`] give the CSV texts alone.
+//! - [`write_optimized`]: every figure of an `optimize` run from its report — the study
+//!   figures and, for a study with `objectives`, the front — the one call each front makes.
 //! - [`pareto::write_front`]: the front figure of a study with `objectives`
 //!   (`pareto-front.{svg,png,csv}`), [`pareto::front_csv`] its CSV text alone.
 //! - [`check_fonts`]: whether the PNG text font can be found, checked before any work so
@@ -28,3 +30,17 @@ pub mod study;
 
 pub use error::{FigureError, FontError};
 pub use plot::raster::check_fonts;
+
+/// Every figure `optimize` draws from its report, into `dir`: the study figures
+/// ([`study::write`]) and, when the study names `objectives`, the front
+/// ([`pareto::write_front`]). Returns the names written.
+pub fn write_optimized(
+    report: &slipload_opt::pipeline::StudyReport,
+    dir: &std::path::Path,
+) -> Result<Vec<String>, FigureError> {
+    let mut written = study::write(&report.figures, dir)?;
+    if let Some(p) = &report.pareto {
+        written.extend(pareto::write_front(p, dir)?);
+    }
+    Ok(written)
+}

@@ -27,3 +27,11 @@ pub fn write(
 ) -> PyResult<Vec<String>> {
     slipload_figures::study::write(data, out).map_err(figure_error)
 }
+
+/// Draws every figure of an `optimize` run into `out`; the names written.
+pub fn write_optimized(
+    report: &slipload_opt::pipeline::StudyReport,
+    out: &std::path::Path,
+) -> PyResult<Vec<String>> {
+    slipload_figures::write_optimized(report, out).map_err(figure_error)
+}

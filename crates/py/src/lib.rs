@@ -40,6 +40,10 @@ fn _slipload(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::merge, m)?)?;
     m.add_function(wrap_pyfunction!(study::rank, m)?)?;
     m.add_function(wrap_pyfunction!(study::table, m)?)?;
+    m.add_function(wrap_pyfunction!(study::evaluate_objectives, m)?)?;
+    m.add_function(wrap_pyfunction!(study::nondominated_ranks, m)?)?;
+    m.add_function(wrap_pyfunction!(study::hypervolume, m)?)?;
+    m.add_function(wrap_pyfunction!(study::knee, m)?)?;
     m.add_function(wrap_pyfunction!(allow_large, m)?)?;
     Ok(())
 }

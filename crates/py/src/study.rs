@@ -195,11 +195,18 @@ pub fn optimize<'py>(
     }
     let (report, written) = watched(py, threads, progress, |ctl| {
         let report = optimize_study(&study, &out, &options, ctl).py()?;
-        let written = figures(&report.figures, &out)?;
+        let written = crate::figures::write_optimized(&report, &out)?;
         Ok((report, written))
     })?;
     let mut names: Vec<String> = StudyReport::FILES.iter().map(|s| s.to_string()).collect();
     names.extend(SweepRun::FILES.iter().map(|s| s.to_string()));
+    if report.pareto.is_some() {
+        names.extend(
+            slipload_opt::pareto::ParetoReport::FILES
+                .iter()
+                .map(|s| s.to_string()),
+        );
+    }
     d.set_item("out", out.clone())?;
     d.set_item("files", files(py, &out, &names)?)?;
     d.set_item("figures", written)?;
@@ -382,4 +389,68 @@ pub fn table<'py>(
     d.set_item("files", files(py, &out, &names)?)?;
     d.set_item("markdown", report.to_markdown())?;
     Ok(d)
+}
+
+/// The objective vectors of designs under a study's `objectives`, at the sweep fidelity
+/// (`slipload_opt::pareto::evaluate_objectives`): an array (designs, objectives).
+#[pyfunction]
+#[pyo3(signature = (study, slip_loads, *, progress=None, threads=None))]
+pub fn evaluate_objectives<'py>(
+    py: Python<'py>,
+    study: &PyStudy,
+    slip_loads: &Bound<'py, PyAny>,
+    progress: Option<&Bound<'py, PyAny>>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let (nd, nk, loads) = crate::arrays::matrix(slip_loads, "slip_loads")?;
+    let designs: Vec<Vec<f64>> = loads.chunks(nk).map(<[f64]>::to_vec).collect();
+    let study = study.inner.clone();
+    let vectors = watched(py, threads, progress, |ctl| {
+        slipload_opt::pareto::evaluate_objectives(&study, &designs, ctl).py()
+    })?;
+    let m = vectors.first().map_or(0, Vec::len);
+    crate::arrays::array2(py, nd, m, vectors.into_iter().flatten().collect())
+}
+
+/// The rows of a 2-D float64 array, each a point in objective space.
+fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
+    let (_, k, v) = crate::arrays::matrix(obj, what)?;
+    Ok(v.chunks(k).map(<[f64]>::to_vec).collect())
+}
+
+/// Non-dominated ranks (1 = the front) of the rows of `points` (minimisation).
+#[pyfunction]
+pub fn nondominated_ranks(points: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
+    let p = self::points(points, "points")?;
+    Ok(slipload_opt::pareto::nondominated_ranks(&p))
+}
+
+/// The hypervolume the rows of `points` dominate up to `reference` (minimisation).
+#[pyfunction]
+pub fn hypervolume(points: &Bound<'_, PyAny>, reference: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let p = self::points(points, "points")?;
+    let r = crate::arrays::vector(reference, "reference", true)?;
+    if let Some((i, row)) = p.iter().enumerate().find(|(_, row)| row.len() != r.len()) {
+        return Err(input(format!(
+            "points[{i}] has {} objectives, reference has {}",
+            row.len(),
+            r.len()
+        )));
+    }
+    if !(1..=4).contains(&r.len()) {
+        return Err(input(format!(
+            "reference: {} objectives; the hypervolume is computed for 1 to 4",
+            r.len()
+        )));
+    }
+    Ok(slipload_opt::pareto::hypervolume(&p, &r))
+}
+
+/// The knee of a front (rows of `points`, minimisation): its index, by the rule of the
+/// study reports (least sum of objectives normalised over the front); None for an empty
+/// front.
+#[pyfunction]
+pub fn knee(points: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
+    let p = self::points(points, "points")?;
+    Ok(slipload_opt::pareto::knee(&p))
 }

@@ -165,10 +165,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         discard_journals(&args.out)?;
     }
     let report = optimize_study(&study, &args.out, &options, &PhaseBars::default())?;
-    let mut written = slipload_figures::study::write(&report.figures, &args.out)?;
-    if let Some(p) = &report.pareto {
-        written.extend(slipload_figures::pareto::write_front(p, &args.out)?);
-    }
+    let written = slipload_figures::write_optimized(&report, &args.out)?;
     print_summary(&study, &report, started.elapsed().as_secs_f64());
     let mut files: Vec<&str> = StudyReport::FILES.to_vec();
     if report.pareto.is_some() {

@@ -74,6 +74,10 @@ __all__ = [
     "merge",
     "rank",
     "table",
+    "evaluate_objectives",
+    "nondominated_ranks",
+    "hypervolume",
+    "knee",
     "allow_large",
 ]
 
@@ -415,6 +419,11 @@ class StudyReport:
         candidates: ``candidates.json`` (``optimize`` only).
         manifest: ``manifest.json`` (sweeps and optimizations).
         ranking: ``rank.json`` (``rank`` only).
+        pareto: ``pareto.json`` (``optimize`` of a study with ``objectives``): the front,
+            its knee, the extremes, the hypervolume and whether the front held at the
+            check fidelity.
+        pareto_table: the rows of ``pareto-table.json`` (the front's designs with the
+            design table's columns and their ±25 % variants).
         details: everything else the call reported (simulations run and reused, …).
     """
 
@@ -435,6 +444,9 @@ class StudyReport:
         self.candidates: Optional[List[Dict[str, Any]]] = load("candidates.json")
         self.manifest: Optional[Dict[str, Any]] = load("manifest.json")
         self.ranking: Optional[Dict[str, Any]] = load("rank.json")
+        self.pareto: Optional[Dict[str, Any]] = load("pareto.json")
+        ptable = load("pareto-table.json")
+        self.pareto_table: Optional[List[Dict[str, Any]]] = None if ptable is None else ptable["rows"]
 
     def design_table_frame(self) -> Any:
         """The design table as a pandas DataFrame, one row per design (needs pandas)."""
@@ -603,6 +615,50 @@ def table(
         threads=threads,
     )
     return StudyReport(raw)
+
+
+def evaluate_objectives(
+    study: Union[PathLike, Dict[str, Any], Study],
+    slip_loads: Any,
+    *,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> Any:
+    """The objective vectors of designs under a study's ``objectives`` (2 to 4), at the
+    study's sweep fidelity — the evaluations its front search makes, for driving another
+    optimiser (pymoo, say) with slipload's simulations.
+
+    Args:
+        study: a study with ``objectives`` (see :func:`load_study`).
+        slip_loads: 2-D float64 array (designs, dissipators), N, in the order of the
+            study's ``damper_floors``.
+        progress, threads: as in :func:`batch`.
+
+    Returns:
+        A float64 array (designs, objectives), minimised; a design that collapses on a
+        record scores +inf in every objective. Each design runs every record of the study.
+    """
+    return _watched(_slipload.evaluate_objectives, progress, load_study(study), slip_loads, threads=threads)
+
+
+def nondominated_ranks(points: Any) -> List[int]:
+    """Non-dominated ranks of the rows of a 2-D float64 array (minimisation): 1 for the
+    front, 2 for the front of the rest, and so on; equal points share a rank."""
+    return _slipload.nondominated_ranks(points)
+
+
+def hypervolume(points: Any, reference: Any) -> float:
+    """The hypervolume (area, volume) the rows of ``points`` dominate up to ``reference``
+    (minimisation, 1 to 4 objectives; exact): the measure the study reports compare fronts
+    by. Points not below the reference in every objective add nothing."""
+    return _slipload.hypervolume(points, reference)
+
+
+def knee(points: Any) -> Optional[int]:
+    """The index of the knee of a front (rows of a 2-D float64 array, minimisation) by the
+    rule the study reports use: the point of least sum of objectives, each normalised to
+    0 at the front's best and 1 at its worst. ``None`` for an empty front."""
+    return _slipload.knee(points)
 
 
 def allow_large(on: bool = True) -> None:

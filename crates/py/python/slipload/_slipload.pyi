@@ -358,5 +358,23 @@ def table(
 ) -> Dict[str, Any]:
     """``slipload table``."""
 
+def evaluate_objectives(
+    study: Study,
+    slip_loads: npt.NDArray[np.float64],
+    *,
+    progress: ProgressCallback = None,
+    threads: Optional[int] = None,
+) -> npt.NDArray[np.float64]:
+    """Objective vectors (designs, objectives) of a study with ``objectives``."""
+
+def nondominated_ranks(points: npt.NDArray[np.float64]) -> List[int]:
+    """Non-dominated ranks (1 = the front), minimisation."""
+
+def hypervolume(points: npt.NDArray[np.float64], reference: FloatArray) -> float:
+    """The hypervolume dominated up to ``reference``, minimisation, 1 to 4 objectives."""
+
+def knee(points: npt.NDArray[np.float64]) -> Optional[int]:
+    """The knee of a front by the study reports' rule."""
+
 def allow_large(on: bool) -> None:
     """Lifts or restores the size limits on inputs."""
