@@ -128,8 +128,19 @@ pub fn batch_designs<'py>(
             &|k| {
                 let (d, r) = (k / nr, k % nr);
                 let base = &bases[r];
-                let mut s = Scene::clone(base);
-                s.building = base.building.with_slip_loads(&per_floor[d]);
+                // the base scene with this design's building: one clone of the building
+                let s = Scene {
+                    name: base.name.clone(),
+                    building: base.building.with_slip_loads(&per_floor[d]),
+                    record: base.record.clone(),
+                    harmonic: base.harmonic.clone(),
+                    initial: base.initial.clone(),
+                    duration: base.duration,
+                    method: base.method.clone(),
+                    outputs: base.outputs.clone(),
+                    reduce: base.reduce,
+                    notes: Vec::new(),
+                };
                 slipload_sim::simulate(&s)
             },
             &|k| {
