@@ -4,7 +4,7 @@
 //!
 //! - [`front`]: non-dominated sorting, crowding distance, exact hypervolume, the knee;
 //! - [`objectives`]: what an objective measures and its value for one design;
-//! - [`search`]: the search of the front from the sweep's designs, journalled;
+//! - [`mod@search`]: the search of the front from the sweep's designs, journalled;
 //! - [`report`]: the certified front (its designs at the check fidelity) and its files,
 //!   `pareto.csv`, `pareto.json` and the design table `pareto-table.{csv,md,json}`.
 //!

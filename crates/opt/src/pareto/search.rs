@@ -16,7 +16,7 @@
 //! Every design carries a poll step (scaled variables; `initial_radius` for the sweep's,
 //! its parent's for a polled design). A point whose polls put no design on the front
 //! halves its step; a point whose polls are all evaluated already halves it before
-//! polling, down to [`MIN_STEP`]. A poll is clipped to the box and must satisfy the
+//! polling, down to `MIN_STEP`. A poll is clipped to the box and must satisfy the
 //! constraints; a proposal within 1e-4 (scaled) of a design already evaluated or
 //! proposed is skipped.
 //!
