@@ -124,17 +124,20 @@ impl PyStudy {
     }
 }
 
-/// The text of every file `names` in `out`, for the Python layer.
-fn files<'py>(py: Python<'py>, out: &Path, names: &[String]) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
+/// The dict a study call returns: `out` and `files`, the text of every JSON, CSV and
+/// Markdown file of `names` the call wrote in `out`, for the Python layer to parse.
+fn report_dict<'py>(py: Python<'py>, out: &Path, names: &[&str]) -> PyResult<Bound<'py, PyDict>> {
+    let files = PyDict::new(py);
     for n in names {
-        if n.ends_with(".json") || n.ends_with(".csv") || n.ends_with(".md") {
-            let path = out.join(n);
-            if let Ok(text) = std::fs::read_to_string(&path) {
-                d.set_item(n, text)?;
-            }
+        if (n.ends_with(".json") || n.ends_with(".csv") || n.ends_with(".md"))
+            && let Ok(text) = std::fs::read_to_string(out.join(n))
+        {
+            files.set_item(n, text)?;
         }
     }
+    let d = PyDict::new(py);
+    d.set_item("out", out.to_path_buf())?;
+    d.set_item("files", files)?;
     Ok(d)
 }
 
@@ -198,17 +201,15 @@ pub fn optimize<'py>(
         let written = crate::figures::write_optimized(&report, &out)?;
         Ok((report, written))
     })?;
-    let mut names: Vec<String> = StudyReport::FILES.iter().map(|s| s.to_string()).collect();
-    names.extend(SweepRun::FILES.iter().map(|s| s.to_string()));
+    let mut names: Vec<&str> = StudyReport::FILES.to_vec();
+    names.extend(SweepRun::FILES);
     if report.pareto.is_some() {
-        names.extend(
-            slipload_opt::pareto::ParetoReport::FILES
-                .iter()
-                .map(|s| s.to_string()),
-        );
+        names.extend(slipload_opt::pareto::ParetoReport::FILES);
     }
-    d.set_item("out", out.clone())?;
-    d.set_item("files", files(py, &out, &names)?)?;
+    let files = report_dict(py, &out, &names)?;
+    for (k, v) in files.iter() {
+        d.set_item(k, v)?;
+    }
     d.set_item("figures", written)?;
     let w = &report.work;
     let work = PyDict::new(py);
@@ -272,9 +273,9 @@ pub fn sweep<'py>(
         Ok((run, written))
     })?;
     let r = &run.report;
-    d.set_item("out", out.clone())?;
-    let names: Vec<String> = SweepRun::FILES.iter().map(|s| s.to_string()).collect();
-    d.set_item("files", files(py, &out, &names)?)?;
+    for (k, v) in report_dict(py, &out, &SweepRun::FILES)?.iter() {
+        d.set_item(k, v)?;
+    }
     d.set_item("figures", written)?;
     d.set_item("complete", run.figures.is_some())?;
     d.set_item("tasks", r.shard_tasks)?;
@@ -308,10 +309,7 @@ pub fn merge<'py>(
         };
         Ok((run, written))
     })?;
-    let d = PyDict::new(py);
-    d.set_item("out", out.clone())?;
-    let names: Vec<String> = SweepRun::FILES.iter().map(|s| s.to_string()).collect();
-    d.set_item("files", files(py, &out, &names)?)?;
+    let d = report_dict(py, &out, &SweepRun::FILES)?;
     d.set_item("figures", written)?;
     d.set_item("tasks", run.report.manifest.tasks())?;
     Ok(d)
@@ -344,13 +342,7 @@ pub fn rank<'py>(
     let ranking = watched(py, threads, progress, |ctl| {
         rank_study(&study, &candidates, bootstrap, seed, &out, ctl).py()
     })?;
-    let d = PyDict::new(py);
-    d.set_item("out", out.clone())?;
-    let names: Vec<String> = slipload_opt::rank::Ranking::FILES
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    d.set_item("files", files(py, &out, &names)?)?;
+    let d = report_dict(py, &out, &slipload_opt::rank::Ranking::FILES)?;
     d.set_item("markdown", ranking.to_markdown())?;
     Ok(d)
 }
@@ -380,13 +372,7 @@ pub fn table<'py>(
     let report = watched(py, threads, progress, |ctl| {
         family_study(&study, &period_scales, &intensity_scales, method, &out, ctl).py()
     })?;
-    let d = PyDict::new(py);
-    d.set_item("out", out.clone())?;
-    let names: Vec<String> = slipload_opt::family::FamilyReport::FILES
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    d.set_item("files", files(py, &out, &names)?)?;
+    let d = report_dict(py, &out, &slipload_opt::family::FamilyReport::FILES)?;
     d.set_item("markdown", report.to_markdown())?;
     Ok(d)
 }
