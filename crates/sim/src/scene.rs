@@ -909,7 +909,8 @@ impl Scene {
                 None => Ok(r),
             }
         };
-        // Ground motion: the override's file, else the scene's record, else its synthetic one.
+        // Ground motion: the one given in memory, else the override's file, else the scene's
+        // record, else its synthetic one.
         let record = if let Some(r) = given {
             let mut r = match &window {
                 Some(_) => Arc::new(cut(Record::clone(&r))?),
