@@ -6,32 +6,10 @@
 //! the link and its target untouched.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use std::path::{Path, PathBuf};
-
 mod common;
-use common::{root, slipload_within};
+use common::{slipload_within, tiny_study as study, utf8 as s};
 
 const T: u64 = 300;
-
-/// The benchmark building on two 2-s synthetic records, two Halton points.
-fn study(dir: &Path) -> PathBuf {
-    let building = root().join("configs/benchmark-3story.json");
-    let text = format!(
-        r#"{{ "building": {building:?},
-  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 11, "pga_g": 0.4, "duration_s": 2 }} }} ],
-  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
-  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
-  "fidelity": {{ "method": "newmark" }},
-  "sweep": {{ "sampler": "halton", "points": 2, "seed": 5 }} }}"#
-    );
-    let p = dir.join("study.json");
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 fn run(args: &[&str]) -> (bool, String) {
     let o = slipload_within(T, args);

@@ -8,14 +8,13 @@
 mod common;
 use common::{root, slipload_in};
 
-#[test]
-fn optimize_names_the_trade_off_and_writes_the_front() {
-    let dir = common::scratch("pareto", "front");
-    std::fs::create_dir_all(&dir).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(root().join("configs/study-pareto.json")).unwrap(),
-    )
-    .unwrap();
+/// `configs/NAME` made a study of seconds in `dir` (created): its building by absolute
+/// path, two 4-s records, six sweep points; the caller shrinks the rest.
+fn shrunk(name: &str, dir: &std::path::Path) -> serde_json::Value {
+    std::fs::create_dir_all(dir).unwrap();
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root().join("configs").join(name)).unwrap())
+            .unwrap();
     v["building"] = root()
         .join("configs/benchmark-3story.json")
         .to_string_lossy()
@@ -24,6 +23,13 @@ fn optimize_names_the_trade_off_and_writes_the_front() {
     v["suites"][0]["synthetic"]["count"] = 2.into();
     v["suites"][0]["synthetic"]["duration_s"] = 4.0.into();
     v["sweep"]["points"] = 6.into();
+    v
+}
+
+#[test]
+fn optimize_names_the_trade_off_and_writes_the_front() {
+    let dir = common::scratch("pareto", "front");
+    let mut v = shrunk("study-pareto.json", &dir);
     v["refine"]["starts"] = 1.into();
     v["refine"]["max_evaluations"] = 4.into();
     v["refine"]["finalists"] = 1.into();
@@ -90,19 +96,7 @@ fn optimize_names_the_trade_off_and_writes_the_front() {
 #[test]
 fn a_one_objective_study_prints_its_sweeps_trade_off() {
     let dir = common::scratch("pareto", "one");
-    std::fs::create_dir_all(&dir).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(root().join("configs/study-benchmark.json")).unwrap(),
-    )
-    .unwrap();
-    v["building"] = root()
-        .join("configs/benchmark-3story.json")
-        .to_string_lossy()
-        .into_owned()
-        .into();
-    v["suites"][0]["synthetic"]["count"] = 2.into();
-    v["suites"][0]["synthetic"]["duration_s"] = 4.0.into();
-    v["sweep"]["points"] = 6.into();
+    let mut v = shrunk("study-benchmark.json", &dir);
     v["refine"]["max_evaluations"] = 4.into();
     let study = dir.join("study.json");
     std::fs::write(&study, v.to_string()).unwrap();

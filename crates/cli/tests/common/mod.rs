@@ -96,3 +96,26 @@ pub fn refused(args: &[&str], needles: &[&str]) -> String {
     assert!(!err.contains("panicked"), "{err}");
     err
 }
+
+/// A study of seconds, written into `dir/study.json`: the benchmark building on two 2-s
+/// synthetic records, two Halton points (for the tests of study folders: locks, --fresh,
+/// links).
+pub fn tiny_study(dir: &Path) -> PathBuf {
+    let building = root().join("configs/benchmark-3story.json");
+    let text = format!(
+        r#"{{ "building": {building:?},
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 11, "pga_g": 0.4, "duration_s": 2 }} }} ],
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark" }},
+  "sweep": {{ "sampler": "halton", "points": 2, "seed": 5 }} }}"#
+    );
+    let p = dir.join("study.json");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// A path as the `&str` an argument list takes.
+pub fn utf8(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
