@@ -162,7 +162,7 @@ pub fn input(message: impl Into<String>) -> PyErr {
 pub struct Cancelled;
 
 /// What a caught unwind was.
-pub enum Unwound {
+enum Unwound {
     /// The run was cancelled (Ctrl-C).
     Cancelled,
     /// A panic: a bug.
@@ -170,7 +170,7 @@ pub enum Unwound {
 }
 
 /// Reads a caught unwind's payload.
-pub fn unwound(payload: Box<dyn Any + Send>) -> Unwound {
+fn unwound(payload: Box<dyn Any + Send>) -> Unwound {
     if payload.is::<Cancelled>() {
         return Unwound::Cancelled;
     }
@@ -182,25 +182,21 @@ pub fn unwound(payload: Box<dyn Any + Send>) -> Unwound {
     Unwound::Panic(text)
 }
 
-/// The exception of a panic.
-pub fn panic_error(text: &str) -> PyErr {
-    raise(
-        Kind::Internal,
-        format!(
-            "internal error in slipload (a bug; please report it with the input that caused it): {text}"
+/// The exception of a caught unwind: `KeyboardInterrupt` for a cancelled run,
+/// `slipload.InternalError` for a panic.
+pub fn unwind_error(payload: Box<dyn Any + Send>) -> PyErr {
+    match unwound(payload) {
+        Unwound::Cancelled => pyo3::exceptions::PyKeyboardInterrupt::new_err("interrupted"),
+        Unwound::Panic(text) => raise(
+            Kind::Internal,
+            format!(
+                "internal error in slipload (a bug; please report it with the input that caused it): {text}"
+            ),
         ),
-    )
+    }
 }
 
 /// Runs `body`, turning a panic into `slipload.InternalError` (the interpreter lives on).
 pub fn guarded<T>(body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
-    match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(r) => r,
-        Err(payload) => match unwound(payload) {
-            Unwound::Cancelled => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
-                "interrupted",
-            )),
-            Unwound::Panic(text) => Err(panic_error(&text)),
-        },
-    }
+    catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| Err(unwind_error(payload)))
 }

@@ -9,7 +9,7 @@
 //! simulation (its journals keep every simulation that finished, so a rerun continues
 //! where it stopped), and the call raises `KeyboardInterrupt` once the work is over.
 
-use crate::errors::{Cancelled, Unwound, guarded, panic_error, unwound};
+use crate::errors::{Cancelled, guarded, unwind_error};
 use pyo3::prelude::*;
 use slipload_opt::pipeline::{Phase, Progress};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -150,20 +150,11 @@ pub fn watched<T: Send>(
     if let Some(e) = callback_error {
         return Err(e);
     }
+    // the work's own unwind is caught inside its thread; the thread's, should the catch
+    // itself fail, at the join
     match outcome {
         Ok(Ok(r)) => r,
-        Ok(Err(payload)) => match unwound(payload) {
-            Unwound::Cancelled => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
-                "interrupted",
-            )),
-            Unwound::Panic(text) => Err(panic_error(&text)),
-        },
-        Err(payload) => match unwound(payload) {
-            Unwound::Cancelled => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
-                "interrupted",
-            )),
-            Unwound::Panic(text) => Err(panic_error(&text)),
-        },
+        Ok(Err(payload)) | Err(payload) => Err(unwind_error(payload)),
     }
 }
 

@@ -150,11 +150,10 @@ fn refine_method(name: Option<&str>) -> PyResult<Option<RefineMethod>> {
 }
 
 /// `--fresh`: the journals and outputs of earlier runs removed (the folder locked).
-fn fresh<'py>(py: Python<'py>, out: &Path, d: &Bound<'py, PyDict>) -> PyResult<()> {
+fn fresh(out: &Path, d: &Bound<'_, PyDict>) -> PyResult<()> {
     let gone = slipload_opt::journal::discard_journals(out).py()?;
     d.set_item("removed", gone.removed)?;
     d.set_item("kept", gone.kept)?;
-    let _ = py;
     Ok(())
 }
 
@@ -194,7 +193,7 @@ pub fn optimize<'py>(
     let d = PyDict::new(py);
     let _lock = FolderLock::acquire(&out).py()?;
     if fresh {
-        self::fresh(py, &out, &d)?;
+        self::fresh(&out, &d)?;
     }
     let (report, written) = watched(py, threads, progress, |ctl| {
         let report = optimize_study(&study, &out, &options, ctl).py()?;
@@ -261,7 +260,7 @@ pub fn sweep<'py>(
     let d = PyDict::new(py);
     let _lock = FolderLock::acquire(&out).py()?;
     if fresh {
-        self::fresh(py, &out, &d)?;
+        self::fresh(&out, &d)?;
     }
     let study = study.inner.clone();
     let (run, written) = watched(py, threads, progress, |ctl| {
