@@ -17,8 +17,11 @@
 //! Tolerances: `exact` locates the yield instant by root finding to ~1e-14 s and is exact
 //! between events, so its peaks and works agree with the closed forms to round-off (1e-10
 //! relative leaves a wide margin over the ~1e-15 measured). `newmark` is second order:
-//! its error must fall by about 4 when the step halves; the checks ask for a factor 2.5
-//! per halving, which a first-order error could not give.
+//! its error falls by about 4 when the step halves, but the step in which the storey
+//! yields adds a local error whose size depends on where in the step the yield falls,
+//! which changes with the step, so single halvings scatter (measured 1.8–4.5×). The checks
+//! ask for a fall at every halving and a least-squares order of at least 1.5 over four
+//! halvings, which a first-order error (order 1) could not give.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -105,15 +108,27 @@ fn hardening_storey_matches_the_closed_form_and_newmark_converges_to_it() {
     );
     // Sampled peaks: a step of T/4000 keeps the sampling error (~(ωΔt)²/8) below the
     // integration error being measured.
+    let dts = [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5];
     let mut errs = Vec::new();
-    for dt in [4e-4, 2e-4, 1e-4] {
+    for dt in dts {
         let nm = run(&sdof(alpha, v0, "", dt), "newmark");
         errs.push(rel(nm.response.peak_drift[0], umax));
     }
     assert!(errs[2] < 1e-3, "newmark at T/3000: {errs:?}");
     assert!(
-        errs[0] > 2.5 * errs[1] && errs[1] > 2.5 * errs[2],
-        "second-order convergence: {errs:?}"
+        errs.windows(2).all(|w| w[0] > w[1]),
+        "the error falls at every halving: {errs:?}"
+    );
+    // least-squares slope of log(error) against log(Δt)
+    let xs: Vec<f64> = dts.iter().map(|d: &f64| d.ln()).collect();
+    let ys: Vec<f64> = errs.iter().map(|e| e.ln()).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / 5.0, ys.iter().sum::<f64>() / 5.0);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    let order = sxy / sxx;
+    assert!(
+        order >= 1.5,
+        "second-order convergence: order {order}, errors {errs:?}"
     );
 }
 

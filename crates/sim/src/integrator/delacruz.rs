@@ -767,6 +767,7 @@ impl Integrator for DelaCruz {
                     v: (&v_old, &v),
                     f: (&f, &f_dyn),
                     w: (&w, &w_new),
+                    epp_mean_rate: false,
                 };
                 let q = StepForms::of_plan(plan, (&v_old, &v), &u, &epp);
                 e_row = Some(acc.step(plan, &data, q, &epp));

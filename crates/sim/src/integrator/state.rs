@@ -376,6 +376,10 @@ pub(crate) struct StepEnergyData<'a> {
     pub(crate) f: (&'a [f64], &'a [f64]),
     /// Slip rates at the start and end.
     pub(crate) w: (&'a [f64], &'a [f64]),
+    /// The end slip rate of an EPP element without a brace dashpot is its mean over the
+    /// step (newmark's return mapping: its slip of the step / Δt), so its friction work is
+    /// Δt·F̄·w₁; otherwise Δt·F̄·w̄ (the trapezoid, Newmark's own kinematics).
+    pub(crate) epp_mean_rate: bool,
 }
 
 /// The quadratic forms of one step's energies, which each step loop evaluates with its
@@ -477,7 +481,13 @@ impl EnergyAccumulator {
         self.viscous += dt * cvv;
         for c in 0..f_old.len() {
             let ct = &plan.contacts[c];
-            let work = dt * 0.5 * (f_old[c] + f_new[c]) * 0.5 * (w_old[c] + w_new[c]);
+            let w_step =
+                if d.epp_mean_rate && ct.kind == ContactKind::Epp && ct.brace_damping == 0.0 {
+                    w_new[c]
+                } else {
+                    0.5 * (w_old[c] + w_new[c])
+                };
+            let work = dt * 0.5 * (f_old[c] + f_new[c]) * w_step;
             match ct.role {
                 ContactRole::Damper => self.friction += work,
                 ContactRole::Storey => self.plastic += work,

@@ -12,7 +12,7 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::{GROUND, Link, Operators, StepConstants, non_finite, outcome};
+use super::{EppPred, GROUND, Link, Operators, StepConstants, non_finite, outcome};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -149,6 +149,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         floor: 0,
         other: GROUND,
         epp: false,
+        algebraic: false,
         k_over_kappa: 0.0,
         slot: 0,
     }; NC];
@@ -208,7 +209,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     let mut wfree = [0.0; NC];
     let mut f_new = [0.0; NC];
     let mut slip_rate = [0.0; NC];
-    let mut epp_pred = [(0.0, 0.0); NC];
+    let mut epp_pred = [EppPred::default(); NC];
     let mut qp_iter_total: u64 = 0;
     let mut qp_iter_max: u32 = 0;
     for step in 0..plan.steps {
@@ -259,7 +260,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         }
         if let Some(qp) = qp.as_mut() {
             for c in 0..NC {
-                (wfree[c], epp_pred[c]) = link[c].free_slip_rate(&k, epp[c], &ut, &vt, &af);
+                (wfree[c], epp_pred[c]) = link[c].free_slip_rate(&k, epp[c], (&u, &ut, &vt), &af);
             }
             let iterations = match pq.solve(&wfree, &mut f_new, &mut slip_rate) {
                 Some(it) => it,
@@ -296,7 +297,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
             return Err(non_finite(step + 1, dt));
         }
         for c in 0..NC {
-            link[c].finish_step(
+            slip_rate[c] = link[c].finish_step(
                 &k,
                 (epp_pred[c], slip_rate[c]),
                 (&u, &v),
@@ -318,6 +319,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
                 v: (&v_old, &v),
                 f: (&f_old, &f_new),
                 w: (&w_old, &slip_rate),
+                epp_mean_rate: true,
             };
             let q = e.forms(plan, (&v_old, &v), &u, &epp);
             acc.step(plan, &data, q, &epp);

@@ -133,6 +133,10 @@ struct Link {
     other: usize,
     /// Elastic–perfectly plastic element (m′ = 0 condensed).
     epp: bool,
+    /// An EPP element without a brace dashpot (c′ = 0): its dissipator DOF is algebraic
+    /// (the brace force k′e is the friction force), so its friction law is imposed on the
+    /// slip of the step (a return mapping) rather than on the slip rate at the step's end.
+    algebraic: bool,
     /// k′/κ of an EPP contact.
     k_over_kappa: f64,
     /// Where its slip peak and transitions go in [`Peaks`]: its floor for a damper, n +
@@ -168,62 +172,118 @@ impl StepConstants {
     }
 }
 
+/// The predictors of an EPP element's condensed DOF for one step: ũ′, ṽ′ (Newmark; with a
+/// brace dashpot), or `base` = u′ − u_floor at the step's start (minus the slip so far;
+/// algebraic).
+#[derive(Debug, Clone, Copy, Default)]
+struct EppPred {
+    up: f64,
+    vp: f64,
+    base: f64,
+}
+
 impl Link {
-    /// The contact's slip rate at the end of the step if it carried no friction force, from
-    /// the predictors `ut`, `vt` and the free accelerations `af`; for an EPP element also
-    /// its own predictors (ũ, ṽ), from its state `e` (the condensed massless DOF).
+    /// The friction law's free variable of the contact: the rate the QP's box bounds act on
+    /// if the contact carried no friction force, from the start displacements `u0`, the
+    /// predictors `ut`, `vt` and the free accelerations `af`; for an EPP element also its
+    /// own predictors, from its state `e` (the condensed massless DOF).
+    ///
+    /// A contact with a DOF, or an EPP element with a brace dashpot: the slip rate at the
+    /// end of the step, w = Bᵀv₁ (+ the condensed DOF's, through k′/κ).
+    ///
+    /// An algebraic EPP element (c′ = 0): the slip of the step Δp divided by βΔt/γ, so
+    /// that its dependence on the friction forces is the same Delassus operator W (the
+    /// sum γΔtBᵀG plus 1/κ, κ = k′βΔt/γ). With the drift Δ = u_floor − u_below and the brace elongation
+    /// e = F/k′, Δp = Δ₁ − Δ₀ − (F₁ − F₀)/k′, and Δ₁ = Δ̃ + βΔt²(a_floor − a_below). The
+    /// friction force is then at a bound exactly when the step slips — the return
+    /// mapping of an elastic–perfectly plastic element. The slip rate at the step's end
+    /// is not used: the massless DOF's Newmark velocity carries a sawtooth after every
+    /// stick↔slip change (the trapezoidal rule on an algebraic variable does not damp it),
+    /// which on that form misplaces the next change and costs accuracy.
     #[inline(always)]
     fn free_slip_rate(
         &self,
         k: &StepConstants,
         e: EppState,
-        ut: &[f64],
-        vt: &[f64],
+        (u0, ut, vt): (&[f64], &[f64], &[f64]),
         af: &[f64],
-    ) -> (f64, (f64, f64)) {
+    ) -> (f64, EppPred) {
         let vf = vt[self.floor] + k.gdt * af[self.floor];
         if !self.epp {
-            return (vf - (vt[self.other] + k.gdt * af[self.other]), (0.0, 0.0));
+            return (
+                vf - (vt[self.other] + k.gdt * af[self.other]),
+                EppPred::default(),
+            );
         }
-        let up = e.u + k.dt * e.v + k.c_u * e.a;
-        let vp = e.v + k.c_v * e.a;
-        let (uj, vj, vj_end) = if self.other == GROUND {
+        let (uj, vj, aj) = if self.other == GROUND {
             (0.0, 0.0, 0.0)
         } else {
             let j = self.other;
-            (ut[j], vt[j], vt[j] + k.gdt * af[j])
+            (ut[j], vt[j], af[j])
         };
+        if self.algebraic {
+            // (Δ̃ − Δ₀ + e₀)/(βΔt/γ) + γΔt (a_floor − a_below), free of friction
+            let base = e.u - u0[self.floor];
+            let free =
+                (ut[self.floor] - uj + base) * self.k_over_kappa + k.gdt * (af[self.floor] - aj);
+            return (
+                free,
+                EppPred {
+                    base,
+                    ..EppPred::default()
+                },
+            );
+        }
+        let up = e.u + k.dt * e.v + k.c_u * e.a;
+        let vp = e.v + k.c_v * e.a;
+        let pred = EppPred { up, vp, base: 0.0 };
         let q = (up - uj) - k.bg * (vp - vj);
-        (vf - vj_end + self.k_over_kappa * q, (up, vp))
+        (vf - (vj + k.gdt * aj) + self.k_over_kappa * q, pred)
     }
 
     /// The end of a step for this contact, shared by both step loops: an EPP element's new
-    /// state (from its predictors `pred` and the slip rate), a stick↔slip change counted
-    /// against `stuck`, and the slip peak (floor minus the other end, `u` the new
-    /// displacements, `v` the new velocities).
+    /// state (from its predictors `pred` and the QP's variable `w` at the solution), a
+    /// stick↔slip change counted against `stuck`, and the slip peak (floor minus the other
+    /// end, `u` the new displacements, `v` the new velocities). Returns the slip rate the
+    /// energies and histories get: at the end of the step, or for an algebraic EPP element
+    /// its mean over the step (its slip / Δt: the DOF has no velocity of its own).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)] // one contact's end-of-step inputs, all distinct
     fn finish_step(
         &self,
         k: &StepConstants,
-        (pred, slip_rate): ((f64, f64), f64),
+        (pred, w): (EppPred, f64),
         (u, v): (&[f64], &[f64]),
         now_stuck: bool,
         epp: &mut EppState,
         stuck: &mut bool,
         peaks: &mut Peaks,
-    ) {
-        let x_other = if self.epp {
-            *epp = Link::epp_update(k, pred, v[self.floor], slip_rate);
-            epp.u
+    ) -> f64 {
+        let (x_other, rate) = if self.epp {
+            if self.algebraic {
+                // the step's slip is w βΔt/γ = w/(k′/κ) (c′ = 0); its mean rate is what
+                // the energies and histories get (zero while stuck)
+                let slip = w / self.k_over_kappa;
+                let rate = slip / k.dt;
+                *epp = EppState {
+                    u: u[self.floor] + pred.base - slip,
+                    v: v[self.floor] - rate,
+                    a: 0.0,
+                };
+                (epp.u, rate)
+            } else {
+                *epp = Link::epp_update(k, pred, v[self.floor], w);
+                (epp.u, w)
+            }
         } else {
-            u[self.other]
+            (u[self.other], w)
         };
         if now_stuck != *stuck {
             peaks.transitions[self.slot] += 1;
             *stuck = now_stuck;
         }
         peaks.observe_slip(self.slot, u[self.floor] - x_other);
+        rate
     }
 
     /// The first observation of this contact's slip (or plastic drift), from the initial
@@ -237,12 +297,11 @@ impl Link {
     /// velocity and the contact's slip rate. A product by 1/(γΔt), not a division: the
     /// update sits on the step-to-step dependency chain.
     #[inline(always)]
-    fn epp_update(k: &StepConstants, pred: (f64, f64), v_floor: f64, slip_rate: f64) -> EppState {
-        let (up, vp) = pred;
+    fn epp_update(k: &StepConstants, pred: EppPred, v_floor: f64, slip_rate: f64) -> EppState {
         let v = v_floor - slip_rate;
-        let a = (v - vp) * k.inv_gdt;
+        let a = (v - pred.vp) * k.inv_gdt;
         EppState {
-            u: up + k.bdt2 * a,
+            u: pred.up + k.bdt2 * a,
             v,
             a,
         }
@@ -311,6 +370,7 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
                 floor: ct.floor,
                 other: dof,
                 epp: false,
+                algebraic: false,
                 k_over_kappa: 0.0,
                 slot: match ct.role {
                     ContactRole::Damper => ct.floor,
@@ -321,6 +381,7 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
                 floor: ct.floor,
                 other: ct.below.unwrap_or(GROUND),
                 epp: true,
+                algebraic: ct.brace_damping == 0.0,
                 k_over_kappa: ct.brace_stiffness / ops.kappa[c],
                 slot: match ct.role {
                     ContactRole::Damper => ct.floor,
@@ -441,7 +502,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         .collect();
     let mut w_new = vec![0.0; nc];
     let mut v_old = vec![0.0; n];
-    let mut epp_pred = vec![(0.0, 0.0); nc];
+    let mut epp_pred = vec![EppPred::default(); nc];
 
     let energies = plan.outputs.energies;
     let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &epp);
@@ -523,7 +584,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         }
         if let Some(qp) = qp.as_mut() {
             for (c, l) in links.iter().enumerate() {
-                (wfree[c], epp_pred[c]) = l.free_slip_rate(&k, epp[c], &ut, &vt, &af);
+                (wfree[c], epp_pred[c]) = l.free_slip_rate(&k, epp[c], (&s[..n], &ut, &vt), &af);
             }
             let stats = qp
                 .solve(&wfree, &lo, &hi, &mut f_new)
@@ -562,10 +623,9 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 for (wcj, fj) in wc.iter().zip(&f_new) {
                     wf += wcj * fj;
                 }
-                w_new[c] = wfree[c] - wf;
-                l.finish_step(
+                w_new[c] = l.finish_step(
                     &k,
-                    (epp_pred[c], w_new[c]),
+                    (epp_pred[c], wfree[c] - wf),
                     (u_now, v_now),
                     qp.status(c) == Bound::Free,
                     &mut epp[c],
@@ -587,6 +647,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 v: (&v_old, v_now),
                 f: (&f_old, &f_new),
                 w: (&w_old, &w_new),
+                epp_mean_rate: true,
             };
             let q = StepForms::of_plan(plan, (&v_old, v_now), u_now, &epp);
             e_row = Some(acc.step(plan, &data, q, &epp));
