@@ -21,11 +21,10 @@ reference. It reports:
   drift / yield drift), plastic (hysteretic) energy of the frame's storeys, friction energy
   of the dampers and whether a storey passes the collapse limit, for slipload `newmark`,
   OpenSees and slipload `exact`, with their relative differences;
-* that each program solves its own discrete equations: OpenSees against a return-mapping
-  Newmark written here in Python (the plastic slip advanced by backward Euler, as
-  OpenSees's ElasticPP does), slipload `newmark` against the same Newmark with the
-  trapezoidal slip update (each massless element's slip advanced with the floors' Newmark
-  rule, as slipload does), and OpenSees's storeys as Steel01 against Elastic + ElasticPP;
+* that both programs solve the same discrete equations: OpenSees and slipload `newmark`
+  against a return-mapping Newmark written here in Python (the plastic slip advanced by
+  backward Euler, as OpenSees's ElasticPP does and slipload's `newmark` does for massless
+  elements), and OpenSees's storeys as Steel01 against Elastic + ElasticPP;
 * convergence toward `exact` of both programs when the time step halves (the first record
   at MCE, `--halvings` times);
 * beyond MCE (the last record at `--collapse-pga`), where a storey ratchets past the
@@ -497,16 +496,12 @@ def model_checks(ops, b: dict, mats: dict, explain: str, dt: float) -> dict:
 # ---------------------------------------------------------------------------------------
 
 
-def newmark_reference(b: dict, mats: dict, dt_rec: float, acc: list[float], dt: float, steps: int, trapezoidal: bool) -> dict:
+def newmark_reference(b: dict, mats: dict, dt_rec: float, acc: list[float], dt: float, steps: int) -> dict:
     """Newmark average acceleration on the floors, M a + C v + K_lin u + D^T f(u) = -M r a_g,
     with every elastic-perfectly plastic element (storey plastic parts, dampers) solved to
-    round-off by Newton, in two variants of the slip update:
-
-    * `trapezoidal = False`: return mapping, the slip advanced by backward Euler (the slip
-      increment decides the yield direction): what OpenSees's ElasticPP does;
-    * `trapezoidal = True`: the massless element's slip advanced by the floors' Newmark rule,
-      s_{n+1} = s_n + dt/2 (w_n + w_{n+1}), the yield law on the end-of-step slip rate: what
-      slipload's `newmark` does (a return that starts from s_n + dt/2 w_n).
+    round-off by Newton with the return mapping: the slip advanced by backward Euler (the slip
+    increment decides the yield direction), what OpenSees's ElasticPP does and slipload's
+    `newmark` solves exactly for massless elements.
     """
     import numpy as np
 
@@ -521,12 +516,11 @@ def newmark_reference(b: dict, mats: dict, dt_rec: float, acc: list[float], dt: 
     v = np.zeros(n)
     a = -acc[0] * np.ones(n)
     s = np.zeros(len(ke))
-    w = np.zeros(len(ke))
     drift = np.zeros((steps + 1, n))
     force = np.zeros((steps + 1, len(ke)))
     for step in range(1, steps + 1):
         ag = base.ground_accel(dt_rec, acc, step * dt)
-        start = s + 0.5 * dt * w if trapezoidal else s
+        start = s
         ua = u + dt * v + (0.5 - BETA) * dt * dt * a
         va = v + (1.0 - GAMMA) * dt * a
         u1 = u.copy()
@@ -543,10 +537,7 @@ def newmark_reference(b: dict, mats: dict, dt_rec: float, acc: list[float], dt: 
         else:
             raise SystemExit(f"Newmark reference: step {step} did not converge")
         f = np.clip(ke * (D @ u1 - start), -fe, fe)
-        new_s = D @ u1 - f / ke
-        if trapezoidal:
-            w = 2.0 * (new_s - start) / dt
-        s = new_s
+        s = D @ u1 - f / ke
         a1 = c_a * (u1 - ua)
         v = va + GAMMA * dt * a1
         u, a = u1, a1
@@ -691,17 +682,15 @@ def run_case(ops, binary: Path, tmp: Path, b: dict, mats: dict, record: Path, le
         "collapse": {"newmark": sl.get("collapse"), "exact": ex.get("collapse"), "opensees": os_fig["collapse"]},
     }
     if references:
-        rm = newmark_reference(b, mats, dt_rec, acc, dt, steps, trapezoidal=False)
-        tr = newmark_reference(b, mats, dt_rec, acc, dt, steps, trapezoidal=True)
+        rm = newmark_reference(b, mats, dt_rec, acc, dt, steps)
         rm_fig = figures(b, mats, rm["drift"], rm["force"])
-        tr_fig = figures(b, mats, tr["drift"], tr["force"])
         case["references"] = {
             "opensees_vs_return_mapping_peak_drift_max_rel": max_rel(os_fig["peak_drift_m"], rm_fig["peak_drift_m"]),
             "opensees_vs_return_mapping_drift_history": history_gap(os_run["drift"], rm["drift"]),
             "opensees_vs_return_mapping_plastic_energy_rel": signed_rel(os_fig["plastic_energy_total_J"], rm_fig["plastic_energy_total_J"]) if rm_fig["plastic_energy_total_J"] > 1.0 else None,
-            "slipload_vs_trapezoidal_peak_drift_max_rel": max_rel(sl_fig["peak_drift_m"], tr_fig["peak_drift_m"]),
-            "slipload_vs_trapezoidal_drift_history": history_gap(sl_hist["drift"], tr["drift"]),
-            "slipload_vs_trapezoidal_plastic_energy_rel": signed_rel(sl_fig["plastic_energy_total_J"], tr_fig["plastic_energy_total_J"]) if tr_fig["plastic_energy_total_J"] > 1.0 else None,
+            "slipload_vs_return_mapping_peak_drift_max_rel": max_rel(sl_fig["peak_drift_m"], rm_fig["peak_drift_m"]),
+            "slipload_vs_return_mapping_drift_history": history_gap(sl_hist["drift"], rm["drift"]),
+            "slipload_vs_return_mapping_plastic_energy_rel": signed_rel(sl_fig["plastic_energy_total_J"], rm_fig["plastic_energy_total_J"]) if rm_fig["plastic_energy_total_J"] > 1.0 else None,
         }
     if steel01:
         st = opensees_run(ops, b, mats, dt_rec, acc, dt, steps, storey="steel01")
@@ -723,7 +712,7 @@ def run_case(ops, binary: Path, tmp: Path, b: dict, mats: dict, record: Path, le
     )
     if references:
         r = case["references"]
-        print(f"  OpenSees vs return mapping: peaks {r['opensees_vs_return_mapping_peak_drift_max_rel']:.1e}, history {r['opensees_vs_return_mapping_drift_history']:.1e}; slipload vs trapezoidal: peaks {r['slipload_vs_trapezoidal_peak_drift_max_rel']:.1e}, history {r['slipload_vs_trapezoidal_drift_history']:.1e}", file=sys.stderr)
+        print(f"  OpenSees vs return mapping: peaks {r['opensees_vs_return_mapping_peak_drift_max_rel']:.1e}, history {r['opensees_vs_return_mapping_drift_history']:.1e}; slipload vs return mapping: peaks {r['slipload_vs_return_mapping_peak_drift_max_rel']:.1e}, history {r['slipload_vs_return_mapping_drift_history']:.1e}", file=sys.stderr)
     if steel01:
         s = case["steel01_vs_parallel"]
         print(f"  Steel01 vs Elastic + ElasticPP: drift history {s['drift_history']:.1e}, plastic force {s['plastic_force_history_max_over_bound']:.1e} of the bound, plastic energy {s['plastic_energy_rel']:+.1e}", file=sys.stderr)
@@ -869,14 +858,14 @@ def markdown(report: dict) -> str:
             lines.append(f"| {name} | none | | | |" if x is None else f"| {name} | {x['storey']} | {x['time']:.4f} | {x['drift']:.5f} | {x['limit']:.3f} |")
     lines += [
         "",
-        "Each program solves its own discrete equations: OpenSees against a return-mapping Newmark written in the script",
-        "(slip by backward Euler, as ElasticPP), slipload `newmark` against the same Newmark with the trapezoidal slip update",
-        "(each massless element's slip advanced with the floors' Newmark rule), both on the config's matrices (peaks: max relative",
+        "Both programs solve the same discrete equations: each against a return-mapping Newmark written in the script (slip by",
+        "backward Euler, as ElasticPP and slipload's `newmark` for massless elements), solved by Newton to round-off on the",
+        "config's matrices (peaks: max relative",
         "difference over storeys; histories: max over steps and storeys of the difference over the storey's peak drift). The",
         "per-storey energies read from slipload's histories sum to its own energy.plastic and energy.friction (newmark: the same",
         "trapezoidal sums; exact: F_y |Δs|, against its continuous integrals).",
         "",
-        "| record | level | OpenSees vs return mapping (peaks / drift history) | slipload vs trapezoidal (peaks / drift history) | per-storey sums vs totals: newmark plastic, friction | exact plastic, friction | Newton it./step (max) | unconverged steps |",
+        "| record | level | OpenSees vs return mapping (peaks / drift history) | slipload vs return mapping (peaks / drift history) | per-storey sums vs totals: newmark plastic, friction | exact plastic, friction | Newton it./step (max) | unconverged steps |",
         "|---|---|---:|---:|---:|---:|---:|---:|",
     ]
     for c in report["cases"]:
@@ -884,7 +873,7 @@ def markdown(report: dict) -> str:
         acc = c["energy_accounting"]
         o = c["opensees"]
         refs = (
-            f"{r['opensees_vs_return_mapping_peak_drift_max_rel']:.0e} / {r['opensees_vs_return_mapping_drift_history']:.0e} | {r['slipload_vs_trapezoidal_peak_drift_max_rel']:.0e} / {r['slipload_vs_trapezoidal_drift_history']:.0e}"
+            f"{r['opensees_vs_return_mapping_peak_drift_max_rel']:.0e} / {r['opensees_vs_return_mapping_drift_history']:.0e} | {r['slipload_vs_return_mapping_peak_drift_max_rel']:.0e} / {r['slipload_vs_return_mapping_drift_history']:.0e}"
             if r
             else "— | —"
         )
