@@ -481,3 +481,35 @@ fn banded_step_refuses_dense_plans() {
         "{err}"
     );
 }
+
+/// A harmonic floor force (the force term of the right-hand side) instead of a ground
+/// record, with HHT-α: the banded step is the dense step.
+#[test]
+fn harmonic_floor_force_with_hht() {
+    let json = scene_json(
+        11,
+        14,
+        Damping::Storey,
+        2.0,
+        Slip::Moderate,
+        false,
+        -0.1,
+        false,
+        3.0,
+    );
+    let synthetic = r#""excitation": { "synthetic": { "seed": 11, "duration": 3, "dt": 0.01 } }"#;
+    assert!(json.contains(synthetic), "{json}");
+    let json = json.replace(
+        synthetic,
+        r#""excitation": { "harmonic": { "floor": 7, "amplitude": "2 MN", "omega": 4.5 } }, "duration": 3"#,
+    );
+    let plan = plan_of(&json);
+    assert!(plan.harmonic.is_some() && plan.record.is_none());
+    let (b, stats, d) = both(&plan);
+    assert_agree("harmonic, 14 storeys", &b, &d);
+    assert!(
+        b.response.transitions.iter().sum::<u64>() > 0,
+        "the dampers slide"
+    );
+    assert_eq!(stats.fallbacks, 0, "{stats:?}");
+}
