@@ -602,6 +602,36 @@ impl Plan {
         bm
     }
 
+    /// The half-bandwidth of the plan's operators: the largest |i − j| of a non-zero entry
+    /// of M, C or K, or of two DOFs a friction contact joins (an elastic–perfectly plastic
+    /// contact joins its floor and the floor below; a contact with DOF its floor and its
+    /// dissipator). 1 for a shear building (storey stiffness, Rayleigh or storey damping)
+    /// with massless dissipators; a condensed frame matrix or modal damping is full
+    /// (n − 1). The banded step of `newmark` runs in O(N·bandwidth) per step on it.
+    pub fn half_bandwidth(&self) -> usize {
+        let n = self.dofs();
+        let mut p = 0;
+        for a in [&self.mass, &self.damping, &self.stiffness] {
+            for j in 0..n {
+                for i in j + p + 1..n {
+                    if a[(i, j)] != 0.0 || a[(j, i)] != 0.0 {
+                        p = i - j;
+                    }
+                }
+            }
+        }
+        for ct in &self.contacts {
+            let other = match ct.kind {
+                ContactKind::Dof { dof } => Some(dof),
+                ContactKind::Epp => ct.below,
+            };
+            if let Some(o) = other {
+                p = p.max(ct.floor.abs_diff(o));
+            }
+        }
+        p
+    }
+
     /// M·r with r = 1 on every DOF (all displacements are relative to the ground), kg.
     pub fn mass_influence(&self) -> DVector<f64> {
         let ones = DVector::from_element(self.dofs(), 1.0);

@@ -319,11 +319,45 @@ fn first_damper_only(building: &str) -> anyhow::Result<String> {
 /// T₁ = 0.1·n s, 2 % modal damping, 3.5 m storeys, and on every floor an m′ = 0 dissipator
 /// with k′ = 2k and a slip load of 5 % of the weight above it.
 fn shear_building(n: usize) -> String {
+    shear_building_damped(n, ShearDamping::Modal)
+}
+
+/// The frame damping of a bench shear building, 2 % in its first mode.
+#[derive(Debug, Clone, Copy)]
+enum ShearDamping {
+    /// 2 % in every mode (a full damping matrix).
+    Modal,
+    /// Rayleigh, 2 % in the first two modes (banded: C = αM + βK).
+    Rayleigh,
+    /// Storey dashpots proportional to the storey stiffness, 2 % in the first mode
+    /// (banded).
+    Storey,
+}
+
+/// [`shear_building`] with the frame damping `damping`.
+fn shear_building_damped(n: usize, damping: ShearDamping) -> String {
     let m = 5e5;
     let t1 = 0.1 * n as f64;
     let w1 = 2.0 * std::f64::consts::PI / t1;
     let s = (std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin();
     let k = m * (w1 / (2.0 * s)).powi(2);
+    // ω_k = 2 √(k/m) sin((2k − 1)π / (2(2n + 1))) of the uniform shear building
+    let w2 = 2.0 * (k / m).sqrt() * (3.0 * std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin();
+    let zeta = 0.02;
+    let damping = match damping {
+        ShearDamping::Modal => format!(r#"{{ "modal": {{ "ratio": {zeta} }} }}"#),
+        ShearDamping::Rayleigh => format!(
+            r#"{{ "rayleigh": {{ "alpha": {}, "beta": {} }} }}"#,
+            2.0 * zeta * w1 * w2 / (w1 + w2),
+            2.0 * zeta / (w1 + w2)
+        ),
+        ShearDamping::Storey => {
+            let cs: Vec<String> = (0..n)
+                .map(|_| format!("\"{} N*s/m\"", 2.0 * zeta * k / w1))
+                .collect();
+            format!(r#"{{ "storey": [{}] }}"#, cs.join(", "))
+        }
+    };
     let masses: Vec<String> = (0..n).map(|_| format!("\"{m} kg\"")).collect();
     let ks: Vec<String> = (0..n).map(|_| format!("\"{k} N/m\"")).collect();
     let hs: Vec<String> = (0..n).map(|_| "\"3.5 m\"".to_string()).collect();
@@ -339,7 +373,7 @@ fn shear_building(n: usize) -> String {
         })
         .collect();
     format!(
-        r#"{{ "name": "shear-{n}", "floor_masses": [{}], "storey_stiffness": [{}], "damping": {{ "modal": {{ "ratio": 0.02 }} }}, "storey_heights": [{}], "dissipators": [{}] }}"#,
+        r#"{{ "name": "shear-{n}", "floor_masses": [{}], "storey_stiffness": [{}], "damping": {damping}, "storey_heights": [{}], "dissipators": [{}] }}"#,
         masses.join(", "),
         ks.join(", "),
         hs.join(", "),
@@ -894,6 +928,57 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             slope(&xs[2..], &ys[2..]),
             "-",
         ));
+    }
+
+    // Cost against storeys on banded frames (Rayleigh or storey damping): O(N) steps.
+    for (case, damping) in [
+        (
+            "shear buildings with m'=0 dampers, Rayleigh damping, newmark dt 2.5 ms, 15 s",
+            ShearDamping::Rayleigh,
+        ),
+        (
+            "shear buildings with m'=0 dampers, storey damping, newmark dt 2.5 ms, 15 s",
+            ShearDamping::Storey,
+        ),
+    ] {
+        if !want(case) {
+            continue;
+        }
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        for n in [10usize, 20, 30, 40, 50] {
+            let p = plan(
+                &shear_building_damped(n, damping),
+                SceneOpts {
+                    dt: Some(0.0025),
+                    ..SceneOpts::new(MethodName::Newmark)
+                },
+            )?;
+            let s = seconds_per_run(&p, &clock, budget)?;
+            figs.push(Figure::new(
+                case,
+                &format!("time per simulation, {n} storeys"),
+                s * 1e3,
+                "ms",
+            ));
+            figs.push(Figure::new(
+                case,
+                &format!("simulations per second, {n} storeys"),
+                1.0 / s,
+                "1/s",
+            ));
+            xs.push(n as f64);
+            ys.push(s);
+        }
+        figs.push(
+            Figure::new(
+                case,
+                "exponent of cost vs storeys, 10-50 (log-log slope)",
+                slope(&xs, &ys),
+                "-",
+            )
+            .at_most(1.2),
+        );
     }
 
     // Memory: peak RSS of a 15 s and a 300 s peaks-only run, each in a fresh process.

@@ -17,13 +17,19 @@
 //! QP answered from its stick/slip pattern, energies when asked); runs that ask for
 //! histories, and other sizes, step in the general loop below, compiled once per small DOF
 //! count (1–8, 10, 12, 20) with the count a constant and once for any other count.
+//! Banded frames of at least ten DOFs whose contacts are all elastic–perfectly plastic
+//! (m′ = 0 shear buildings with Rayleigh or storey damping) step in O(N) in
+//! `newmark/banded.rs`: the same QP, solved in the original banded variables.
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
 //! α = 0 is Newmark's average acceleration, for which the energies below balance to
 //! round-off (Δt·v̄ᵀ(equation averaged over the step) is an exact identity of the method).
 
+mod banded;
 mod fixed;
+
+pub use banded::BandedStats;
 
 use crate::error::SimError;
 use crate::friction::BoxQp;
@@ -420,38 +426,86 @@ impl Integrator for Newmark {
             return Err(SimError::BadTimeStep { dt });
         }
         plan.check_method()?;
-        let ops = Operators::build(plan)?;
-        if fixed::applies(plan) {
-            let links = links(plan, &ops);
-            let run = fixed_dispatch!(plan, &ops, &links;
-                (1, 0), (1, 1),
-                (2, 0), (2, 1), (2, 2),
-                (3, 0), (3, 1), (3, 2), (3, 3),
-                (4, 0), (4, 1), (4, 2), (4, 3), (4, 4),
-                (5, 0), (5, 1), (5, 2), (5, 3), (5, 4),
-                (6, 0), (6, 1), (6, 2), (6, 3), (6, 4),
-                (7, 0), (7, 1), (7, 2), (7, 3), (7, 4),
-                (8, 0), (8, 1), (8, 2), (8, 3), (8, 4),
-                (5, 5), (6, 6), (7, 7), (8, 8), (10, 10), (12, 12), (20, 10),
-            );
-            if let Some(outcome) = run {
-                return outcome;
-            }
+        if let Some(p) = banded::chosen(plan) {
+            return banded::run(plan, p).map(|(outcome, _)| outcome);
         }
-        match ops.n {
-            1 => run_loop::<1>(plan, &ops),
-            2 => run_loop::<2>(plan, &ops),
-            3 => run_loop::<3>(plan, &ops),
-            4 => run_loop::<4>(plan, &ops),
-            5 => run_loop::<5>(plan, &ops),
-            6 => run_loop::<6>(plan, &ops),
-            7 => run_loop::<7>(plan, &ops),
-            8 => run_loop::<8>(plan, &ops),
-            10 => run_loop::<10>(plan, &ops),
-            12 => run_loop::<12>(plan, &ops),
-            20 => run_loop::<20>(plan, &ops),
-            _ => run_loop::<0>(plan, &ops),
+        run_dense(plan)
+    }
+}
+
+/// Which step `newmark` takes (tests compare them).
+#[doc(hidden)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepPath {
+    /// The step `newmark` chooses by itself.
+    Auto,
+    /// The dense operators (the fixed-size or the general loop).
+    Dense,
+    /// The banded step; refused for a plan it cannot run exactly.
+    Banded,
+}
+
+/// Runs `plan` with `newmark` on the step `path`; with the banded step's statistics when it
+/// ran.
+#[doc(hidden)]
+pub fn run_on_path(
+    plan: &Plan,
+    path: StepPath,
+) -> Result<(Outcome, Option<BandedStats>), SimError> {
+    if !is_positive(plan.method.dt) {
+        return Err(SimError::BadTimeStep { dt: plan.method.dt });
+    }
+    plan.check_method()?;
+    let p = match path {
+        StepPath::Auto => banded::chosen(plan),
+        StepPath::Dense => None,
+        StepPath::Banded => Some(banded::eligible(plan).ok_or_else(|| {
+            SimError::Scene(format!(
+                "the banded step needs no histories, elastic-perfectly plastic contacts only and a half-bandwidth of at most {} (this plan's is {})",
+                banded::MAX_HALF_BANDWIDTH,
+                plan.half_bandwidth()
+            ))
+        })?),
+    };
+    match p {
+        Some(p) => banded::run(plan, p).map(|(o, s)| (o, Some(s))),
+        None => run_dense(plan).map(|o| (o, None)),
+    }
+}
+
+/// The run on the dense operators: the fixed-size loop of its sizes, or the general loop.
+fn run_dense(plan: &Plan) -> Result<Outcome, SimError> {
+    let ops = Operators::build(plan)?;
+    if fixed::applies(plan) {
+        let links = links(plan, &ops);
+        let run = fixed_dispatch!(plan, &ops, &links;
+            (1, 0), (1, 1),
+            (2, 0), (2, 1), (2, 2),
+            (3, 0), (3, 1), (3, 2), (3, 3),
+            (4, 0), (4, 1), (4, 2), (4, 3), (4, 4),
+            (5, 0), (5, 1), (5, 2), (5, 3), (5, 4),
+            (6, 0), (6, 1), (6, 2), (6, 3), (6, 4),
+            (7, 0), (7, 1), (7, 2), (7, 3), (7, 4),
+            (8, 0), (8, 1), (8, 2), (8, 3), (8, 4),
+            (5, 5), (6, 6), (7, 7), (8, 8), (10, 10), (12, 12), (20, 10),
+        );
+        if let Some(outcome) = run {
+            return outcome;
         }
+    }
+    match ops.n {
+        1 => run_loop::<1>(plan, &ops),
+        2 => run_loop::<2>(plan, &ops),
+        3 => run_loop::<3>(plan, &ops),
+        4 => run_loop::<4>(plan, &ops),
+        5 => run_loop::<5>(plan, &ops),
+        6 => run_loop::<6>(plan, &ops),
+        7 => run_loop::<7>(plan, &ops),
+        8 => run_loop::<8>(plan, &ops),
+        10 => run_loop::<10>(plan, &ops),
+        12 => run_loop::<12>(plan, &ops),
+        20 => run_loop::<20>(plan, &ops),
+        _ => run_loop::<0>(plan, &ops),
     }
 }
 

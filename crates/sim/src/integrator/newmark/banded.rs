@@ -1,0 +1,825 @@
+//! The step of `newmark` in O(N) for banded frames: the same equations, the same friction
+//! QP and the same answer as the dense step, without forming A⁻¹.
+//!
+//! The dense step precomputes A⁻¹K, A⁻¹C and the Delassus matrix W = γΔt BᵀG + diag(1/κ)
+//! (all dense: O(N²) per step). When M, C and K are banded (a shear building with storey
+//! stiffness and Rayleigh or storey damping: half-bandwidth 1, [`Plan::half_bandwidth`])
+//! and every contact is an elastic–perfectly plastic element (m′ = 0: a brace k′, c′ in
+//! series with a slider, joining a floor to the floor below), the step stays in the
+//! original variables:
+//!
+//! - the right-hand side r = −K z_u − C z_v − (load) M r_g (+ force, + HHT's friction
+//!   memory α B F_n) is a banded product;
+//! - a stick/slip pattern turns each stuck contact into a spring: its force is
+//!   F = k′q + κ bᵀv_{n+1} (q its brace's predictor term, κ = k′βΔt/γ + c′, b = e(floor) −
+//!   e(floor below)), so the step's accelerations solve the banded system
+//!   (A + (1+α)γΔt Σ_stuck κ b bᵀ) a = r − (1+α)[Σ_slipping b F± + Σ_stuck b (k′q + κ bᵀṽ)],
+//!   one banded LDLᵀ factorisation (redone only when the stuck set changes) and one solve;
+//! - the pattern is found by an active-set iteration started from the previous step's
+//!   pattern (a primal–dual active-set pass flips every contact that breaks its condition:
+//!   a stuck force outside its box slides at the bound it crossed, a sliding contact whose
+//!   slip rate has the wrong sign sticks), and accepted only when it satisfies the KKT
+//!   conditions of the box QP min ½FᵀWF − Fᵀw_free that the dense step solves, with the
+//!   same round-off threshold as [`BoxQp`] (8 (m + 1) ε (‖W‖∞‖F‖∞ + ‖w_free‖∞) on the slip
+//!   rates of sliding contacts). W is positive definite, so the KKT point is the unique
+//!   minimiser: both steps give the same forces to round-off.
+//! - A step whose iteration has not settled after [`MAX_PASSES`] passes is answered by
+//!   [`BoxQp`] on the dense W (built once, O(N²) with banded solves) and w_free (one solve
+//!   with A's own factor), as the dense step does: no regularisation, no penalty, the
+//!   friction law exact at every step.
+//!
+//! Peaks and, when asked, energies are recorded as in the other loops; runs that ask for
+//! histories take the general loop.
+
+use super::{GROUND, Link, StepConstants, non_finite, outcome};
+use crate::error::SimError;
+use crate::friction::BoxQp;
+use crate::friction::box_qp::Bound;
+use crate::integrator::state::{
+    self, EnergyAccumulator, StepEnergyData, StepForms, epp_strain, initial_state, slip_rate,
+};
+use crate::plan::{ContactKind, ContactRole, Plan};
+use crate::response::{Outcome, Peaks};
+use nalgebra::DMatrix;
+
+/// Largest half-bandwidth the banded step takes (its factorisation costs O(N p²)).
+pub(super) const MAX_HALF_BANDWIDTH: usize = 3;
+
+/// Fewest DOFs for which `newmark` chooses the banded step by itself (below, the dense
+/// fixed-size loops are as fast; results/performance/README.md, "banded frames").
+pub(super) const MIN_DOFS: usize = 10;
+
+/// Active-set passes of one step before the step is handed to [`BoxQp`].
+pub(super) const MAX_PASSES: u32 = 8;
+
+/// What the banded path did over a run (tests and the bench read it).
+#[doc(hidden)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BandedStats {
+    /// Steps whose pattern was answered by the dense [`BoxQp`] (the active-set iteration
+    /// did not settle, or a pattern's factorisation failed).
+    pub fallbacks: u64,
+    /// Banded factorisations of a stuck set (the first one included).
+    pub factorizations: u64,
+    /// Active-set passes over the run (one banded solve each; 1 per step when the pattern
+    /// is unchanged).
+    pub passes: u64,
+}
+
+/// The plan's half-bandwidth when the banded step can run it exactly: no histories, every
+/// contact an elastic–perfectly plastic element between a floor and the floor below (or
+/// the ground) with a finite box of positive width, and
+/// banded operators (half-bandwidth at most [`MAX_HALF_BANDWIDTH`]).
+pub(super) fn eligible(plan: &Plan) -> Option<usize> {
+    if plan.outputs.histories {
+        return None;
+    }
+    let epp_only = plan.contacts.iter().all(|c| {
+        c.kind == ContactKind::Epp
+            && c.below == c.floor.checked_sub(1)
+            && c.lower.is_finite()
+            && c.upper.is_finite()
+            && c.lower < c.upper
+    });
+    if !epp_only {
+        return None;
+    }
+    let p = plan.half_bandwidth();
+    (p <= MAX_HALF_BANDWIDTH).then_some(p)
+}
+
+/// The half-bandwidth when `newmark` takes the banded step by itself: eligible plans of at
+/// least [`MIN_DOFS`] DOFs whose bandwidth is small against their size.
+pub(super) fn chosen(plan: &Plan) -> Option<usize> {
+    let n = plan.dofs();
+    eligible(plan).filter(|&p| n >= MIN_DOFS && 4 * (p + 1) <= n)
+}
+
+/// A symmetric band matrix: row i holds A(i, i − d) at `a[i·(p+1) + d]`, d = 0..=p
+/// (entries before the first column are zero).
+#[derive(Debug, Clone)]
+struct Band {
+    n: usize,
+    p: usize,
+    a: Vec<f64>,
+}
+
+impl Band {
+    fn of(m: &DMatrix<f64>, p: usize) -> Band {
+        let n = m.nrows();
+        let w = p + 1;
+        let mut a = vec![0.0; n * w];
+        for i in 0..n {
+            for d in 0..=p.min(i) {
+                a[i * w + d] = m[(i, i - d)];
+            }
+        }
+        Band { n, p, a }
+    }
+
+    /// y −= A x.
+    #[inline]
+    fn mul_sub(&self, x: &[f64], y: &mut [f64]) {
+        let w = self.p + 1;
+        for i in 0..self.n {
+            let row = &self.a[i * w..(i + 1) * w];
+            let xi = x[i];
+            let mut s = row[0] * xi;
+            for d in 1..=self.p.min(i) {
+                s += row[d] * x[i - d];
+                y[i - d] -= row[d] * xi;
+            }
+            y[i] -= s;
+        }
+    }
+
+    /// xᵀ A x.
+    #[inline]
+    fn quad(&self, x: &[f64]) -> f64 {
+        let w = self.p + 1;
+        let mut total = 0.0;
+        for i in 0..self.n {
+            let row = &self.a[i * w..(i + 1) * w];
+            let mut s = 0.5 * row[0] * x[i];
+            for d in 1..=self.p.min(i) {
+                s += row[d] * x[i - d];
+            }
+            total += 2.0 * s * x[i];
+        }
+        total
+    }
+}
+
+/// A banded LDLᵀ factorisation: unit lower L in the [`Band`] layout (its diagonal unused)
+/// and 1/D.
+#[derive(Debug, Clone)]
+struct Ldl {
+    n: usize,
+    p: usize,
+    l: Vec<f64>,
+    d: Vec<f64>,
+    dinv: Vec<f64>,
+}
+
+impl Ldl {
+    fn new(n: usize, p: usize) -> Ldl {
+        Ldl {
+            n,
+            p,
+            l: vec![0.0; n * (p + 1)],
+            d: vec![0.0; n],
+            dinv: vec![0.0; n],
+        }
+    }
+
+    /// Factorises `a` (same size and bandwidth). `false` when a pivot is not above
+    /// 4 n ε A(i, i) (not numerically positive definite), or not finite.
+    fn factor(&mut self, a: &Band) -> bool {
+        self.factor_from(a, 0)
+    }
+
+    /// Factorises rows `start..` of `a`, whose rows before `start` are those of the matrix
+    /// factorised last (row i of L and D depends only on rows ≤ i of A: the same bits as
+    /// a factorisation from the first row).
+    fn factor_from(&mut self, a: &Band, start: usize) -> bool {
+        let (n, p) = (self.n, self.p);
+        let w = p + 1;
+        if p == 1 {
+            // the generic recurrence below for one band, without its inner loops
+            let floor = 4.0 * n as f64 * f64::EPSILON;
+            for i in start..n {
+                let aii = a.a[2 * i];
+                let mut s = aii;
+                if i > 0 {
+                    let l = a.a[2 * i + 1] * self.dinv[i - 1];
+                    self.l[2 * i + 1] = l;
+                    s -= l * l * self.d[i - 1];
+                }
+                if !(s.is_finite() && s > floor * aii) {
+                    return false;
+                }
+                self.d[i] = s;
+                self.dinv[i] = 1.0 / s;
+            }
+            return true;
+        }
+        for i in start..n {
+            let j0 = i.saturating_sub(p);
+            for j in j0..i {
+                let mut s = a.a[i * w + (i - j)];
+                for k in j0.max(j.saturating_sub(p))..j {
+                    s -= self.l[i * w + (i - k)] * self.d[k] * self.l[j * w + (j - k)];
+                }
+                self.l[i * w + (i - j)] = s * self.dinv[j];
+            }
+            let aii = a.a[i * w];
+            let mut s = aii;
+            for k in j0..i {
+                let lik = self.l[i * w + (i - k)];
+                s -= lik * lik * self.d[k];
+            }
+            if !(s.is_finite() && s > 4.0 * n as f64 * f64::EPSILON * aii) {
+                return false;
+            }
+            self.d[i] = s;
+            self.dinv[i] = 1.0 / s;
+        }
+        true
+    }
+
+    /// Solves A x = b in place.
+    #[inline]
+    fn solve(&self, x: &mut [f64]) {
+        let (n, p) = (self.n, self.p);
+        let w = p + 1;
+        if p == 1 {
+            // the shear building's tridiagonal system: the running value stays in a
+            // register along the chain of rows
+            let (l, dinv) = (&self.l[..2 * n], &self.dinv[..n]);
+            let x = &mut x[..n];
+            let mut prev = x[0];
+            for i in 1..n {
+                prev = x[i] - l[2 * i + 1] * prev;
+                x[i] = prev;
+            }
+            let mut next = x[n - 1] * dinv[n - 1];
+            x[n - 1] = next;
+            for i in (0..n - 1).rev() {
+                next = x[i] * dinv[i] - l[2 * i + 3] * next;
+                x[i] = next;
+            }
+            return;
+        }
+        for i in 0..n {
+            let mut s = x[i];
+            for d in 1..=p.min(i) {
+                s -= self.l[i * w + d] * x[i - d];
+            }
+            x[i] = s;
+        }
+        for i in (0..n).rev() {
+            let mut s = x[i] * self.dinv[i];
+            for d in 1..=p.min(n - 1 - i) {
+                s -= self.l[(i + d) * w + d] * x[i + d];
+            }
+            x[i] = s;
+        }
+    }
+}
+
+/// One contact as the banded step reads it. Vectors of floor quantities are stored with
+/// the ground first (index 0, always 0; a sink for the ground's share of a force), so a
+/// contact reads and writes both its ends without a branch.
+#[derive(Debug, Clone, Copy)]
+struct Spring {
+    /// 1 + its floor.
+    f1: usize,
+    /// 1 + the floor below, 0 for the ground.
+    j1: usize,
+    k: f64,
+    kappa: f64,
+    inv_kappa: f64,
+    /// k′/κ.
+    k_over_kappa: f64,
+    lo: f64,
+    hi: f64,
+}
+
+impl Spring {
+    /// bᵀx = x(floor) − x(floor below), `x` ground first.
+    #[inline(always)]
+    fn diff(&self, x: &[f64]) -> f64 {
+        x[self.f1] - x[self.j1]
+    }
+
+    /// x −= s·b, `x` ground first (its ground entry then holds garbage).
+    #[inline(always)]
+    fn sub(&self, x: &mut [f64], s: f64) {
+        x[self.f1] -= s;
+        x[self.j1] += s;
+    }
+}
+
+/// What the banded step keeps of the dense operators, for the steps [`BoxQp`] answers.
+struct Dense {
+    /// Delassus matrix, column-major nc × nc.
+    w: Vec<f64>,
+    /// ‖W‖∞.
+    w_norm: f64,
+    /// Built on the first step that needs it.
+    qp: Option<BoxQp>,
+}
+
+/// r −= K zu + C zv for tridiagonal K and C (the shear building's), in one pass.
+#[inline]
+fn tri_mul_sub2(k: &Band, zu: &[f64], c: &Band, zv: &[f64], r: &mut [f64]) {
+    let n = r.len();
+    let (ka, ca) = (&k.a[..2 * n], &c.a[..2 * n]);
+    let (zu, zv) = (&zu[..n], &zv[..n]);
+    // diagonal, then the band below and its mirror above, each a branch-free pass
+    for i in 0..n {
+        r[i] -= ka[2 * i] * zu[i] + ca[2 * i] * zv[i];
+    }
+    for i in 1..n {
+        let (k1, c1) = (ka[2 * i + 1], ca[2 * i + 1]);
+        r[i] -= k1 * zu[i - 1] + c1 * zv[i - 1];
+        r[i - 1] -= k1 * zu[i] + c1 * zv[i];
+    }
+}
+
+/// Runs `plan` (half-bandwidth `p`, [`eligible`]) with the banded step.
+pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimError> {
+    let n = plan.dofs();
+    let nc = plan.contacts.len();
+    let nf = plan.floors;
+    let dt = plan.method.dt;
+    let alpha = plan.method.alpha;
+    let gamma = 0.5 - alpha;
+    let beta = (1.0 - alpha) * (1.0 - alpha) / 4.0;
+    let k = StepConstants::new(dt, beta, gamma);
+    let (c_u, c_v, gdt, bdt2, bg) = (k.c_u, k.c_v, k.gdt, k.bdt2, k.bg);
+    let (mass, damping, stiffness) = (&plan.mass, &plan.damping, &plan.stiffness);
+    let a_dense = mass + (damping * (gamma * dt) + stiffness * (beta * dt * dt)) * (1.0 + alpha);
+    let a_base = Band::of(&a_dense, p);
+    let (mb, cb, kb) = (
+        Band::of(mass, p),
+        Band::of(damping, p),
+        Band::of(stiffness, p),
+    );
+    let mut base = Ldl::new(n, p);
+    if !base.factor(&a_base) {
+        return Err(SimError::NotPositiveDefinite {
+            what: "Newmark iteration matrix M + γΔtC + βΔt²K".into(),
+            hint: " (a mass, damping or stiffness matrix is invalid)".into(),
+        });
+    }
+    let mut stats = BandedStats {
+        factorizations: 1,
+        ..Default::default()
+    };
+    let springs: Vec<Spring> = plan
+        .contacts
+        .iter()
+        .map(|ct| {
+            let kappa = ct.brace_stiffness * beta * dt / gamma + ct.brace_damping;
+            Spring {
+                f1: ct.floor + 1,
+                j1: ct.below.map_or(0, |j| j + 1),
+                k: ct.brace_stiffness,
+                kappa,
+                inv_kappa: 1.0 / kappa,
+                k_over_kappa: ct.brace_stiffness / kappa,
+                lo: ct.lower,
+                hi: ct.upper,
+            }
+        })
+        .collect();
+    let links: Vec<Link> = plan
+        .contacts
+        .iter()
+        .zip(&springs)
+        .map(|(ct, s)| Link {
+            floor: ct.floor,
+            other: ct.below.unwrap_or(GROUND),
+            epp: true,
+            k_over_kappa: s.k_over_kappa,
+            slot: match ct.role {
+                ContactRole::Damper => ct.floor,
+                ContactRole::Storey => nf + ct.floor,
+            },
+        })
+        .collect();
+    // The Delassus matrix W = (1+α)γΔt BᵀA⁻¹B + diag(1/κ), one banded solve per column.
+    let mut dense = {
+        let mut w = vec![0.0; nc * nc];
+        let mut x = vec![0.0; n + 1];
+        for (c, s) in springs.iter().enumerate() {
+            x.fill(0.0);
+            s.sub(&mut x, -1.0);
+            x[0] = 0.0;
+            base.solve(&mut x[1..]);
+            for (r, t) in springs.iter().enumerate() {
+                w[r + c * nc] = t.diff(&x) * (1.0 + alpha) * (gamma * dt);
+            }
+            w[c + c * nc] += s.inv_kappa;
+        }
+        for c in 0..nc {
+            for r in 0..c {
+                let mean = 0.5 * (w[r + c * nc] + w[c + r * nc]);
+                w[r + c * nc] = mean;
+                w[c + r * nc] = mean;
+            }
+        }
+        let w_norm = (0..nc)
+            .map(|r| (0..nc).map(|c| w[r + c * nc].abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        Dense {
+            w,
+            w_norm,
+            qp: None,
+        }
+    };
+    let tol_factor = 8.0 * (nc as f64 + 1.0) * f64::EPSILON;
+    let tol_w = tol_factor * dense.w_norm;
+
+    let ones = vec![1.0; n];
+    let mut mr = vec![0.0; n];
+    mb.mul_sub(&ones, &mut mr);
+    for x in &mut mr {
+        *x = -*x;
+    }
+    let msum: f64 = mr.iter().sum();
+
+    let start = initial_state(plan)?;
+    let (mut u, mut v, mut a) = (start.u.clone(), start.v.clone(), start.a.clone());
+    let mut f_old = start.f.clone();
+    let mut f_new = vec![0.0; nc];
+    let mut epp = start.epp.clone();
+    let mut stuck = start.stuck.clone();
+    // The pattern: stuck contacts free, sliding ones at the bound their force sits on.
+    let mut status: Vec<Bound> = (0..nc)
+        .map(|c| {
+            if stuck[c] {
+                Bound::Free
+            } else if f_old[c] >= springs[c].hi {
+                Bound::Upper
+            } else {
+                Bound::Lower
+            }
+        })
+        .collect();
+    // The pattern as the candidate loop reads it, without branches: free or held, the
+    // force a held contact carries, and the sign its slip rate must not have (+1 at the
+    // lower bound, −1 at the upper, 0 free).
+    let mut fr = vec![false; nc];
+    let mut fb = vec![0.0; nc];
+    let mut sg = vec![0.0; nc];
+    for c in 0..nc {
+        (fr[c], fb[c], sg[c]) = coded(status[c], &springs[c]);
+    }
+    // Per padded floor: the friction forces acting on the contacts of that floor (the
+    // floor below takes their opposite, B F = φ(i) − φ(i+1)).
+    let mut phi = vec![0.0; n + 2];
+    // `pattern` holds the factorisation of the stuck set of `status` in its rows before
+    // `dirty` (n: all of them).
+    let mut dirty = 0usize;
+    let mut pattern = Ldl::new(n, p);
+    let mut a_pattern = a_base.clone();
+
+    let energies = plan.outputs.energies;
+    let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &epp);
+    let mut w_old: Vec<f64> = (0..nc).map(|c| slip_rate(plan, c, &v, &epp)).collect();
+    let mut w_new = vec![0.0; nc];
+    let mut v_old = vec![0.0; n];
+    let mut vm = vec![0.0; n];
+
+    let mut peaks = Peaks::for_plan(plan);
+    let mut ag0 = plan.ground_accel(0.0);
+    let mut ground = plan.ground_steps();
+    let mut p0 = plan.force(0.0);
+    let force_floor = plan.harmonic.map(|h| h.floor);
+    peaks.observe_floors(&u, &a, ag0);
+    peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag0, p0));
+    for (c, l) in links.iter().enumerate() {
+        l.observe_start(&u, epp[c].u, &mut peaks);
+    }
+
+    // Floor vectors ground first (index 0).
+    let mut ut = vec![0.0; n + 1];
+    let mut vt = vec![0.0; n + 1];
+    let mut r0 = vec![0.0; n + 1];
+    let mut x = vec![0.0; n + 1];
+    let mut y = vec![0.0; n + 1];
+    let mut zu = vec![0.0; n];
+    let mut zv = vec![0.0; n];
+    // Per contact and step: the brace predictor term q, the elements' predictors, bᵀṽ,
+    // and the force a stuck contact would carry at zero acceleration, k′q + κ bᵀṽ.
+    let mut q = vec![0.0; nc];
+    let mut pred = vec![(0.0, 0.0); nc];
+    let mut sv0 = vec![0.0; nc];
+    let mut g0 = vec![0.0; nc];
+    let mut wfree = vec![0.0; nc];
+    let lo: Vec<f64> = springs.iter().map(|s| s.lo).collect();
+    let hi: Vec<f64> = springs.iter().map(|s| s.hi).collect();
+    let mut qp_total: u64 = 0;
+    let mut qp_max: u32 = 0;
+    let hhht = alpha != 0.0 && nc > 0;
+    let op = 1.0 + alpha;
+
+    for step in 0..plan.steps {
+        let t1 = (step + 1) as f64 * dt;
+        let ag1 = ground.next_accel();
+        let p1 = if force_floor.is_some() {
+            plan.force(t1)
+        } else {
+            0.0
+        };
+        for i in 0..n {
+            ut[i + 1] = u[i] + dt * v[i] + c_u * a[i];
+            vt[i + 1] = v[i] + c_v * a[i];
+        }
+        let (zu, zv): (&[f64], &[f64]) = if alpha == 0.0 {
+            (&ut[1..], &vt[1..])
+        } else {
+            for i in 0..n {
+                zu[i] = op * ut[i + 1] - alpha * u[i];
+                zv[i] = op * vt[i + 1] - alpha * v[i];
+            }
+            (&zu, &zv)
+        };
+        // r0 = load·M r − K z_u − C z_v (+ force, + α B F_n).
+        let load = -(op * ag1 - alpha * ag0);
+        {
+            let r = &mut r0[1..];
+            for i in 0..n {
+                r[i] = load * mr[i];
+            }
+            if p == 1 {
+                tri_mul_sub2(&kb, zu, &cb, zv, r);
+            } else {
+                kb.mul_sub(zu, r);
+                cb.mul_sub(zv, r);
+            }
+            if let Some(fl) = force_floor {
+                r[fl] += op * p1 - alpha * p0;
+            }
+        }
+        if hhht {
+            for (s, &fo) in springs.iter().zip(&f_old) {
+                s.sub(&mut r0, -alpha * fo);
+            }
+        }
+        // The brace predictors of each element (its condensed massless DOF).
+        for (c, s) in springs.iter().enumerate() {
+            let e = epp[c];
+            let up = e.u + dt * e.v + c_u * e.a;
+            let vp = e.v + c_v * e.a;
+            let (uj, vj) = (ut[s.j1], vt[s.j1]);
+            q[c] = (up - uj) - bg * (vp - vj);
+            pred[c] = (up, vp);
+            sv0[c] = s.diff(&vt);
+            g0[c] = s.k * q[c] + s.kappa * sv0[c];
+        }
+
+        // The active-set iteration on the stick/slip pattern.
+        let mut passes = 0u32;
+        let mut wfree_norm: Option<f64> = None;
+        let settled = loop {
+            if passes == MAX_PASSES {
+                break false;
+            }
+            passes += 1;
+            if dirty < n {
+                a_pattern.a.copy_from_slice(&a_base.a);
+                let w = p + 1;
+                for (s, b) in springs.iter().zip(&status) {
+                    if *b == Bound::Free {
+                        let coef = op * gdt * s.kappa;
+                        let f = s.f1 - 1;
+                        a_pattern.a[f * w] += coef;
+                        if s.j1 > 0 {
+                            let j = s.j1 - 1;
+                            a_pattern.a[j * w] += coef;
+                            a_pattern.a[f * w + (f - j)] -= coef;
+                        }
+                    }
+                }
+                stats.factorizations += 1;
+                if !pattern.factor_from(&a_pattern, dirty) {
+                    dirty = 0;
+                    break false;
+                }
+                dirty = n;
+            }
+            phi.fill(0.0);
+            for (c, s) in springs.iter().enumerate() {
+                let g = if fr[c] { g0[c] } else { fb[c] };
+                phi[s.f1] += op * g;
+            }
+            x[0] = 0.0;
+            for i in 1..=n {
+                x[i] = (r0[i] - phi[i]) + phi[i + 1];
+            }
+            pattern.solve(&mut x[1..]);
+            // Forces and slip rates of the candidate.
+            // `inside`: every free force inside its box; `wrong_max`: the largest slip
+            // rate of a held force against its bound's sign (NaN-safe: a NaN fails both).
+            let mut f_norm = 0.0f64;
+            let mut inside = true;
+            let mut wrong_max = 0.0f64;
+            let mut finite = 0.0;
+            for (c, s) in springs.iter().enumerate() {
+                let da = gdt * s.diff(&x);
+                let fc = if fr[c] { g0[c] + s.kappa * da } else { fb[c] };
+                let wc = (sv0[c] + da) + s.k_over_kappa * q[c] - fc * s.inv_kappa;
+                f_new[c] = fc;
+                w_new[c] = wc;
+                f_norm = f_norm.max(fc.abs());
+                inside &= !fr[c] || (fc >= s.lo && fc <= s.hi);
+                wrong_max = wrong_max.max(sg[c] * wc);
+                finite += wc;
+            }
+            if inside && wrong_max <= tol_w * f_norm && finite.is_finite() {
+                // the usual step: the pattern holds (the forces are finite: a free one
+                // inside its box, a held one at its bound)
+                break true;
+            }
+            // KKT, as BoxQp: free forces inside the box, held ones' slip rates of the sign
+            // their bound allows beyond 8 (m + 1) ε (‖W‖∞‖F‖∞ + ‖w_free‖∞). The threshold
+            // without ‖w_free‖∞ decides most rates; w_free is computed when one falls
+            // between it and the full threshold.
+            let tol_lo = tol_w * f_norm;
+            let mut changed = false;
+            let mut bad = !f_norm.is_finite();
+            for c in 0..nc {
+                let s = &springs[c];
+                let next = match status[c] {
+                    Bound::Free => {
+                        let fc = f_new[c];
+                        if fc < s.lo {
+                            Bound::Lower
+                        } else if fc > s.hi {
+                            Bound::Upper
+                        } else {
+                            bad |= fc.is_nan();
+                            continue;
+                        }
+                    }
+                    held => {
+                        let wrong = if held == Bound::Lower {
+                            w_new[c]
+                        } else {
+                            -w_new[c]
+                        };
+                        if wrong.is_nan() {
+                            bad = true;
+                            continue;
+                        }
+                        if wrong <= tol_lo {
+                            continue;
+                        }
+                        let b_norm = *wfree_norm.get_or_insert_with(|| {
+                            free_slip_rates(
+                                &base,
+                                &springs,
+                                &r0,
+                                (&sv0, &q),
+                                gdt,
+                                &mut y,
+                                &mut wfree,
+                            )
+                        });
+                        if wrong <= tol_lo + tol_factor * b_norm {
+                            continue;
+                        }
+                        Bound::Free
+                    }
+                };
+                status[c] = next;
+                (fr[c], fb[c], sg[c]) = coded(next, s);
+                changed = true;
+                // the first row of A its stuck spring enters (its lower floor's)
+                dirty = dirty.min(if s.j1 > 0 { s.j1 - 1 } else { s.f1 - 1 });
+            }
+            if bad {
+                break false;
+            }
+            if !changed {
+                break true;
+            }
+        };
+        stats.passes += u64::from(passes);
+        let iterations = if settled {
+            passes
+        } else {
+            // The dense box QP, as the dense step solves it.
+            stats.fallbacks += 1;
+            free_slip_rates(&base, &springs, &r0, (&sv0, &q), gdt, &mut y, &mut wfree);
+            let qp = match &mut dense.qp {
+                Some(qp) => qp,
+                slot @ None => slot.insert(
+                    BoxQp::new(&dense.w, nc)
+                        .map_err(|source| SimError::Friction { t: t1, source })?,
+                ),
+            };
+            let st = qp
+                .solve(&wfree, &lo, &hi, &mut f_new)
+                .map_err(|source| SimError::Friction { t: t1, source })?;
+            x.copy_from_slice(&r0);
+            for (c, s) in springs.iter().enumerate() {
+                s.sub(&mut x, op * f_new[c]);
+                status[c] = qp.status(c);
+                (fr[c], fb[c], sg[c]) = coded(status[c], s);
+            }
+            x[0] = 0.0;
+            base.solve(&mut x[1..]);
+            for (c, s) in springs.iter().enumerate() {
+                let sv = sv0[c] + gdt * s.diff(&x);
+                w_new[c] = sv + s.k_over_kappa * q[c] - f_new[c] * s.inv_kappa;
+            }
+            dirty = 0;
+            passes + st.iterations
+        };
+        qp_total += u64::from(iterations);
+        qp_max = qp_max.max(iterations);
+
+        if energies {
+            v_old.copy_from_slice(&v);
+        }
+        let mut finite = 0.0;
+        for i in 0..n {
+            let ai = x[i + 1];
+            a[i] = ai;
+            u[i] = ut[i + 1] + bdt2 * ai;
+            v[i] = vt[i + 1] + gdt * ai;
+            finite += u[i];
+        }
+        if !finite.is_finite() {
+            return Err(non_finite(step + 1, dt));
+        }
+        for (c, l) in links.iter().enumerate() {
+            l.finish_step(
+                &k,
+                (pred[c], w_new[c]),
+                (&u, &v),
+                status[c] == Bound::Free,
+                &mut epp[c],
+                &mut stuck[c],
+                &mut peaks,
+            );
+        }
+        peaks.observe_floors(&u, &a, ag1);
+        peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag1, p1));
+        if energies {
+            let data = StepEnergyData {
+                dt,
+                mr: &mr,
+                ag: (ag0, ag1),
+                p: (p0, p1),
+                force_floor,
+                v: (&v_old, &v),
+                f: (&f_old, &f_new),
+                w: (&w_old, &w_new),
+            };
+            for i in 0..n {
+                vm[i] = 0.5 * (v_old[i] + v[i]);
+            }
+            let forms = StepForms {
+                cvv: cb.quad(&vm),
+                kinetic: 0.5 * mb.quad(&v),
+                strain: 0.5 * kb.quad(&u) + epp_strain(plan, &u, &epp),
+            };
+            acc.step(plan, &data, forms, &epp);
+            std::mem::swap(&mut w_old, &mut w_new);
+        }
+        std::mem::swap(&mut f_old, &mut f_new);
+        ag0 = ag1;
+        p0 = p1;
+        if peaks.collapsed(t1) {
+            break;
+        }
+    }
+    let energy = energies.then(|| acc.finish(plan, &u, &v, &epp));
+    let mut out = outcome(plan, peaks, &acc, energy, (qp_total, qp_max), None);
+    out.diagnostics.work = work_per_step(n, p, nc) * out.response.steps as u64;
+    Ok((out, stats))
+}
+
+/// A contact's pattern as the candidate loop reads it: free, the held force, the sign.
+fn coded(b: Bound, s: &Spring) -> (bool, f64, f64) {
+    match b {
+        Bound::Free => (true, 0.0, 0.0),
+        Bound::Lower => (false, s.lo, 1.0),
+        Bound::Upper => (false, s.hi, -1.0),
+    }
+}
+
+/// The slip rates w_free of the step without friction forces (one solve with A's own
+/// factor, in the scratch `y`, ground first), written to `wfree`; returns ‖w_free‖∞.
+fn free_slip_rates(
+    base: &Ldl,
+    springs: &[Spring],
+    r0: &[f64],
+    (sv0, q): (&[f64], &[f64]),
+    gdt: f64,
+    y: &mut [f64],
+    wfree: &mut [f64],
+) -> f64 {
+    y.copy_from_slice(r0);
+    y[0] = 0.0;
+    base.solve(&mut y[1..]);
+    let mut norm = 0.0f64;
+    for (c, s) in springs.iter().enumerate() {
+        wfree[c] = (sv0[c] + gdt * s.diff(y)) + s.k_over_kappa * q[c];
+        norm = norm.max(wfree[c].abs());
+    }
+    norm
+}
+
+/// Multiply-adds of one banded step: the two band products of the right-hand side, one
+/// banded solve, the contacts' predictors and slip rates, and the predictor and corrector
+/// updates.
+fn work_per_step(n: usize, p: usize, nc: usize) -> u64 {
+    let (n, p, nc) = (n as u64, p as u64, nc as u64);
+    2 * n * (2 * p + 1) + 2 * n * (p + 1) + 12 * nc + 12 * n
+}
