@@ -10,10 +10,13 @@
 //!
 //! - the right-hand side r = −K z_u − C z_v − (load) M r_g (+ force, + HHT's friction
 //!   memory α B F_n) is a banded product;
-//! - a stick/slip pattern turns each stuck contact into a spring: its force is
-//!   F = k′q + κ bᵀv_{n+1} (q its brace's predictor term, κ = k′βΔt/γ + c′, b = e(floor) −
-//!   e(floor below)), so the step's accelerations solve the banded system
-//!   (A + (1+α)γΔt Σ_stuck κ b bᵀ) a = r − (1+α)[Σ_slipping b F± + Σ_stuck b (k′q + κ bᵀṽ)],
+//! - a stick/slip pattern turns each stuck contact into a spring: the QP's variable of a
+//!   contact is w = h₀ + γΔt bᵀa − F/κ (κ = k′βΔt/γ + c′, b = e(floor) − e(floor below);
+//!   h₀ its friction-free part at zero acceleration, as the dense step's
+//!   `Link::free_slip_rate` forms it: from the slip of the step for an algebraic element,
+//!   c′ = 0, from the end-of-step slip rate otherwise), so a stuck force is
+//!   F = κ (h₀ + γΔt bᵀa) and the step's accelerations solve the banded system
+//!   (A + (1+α)γΔt Σ_stuck κ b bᵀ) a = r − (1+α)[Σ_slipping b F± + Σ_stuck b κ h₀],
 //!   one banded LDLᵀ factorisation (redone only when the stuck set changes) and one solve;
 //! - the pattern is found by an active-set iteration started from the previous step's
 //!   pattern (a primal–dual active-set pass flips every contact that breaks its condition:
@@ -31,7 +34,7 @@
 //! Peaks and, when asked, energies are recorded as in the other loops; runs that ask for
 //! histories take the general loop.
 
-use super::{GROUND, Link, StepConstants, non_finite, outcome};
+use super::{EppPred, GROUND, Link, StepConstants, non_finite, outcome};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -276,7 +279,6 @@ struct Spring {
     f1: usize,
     /// 1 + the floor below, 0 for the ground.
     j1: usize,
-    k: f64,
     kappa: f64,
     inv_kappa: f64,
     /// k′/κ.
@@ -365,7 +367,6 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             Spring {
                 f1: ct.floor + 1,
                 j1: ct.below.map_or(0, |j| j + 1),
-                k: ct.brace_stiffness,
                 kappa,
                 inv_kappa: 1.0 / kappa,
                 k_over_kappa: ct.brace_stiffness / kappa,
@@ -382,6 +383,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             floor: ct.floor,
             other: ct.below.unwrap_or(GROUND),
             epp: true,
+            algebraic: ct.brace_damping == 0.0,
             k_over_kappa: s.k_over_kappa,
             slot: match ct.role {
                 ContactRole::Damper => ct.floor,
@@ -492,11 +494,12 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     let mut y = vec![0.0; n + 1];
     let mut zu = vec![0.0; n];
     let mut zv = vec![0.0; n];
-    // Per contact and step: the brace predictor term q, the elements' predictors, bᵀṽ,
-    // and the force a stuck contact would carry at zero acceleration, k′q + κ bᵀṽ.
-    let mut q = vec![0.0; nc];
-    let mut pred = vec![(0.0, 0.0); nc];
-    let mut sv0 = vec![0.0; nc];
+    // Per contact and step: the elements' predictors, the friction-free part h0 of the
+    // QP's variable at zero acceleration (the dense step's `Link::free_slip_rate` without
+    // its γΔt bᵀa term), and the force a stuck contact would carry at zero acceleration,
+    // κ h0.
+    let mut h0 = vec![0.0; nc];
+    let mut pred = vec![EppPred::default(); nc];
     let mut g0 = vec![0.0; nc];
     let mut wfree = vec![0.0; nc];
     let lo: Vec<f64> = springs.iter().map(|s| s.lo).collect();
@@ -549,16 +552,27 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 s.sub(&mut r0, -alpha * fo);
             }
         }
-        // The brace predictors of each element (its condensed massless DOF).
+        // The predictors of each element (its condensed massless DOF), as the dense step's
+        // `Link::free_slip_rate` forms them: an algebraic element's (c′ = 0) from the slip of
+        // the step (the return mapping), a damped brace's from its end-of-step slip rate.
         for (c, s) in springs.iter().enumerate() {
             let e = epp[c];
-            let up = e.u + dt * e.v + c_u * e.a;
-            let vp = e.v + c_v * e.a;
             let (uj, vj) = (ut[s.j1], vt[s.j1]);
-            q[c] = (up - uj) - bg * (vp - vj);
-            pred[c] = (up, vp);
-            sv0[c] = s.diff(&vt);
-            g0[c] = s.k * q[c] + s.kappa * sv0[c];
+            if links[c].algebraic {
+                let base = e.u - u[s.f1 - 1];
+                h0[c] = (ut[s.f1] - uj + base) * s.k_over_kappa;
+                pred[c] = EppPred {
+                    base,
+                    ..EppPred::default()
+                };
+            } else {
+                let up = e.u + dt * e.v + c_u * e.a;
+                let vp = e.v + c_v * e.a;
+                let q = (up - uj) - bg * (vp - vj);
+                h0[c] = s.diff(&vt) + s.k_over_kappa * q;
+                pred[c] = EppPred { up, vp, base: 0.0 };
+            }
+            g0[c] = s.kappa * h0[c];
         }
 
         // The active-set iteration on the stick/slip pattern.
@@ -611,7 +625,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             for (c, s) in springs.iter().enumerate() {
                 let da = gdt * s.diff(&x);
                 let fc = if fr[c] { g0[c] + s.kappa * da } else { fb[c] };
-                let wc = (sv0[c] + da) + s.k_over_kappa * q[c] - fc * s.inv_kappa;
+                let wc = (h0[c] + da) - fc * s.inv_kappa;
                 f_new[c] = fc;
                 w_new[c] = wc;
                 f_norm = f_norm.max(fc.abs());
@@ -659,15 +673,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                             continue;
                         }
                         let b_norm = *wfree_norm.get_or_insert_with(|| {
-                            free_slip_rates(
-                                &base,
-                                &springs,
-                                &r0,
-                                (&sv0, &q),
-                                gdt,
-                                &mut y,
-                                &mut wfree,
-                            )
+                            free_slip_rates(&base, &springs, &r0, &h0, gdt, &mut y, &mut wfree)
                         });
                         if wrong <= tol_lo + tol_factor * b_norm {
                             continue;
@@ -694,7 +700,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         } else {
             // The dense box QP, as the dense step solves it.
             stats.fallbacks += 1;
-            free_slip_rates(&base, &springs, &r0, (&sv0, &q), gdt, &mut y, &mut wfree);
+            free_slip_rates(&base, &springs, &r0, &h0, gdt, &mut y, &mut wfree);
             let qp = match &mut dense.qp {
                 Some(qp) => qp,
                 slot @ None => slot.insert(
@@ -714,8 +720,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             x[0] = 0.0;
             base.solve(&mut x[1..]);
             for (c, s) in springs.iter().enumerate() {
-                let sv = sv0[c] + gdt * s.diff(&x);
-                w_new[c] = sv + s.k_over_kappa * q[c] - f_new[c] * s.inv_kappa;
+                w_new[c] = (h0[c] + gdt * s.diff(&x)) - f_new[c] * s.inv_kappa;
             }
             dirty = 0;
             passes + st.iterations
@@ -738,7 +743,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             return Err(non_finite(step + 1, dt));
         }
         for (c, l) in links.iter().enumerate() {
-            l.finish_step(
+            w_new[c] = l.finish_step(
                 &k,
                 (pred[c], w_new[c]),
                 (&u, &v),
@@ -760,6 +765,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 v: (&v_old, &v),
                 f: (&f_old, &f_new),
                 w: (&w_old, &w_new),
+                epp_mean_rate: true,
             };
             for i in 0..n {
                 vm[i] = 0.5 * (v_old[i] + v[i]);
@@ -800,7 +806,7 @@ fn free_slip_rates(
     base: &Ldl,
     springs: &[Spring],
     r0: &[f64],
-    (sv0, q): (&[f64], &[f64]),
+    h0: &[f64],
     gdt: f64,
     y: &mut [f64],
     wfree: &mut [f64],
@@ -810,7 +816,7 @@ fn free_slip_rates(
     base.solve(&mut y[1..]);
     let mut norm = 0.0f64;
     for (c, s) in springs.iter().enumerate() {
-        wfree[c] = (sv0[c] + gdt * s.diff(y)) + s.k_over_kappa * q[c];
+        wfree[c] = h0[c] + gdt * s.diff(y);
         norm = norm.max(wfree[c].abs());
     }
     norm
