@@ -104,6 +104,40 @@ fn the_committed_grid_check_holds_its_arithmetic() {
         (ratio / stated(&check["ratio"]) - 1.0).abs() < SAME,
         "{ratio}"
     );
-    // what docs/MODEL.md and the README say of it: above 98 %, short of the 99 % aimed at
-    assert!(ratio > 0.98, "{ratio}");
+    // what docs/MODEL.md and the README say of it: at least the 99 % aimed at
+    assert!(ratio >= 0.99, "{ratio}");
+}
+
+/// Contract: the committed multi-seed table (`results/pareto/seeds.json`, written by
+/// `scripts/pareto-seeds.sh`) is the committed study's over six sweep seeds at the same
+/// budget: its entry for the committed seed is the grid check's ratio, its minimum and
+/// median are those of its ratios, and the median reaches the 99 % aimed at.
+#[test]
+fn the_committed_seed_table_holds_its_arithmetic() {
+    let dir = root().join("results/pareto");
+    let seeds: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("seeds.json")).unwrap()).unwrap();
+    let check: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("grid-check.json")).unwrap())
+            .unwrap();
+    let rows = seeds["seeds"].as_array().unwrap();
+    assert!(rows.len() >= 5, "at least five sweep seeds");
+    let mut ratios: Vec<f64> = Vec::new();
+    for r in rows {
+        assert!(r["simulations"].as_u64().unwrap() <= 1500, "{r}");
+        ratios.push(r["ratio"].as_f64().unwrap());
+    }
+    // the committed study's seed (2007) is the grid check's front
+    let committed = rows.iter().find(|r| r["sweep_seed"] == 2007).unwrap();
+    assert_eq!(committed["ratio"], check["ratio"]);
+    ratios.sort_by(f64::total_cmp);
+    let n = ratios.len();
+    let median = if n % 2 == 1 {
+        ratios[n / 2]
+    } else {
+        0.5 * (ratios[n / 2 - 1] + ratios[n / 2])
+    };
+    assert_eq!(seeds["min"].as_f64().unwrap(), ratios[0]);
+    assert!((seeds["median"].as_f64().unwrap() - median).abs() <= 1e-15);
+    assert!(median >= 0.99, "median {median}");
 }

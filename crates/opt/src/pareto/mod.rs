@@ -15,6 +15,7 @@ pub mod front;
 pub mod objectives;
 pub mod report;
 pub mod search;
+pub mod surrogate;
 
 pub use front::{crowding_distance, dominates, first_front, hypervolume, knee, nondominated_ranks};
 pub use objectives::{ParetoMetric, ParetoObjective};

@@ -8,6 +8,12 @@
 //! - **fill** (a fifth of the batch): the largest gaps between neighbouring front points
 //!   (two objectives: consecutive along the front; more: each point and its nearest
 //!   neighbour), each proposing the midpoint of the two designs' scaled variables;
+//! - **surrogates** (one per objective, then one per largest gap, up to
+//!   `SURROGATE_GAPS`): the designs minimising augmented Tchebycheff scalarisations of
+//!   a cubic radial-basis surrogate of each objective over everything evaluated, aimed
+//!   at each end of the front and at its largest gaps, over a fixed candidate set
+//!   ([`super::surrogate`]) — the global part of the search, which can reach a basin
+//!   the polls around the front do not;
 //! - **ends** (up to a fifth each): each objective's best design polled along ± each
 //!   scaled variable at its own step;
 //! - **polls** (the rest): the front points by their exclusive hypervolume contribution,
@@ -256,13 +262,100 @@ pub fn search(
     })
 }
 
+/// Gaps of the front a generation's surrogate proposals aim at (after each objective's
+/// end).
+const SURROGATE_GAPS: usize = 7;
+
+/// Designs proposed by the surrogates ([`super::surrogate`]) in one generation, up to
+/// `room` of them: one per objective's end, then one per largest gap (up to
+/// [`SURROGATE_GAPS`]), none within the surrogate's separation of `evaluated` or
+/// `proposed`. The surrogates fit the designs of lowest non-dominated rank (up to
+/// [`super::surrogate::MAX_FIT`]), each objective normalised to the current front's ideal
+/// and nadir; none when the fit fails (too few designs, or a singular system).
+fn surrogate_proposals(
+    space: &crate::space::DesignSpace,
+    evaluated: &[Evaluated],
+    front: &[usize],
+    norm: &[Vec<f64>],
+    gaps: &[(f64, usize, usize)],
+    proposed: &[Vec<f64>],
+    room: usize,
+) -> Vec<Vec<f64>> {
+    use super::surrogate::{CLIP, MAX_FIT, Rbf, candidates, propose, weights};
+    let k = norm.first().map_or(0, Vec::len);
+    if room == 0 || k == 0 {
+        return Vec::new();
+    }
+    let lo: Vec<f64> = (0..k)
+        .map(|m| {
+            front
+                .iter()
+                .map(|&i| evaluated[i].objectives[m])
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    let hi: Vec<f64> = (0..k)
+        .map(|m| {
+            front
+                .iter()
+                .map(|&i| evaluated[i].objectives[m])
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .collect();
+    let finite: Vec<usize> = (0..evaluated.len())
+        .filter(|&i| evaluated[i].objectives.iter().all(|v| v.is_finite()))
+        .collect();
+    let vectors: Vec<Vec<f64>> = finite
+        .iter()
+        .map(|&i| evaluated[i].objectives.clone())
+        .collect();
+    let ranks = super::front::nondominated_ranks(&vectors);
+    let mut fit: Vec<usize> = (0..finite.len()).collect();
+    fit.sort_by_key(|&j| (ranks[j], j));
+    fit.truncate(MAX_FIT);
+    fit.sort_unstable();
+    let points: Vec<Vec<f64>> = fit
+        .iter()
+        .map(|&j| evaluated[finite[j]].z.clone())
+        .collect();
+    let mut fits = Vec::with_capacity(k);
+    for m in 0..k {
+        let range = hi[m] - lo[m];
+        let values: Vec<f64> = fit
+            .iter()
+            .map(|&j| {
+                let v = vectors[j][m];
+                let s = if range > 0.0 {
+                    (v - lo[m]) / range
+                } else {
+                    0.0
+                };
+                s.min(CLIP)
+            })
+            .collect();
+        match Rbf::fit(&points, &values) {
+            Some(f) => fits.push(f),
+            None => return Vec::new(),
+        }
+    }
+    let around: Vec<&[f64]> = front.iter().map(|&i| evaluated[i].z.as_slice()).collect();
+    let cands = candidates(space, &around);
+    let pairs: Vec<(usize, usize)> = gaps.iter().map(|g| (g.1, g.2)).collect();
+    let mut w = weights(norm, &pairs, SURROGATE_GAPS);
+    w.truncate(room);
+    let mut taken: Vec<Vec<f64>> = evaluated.iter().map(|e| e.z.clone()).collect();
+    taken.extend(proposed.iter().cloned());
+    propose(&fits, &cands, &w, &taken)
+}
+
 /// Smallest poll step, scaled (1/400 of a variable's range: 5 kN on the benchmark).
 const MIN_STEP: f64 = 0.0025;
 
-/// The next generation by polling: a fifth of the batch fills the largest gaps of the
-/// front (midpoints), the rest polls the front's sparsest points along ± each variable at
-/// the point's own step (halved when a poll around it found nothing new). Returns the
-/// designs and, for each, the point it was polled from.
+/// The next generation: a fifth of the batch fills the largest gaps of the front
+/// (midpoints), then the surrogates' proposals, and the rest polls the front's ends and
+/// sparsest points along ± each variable at the point's own step (halved when a poll
+/// around it found nothing new). Returns the designs and, for each, the point it was
+/// polled from (`None` for a fill or a surrogate's proposal).
 fn propose(
     study: &Study,
     evaluated: &[Evaluated],
@@ -295,6 +388,11 @@ fn propose(
             out.push(z);
             parents.push(None);
         }
+    }
+    // the surrogate's proposals: each objective's end, then the largest gaps
+    for z in surrogate_proposals(space, evaluated, &front, &norm, &gaps, &out, n - out.len()) {
+        out.push(z);
+        parents.push(None);
     }
     let order = by_contribution(&norm);
     let d = space.dim();
