@@ -136,7 +136,7 @@ impl Rbf {
 }
 
 /// The candidate set: the box's Halton points, then a Halton ball at each radius around
-/// each of `around` (up to [`BALLS`] of them), clipped to the box; only the feasible.
+/// each of `around` (up to `BALLS` of them), clipped to the box; only the feasible.
 pub fn candidates(space: &DesignSpace, around: &[&[f64]]) -> Vec<Vec<f64>> {
     let d = space.dim();
     let zero = vec![0.0; d];
