@@ -894,13 +894,19 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             .between(0.9, 1.1),
         );
     }
-    let case = "shear buildings with m'=0 dampers, newmark dt 2.5 ms, 15 s";
-    if want(case) {
+    // The cost-vs-storeys cases' common loop: time per simulation of `building(n)` at each
+    // size at Δt = 2.5 ms (and its rate when asked), returning the sizes and the times.
+    let storey_costs = |case: &str,
+                        sizes: &[usize],
+                        building: &dyn Fn(usize) -> String,
+                        rates: bool,
+                        figs: &mut Vec<Figure>|
+     -> anyhow::Result<(Vec<f64>, Vec<f64>)> {
         let mut xs = Vec::new();
         let mut ys = Vec::new();
-        for n in [3usize, 6, 10, 20, 50] {
+        for &n in sizes {
             let p = plan(
-                &shear_building(n),
+                &building(n),
                 SceneOpts {
                     dt: Some(0.0025),
                     ..SceneOpts::new(MethodName::Newmark)
@@ -913,9 +919,22 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 s * 1e3,
                 "ms",
             ));
+            if rates {
+                figs.push(Figure::new(
+                    case,
+                    &format!("simulations per second, {n} storeys"),
+                    1.0 / s,
+                    "1/s",
+                ));
+            }
             xs.push(n as f64);
             ys.push(s);
         }
+        Ok((xs, ys))
+    };
+    let case = "shear buildings with m'=0 dampers, newmark dt 2.5 ms, 15 s";
+    if want(case) {
+        let (xs, ys) = storey_costs(case, &[3, 6, 10, 20, 50], &shear_building, false, &mut figs)?;
         figs.push(Figure::new(
             case,
             "exponent of cost vs storeys, 3-50 (log-log slope)",
@@ -944,32 +963,8 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         if !want(case) {
             continue;
         }
-        let mut xs = Vec::new();
-        let mut ys = Vec::new();
-        for n in [10usize, 20, 30, 40, 50] {
-            let p = plan(
-                &shear_building_damped(n, damping),
-                SceneOpts {
-                    dt: Some(0.0025),
-                    ..SceneOpts::new(MethodName::Newmark)
-                },
-            )?;
-            let s = seconds_per_run(&p, &clock, budget)?;
-            figs.push(Figure::new(
-                case,
-                &format!("time per simulation, {n} storeys"),
-                s * 1e3,
-                "ms",
-            ));
-            figs.push(Figure::new(
-                case,
-                &format!("simulations per second, {n} storeys"),
-                1.0 / s,
-                "1/s",
-            ));
-            xs.push(n as f64);
-            ys.push(s);
-        }
+        let building = |n: usize| shear_building_damped(n, damping);
+        let (xs, ys) = storey_costs(case, &[10, 20, 30, 40, 50], &building, true, &mut figs)?;
         figs.push(
             Figure::new(
                 case,
