@@ -345,11 +345,22 @@ fn dissipator_mass_1e_minus_6_of_the_papers() {
         },
     );
     // Inertia of 3.5e-4 kg is invisible at the frame's scale: each method gives what it
-    // gives on the massless frame at the same Δt (to 1e-3 of the peak drifts).
+    // gives on the massless frame at the same Δt (to 1e-3 of the peak drifts). For
+    // `newmark` and `hht` that is the massless frame with its dissipators kept as zero-mass DOFs,
+    // the same discretisation at m′ = 0 (condensed, a massless element without a brace
+    // dashpot is stepped by the return mapping instead: docs/MODEL.md § Integrators, a
+    // different answer at this Δt by its step error); `bilinear` ignores m′ and condenses.
     let massless = syl_scene(&paper_building(0.0, 448.12e6), 5.0, 1.0, DT);
+    let mut massless_dofs = massless.clone();
+    massless_dofs.reduce = false;
     for (m, _) in errs {
         let (_, a, _) = run(&scene, m, DT);
-        let (_, b, _) = run(&massless, m, DT);
+        let limit = if m == MethodName::Bilinear {
+            &massless
+        } else {
+            &massless_dofs
+        };
+        let (_, b, _) = run(limit, m, DT);
         let d = drift_error(&a.unwrap(), &b.unwrap());
         assert!(d < 1e-3, "{}: {d:.3e} from its massless answer", m.as_str());
     }
