@@ -19,18 +19,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 grid=${1:-$tmp/grid}
 if [ ! -f "$grid/responses.csv" ]; then
-    python3 - "$PWD/configs" "$tmp/grid.json" <<'PY'
-import json, sys
-configs, target = sys.argv[1], sys.argv[2]
-s = json.load(open(f"{configs}/study-pareto.json"))
-s["name"] = "benchmark-3story-pareto-grid"
-s["building"] = f"{configs}/{s['building']}"
-s.pop("objectives"); s.pop("pareto")
-s["sweep"] = {"sampler": "grid", "levels": 21}
-json.dump(s, open(target, "w"), indent=1)
-PY
-    rm -rf "$grid"
-    "$bin" sweep "$tmp/grid.json" --out "$grid" --quiet > /dev/null
+    bash scripts/pareto-grid-sweep.sh "$bin" "$grid"
 fi
 for seed in 2007 1 2 3 4 5; do
     python3 - "$PWD/configs" "$tmp/study-$seed.json" "$seed" <<'PY'

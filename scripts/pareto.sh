@@ -30,17 +30,7 @@ fi
 # the grid: the Pareto study's box, sweep only, 21 levels per floor
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-python3 - "$PWD/configs" "$tmp/grid.json" <<'PY'
-import json, sys
-configs, target = sys.argv[1], sys.argv[2]
-s = json.load(open(f"{configs}/study-pareto.json"))
-s["name"] = "benchmark-3story-pareto-grid"
-s["building"] = f"{configs}/{s['building']}"
-s.pop("objectives"); s.pop("pareto")
-s["sweep"] = {"sampler": "grid", "levels": 21}
-json.dump(s, open(target, "w"), indent=1)
-PY
-"$bin" sweep "$tmp/grid.json" --out "$tmp/grid" --quiet > /dev/null
+bash scripts/pareto-grid-sweep.sh "$bin" "$tmp/grid"
 python3 scripts/pareto_grid.py "$tmp/grid/responses.csv" "$out/front-2/pareto.csv" "$out/front-2/pareto.json" > "$out/grid-check.json.tmp"
 mv "$out/grid-check.json.tmp" "$out/grid-check.json"
 python3 -c "import json; d = json.load(open('$out/grid-check.json')); print('hypervolume ratio (search front, %d simulations / 21^3 grid front, %d simulations): %.4f' % (d['search']['simulations'], d['grid']['simulations'], d['ratio']))" | tee "$out/grid-check.txt"

@@ -173,6 +173,23 @@ fn hv(points: &[&[f64]], reference: &[f64]) -> f64 {
     }
 }
 
+/// The ideal (least) and nadir (largest) value of each of the `k` objectives over
+/// `points`, in one pass (±∞ where there are none).
+pub fn ideal_and_nadir<'a>(
+    k: usize,
+    points: impl IntoIterator<Item = &'a [f64]>,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut lo = vec![f64::INFINITY; k];
+    let mut hi = vec![f64::NEG_INFINITY; k];
+    for p in points {
+        for m in 0..k {
+            lo[m] = lo[m].min(p[m]);
+            hi[m] = hi[m].max(p[m]);
+        }
+    }
+    (lo, hi)
+}
+
 /// The normalised objectives of a front: each objective mapped so that the front's best
 /// value (the ideal) is 0 and its worst (the nadir) 1; an objective equal on the whole
 /// front maps to 0.
@@ -181,12 +198,7 @@ pub fn normalised(front: &[Vec<f64>]) -> Vec<Vec<f64>> {
         return Vec::new();
     };
     let k = first.len();
-    let lo: Vec<f64> = (0..k)
-        .map(|m| front.iter().map(|p| p[m]).fold(f64::INFINITY, f64::min))
-        .collect();
-    let hi: Vec<f64> = (0..k)
-        .map(|m| front.iter().map(|p| p[m]).fold(f64::NEG_INFINITY, f64::max))
-        .collect();
+    let (lo, hi) = ideal_and_nadir(k, front.iter().map(Vec::as_slice));
     front
         .iter()
         .map(|p| {

@@ -32,7 +32,7 @@
 //! `pareto.jsonl`, so a resumed search proposes the same designs and takes their runs
 //! from the journal.
 
-use super::front::{first_front, normalised};
+use super::front::{first_front, ideal_and_nadir, normalised};
 use super::objectives::objective_vector;
 use crate::error::OptError;
 use crate::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
@@ -286,22 +286,7 @@ fn surrogate_proposals(
     if room == 0 || k == 0 {
         return Vec::new();
     }
-    let lo: Vec<f64> = (0..k)
-        .map(|m| {
-            front
-                .iter()
-                .map(|&i| evaluated[i].objectives[m])
-                .fold(f64::INFINITY, f64::min)
-        })
-        .collect();
-    let hi: Vec<f64> = (0..k)
-        .map(|m| {
-            front
-                .iter()
-                .map(|&i| evaluated[i].objectives[m])
-                .fold(f64::NEG_INFINITY, f64::max)
-        })
-        .collect();
+    let (lo, hi) = ideal_and_nadir(k, front.iter().map(|&i| evaluated[i].objectives.as_slice()));
     let finite: Vec<usize> = (0..evaluated.len())
         .filter(|&i| evaluated[i].objectives.iter().all(|v| v.is_finite()))
         .collect();
