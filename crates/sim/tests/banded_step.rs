@@ -48,13 +48,9 @@ enum Slip {
     Mixed,
 }
 
-/// A random shear building of `n` storeys with m′ = 0 dampers (on every floor, or on a
-/// random half of them when `some`), braces `brace` times the storey stiffness (times a
-/// random factor in [0.5, 2]), the given damping and slip loads, HHT `alpha`, under a
-/// synthetic record of `duration` s at Δt = 2.5 ms; yielding storeys on a random third of
-/// the storeys when `yields`.
-#[allow(clippy::too_many_arguments)] // one scene's independent choices
-fn scene_json(
+/// One random scene's choices, as [`scene_json`] reads them.
+#[derive(Debug, Clone, Copy)]
+struct Case {
     seed: u64,
     n: usize,
     damping: Damping,
@@ -64,7 +60,25 @@ fn scene_json(
     alpha: f64,
     yields: bool,
     duration: f64,
-) -> String {
+}
+
+/// A random shear building of `n` storeys with m′ = 0 dampers (on every floor, or on a
+/// random half of them when `some`), braces `brace` times the storey stiffness (times a
+/// random factor in [0.5, 2]), the given damping and slip loads, HHT `alpha`, under a
+/// synthetic record of `duration` s at Δt = 2.5 ms; yielding storeys on a random third of
+/// the storeys when `yields`.
+fn scene_json(case: Case) -> String {
+    let Case {
+        seed,
+        n,
+        damping,
+        brace,
+        slip,
+        some,
+        alpha,
+        yields,
+        duration,
+    } = case;
     let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let m: Vec<f64> = (0..n).map(|_| r.range(3e5, 7e5)).collect();
     // storey stiffness for T1 ≈ 0.1 n s on a uniform building, varied ±30 %
@@ -304,8 +318,8 @@ fn banded_step_is_the_dense_step_on_random_scenes() {
         ),
     ];
     for (seed, &(n, damping, brace, slip, some, alpha, yields)) in cases.iter().enumerate() {
-        let json = scene_json(
-            seed as u64 + 1,
+        let json = scene_json(Case {
+            seed: seed as u64 + 1,
             n,
             damping,
             brace,
@@ -313,8 +327,8 @@ fn banded_step_is_the_dense_step_on_random_scenes() {
             some,
             alpha,
             yields,
-            4.0,
-        );
+            duration: 4.0,
+        });
         let plan = plan_of(&json);
         assert!(
             plan.half_bandwidth() <= 1,
@@ -349,17 +363,17 @@ fn slip_load_levels_from_tiny_to_huge() {
         .into_iter()
         .enumerate()
     {
-        let json = scene_json(
-            100 + i as u64,
-            30,
-            Damping::Storey,
-            3.0,
+        let json = scene_json(Case {
+            seed: 100 + i as u64,
+            n: 30,
+            damping: Damping::Storey,
+            brace: 3.0,
             slip,
-            false,
-            0.0,
-            false,
-            3.0,
-        );
+            some: false,
+            alpha: 0.0,
+            yields: false,
+            duration: 3.0,
+        });
         let plan = plan_of(&json);
         let (b, _, d) = both(&plan);
         assert_agree(&format!("{slip:?}"), &b, &d);
@@ -380,17 +394,17 @@ fn slip_load_levels_from_tiny_to_huge() {
 /// One simulation gives the same bits whichever threads run others beside it.
 #[test]
 fn same_bits_across_threads() {
-    let plan = plan_of(&scene_json(
-        7,
-        20,
-        Damping::Rayleigh,
-        2.0,
-        Slip::Mixed,
-        false,
-        -0.1,
-        false,
-        3.0,
-    ));
+    let plan = plan_of(&scene_json(Case {
+        seed: 7,
+        n: 20,
+        damping: Damping::Rayleigh,
+        brace: 2.0,
+        slip: Slip::Mixed,
+        some: false,
+        alpha: -0.1,
+        yields: false,
+        duration: 3.0,
+    }));
     let (serial, _) = run_on_path(&plan, StepPath::Banded).unwrap();
     let bits = |o: &Outcome| {
         let r = &o.response;
@@ -434,32 +448,23 @@ fn automatic_choice_keeps_committed_scenes_dense() {
         let (_, stats) = run_on_path(&plan, StepPath::Auto).unwrap();
         assert!(stats.is_none(), "{file}: takes the dense step");
     }
-    let small = plan_of(&scene_json(
-        3,
-        9,
-        Damping::Rayleigh,
-        2.0,
-        Slip::Moderate,
-        false,
-        0.0,
-        false,
-        1.0,
-    ));
+    let nine = Case {
+        seed: 3,
+        n: 9,
+        damping: Damping::Rayleigh,
+        brace: 2.0,
+        slip: Slip::Moderate,
+        some: false,
+        alpha: 0.0,
+        yields: false,
+        duration: 1.0,
+    };
+    let small = plan_of(&scene_json(nine));
     assert!(
         run_on_path(&small, StepPath::Auto).unwrap().1.is_none(),
         "9 storeys: dense"
     );
-    let large = plan_of(&scene_json(
-        3,
-        10,
-        Damping::Rayleigh,
-        2.0,
-        Slip::Moderate,
-        false,
-        0.0,
-        false,
-        1.0,
-    ));
+    let large = plan_of(&scene_json(Case { n: 10, ..nine }));
     assert!(
         run_on_path(&large, StepPath::Auto).unwrap().1.is_some(),
         "10 storeys: banded"
@@ -486,17 +491,17 @@ fn banded_step_refuses_dense_plans() {
 /// record, with HHT-α: the banded step is the dense step.
 #[test]
 fn harmonic_floor_force_with_hht() {
-    let json = scene_json(
-        11,
-        14,
-        Damping::Storey,
-        2.0,
-        Slip::Moderate,
-        false,
-        -0.1,
-        false,
-        3.0,
-    );
+    let json = scene_json(Case {
+        seed: 11,
+        n: 14,
+        damping: Damping::Storey,
+        brace: 2.0,
+        slip: Slip::Moderate,
+        some: false,
+        alpha: -0.1,
+        yields: false,
+        duration: 3.0,
+    });
     let synthetic = r#""excitation": { "synthetic": { "seed": 11, "duration": 3, "dt": 0.01 } }"#;
     assert!(json.contains(synthetic), "{json}");
     let json = json.replace(
