@@ -65,6 +65,15 @@ pub struct Contact {
     pub brace_damping: f64,
 }
 
+impl Contact {
+    /// An elastic–perfectly plastic element without a brace dashpot (c′ = 0): its condensed
+    /// massless DOF is algebraic (the brace force k′e is the friction force), which
+    /// `newmark` steps by the return mapping (docs/MODEL.md § Integrators).
+    pub fn is_algebraic(&self) -> bool {
+        self.kind == ContactKind::Epp && self.brace_damping == 0.0
+    }
+}
+
 /// What each floor carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum FloorLink {

@@ -481,12 +481,11 @@ impl EnergyAccumulator {
         self.viscous += dt * cvv;
         for c in 0..f_old.len() {
             let ct = &plan.contacts[c];
-            let w_step =
-                if d.epp_mean_rate && ct.kind == ContactKind::Epp && ct.brace_damping == 0.0 {
-                    w_new[c]
-                } else {
-                    0.5 * (w_old[c] + w_new[c])
-                };
+            let w_step = if d.epp_mean_rate && ct.is_algebraic() {
+                w_new[c]
+            } else {
+                0.5 * (w_old[c] + w_new[c])
+            };
             let work = dt * 0.5 * (f_old[c] + f_new[c]) * w_step;
             match ct.role {
                 ContactRole::Damper => self.friction += work,

@@ -383,7 +383,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             floor: ct.floor,
             other: ct.below.unwrap_or(GROUND),
             epp: true,
-            algebraic: ct.brace_damping == 0.0,
+            algebraic: ct.is_algebraic(),
             k_over_kappa: s.k_over_kappa,
             slot: match ct.role {
                 ContactRole::Damper => ct.floor,

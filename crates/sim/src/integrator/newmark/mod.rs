@@ -387,7 +387,7 @@ fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
                 floor: ct.floor,
                 other: ct.below.unwrap_or(GROUND),
                 epp: true,
-                algebraic: ct.brace_damping == 0.0,
+                algebraic: ct.is_algebraic(),
                 k_over_kappa: ct.brace_stiffness / ops.kappa[c],
                 slot: match ct.role {
                     ContactRole::Damper => ct.floor,
