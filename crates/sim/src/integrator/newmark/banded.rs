@@ -233,6 +233,13 @@ impl Ldl {
     /// Solves A x = b in place.
     #[inline]
     fn solve(&self, x: &mut [f64]) {
+        self.solve_with(x, |x, i| x[i]);
+    }
+
+    /// Solves A x = b with b(i) = `rhs(x, i)`, read as x[i] is first written (so that a
+    /// right-hand side formed from other vectors needs no pass of its own).
+    #[inline]
+    fn solve_with(&self, x: &mut [f64], rhs: impl Fn(&[f64], usize) -> f64) {
         let (n, p) = (self.n, self.p);
         let w = p + 1;
         if p == 1 {
@@ -240,9 +247,10 @@ impl Ldl {
             // register along the chain of rows
             let (l, dinv) = (&self.l[..2 * n], &self.dinv[..n]);
             let x = &mut x[..n];
-            let mut prev = x[0];
+            let mut prev = rhs(x, 0);
+            x[0] = prev;
             for i in 1..n {
-                prev = x[i] - l[2 * i + 1] * prev;
+                prev = rhs(x, i) - l[2 * i + 1] * prev;
                 x[i] = prev;
             }
             let mut next = x[n - 1] * dinv[n - 1];
@@ -254,7 +262,7 @@ impl Ldl {
             return;
         }
         for i in 0..n {
-            let mut s = x[i];
+            let mut s = rhs(x, i);
             for d in 1..=p.min(i) {
                 s -= self.l[i * w + d] * x[i - d];
             }
@@ -312,21 +320,26 @@ struct Dense {
     qp: Option<BoxQp>,
 }
 
-/// r −= K zu + C zv for tridiagonal K and C (the shear building's), in one pass.
+/// r = load·mr − K zu − C zv for tridiagonal K and C (the shear building's), each row in
+/// registers (its diagonal term, then the band below and the band above subtracted, in
+/// that order), with no row waiting on another's store.
 #[inline]
-fn tri_mul_sub2(k: &Band, zu: &[f64], c: &Band, zv: &[f64], r: &mut [f64]) {
+fn tri_rhs(load: f64, mr: &[f64], k: &Band, zu: &[f64], c: &Band, zv: &[f64], r: &mut [f64]) {
     let n = r.len();
+    let (mr, zu, zv) = (&mr[..n], &zu[..n], &zv[..n]);
     let (ka, ca) = (&k.a[..2 * n], &c.a[..2 * n]);
-    let (zu, zv) = (&zu[..n], &zv[..n]);
-    // diagonal, then the band below and its mirror above, each a branch-free pass
-    for i in 0..n {
-        r[i] -= ka[2 * i] * zu[i] + ca[2 * i] * zv[i];
+    let row = |i: usize| load * mr[i] - (ka[2 * i] * zu[i] + ca[2 * i] * zv[i]);
+    let below = |i: usize| ka[2 * i + 1] * zu[i - 1] + ca[2 * i + 1] * zv[i - 1];
+    let above = |i: usize| ka[2 * i + 3] * zu[i + 1] + ca[2 * i + 3] * zv[i + 1];
+    if n == 1 {
+        r[0] = row(0);
+        return;
     }
-    for i in 1..n {
-        let (k1, c1) = (ka[2 * i + 1], ca[2 * i + 1]);
-        r[i] -= k1 * zu[i - 1] + c1 * zv[i - 1];
-        r[i - 1] -= k1 * zu[i] + c1 * zv[i];
+    r[0] = row(0) - above(0);
+    for i in 1..n - 1 {
+        r[i] = (row(i) - below(i)) - above(i);
     }
+    r[n - 1] = row(n - 1) - below(n - 1);
 }
 
 /// Runs `plan` (half-bandwidth `p`, [`eligible`]) with the banded step.
@@ -534,12 +547,12 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         let load = -(op * ag1 - alpha * ag0);
         {
             let r = &mut r0[1..];
-            for i in 0..n {
-                r[i] = load * mr[i];
-            }
             if p == 1 {
-                tri_mul_sub2(&kb, zu, &cb, zv, r);
+                tri_rhs(load, &mr, &kb, zu, &cb, zv, r);
             } else {
+                for i in 0..n {
+                    r[i] = load * mr[i];
+                }
                 kb.mul_sub(zu, r);
                 cb.mul_sub(zv, r);
             }
@@ -611,10 +624,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 phi[s.f1] += op * g;
             }
             x[0] = 0.0;
-            for i in 1..=n {
-                x[i] = (r0[i] - phi[i]) + phi[i + 1];
-            }
-            pattern.solve(&mut x[1..]);
+            pattern.solve_with(&mut x[1..], |_, i| (r0[i + 1] - phi[i + 1]) + phi[i + 2]);
             // Forces and slip rates of the candidate.
             // `inside`: every free force inside its box; `wrong_max`: the largest slip
             // rate of a held force against its bound's sign (NaN-safe: a NaN fails both).
