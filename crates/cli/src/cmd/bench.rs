@@ -13,10 +13,11 @@
 
 use crate::cmd::scene_args::BENCHMARK_BUILDING;
 use crate::cmd::study_args::load_study;
-use anyhow::{Context, bail};
+use anyhow::{Context, bail, ensure};
 use serde::Serialize;
 use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
 use slipload_sim::accuracy::{median, observed_order};
+use slipload_sim::integrator::newmark::{StepPath, run_on_path};
 use slipload_sim::{MethodName, Plan, Scene, SceneOverrides, run_plan};
 use std::path::Path;
 use std::time::Instant;
@@ -253,6 +254,40 @@ struct Budget {
     seconds: f64,
     /// Repeats (the median is reported).
     repeats: usize,
+}
+
+/// Median CPU seconds per run of `plan` on `newmark`'s banded and dense steps, the two
+/// timed in alternating batches (so both meet the same machine states; one warm-up run
+/// of each first): (banded, dense).
+fn seconds_banded_dense(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<(f64, f64)> {
+    let run = |path: StepPath| -> anyhow::Result<f64> {
+        let t = clock.now();
+        let (_, stats) = run_on_path(std::hint::black_box(plan), path)
+            .with_context(|| format!("running {} on the {path:?} step", plan.name))?;
+        ensure!(
+            stats.is_some() == (path == StepPath::Banded),
+            "{}: the {path:?} step did not run",
+            plan.name
+        );
+        Ok((clock.now() - t).max(1e-6))
+    };
+    let first = run(StepPath::Banded)?.max(run(StepPath::Dense)?);
+    let batch = ((b.seconds / first).ceil() as usize).max(1);
+    let mut times = [Vec::with_capacity(b.repeats), Vec::with_capacity(b.repeats)];
+    for _ in 0..b.repeats {
+        for (path, times) in [StepPath::Banded, StepPath::Dense]
+            .iter()
+            .zip(times.iter_mut())
+        {
+            let mut total = 0.0;
+            for _ in 0..batch {
+                total += run(*path)?;
+            }
+            times.push(total / batch as f64);
+        }
+    }
+    let [mut banded, mut dense] = times;
+    Ok((median(&mut banded), median(&mut dense)))
 }
 
 /// Median CPU seconds per run of `plan` (one warm-up run first).
@@ -974,6 +1009,33 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             )
             .at_most(1.2),
         );
+        // What the banded step buys: the same plans on the dense step (what every frame
+        // ran before it), timed in alternation with the banded one.
+        for (n, target) in [(10, 3.0), (50, 6.0)] {
+            let p = plan(
+                &building(n),
+                SceneOpts {
+                    dt: Some(0.0025),
+                    ..SceneOpts::new(MethodName::Newmark)
+                },
+            )?;
+            let (banded, dense) = seconds_banded_dense(&p, &clock, budget)?;
+            figs.push(Figure::new(
+                case,
+                &format!("time per simulation on the dense step, {n} storeys"),
+                dense * 1e3,
+                "ms",
+            ));
+            figs.push(
+                Figure::new(
+                    case,
+                    &format!("banded step's speed-up over the dense step, {n} storeys"),
+                    dense / banded,
+                    "x",
+                )
+                .at_least(target),
+            );
+        }
     }
 
     // Memory: peak RSS of a 15 s and a 300 s peaks-only run, each in a fresh process.
