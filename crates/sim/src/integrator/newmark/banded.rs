@@ -336,8 +336,8 @@ fn tri_rhs(load: f64, mr: &[f64], k: &Band, zu: &[f64], c: &Band, zv: &[f64], r:
         return;
     }
     r[0] = row(0) - above(0);
-    for i in 1..n - 1 {
-        r[i] = (row(i) - below(i)) - above(i);
+    for (i, ri) in r.iter_mut().enumerate().take(n - 1).skip(1) {
+        *ri = (row(i) - below(i)) - above(i);
     }
     r[n - 1] = row(n - 1) - below(n - 1);
 }
