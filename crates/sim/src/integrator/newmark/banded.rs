@@ -324,6 +324,9 @@ struct Dense {
 /// registers (its diagonal term, then the band below and the band above subtracted, in
 /// that order), with no row waiting on another's store.
 #[inline]
+// The indexed loop: as an iterator (enumerate, skip, take) the 50-storey step measured
+// 7 % slower.
+#[allow(clippy::needless_range_loop)]
 fn tri_rhs(load: f64, mr: &[f64], k: &Band, zu: &[f64], c: &Band, zv: &[f64], r: &mut [f64]) {
     let n = r.len();
     let (mr, zu, zv) = (&mr[..n], &zu[..n], &zv[..n]);
@@ -336,8 +339,8 @@ fn tri_rhs(load: f64, mr: &[f64], k: &Band, zu: &[f64], c: &Band, zv: &[f64], r:
         return;
     }
     r[0] = row(0) - above(0);
-    for (i, ri) in r.iter_mut().enumerate().take(n - 1).skip(1) {
-        *ri = (row(i) - below(i)) - above(i);
+    for i in 1..n - 1 {
+        r[i] = (row(i) - below(i)) - above(i);
     }
     r[n - 1] = row(n - 1) - below(n - 1);
 }
