@@ -670,10 +670,18 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             ExactGuard::across([(943.1, 3.946), (752.1, 4.710)]),
             (None, None),
         ),
+        // Its ratio is to `newmark` since the return mapping (numerics version 3), which
+        // made `newmark` 35 % faster on this building (547-555 against 744-747 runs per
+        // second, the binaries before and after interleaved on the Intel Xeon) while
+        // `exact` ran as before (70.9-71.8 against 70.9 per second): its ratio 7.8 went to
+        // 10.37-10.57, which sets the guard; the rate guard is unchanged.
         (
             "ten-story",
             b10.to_string(),
-            ExactGuard::across([(98.14, 6.500), (74.06, 7.593)]),
+            ExactGuard {
+                ratio: ExactGuard::across([(70.94, 10.57)]).ratio,
+                ..ExactGuard::across([(98.14, 6.500), (74.06, 7.593)])
+            },
             (None, Some(2.0)),
         ),
         (
