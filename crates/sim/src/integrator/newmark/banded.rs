@@ -39,7 +39,8 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::integrator::state::{
-    self, EnergyAccumulator, StepEnergyData, StepForms, epp_strain, initial_state, slip_rate,
+    self, EnergyAccumulator, EppState, StepEnergyData, StepForms, epp_strain, initial_state,
+    slip_rate,
 };
 use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Outcome, Peaks};
@@ -345,6 +346,128 @@ fn tri_rhs(load: f64, mr: &[f64], k: &Band, zu: &[f64], c: &Band, zv: &[f64], r:
     r[n - 1] = row(n - 1) - below(n - 1);
 }
 
+/// The per-contact predictors of a step, as the dense step's `Link::free_slip_rate` forms
+/// them: an algebraic element's (c′ = 0) from the slip of the step (the return mapping),
+/// a damped brace's from its end-of-step slip rate; writes the friction-free part h0 of
+/// the QP's variable at zero acceleration, the element's predictors and κ h0.
+fn general_predictors(
+    (epp, links, springs): (&[EppState], &[Link], &[Spring]),
+    (u, ut, vt): (&[f64], &[f64], &[f64]),
+    (dt, c_u, c_v, bg): (f64, f64, f64, f64),
+    (h0, pred, g0): (&mut [f64], &mut [EppPred], &mut [f64]),
+) {
+    for (c, s) in springs.iter().enumerate() {
+        let e = epp[c];
+        let (uj, vj) = (ut[s.j1], vt[s.j1]);
+        if links[c].algebraic {
+            let base = e.u - u[s.f1 - 1];
+            h0[c] = (ut[s.f1] - uj + base) * s.k_over_kappa;
+            pred[c] = EppPred {
+                base,
+                ..EppPred::default()
+            };
+        } else {
+            let up = e.u + dt * e.v + c_u * e.a;
+            let vp = e.v + c_v * e.a;
+            let q = (up - uj) - bg * (vp - vj);
+            h0[c] = s.diff(vt) + s.k_over_kappa * q;
+            pred[c] = EppPred { up, vp, base: 0.0 };
+        }
+        g0[c] = s.kappa * h0[c];
+    }
+}
+
+/// [`general_predictors`] for an aligned frame (contact c on floor c against the floor
+/// below, every element algebraic): the same arithmetic, on slices of one length, with no
+/// gathers.
+#[allow(clippy::needless_range_loop)] // the indices are the formula's
+fn aligned_predictors(
+    epp: &[EppState],
+    u: &[f64],
+    ut: &[f64],
+    springs: &[Spring],
+    (h0, pred, g0): (&mut [f64], &mut [EppPred], &mut [f64]),
+) {
+    let n = springs.len();
+    let (epp, u, below, floor) = (&epp[..n], &u[..n], &ut[..n], &ut[1..=n]);
+    let (h0, pred, g0) = (&mut h0[..n], &mut pred[..n], &mut g0[..n]);
+    for c in 0..n {
+        let s = &springs[c];
+        let base = epp[c].u - u[c];
+        h0[c] = (floor[c] - below[c] + base) * s.k_over_kappa;
+        pred[c] = EppPred {
+            base,
+            ..EppPred::default()
+        };
+        g0[c] = s.kappa * h0[c];
+    }
+}
+
+/// What the KKT check reads of a candidate pattern's forces and slip rates.
+struct Candidate {
+    /// ‖F‖∞.
+    f_norm: f64,
+    /// Every free force inside its box.
+    inside: bool,
+    /// The largest slip rate of a held force against its bound's sign (NaN-safe: a NaN
+    /// fails both this and `inside`).
+    wrong_max: f64,
+    /// The sum of the slip rates (finite when they all are).
+    finite: f64,
+}
+
+/// The forces and slip rates of the candidate whose accelerations are `x` (ground
+/// first), written to `f` and `w`; `aligned` as in [`aligned_predictors`] (the same
+/// arithmetic without gathers).
+fn candidate(
+    aligned: bool,
+    (springs, x, gdt): (&[Spring], &[f64], f64),
+    pattern: (&[bool], &[f64], &[f64], &[f64], &[f64]),
+    out: (&mut [f64], &mut [f64]),
+) -> Candidate {
+    let nc = springs.len();
+    if aligned {
+        let (below, floor) = (&x[..nc], &x[1..=nc]);
+        candidate_with(springs, gdt, pattern, out, |c, _| floor[c] - below[c])
+    } else {
+        candidate_with(springs, gdt, pattern, out, |_, s| s.diff(x))
+    }
+}
+
+/// [`candidate`] with bᵀx of contact c given by `diff(c, spring)`.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // the indices are the formula's
+fn candidate_with(
+    springs: &[Spring],
+    gdt: f64,
+    (fr, fb, sg, g0, h0): (&[bool], &[f64], &[f64], &[f64], &[f64]),
+    (f, w): (&mut [f64], &mut [f64]),
+    diff: impl Fn(usize, &Spring) -> f64,
+) -> Candidate {
+    let nc = springs.len();
+    let (fr, fb, sg, g0, h0) = (&fr[..nc], &fb[..nc], &sg[..nc], &g0[..nc], &h0[..nc]);
+    let (f, w) = (&mut f[..nc], &mut w[..nc]);
+    let mut out = Candidate {
+        f_norm: 0.0,
+        inside: true,
+        wrong_max: 0.0,
+        finite: 0.0,
+    };
+    for c in 0..nc {
+        let s = &springs[c];
+        let da = gdt * diff(c, s);
+        let fc = if fr[c] { g0[c] + s.kappa * da } else { fb[c] };
+        let wc = (h0[c] + da) - fc * s.inv_kappa;
+        f[c] = fc;
+        w[c] = wc;
+        out.f_norm = out.f_norm.max(fc.abs());
+        out.inside &= !fr[c] || (fc >= s.lo && fc <= s.hi);
+        out.wrong_max = out.wrong_max.max(sg[c] * wc);
+        out.finite += wc;
+    }
+    out
+}
+
 /// Runs `plan` (half-bandwidth `p`, [`eligible`]) with the banded step.
 pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimError> {
     let n = plan.dofs();
@@ -523,6 +646,16 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     let mut qp_total: u64 = 0;
     let mut qp_max: u32 = 0;
     let hhht = alpha != 0.0 && nc > 0;
+    // One algebraic element per floor, floor c's joining it to the floor below, in floor
+    // order (a shear building with a massless damper on every floor): the per-contact
+    // loops run on slices of one length, without gathers.
+    let aligned = p == 1
+        && nc == n
+        && springs
+            .iter()
+            .enumerate()
+            .all(|(c, s)| s.f1 == c + 1 && s.j1 == c)
+        && links.iter().all(|l| l.algebraic);
     let op = 1.0 + alpha;
 
     for step in 0..plan.steps {
@@ -568,27 +701,16 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 s.sub(&mut r0, -alpha * fo);
             }
         }
-        // The predictors of each element (its condensed massless DOF), as the dense step's
-        // `Link::free_slip_rate` forms them: an algebraic element's (c′ = 0) from the slip of
-        // the step (the return mapping), a damped brace's from its end-of-step slip rate.
-        for (c, s) in springs.iter().enumerate() {
-            let e = epp[c];
-            let (uj, vj) = (ut[s.j1], vt[s.j1]);
-            if links[c].algebraic {
-                let base = e.u - u[s.f1 - 1];
-                h0[c] = (ut[s.f1] - uj + base) * s.k_over_kappa;
-                pred[c] = EppPred {
-                    base,
-                    ..EppPred::default()
-                };
-            } else {
-                let up = e.u + dt * e.v + c_u * e.a;
-                let vp = e.v + c_v * e.a;
-                let q = (up - uj) - bg * (vp - vj);
-                h0[c] = s.diff(&vt) + s.k_over_kappa * q;
-                pred[c] = EppPred { up, vp, base: 0.0 };
-            }
-            g0[c] = s.kappa * h0[c];
+        // The predictors of each element (its condensed massless DOF).
+        if aligned {
+            aligned_predictors(&epp, &u, &ut, &springs, (&mut h0, &mut pred, &mut g0));
+        } else {
+            general_predictors(
+                (&epp, &links, &springs),
+                (&u, &ut, &vt),
+                (dt, c_u, c_v, bg),
+                (&mut h0, &mut pred, &mut g0),
+            );
         }
 
         // The active-set iteration on the stick/slip pattern.
@@ -621,31 +743,38 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 }
                 dirty = n;
             }
-            phi.fill(0.0);
-            for (c, s) in springs.iter().enumerate() {
-                let g = if fr[c] { g0[c] } else { fb[c] };
-                phi[s.f1] += op * g;
+            if aligned {
+                // one contact per floor, in floor order: each floor's entry is its own
+                // contact's (0.0 + keeps the sign of a zero as the sum below does)
+                let phi = &mut phi[1..=n];
+                let (fr, g0, fb) = (&fr[..n], &g0[..n], &fb[..n]);
+                for c in 0..n {
+                    let g = if fr[c] { g0[c] } else { fb[c] };
+                    phi[c] = 0.0 + op * g;
+                }
+            } else {
+                phi.fill(0.0);
+                for (c, s) in springs.iter().enumerate() {
+                    let g = if fr[c] { g0[c] } else { fb[c] };
+                    phi[s.f1] += op * g;
+                }
             }
             x[0] = 0.0;
             pattern.solve_with(&mut x[1..], |_, i| (r0[i + 1] - phi[i + 1]) + phi[i + 2]);
             // Forces and slip rates of the candidate.
             // `inside`: every free force inside its box; `wrong_max`: the largest slip
             // rate of a held force against its bound's sign (NaN-safe: a NaN fails both).
-            let mut f_norm = 0.0f64;
-            let mut inside = true;
-            let mut wrong_max = 0.0f64;
-            let mut finite = 0.0;
-            for (c, s) in springs.iter().enumerate() {
-                let da = gdt * s.diff(&x);
-                let fc = if fr[c] { g0[c] + s.kappa * da } else { fb[c] };
-                let wc = (h0[c] + da) - fc * s.inv_kappa;
-                f_new[c] = fc;
-                w_new[c] = wc;
-                f_norm = f_norm.max(fc.abs());
-                inside &= !fr[c] || (fc >= s.lo && fc <= s.hi);
-                wrong_max = wrong_max.max(sg[c] * wc);
-                finite += wc;
-            }
+            let Candidate {
+                f_norm,
+                inside,
+                wrong_max,
+                finite,
+            } = candidate(
+                aligned,
+                (&springs, &x, gdt),
+                (&fr, &fb, &sg, &g0, &h0),
+                (&mut f_new, &mut w_new),
+            );
             if inside && wrong_max <= tol_w * f_norm && finite.is_finite() {
                 // the usual step: the pattern holds (the forces are finite: a free one
                 // inside its box, a held one at its bound)
