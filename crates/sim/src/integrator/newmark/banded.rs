@@ -416,13 +416,24 @@ struct Candidate {
     finite: f64,
 }
 
+/// A step's stick/slip pattern as the candidate loop reads it (per contact): free or held,
+/// the held force, the sign its slip rate must not have, and the friction-free parts κ h0
+/// and h0.
+struct PatternView<'a> {
+    free: &'a [bool],
+    held: &'a [f64],
+    sign: &'a [f64],
+    g0: &'a [f64],
+    h0: &'a [f64],
+}
+
 /// The forces and slip rates of the candidate whose accelerations are `x` (ground
 /// first), written to `f` and `w`; `aligned` as in [`aligned_predictors`] (the same
 /// arithmetic without gathers).
 fn candidate(
     aligned: bool,
     (springs, x, gdt): (&[Spring], &[f64], f64),
-    pattern: (&[bool], &[f64], &[f64], &[f64], &[f64]),
+    pattern: PatternView,
     out: (&mut [f64], &mut [f64]),
 ) -> Candidate {
     let nc = springs.len();
@@ -440,11 +451,18 @@ fn candidate(
 fn candidate_with(
     springs: &[Spring],
     gdt: f64,
-    (fr, fb, sg, g0, h0): (&[bool], &[f64], &[f64], &[f64], &[f64]),
+    pattern: PatternView,
     (f, w): (&mut [f64], &mut [f64]),
     diff: impl Fn(usize, &Spring) -> f64,
 ) -> Candidate {
     let nc = springs.len();
+    let PatternView {
+        free: fr,
+        held: fb,
+        sign: sg,
+        g0,
+        h0,
+    } = pattern;
     let (fr, fb, sg, g0, h0) = (&fr[..nc], &fb[..nc], &sg[..nc], &g0[..nc], &h0[..nc]);
     let (f, w) = (&mut f[..nc], &mut w[..nc]);
     let mut out = Candidate {
@@ -772,7 +790,13 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             } = candidate(
                 aligned,
                 (&springs, &x, gdt),
-                (&fr, &fb, &sg, &g0, &h0),
+                PatternView {
+                    free: &fr,
+                    held: &fb,
+                    sign: &sg,
+                    g0: &g0,
+                    h0: &h0,
+                },
                 (&mut f_new, &mut w_new),
             );
             if inside && wrong_max <= tol_w * f_norm && finite.is_finite() {
