@@ -908,16 +908,34 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         if !finite.is_finite() {
             return Err(non_finite(step + 1, dt));
         }
-        for (c, l) in links.iter().enumerate() {
-            w_new[c] = l.finish_step(
-                &k,
-                (pred[c], w_new[c]),
-                (&u, &v),
-                status[c] == Bound::Free,
-                &mut epp[c],
-                &mut stuck[c],
-                &mut peaks,
-            );
+        if aligned {
+            // `Link::finish_step` of an algebraic element on floor c, on aligned slices
+            let (u, v) = (&u[..nc], &v[..nc]);
+            let (epp, stuck, status) = (&mut epp[..nc], &mut stuck[..nc], &status[..nc]);
+            let (pred, w_new) = (&pred[..nc], &mut w_new[..nc]);
+            for (c, l) in links.iter().enumerate() {
+                let rate;
+                (epp[c], rate) = l.algebraic_update(&k, (pred[c].base, w_new[c]), u[c], v[c]);
+                w_new[c] = rate;
+                let now_stuck = status[c] == Bound::Free;
+                if now_stuck != stuck[c] {
+                    peaks.transitions[l.slot] += 1;
+                    stuck[c] = now_stuck;
+                }
+                peaks.observe_slip(l.slot, u[c] - epp[c].u);
+            }
+        } else {
+            for (c, l) in links.iter().enumerate() {
+                w_new[c] = l.finish_step(
+                    &k,
+                    (pred[c], w_new[c]),
+                    (&u, &v),
+                    status[c] == Bound::Free,
+                    &mut epp[c],
+                    &mut stuck[c],
+                    &mut peaks,
+                );
+            }
         }
         peaks.observe_floors(&u, &a, ag1);
         peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag1, p1));

@@ -269,13 +269,9 @@ impl Link {
             if self.algebraic {
                 // the step's slip is w βΔt/γ = w/(k′/κ) (c′ = 0); its mean rate is what
                 // the energies and histories get (zero while stuck)
-                let slip = w / self.k_over_kappa;
-                let rate = slip / k.dt;
-                *epp = EppState {
-                    u: u[self.floor] + pred.base - slip,
-                    v: v[self.floor] - rate,
-                    a: 0.0,
-                };
+                let rate;
+                (*epp, rate) =
+                    self.algebraic_update(k, (pred.base, w), u[self.floor], v[self.floor]);
                 (epp.u, rate)
             } else {
                 *epp = Link::epp_update(k, pred, v[self.floor], w);
@@ -290,6 +286,29 @@ impl Link {
         }
         peaks.observe_slip(self.slot, u[self.floor] - x_other);
         rate
+    }
+
+    /// An algebraic EPP element's state at the end of the step, from its `base` (u′ − u_floor
+    /// at the start, [`EppPred::base`]), the QP's variable `w` at the solution and its
+    /// floor's new displacement and velocity; with the step's mean slip rate.
+    #[inline(always)]
+    fn algebraic_update(
+        &self,
+        k: &StepConstants,
+        (base, w): (f64, f64),
+        u_floor: f64,
+        v_floor: f64,
+    ) -> (EppState, f64) {
+        let slip = w / self.k_over_kappa;
+        let rate = slip / k.dt;
+        (
+            EppState {
+                u: u_floor + base - slip,
+                v: v_floor - rate,
+                a: 0.0,
+            },
+            rate,
+        )
     }
 
     /// The first observation of this contact's slip (or plastic drift), from the initial
