@@ -68,6 +68,9 @@ pub struct BandedStats {
     /// Active-set passes over the run (one banded solve each; 1 per step when the pattern
     /// is unchanged).
     pub passes: u64,
+    /// The per-contact loops ran on aligned slices (one algebraic element per floor, in
+    /// floor order, each against the floor below).
+    pub aligned: bool,
 }
 
 /// The plan's half-bandwidth when the banded step can run it exactly: no histories, every
@@ -674,6 +677,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             .enumerate()
             .all(|(c, s)| s.f1 == c + 1 && s.j1 == c)
         && links.iter().all(|l| l.algebraic);
+    stats.aligned = aligned;
     let op = 1.0 + alpha;
 
     for step in 0..plan.steps {
