@@ -937,6 +937,16 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             .between(0.9, 1.1),
         );
     }
+    // The plan of a cost-vs-storeys scene: `building(n)` under newmark at Δt = 2.5 ms.
+    let storey_plan = |building: &dyn Fn(usize) -> String, n: usize| {
+        plan(
+            &building(n),
+            SceneOpts {
+                dt: Some(0.0025),
+                ..SceneOpts::new(MethodName::Newmark)
+            },
+        )
+    };
     // The cost-vs-storeys cases' common loop: time per simulation of `building(n)` at each
     // size at Δt = 2.5 ms (and its rate when asked), returning the sizes and the times.
     let storey_costs = |case: &str,
@@ -948,13 +958,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let mut xs = Vec::new();
         let mut ys = Vec::new();
         for &n in sizes {
-            let p = plan(
-                &building(n),
-                SceneOpts {
-                    dt: Some(0.0025),
-                    ..SceneOpts::new(MethodName::Newmark)
-                },
-            )?;
+            let p = storey_plan(building, n)?;
             let s = seconds_per_run(&p, &clock, budget)?;
             figs.push(Figure::new(
                 case,
@@ -1020,13 +1024,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         // What the banded step buys: the same plans on the dense step (what every frame
         // ran before it), timed in alternation with the banded one.
         for (n, target) in [(10, 3.0), (50, 6.0)] {
-            let p = plan(
-                &building(n),
-                SceneOpts {
-                    dt: Some(0.0025),
-                    ..SceneOpts::new(MethodName::Newmark)
-                },
-            )?;
+            let p = storey_plan(&building, n)?;
             let (banded, dense) = seconds_banded_dense(&p, &clock, budget)?;
             figs.push(Figure::new(
                 case,

@@ -784,8 +784,6 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             x[0] = 0.0;
             pattern.solve_with(&mut x[1..], |_, i| (r0[i + 1] - phi[i + 1]) + phi[i + 2]);
             // Forces and slip rates of the candidate.
-            // `inside`: every free force inside its box; `wrong_max`: the largest slip
-            // rate of a held force against its bound's sign (NaN-safe: a NaN fails both).
             let Candidate {
                 f_norm,
                 inside,
