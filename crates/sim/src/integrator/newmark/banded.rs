@@ -481,9 +481,16 @@ fn candidate_with(
         let wc = (h0[c] + da) - fc * s.inv_kappa;
         f[c] = fc;
         w[c] = wc;
-        out.f_norm = out.f_norm.max(fc.abs());
+        // the larger of the two by one comparison (a single max instruction): a NaN never
+        // replaces the maximum, as with `f64::max`, whose NaN handling costs a longer chain
+        let (fa, wr) = (fc.abs(), sg[c] * wc);
+        out.f_norm = if fa > out.f_norm { fa } else { out.f_norm };
         out.inside &= !fr[c] || (fc >= s.lo && fc <= s.hi);
-        out.wrong_max = out.wrong_max.max(sg[c] * wc);
+        out.wrong_max = if wr > out.wrong_max {
+            wr
+        } else {
+            out.wrong_max
+        };
         out.finite += wc;
     }
     out
