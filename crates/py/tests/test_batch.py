@@ -90,10 +90,10 @@ def test_ctrl_c_stops_a_long_batch_and_the_interpreter_lives():
             threading.Timer(0.05, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 
     fired = threading.Event()
-    # Python's own Ctrl-C handler, as an interactive interpreter has it: a process started
-    # in the background by a non-interactive shell (`cmd &`, as some CI runners and nohup
-    # do) inherits SIGINT ignored, and Python then installs no handler, so the signal
-    # would never reach the watcher
+    # Python's own Ctrl-C handler, as an interactive interpreter has it: a process a
+    # non-interactive shell starts in the background (`cmd &` in a script, as some CI
+    # runners start their jobs) inherits SIGINT ignored, and Python then installs no
+    # handler, so the signal would never reach the watcher
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         with pytest.raises(KeyboardInterrupt):
