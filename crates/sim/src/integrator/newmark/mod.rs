@@ -214,10 +214,11 @@ impl Link {
         (u0, ut, vt): (&[f64], &[f64], &[f64]),
         af: &[f64],
     ) -> (f64, EppPred) {
-        let vf = vt[self.floor] + k.gdt * af[self.floor];
+        // the floor's end-of-step velocity, which an algebraic element does not read
+        let vf = || vt[self.floor] + k.gdt * af[self.floor];
         if !self.epp {
             return (
-                vf - (vt[self.other] + k.gdt * af[self.other]),
+                vf() - (vt[self.other] + k.gdt * af[self.other]),
                 EppPred::default(),
             );
         }
@@ -244,7 +245,7 @@ impl Link {
         let vp = e.v + k.c_v * e.a;
         let pred = EppPred { up, vp, base: 0.0 };
         let q = (up - uj) - k.bg * (vp - vj);
-        (vf - (vj + k.gdt * aj) + self.k_over_kappa * q, pred)
+        (vf() - (vj + k.gdt * aj) + self.k_over_kappa * q, pred)
     }
 
     /// The end of a step for this contact, shared by both step loops: an EPP element's new
