@@ -287,13 +287,7 @@ fn surrogate_proposals(
         return Vec::new();
     }
     let (lo, hi) = ideal_and_nadir(k, front.iter().map(|&i| evaluated[i].objectives.as_slice()));
-    let finite: Vec<usize> = (0..evaluated.len())
-        .filter(|&i| evaluated[i].objectives.iter().all(|v| v.is_finite()))
-        .collect();
-    let vectors: Vec<Vec<f64>> = finite
-        .iter()
-        .map(|&i| evaluated[i].objectives.clone())
-        .collect();
+    let (finite, vectors) = finite_objectives(evaluated);
     let ranks = super::front::nondominated_ranks(&vectors);
     let mut fit: Vec<usize> = (0..finite.len()).collect();
     fit.sort_by_key(|&j| (ranks[j], j));
@@ -459,16 +453,23 @@ fn by_contribution(norm: &[Vec<f64>]) -> Vec<usize> {
     order
 }
 
-/// The front of the designs evaluated so far (indices, sorted by the objectives) and its
-/// normalised objectives; `None` when no design stands.
-fn current_front(evaluated: &[Evaluated]) -> Option<(Vec<usize>, Vec<Vec<f64>>)> {
+/// The designs whose objectives are all finite (indices into `evaluated`) and their
+/// objective vectors, in the same order.
+fn finite_objectives(evaluated: &[Evaluated]) -> (Vec<usize>, Vec<Vec<f64>>) {
     let finite: Vec<usize> = (0..evaluated.len())
         .filter(|&i| evaluated[i].objectives.iter().all(|v| v.is_finite()))
         .collect();
-    let vectors: Vec<Vec<f64>> = finite
+    let vectors = finite
         .iter()
         .map(|&i| evaluated[i].objectives.clone())
         .collect();
+    (finite, vectors)
+}
+
+/// The front of the designs evaluated so far (indices, sorted by the objectives) and its
+/// normalised objectives; `None` when no design stands.
+fn current_front(evaluated: &[Evaluated]) -> Option<(Vec<usize>, Vec<Vec<f64>>)> {
+    let (finite, vectors) = finite_objectives(evaluated);
     let mut front: Vec<usize> = first_front(&vectors)
         .into_iter()
         .map(|k| finite[k])
