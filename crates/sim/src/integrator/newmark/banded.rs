@@ -927,11 +927,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 (epp[c], rate) = l.algebraic_update(&k, (pred[c].base, w_new[c]), u[c], v[c]);
                 w_new[c] = rate;
                 let now_stuck = status[c] == Bound::Free;
-                if now_stuck != stuck[c] {
-                    peaks.transitions[l.slot] += 1;
-                    stuck[c] = now_stuck;
-                }
-                peaks.observe_slip(l.slot, u[c] - epp[c].u);
+                l.observe_end(now_stuck, &mut stuck[c], u[c] - epp[c].u, &mut peaks);
             }
         } else {
             for (c, l) in links.iter().enumerate() {

@@ -281,12 +281,19 @@ impl Link {
         } else {
             (u[self.other], w)
         };
+        self.observe_end(now_stuck, stuck, u[self.floor] - x_other, peaks);
+        rate
+    }
+
+    /// The end-of-step bookkeeping of this contact: a stick↔slip change counted against
+    /// `stuck`, and its slip (floor minus the other end) kept if it is the largest.
+    #[inline(always)]
+    fn observe_end(&self, now_stuck: bool, stuck: &mut bool, slip: f64, peaks: &mut Peaks) {
         if now_stuck != *stuck {
             peaks.transitions[self.slot] += 1;
             *stuck = now_stuck;
         }
-        peaks.observe_slip(self.slot, u[self.floor] - x_other);
-        rate
+        peaks.observe_slip(self.slot, slip);
     }
 
     /// An algebraic EPP element's state at the end of the step, from its `base` (u′ − u_floor
