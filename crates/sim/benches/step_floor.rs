@@ -36,39 +36,12 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector};
+use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::integrator::newmark::{StepPath, run_on_path};
 use slipload_sim::plan::ContactKind;
 use slipload_sim::{Plan, Scene, SceneOverrides, run_plan};
 use std::hint::black_box;
 use std::path::Path;
-
-/// The bench's shear building of `n` storeys with Rayleigh damping (the formulas of
-/// `slipload bench`'s `shear_building_damped`).
-fn shear_building(n: usize) -> String {
-    let m = 5e5;
-    let t1 = 0.1 * n as f64;
-    let w1 = 2.0 * std::f64::consts::PI / t1;
-    let s = (std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin();
-    let k = m * (w1 / (2.0 * s)).powi(2);
-    let w2 = 2.0 * (k / m).sqrt() * (3.0 * std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin();
-    let zeta = 0.02;
-    let (ra, rb) = (2.0 * zeta * w1 * w2 / (w1 + w2), 2.0 * zeta / (w1 + w2));
-    let list = |f: &dyn Fn(usize) -> String| (0..n).map(f).collect::<Vec<_>>().join(", ");
-    format!(
-        r#"{{ "name": "shear-{n}", "floor_masses": [{}], "storey_stiffness": [{}],
-             "damping": {{ "rayleigh": {{ "alpha": {ra}, "beta": {rb} }} }},
-             "storey_heights": [{}], "dissipators": [{}] }}"#,
-        list(&|_| format!("\"{m} kg\"")),
-        list(&|_| format!("\"{k} N/m\"")),
-        list(&|_| "\"3.5 m\"".to_string()),
-        list(&|i| format!(
-            r#"{{ "floor": {}, "brace_stiffness": "{} N/m", "mass": 0, "brace_damping": 0, "slip_load": "{} N" }}"#,
-            i + 1,
-            2.0 * k,
-            0.05 * (n - i) as f64 * m * 9.81
-        )),
-    )
-}
 
 /// `building` (JSON) under the bench's synthetic record (seed 2007, 15 s, dt 0.01 s) at
 /// Δt = 2.5 ms, peaks only.
@@ -686,20 +659,7 @@ fn bench_maps<const N: usize, const D: usize, const R: usize>(
     let reference = run_plan(&p).expect("runs");
     let run = || run_maps::<N, 3, D, R>(&m, (&lo, &hi, tol), (&ag, &mr, p.floors));
     let got = run();
-    let close = |x: f64, y: f64| (x - y).abs() <= 1e-10 * y.abs().max(f64::MIN_POSITIVE);
-    for (i, (x, y)) in got
-        .drift
-        .iter()
-        .zip(&reference.response.peak_drift)
-        .enumerate()
-    {
-        assert!(
-            close(*x, *y),
-            "{label}, storey {}: maps {x} against {y}",
-            i + 1
-        );
-    }
-    assert!(close(got.base_shear, reference.response.peak_base_shear));
+    assert_same_peaks(&format!("{label}, pattern maps"), &got, &reference);
     let mut g = c.benchmark_group(format!("{label}, 15 s synthetic at 2.5 ms"));
     g.throughput(Throughput::Elements(p.steps as u64));
     g.bench_function("newmark", |b| {
@@ -709,11 +669,24 @@ fn bench_maps<const N: usize, const D: usize, const R: usize>(
     g.finish();
 }
 
+/// Panics unless `got`'s drift and base-shear peaks are `reference`'s to 1e-10 (relative):
+/// the same equations summed in another order (the banded tests' tolerance against the
+/// dense step).
+fn assert_same_peaks(label: &str, got: &LeanPeaks, reference: &slipload_sim::Outcome) {
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-10 * y.abs().max(f64::MIN_POSITIVE);
+    let r = &reference.response;
+    for (i, (x, y)) in got.drift.iter().zip(&r.peak_drift).enumerate() {
+        assert!(close(*x, *y), "{label}, storey {}: {x} against {y}", i + 1);
+    }
+    let (x, y) = (got.base_shear, r.peak_base_shear);
+    assert!(close(x, y), "{label}, base shear: {x} against {y}");
+}
+
 fn bench(c: &mut Criterion) {
     bench_maps::<3, 12, 18>(c, "benchmark m'=0", "benchmark-3story-massless.json");
     bench_maps::<6, 18, 24>(c, "benchmark m'=350 kg", "benchmark-3story.json");
     for n in [10usize, 50] {
-        let p = bench_plan(&shear_building(n));
+        let p = bench_plan(&shear_building_damped(n, ShearDamping::Rayleigh));
         let frame = Frame::of(&p);
         let (banded, stats) = run_on_path(&p, StepPath::Banded).expect("runs");
         assert!(
@@ -721,20 +694,7 @@ fn bench(c: &mut Criterion) {
             "the banded step's aligned loops"
         );
         let kernel = lean::<true>(&frame);
-        let close = |x: f64, y: f64| (x - y).abs() <= 1e-10 * y.abs().max(f64::MIN_POSITIVE);
-        for (i, (x, y)) in kernel
-            .drift
-            .iter()
-            .zip(&banded.response.peak_drift)
-            .enumerate()
-        {
-            assert!(
-                close(*x, *y),
-                "{n} storeys, storey {}: lean {x} against {y}",
-                i + 1
-            );
-        }
-        assert!(close(kernel.base_shear, banded.response.peak_base_shear));
+        assert_same_peaks(&format!("{n} storeys, lean kernel"), &kernel, &banded);
         let mut g = c.benchmark_group(format!("{n} storeys, Rayleigh, m'=0, 15 s at 2.5 ms"));
         g.throughput(Throughput::Elements(p.steps as u64));
         g.sample_size(if n > 20 { 20 } else { 50 });

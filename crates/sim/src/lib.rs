@@ -6,6 +6,8 @@
 //! [`Integrator`] into an [`Outcome`] whose [`Response`] is the output contract.
 
 pub mod accuracy;
+#[doc(hidden)]
+pub mod bench_scenes;
 pub mod building;
 pub mod error;
 pub mod friction;
