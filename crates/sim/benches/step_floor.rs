@@ -556,8 +556,13 @@ fn run_maps<const N: usize, const NC: usize, const D: usize, const R: usize>(
     maps: &[Map<D, R>],
     (lo, hi, tol): (&[f64; NC], &[f64; NC], f64),
     (ag, mr, floors): (&[f64], &[f64; N], usize),
+    ag0: f64,
 ) -> LeanPeaks {
+    // at rest, in equilibrium with the record's first acceleration: a = −ag0 on every DOF
     let mut state = [0.0; D];
+    for a in &mut state[2 * N..3 * N] {
+        *a = -ag0;
+    }
     let mut code = 0usize;
     let mut pattern = [Status::Stuck; NC];
     let mut drift = [0.0; N];
@@ -657,7 +662,14 @@ fn bench_maps<const N: usize, const D: usize, const R: usize>(
     let mut ground = p.ground_steps();
     let ag: Vec<f64> = (0..p.steps).map(|_| ground.next_accel()).collect();
     let reference = run_plan(&p).expect("runs");
-    let run = || run_maps::<N, 3, D, R>(&m, (&lo, &hi, tol), (&ag, &mr, p.floors));
+    let run = || {
+        run_maps::<N, 3, D, R>(
+            &m,
+            (&lo, &hi, tol),
+            (&ag, &mr, p.floors),
+            p.ground_accel(0.0),
+        )
+    };
     let got = run();
     assert_same_peaks(&format!("{label}, pattern maps"), &got, &reference);
     let mut g = c.benchmark_group(format!("{label}, 15 s synthetic at 2.5 ms"));
