@@ -80,6 +80,8 @@ struct Frame {
     /// The KKT test's round-off threshold per unit ‖F‖∞, 8 (m + 1) ε ‖W‖∞, as the banded
     /// step forms it.
     tol: f64,
+    /// The ground acceleration at the start and at each step's end.
+    ag0: f64,
     ag: Vec<f64>,
 }
 
@@ -128,6 +130,7 @@ impl Frame {
             lo: plan.contacts.iter().map(|c| c.lower).collect(),
             hi: plan.contacts.iter().map(|c| c.upper).collect(),
             tol: 8.0 * (n as f64 + 1.0) * f64::EPSILON * w_norm,
+            ag0: plan.ground_accel(0.0),
             ag: (0..plan.steps).map(|_| ground.next_accel()).collect(),
         }
     }
@@ -198,7 +201,8 @@ fn lean<const CHAIN: bool>(fr: &Frame) -> LeanPeaks {
     let mut free = vec![true; n];
     let mut held = vec![0.0; n];
     let mut sign = vec![0.0; n];
-    let (mut u, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    // at rest, in equilibrium with the record's first acceleration
+    let (mut u, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![-fr.ag0; n]);
     let mut e = vec![0.0; n];
     // ground first: index 0 holds the ground's (zero) entry
     let mut ut = vec![0.0; n + 1];
