@@ -95,8 +95,7 @@ impl Frame {
             assert!(ct.floor == c && ct.below == c.checked_sub(1) && ct.brace_damping == 0.0);
         }
         let dt = plan.method.dt;
-        let (beta, gamma) = (0.25, 0.5);
-        let band = |a: &nalgebra::DMatrix<f64>| {
+        let band = |a: &DMatrix<f64>| {
             let d = (0..n).map(|i| a[(i, i)]).collect::<Vec<_>>();
             let l = (0..n)
                 .map(|i| if i > 0 { a[(i, i - 1)] } else { 0.0 })
@@ -106,17 +105,6 @@ impl Frame {
         let (kd, kl) = band(&plan.stiffness);
         let (cd, cl) = band(&plan.damping);
         let m = (0..n).map(|i| plan.mass[(i, i)]).collect();
-        // W = γΔt BᵀA⁻¹B + diag(1/κ), for its norm
-        let a = &plan.mass + &plan.damping * (gamma * dt) + &plan.stiffness * (beta * dt * dt);
-        let chol = a.cholesky().expect("positive definite");
-        let b = plan.contact_matrix();
-        let mut w = b.transpose() * chol.solve(&b) * (gamma * dt);
-        for (c, ct) in plan.contacts.iter().enumerate() {
-            w[(c, c)] += gamma / (ct.brace_stiffness * beta * dt);
-        }
-        let w_norm = (0..n)
-            .map(|r| (0..n).map(|c| w[(r, c)].abs()).sum::<f64>())
-            .fold(0.0, f64::max);
         let mut ground = plan.ground_steps();
         Frame {
             n,
@@ -129,7 +117,7 @@ impl Frame {
             brace: plan.contacts.iter().map(|c| c.brace_stiffness).collect(),
             lo: plan.contacts.iter().map(|c| c.lower).collect(),
             hi: plan.contacts.iter().map(|c| c.upper).collect(),
-            tol: 8.0 * (n as f64 + 1.0) * f64::EPSILON * w_norm,
+            tol: FixedPattern::of(plan).kkt_tol(),
             ag0: plan.ground_accel(0.0),
             ag: (0..plan.steps).map(|_| ground.next_accel()).collect(),
         }
@@ -427,6 +415,16 @@ impl FixedPattern {
         }
     }
 
+    /// The KKT test's round-off threshold per unit ‖F‖∞, 8 (m + 1) ε ‖W‖∞, as the banded
+    /// step forms it.
+    fn kkt_tol(&self) -> f64 {
+        let m = self.contacts.len();
+        let w_norm = (0..m)
+            .map(|r| (0..m).map(|c| self.w[(r, c)].abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        8.0 * (m as f64 + 1.0) * f64::EPSILON * w_norm
+    }
+
     /// State dimension: u, v, a and the elements' displacements.
     fn dim(&self) -> usize {
         3 * self.n + self.elements
@@ -657,10 +655,7 @@ fn bench_maps<const N: usize, const D: usize, const R: usize>(
     for (i, ct) in p.contacts.iter().enumerate() {
         (lo[i], hi[i]) = (ct.lower, ct.upper);
     }
-    let w_norm = (0..3)
-        .map(|r| (0..3).map(|c| fp.w[(r, c)].abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let tol = 8.0 * 4.0 * f64::EPSILON * w_norm;
+    let tol = fp.kkt_tol();
     let mut mr = [0.0; N];
     mr.copy_from_slice(p.mass_influence().as_slice());
     let mut ground = p.ground_steps();
