@@ -11,6 +11,7 @@ macro_rules! outln {
     ($($arg:tt)*) => { $crate::output::stdout_fmt(format_args!($($arg)*), true) };
 }
 
+mod args;
 mod cmd;
 mod figures;
 mod html;

@@ -148,8 +148,8 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
     if args.methods.is_empty() || args.dts.is_empty() {
         anyhow::bail!("--methods and --dts need at least one value each");
     }
-    super::output_folder("--out", &args.out)?;
-    super::count_flag("--repeats", args.repeats, super::MAX_REPEATS)?;
+    crate::args::output_folder("--out", &args.out)?;
+    crate::args::count_flag("--repeats", args.repeats, crate::args::MAX_REPEATS)?;
     if let Some(n) = args.synthetic {
         let size = slipload_motion::DEFAULT_SUITE_SIZE;
         if n == 0 || n > size {

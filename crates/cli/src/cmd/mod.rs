@@ -61,23 +61,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
     }
 }
 
-/// Refuses an output folder flag (`--out`, `--plot`) that names an existing file, a FIFO
-/// or a device: said before any work, naming the flag (a folder that does not exist yet
-/// is created later).
-pub(crate) fn output_folder(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
-    Ok(slipload_opt::output::check_output_folder(flag, dir)?)
-}
-
-pub(crate) fn count_flag(flag: &str, n: usize, limit: usize) -> anyhow::Result<()> {
-    if n <= limit || slipload_sim::limits::allow_large() {
-        return Ok(());
-    }
-    anyhow::bail!(
-        "{flag} {n}: more than any real run needs (limit {limit}); {}",
-        slipload_sim::limits::OVERRIDE_HINT
-    )
-}
-
-/// Most timed repeats (`accuracy --repeats`, `simulate --repeat`): a median of a few
-/// runs is what timing needs.
-pub(crate) const MAX_REPEATS: usize = 1000;
+// The argument checks live in `crate::args` (below both the commands and the figures);
+// the study commands call them through these names.
+pub(crate) use crate::args::{count_flag, output_folder};

@@ -414,9 +414,9 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     if count == 0 {
         bail!("--count must be at least 1");
     }
-    super::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
+    crate::args::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
     if args.count.is_some() {
-        super::output_folder("--out", &args.out)?;
+        crate::args::output_folder("--out", &args.out)?;
     }
     if !slipload_sim::scene::target_pga_in_band(args.pga_g) {
         bail!(

@@ -54,7 +54,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         crate::figures::check_plot_folder(dir)?;
         slipload_figures::check_fonts()?;
     }
-    super::count_flag("--repeat", args.repeat as usize, super::MAX_REPEATS)?;
+    crate::args::count_flag("--repeat", args.repeat as usize, crate::args::MAX_REPEATS)?;
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
         slipload_opt::output::write_target(path)

@@ -12,7 +12,7 @@ use std::path::Path;
 /// (created when missing; the figures and their data go into it). An existing file there
 /// is refused, with what to give instead.
 pub fn check_plot_folder(dir: &Path) -> anyhow::Result<()> {
-    crate::cmd::output_folder("--plot", dir).context(
+    crate::args::output_folder("--plot", dir).context(
         "--plot takes a folder (created when missing) that the figures and their data are written into",
     )
 }
