@@ -1,0 +1,51 @@
+//! `slipload report DIR`: one self-contained HTML page from an output folder — a
+//! simulation `--plot` folder, an `accuracy --out` folder or a `sweep`/`optimize` study
+//! folder. The page holds a title and the kind of folder, the key tables (Markdown, CSV
+//! and JSON summaries as HTML tables), every `NAME.svg` in the folder inlined (so new
+//! figures appear without code changes), the inputs (scene, study, manifest JSON)
+//! pretty-printed in collapsible blocks, and the slipload version. It loads nothing from
+//! elsewhere (no scripts, fonts or style sheets from the network) and opens offline.
+//!
+//! The parts, each by its role: [`folder`] (the files of the folder and what kind of
+//! folder they make), [`page`] (the page: its sections in order, its style, its
+//! frame), [`svg`] (figures made safe to inline), [`study`] (a study's optimum and
+//! trade-off), [`simulation`] (a simulation's run and responses per storey) and
+//! [`tables`] (the HTML tables and the JSON numbers they show).
+
+mod folder;
+mod page;
+mod simulation;
+mod study;
+mod svg;
+mod tables;
+
+use slipload_opt::output::write_atomic;
+use std::path::PathBuf;
+
+/// Arguments of `slipload report`.
+#[derive(Debug, clap::Args)]
+pub struct ReportArgs {
+    /// Output folder to report on: from `simulate --plot`, `accuracy --out`, or
+    /// `sweep`/`optimize --out`
+    pub dir: PathBuf,
+    /// HTML file to write (default: DIR/report.html)
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Data rows shown per CSV table (the files keep them all)
+    #[arg(long, default_value_t = 100)]
+    pub max_rows: usize,
+}
+
+/// Runs `slipload report`.
+pub fn run(args: ReportArgs) -> anyhow::Result<()> {
+    let (kind, html) = page::build(&args.dir, args.max_rows.max(1))?;
+    let out = args.out.unwrap_or_else(|| args.dir.join("report.html"));
+    write_atomic(&out, html.as_bytes())?;
+    eprintln!(
+        "report of the {} in {} written to {}",
+        kind.noun(),
+        args.dir.display(),
+        out.display()
+    );
+    Ok(())
+}
