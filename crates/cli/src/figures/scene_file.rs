@@ -5,12 +5,173 @@
 //! DIR/scene.json` runs it again from anywhere, and the folder can move with the records
 //! beside it (a clone's `results/` and `records/`); the report of the folder reads its
 //! building, record and scaling from it.
+//!
+//! The file is a typed value, [`SceneAsRun`]: what the command line resolved (name,
+//! duration, method and time step, the flags' record, window and scaling) as numbers and
+//! strings, and every other field as the scene file wrote it (a JSON value, `null`
+//! included), so a field it left out stays out. Its keys are in alphabetical order, at
+//! every level, as the file has always had them: the fields are declared in that order,
+//! and what passes through as written is a JSON value, whose keys are sorted.
 
 use crate::cmd::scene_args::{BENCHMARK_BUILDING, SceneArgs};
 use anyhow::Context;
-use serde_json::{Map, Value, json};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde_json::Value;
 use slipload_sim::Scene;
 use std::path::{Path, PathBuf};
+
+/// A field of `scene.json`: left out (as the scene file left it out), as the scene file
+/// wrote it (any JSON, `null` included), or as the run resolved it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub enum Field<T> {
+    /// Not in the file.
+    #[default]
+    Absent,
+    /// As written.
+    Written(Value),
+    /// As resolved.
+    Resolved(T),
+}
+
+impl<T> Field<T> {
+    /// Whether the field is left out (it is then not written).
+    pub fn is_absent(&self) -> bool {
+        matches!(self, Field::Absent)
+    }
+}
+
+impl<T: Serialize> Serialize for Field<T> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Field::Absent => s.serialize_none(),
+            Field::Written(v) => v.serialize(s),
+            Field::Resolved(t) => t.serialize(s),
+        }
+    }
+}
+
+/// A field in the file is read as written.
+impl<'de, T> Deserialize<'de> for Field<T> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Value::deserialize(d).map(Field::Written)
+    }
+}
+
+impl<T: Clone + DeserializeOwned> Field<T> {
+    /// The object the field holds, to be edited: as resolved, or as written when the file
+    /// wrote an object (`None` when left out, `null` or any other value).
+    fn object(&self) -> anyhow::Result<Option<T>> {
+        match self {
+            Field::Resolved(t) => Ok(Some(t.clone())),
+            Field::Written(v) if v.is_object() => Ok(Some(T::deserialize(v)?)),
+            _ => Ok(None),
+        }
+    }
+}
+
+/// `DIR/scene.json` (see the module's doc). Fields in alphabetical order; the name,
+/// duration, method and time step are always resolved.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SceneAsRun {
+    /// The building, inline: the building file's JSON.
+    building: Value,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    description: Field<Value>,
+    /// The simulated time, s.
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    duration: Field<f64>,
+    #[serde(skip_serializing_if = "Excitation::is_empty")]
+    excitation: Excitation,
+    method: Method,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    name: Field<String>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    outputs: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    reduce: Field<Value>,
+}
+
+/// The scene's `excitation`. Fields in alphabetical order.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct Excitation {
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    harmonic: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    initial: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    record: Field<RecordAsRun>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    synthetic: Field<SyntheticAsRun>,
+}
+
+impl Excitation {
+    /// No field at all (the excitation is then not written).
+    fn is_empty(&self) -> bool {
+        self.harmonic.is_absent()
+            && self.initial.is_absent()
+            && self.record.is_absent()
+            && self.synthetic.is_absent()
+    }
+}
+
+/// A record of the excitation. Fields in alphabetical order.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct RecordAsRun {
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    dt: Field<Value>,
+    /// The record file, relative to the folder of `scene.json`.
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    file: Field<String>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    scale: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    scale_pga_g: Field<f64>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    units: Field<String>,
+    /// `[start, duration]`, s.
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    window: Field<[f64; 2]>,
+}
+
+/// A synthetic record of the excitation. Fields in alphabetical order.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct SyntheticAsRun {
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    dt: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    duration: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    index: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    pga_g: Field<f64>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    seed: Field<Value>,
+}
+
+/// The scene's `method`. Fields in alphabetical order.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct Method {
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    alpha: Field<Value>,
+    /// The time step, s.
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    dt: Field<f64>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    eps_a: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    eps_f: Field<Value>,
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    max_iterations: Field<Value>,
+    /// The method's name.
+    #[serde(skip_serializing_if = "Field::is_absent")]
+    name: Field<String>,
+}
 
 /// `p` made absolute (against the working folder), symbolic links resolved when it exists.
 fn absolute(p: &Path) -> PathBuf {
@@ -48,118 +209,95 @@ fn read_json(path: &Path) -> anyhow::Result<Value> {
     serde_json::from_str(&text).with_context(|| format!("parsing {}", path.display()))
 }
 
-/// The object at `key` of `obj`, created empty when absent or null.
-fn object_at<'a>(obj: &'a mut Map<String, Value>, key: &str) -> &'a mut Map<String, Value> {
-    let slot = obj.entry(key).or_insert_with(|| Value::Object(Map::new()));
-    if !slot.is_object() {
-        *slot = Value::Object(Map::new());
-    }
-    match slot {
-        Value::Object(m) => m,
-        _ => unreachable!("just made an object"),
-    }
-}
-
-/// The resolved scene of `args` as JSON (see the module's doc), to be written into the
-/// folder `dir`; `scene` is what it resolved to (its name, method, time step and duration
-/// are written out).
-pub fn resolved(args: &SceneArgs, scene: &Scene, dir: &Path) -> anyhow::Result<Value> {
-    let (mut root, base) = match &args.scene {
+/// The resolved scene of `args` (see the module's doc), to be written into the folder
+/// `dir`; `scene` is what it resolved to (its name, method, time step and duration are
+/// written out).
+pub fn resolved(args: &SceneArgs, scene: &Scene, dir: &Path) -> anyhow::Result<SceneAsRun> {
+    let (mut run, base) = match &args.scene {
         Some(path) => {
             let v = read_json(path)?;
             let base = absolute(path)
                 .parent()
                 .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
             let is_scene = v.as_object().is_some_and(|o| o.contains_key("building"));
-            let v = if is_scene {
-                v
+            let run = if is_scene {
+                SceneAsRun::deserialize(v).with_context(|| format!("reading {}", path.display()))?
             } else {
                 // a building file alone: the scene of that building
-                let name = v.get("name").cloned();
-                let mut m = Map::new();
-                if let Some(n) = name {
-                    m.insert("name".into(), n);
+                SceneAsRun {
+                    building: v,
+                    ..SceneAsRun::default()
                 }
-                m.insert("building".into(), v);
-                Value::Object(m)
             };
-            (v, base)
+            (run, base)
         }
         None => {
             let building: Value =
                 serde_json::from_str(BENCHMARK_BUILDING).context("embedded benchmark building")?;
-            (
-                json!({
-                    "building": building,
-                    "excitation": { "synthetic": {} }
-                }),
-                PathBuf::from("."),
-            )
+            let excitation = Excitation {
+                synthetic: Field::Resolved(SyntheticAsRun::default()),
+                ..Excitation::default()
+            };
+            let run = SceneAsRun {
+                building,
+                excitation,
+                ..SceneAsRun::default()
+            };
+            (run, PathBuf::from("."))
         }
     };
-    let Some(obj) = root.as_object_mut() else {
-        anyhow::bail!("the scene is not a JSON object");
-    };
-    obj.insert("name".into(), Value::String(scene.name.clone()));
+    run.name = Field::Resolved(scene.name.clone());
     // the building inline, so the folder holds everything but the record
-    if let Some(Value::String(p)) = obj.get("building") {
-        let path = base.join(p);
-        let b = read_json(&path)?;
-        obj.insert("building".into(), b);
+    if let Value::String(p) = &run.building {
+        run.building = read_json(&base.join(p))?;
     }
-    let excitation = object_at(obj, "excitation");
+    let excitation = &mut run.excitation;
     if let Some(file) = &args.record {
         // --record replaces the scene's ground motion
-        let mut r = Map::new();
-        r.insert(
-            "file".into(),
-            Value::String(relative_to(file, dir).to_string_lossy().into_owned()),
-        );
+        let mut record = RecordAsRun {
+            file: Field::Resolved(relative_to(file, dir).to_string_lossy().into_owned()),
+            ..RecordAsRun::default()
+        };
         if let Some(u) = args.units {
-            r.insert("units".into(), Value::String(u.to_string()));
+            record.units = Field::Resolved(u.to_string());
         }
         if let Some((s, d)) = args.window {
-            r.insert("window".into(), json!([s, d]));
+            record.window = Field::Resolved([s, d]);
         }
         if let Some(p) = args.scale_pga_g {
-            r.insert("scale_pga_g".into(), json!(p));
+            record.scale_pga_g = Field::Resolved(p);
         }
-        excitation.remove("synthetic");
-        excitation.insert("record".into(), Value::Object(r));
-    } else if let Some(Value::Object(r)) = excitation.get_mut("record") {
-        if let Some(Value::String(f)) = r.get("file") {
+        excitation.synthetic = Field::Absent;
+        excitation.record = Field::Resolved(record);
+    } else if let Some(mut r) = excitation.record.object()? {
+        if let Field::Written(Value::String(f)) = &r.file {
             let rel = relative_to(&base.join(f), dir);
-            r.insert(
-                "file".into(),
-                Value::String(rel.to_string_lossy().into_owned()),
-            );
+            r.file = Field::Resolved(rel.to_string_lossy().into_owned());
         }
-        if r.get("units").is_none_or(Value::is_null)
+        if matches!(r.units, Field::Absent | Field::Written(Value::Null))
             && let Some(u) = args.units
         {
-            r.insert("units".into(), Value::String(u.to_string()));
+            r.units = Field::Resolved(u.to_string());
         }
         if let Some((s, d)) = args.window {
             // --window replaces the scene's window (docs/MODEL.md, scenes and plans)
-            r.insert("window".into(), json!([s, d]));
+            r.window = Field::Resolved([s, d]);
         }
         if let Some(p) = args.scale_pga_g {
-            r.remove("scale");
-            r.insert("scale_pga_g".into(), json!(p));
+            r.scale = Field::Absent;
+            r.scale_pga_g = Field::Resolved(p);
         }
-    } else if let Some(Value::Object(syn)) = excitation.get_mut("synthetic")
+        excitation.record = Field::Resolved(r);
+    } else if let Some(mut syn) = excitation.synthetic.object()?
         && let Some(p) = args.scale_pga_g
     {
-        syn.insert("pga_g".into(), json!(p));
+        syn.pga_g = Field::Resolved(p);
+        excitation.synthetic = Field::Resolved(syn);
     }
-    if excitation.is_empty() {
-        obj.remove("excitation");
-    }
-    obj.insert("duration".into(), json!(scene.duration));
-    let method = object_at(obj, "method");
-    method.insert("name".into(), json!(scene.method.name.as_str()));
-    method.insert("dt".into(), json!(scene.method.dt));
-    Ok(root)
+    run.duration = Field::Resolved(scene.duration);
+    run.method.name = Field::Resolved(scene.method.name.as_str().to_string());
+    run.method.dt = Field::Resolved(scene.method.dt);
+    Ok(run)
 }
 
 #[cfg(test)]
@@ -392,6 +530,73 @@ mod tests {
   "reduce": false
 }
 "#
+        );
+    }
+
+    /// Every field a scene file may hold passes through [`SceneAsRun`] as written: a
+    /// scene config of the library with every field given (a field added there and not
+    /// here fails to build or fails this test, not a user's run).
+    #[test]
+    fn every_field_of_a_scene_file_passes_through() {
+        use slipload_sim::MethodName;
+        use slipload_sim::scene::{
+            BuildingRef, ExcitationConfig, HarmonicConfig, InitialConfig, MethodConfig,
+            OutputsConfig, RecordConfig, SceneConfig, SyntheticConfig,
+        };
+        use slipload_sim::units::{Angle, AngularFrequency, Force, Length, Time, Velocity};
+        let cfg = SceneConfig {
+            name: Some("n".into()),
+            description: Some("d".into()),
+            building: BuildingRef::Path("b.json".into()),
+            excitation: ExcitationConfig {
+                record: Some(RecordConfig {
+                    file: "r.csv".into(),
+                    units: Some("g".into()),
+                    dt: Some(Time(0.01)),
+                    scale: Some(2.0),
+                    scale_pga_g: Some(0.3),
+                    window: Some([Time(0.5), Time(1.5)]),
+                }),
+                synthetic: Some(SyntheticConfig {
+                    index: Some(1),
+                    seed: Some(2),
+                    pga_g: Some(0.4),
+                    duration: Some(Time(5.0)),
+                    dt: Some(Time(0.02)),
+                }),
+                harmonic: Some(HarmonicConfig {
+                    floor: 1,
+                    amplitude: Force(1e3),
+                    omega: AngularFrequency(2.0),
+                    phase: Angle(0.25),
+                }),
+                initial: Some(InitialConfig {
+                    floor_displacement: Some(vec![Length(0.01)]),
+                    floor_velocity: Some(vec![Velocity(0.02)]),
+                    dissipator_displacement: Some(vec![Length(0.03)]),
+                    dissipator_velocity: Some(vec![Velocity(0.04)]),
+                }),
+            },
+            duration: Some(Time(3.0)),
+            method: MethodConfig {
+                name: MethodName::Delacruz,
+                dt: Some(Time(0.001)),
+                alpha: Some(-0.05),
+                eps_a: Some(1e-6),
+                eps_f: Some(1e-3),
+                max_iterations: Some(50),
+            },
+            outputs: OutputsConfig {
+                energies: false,
+                histories: true,
+            },
+            reduce: false,
+        };
+        let written = serde_json::to_value(&cfg).unwrap();
+        let run = SceneAsRun::deserialize(&written).unwrap();
+        assert_eq!(
+            serde_json::to_string_pretty(&run).unwrap(),
+            serde_json::to_string_pretty(&written).unwrap()
         );
     }
 }

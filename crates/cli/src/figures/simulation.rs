@@ -49,7 +49,7 @@ fn columns_for(n: usize) -> usize {
 pub fn write_all(
     dir: &Path,
     scene: &Scene,
-    scene_json: &serde_json::Value,
+    scene_json: &super::scene_file::SceneAsRun,
     out: &Outcome,
     bare: Option<&Outcome>,
 ) -> anyhow::Result<Vec<PathBuf>> {
