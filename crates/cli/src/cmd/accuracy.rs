@@ -6,6 +6,7 @@
 
 use super::scene_args::MethodArg;
 use anyhow::Context;
+use serde::Serialize;
 use slipload_motion::Units;
 use slipload_opt::output::write_atomic;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
@@ -13,6 +14,14 @@ use slipload_sim::kind::Expected;
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};
 use slipload_sim::{BuildingConfig, MethodName, Scene, SceneOverrides};
 use std::path::{Path, PathBuf};
+
+/// `NAME.json` of `accuracy --out`: the median study (`null` with one record) and the
+/// study of each record.
+#[derive(Serialize)]
+struct AccuracyFile<'a> {
+    median: Option<&'a StudyReport>,
+    records: &'a [StudyReport],
+}
 
 /// Arguments of `slipload accuracy`.
 #[derive(Debug, clap::Args)]
@@ -223,7 +232,12 @@ pub fn run(args: AccuracyArgs) -> anyhow::Result<()> {
         md.push_str(&r.to_markdown());
         md.push('\n');
     }
-    let json = serde_json::json!({ "median": median, "records": reports });
+    // Through a JSON value, whose objects sort their keys: the file has always listed
+    // every object's keys (the studies' too) in alphabetical order.
+    let json = serde_json::to_value(AccuracyFile {
+        median: median.as_ref(),
+        records: &reports,
+    })?;
     // Appended, not `with_extension`: a name like `x-0.40g` keeps its dot.
     let file = |ext: &str| args.out.join(format!("{name}.{ext}"));
     write_atomic(&file("csv"), csv.as_bytes())?;

@@ -6,7 +6,8 @@
 use super::figure::Figure;
 use super::measure::{Bench, max_rel, peak_rss_kb, seconds_banded_dense, seconds_per_run, slope};
 use super::scenes::{
-    SceneOpts, TEN_STORY_BUILDING, damped_braces, first_damper_only, massless, plan, shear_building,
+    SceneOpts, TEN_STORY_BUILDING, config, damped_braces, first_damper_only, massless, plan,
+    shear_building,
 };
 use crate::cmd::scene_args::BENCHMARK_BUILDING;
 use crate::cmd::study_args::load_study;
@@ -19,12 +20,12 @@ use std::time::Instant;
 /// Accuracy of `newmark`'s default step against `exact`, then its throughput, on the
 /// benchmark and the ten-storey building.
 pub(super) fn defaults(bench: &mut Bench) -> anyhow::Result<()> {
-    let (b3, b10) = (BENCHMARK_BUILDING, TEN_STORY_BUILDING);
+    let (b3, b10) = (config(BENCHMARK_BUILDING)?, config(TEN_STORY_BUILDING)?);
     // Accuracy of the defaults, then throughput. The benchmark's 5000/s target is
     // withdrawn; 3500/s guards against regressions (results/performance/README.md).
     for (name, building, target, withdrawn) in [
-        ("benchmark-3story", b3, 3500.0, Some(5000.0)),
-        ("ten-story", b10, 500.0, None),
+        ("benchmark-3story", &b3, 3500.0, Some(5000.0)),
+        ("ten-story", &b10, 500.0, None),
     ] {
         let case = format!("{name}, 15 s synthetic, newmark default dt");
         if bench.want(&case) {
@@ -63,10 +64,10 @@ pub(super) fn defaults(bench: &mut Bench) -> anyhow::Result<()> {
 
 /// What energies cost, and that they balance.
 pub(super) fn energies(bench: &mut Bench) -> anyhow::Result<()> {
-    let (b3, b10) = (BENCHMARK_BUILDING, TEN_STORY_BUILDING);
+    let (b3, b10) = (config(BENCHMARK_BUILDING)?, config(TEN_STORY_BUILDING)?);
     // What asking for energies costs (peaks-only runs pay nothing for them), and that the
     // energies balance: Newmark's average acceleration balances them to round-off.
-    for (name, building) in [("benchmark-3story", b3), ("ten-story", b10)] {
+    for (name, building) in [("benchmark-3story", &b3), ("ten-story", &b10)] {
         let case = format!("outputs: {name} newmark default dt, energies vs peaks only");
         if bench.want(&case) {
             let opts = SceneOpts::new(MethodName::Newmark);
@@ -117,20 +118,20 @@ pub(super) fn energies(bench: &mut Bench) -> anyhow::Result<()> {
 
 /// The plan reductions: the same answers as the full plans, in less time.
 pub(super) fn reductions(bench: &mut Bench) -> anyhow::Result<()> {
-    let (b3, b10) = (BENCHMARK_BUILDING, TEN_STORY_BUILDING);
+    let (b3, b10) = (config(BENCHMARK_BUILDING)?, config(TEN_STORY_BUILDING)?);
     // The plan reductions pay: same answers, less time.
     for (case, building) in [
         (
             "reductions: benchmark-3story m'=0, c'>0 (EPP elements vs 2N DOFs)",
-            damped_braces(&massless(b3)?)?,
+            damped_braces(massless(b3.clone())),
         ),
         (
             "reductions: ten-story m'=0, c'>0 (EPP elements vs 2N DOFs)",
-            damped_braces(&massless(b10)?)?,
+            damped_braces(massless(b10.clone())),
         ),
         (
             "reductions: benchmark-3story m'=0, c'>0, damper on floor 1 only",
-            first_damper_only(&damped_braces(&massless(b3)?)?)?,
+            first_damper_only(damped_braces(massless(b3.clone()))),
         ),
     ] {
         if !bench.want(case) {
@@ -169,7 +170,7 @@ pub(super) fn reductions(bench: &mut Bench) -> anyhow::Result<()> {
 
 /// Cost against record length (linear).
 pub(super) fn record_length(bench: &mut Bench) -> anyhow::Result<()> {
-    let b3 = BENCHMARK_BUILDING;
+    let b3 = config(BENCHMARK_BUILDING)?;
     // Cost against record length (linear) and storeys (as measured).
     let case = "benchmark-3story newmark, record length 15/30/60/120 s";
     if bench.want(case) {
@@ -177,7 +178,7 @@ pub(super) fn record_length(bench: &mut Bench) -> anyhow::Result<()> {
         let mut ys = Vec::new();
         for d in [15.0, 30.0, 60.0, 120.0] {
             let p = plan(
-                b3,
+                &b3,
                 SceneOpts {
                     duration: d,
                     ..SceneOpts::new(MethodName::Newmark)
@@ -209,7 +210,7 @@ pub(super) fn record_length(bench: &mut Bench) -> anyhow::Result<()> {
 /// The plan of a cost-vs-storeys scene: `building(n)` under newmark at Δt = 2.5 ms.
 fn storey_plan(building: &dyn Fn(usize) -> String, n: usize) -> anyhow::Result<Plan> {
     plan(
-        &building(n),
+        &config(&building(n))?,
         SceneOpts {
             dt: Some(0.0025),
             ..SceneOpts::new(MethodName::Newmark)
@@ -369,7 +370,7 @@ pub(super) fn memory(bench: &mut Bench) -> anyhow::Result<()> {
 /// The memory case's child: one peaks-only run, then the process's peak RSS in kB.
 pub(super) fn memory_probe(seconds: f64) -> anyhow::Result<()> {
     let p = plan(
-        BENCHMARK_BUILDING,
+        &config(BENCHMARK_BUILDING)?,
         SceneOpts {
             duration: seconds,
             ..SceneOpts::new(MethodName::Newmark)

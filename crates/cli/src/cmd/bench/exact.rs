@@ -6,8 +6,8 @@
 use super::figure::Figure;
 use super::measure::{Bench, Budget, max_rel, seconds_per_run};
 use super::scenes::{
-    PAPER_1STORY_BUILDING, SceneOpts, TEN_STORY_BUILDING, comparison_record, locked, massless,
-    plan, record_plan,
+    PAPER_1STORY_BUILDING, SceneOpts, TEN_STORY_BUILDING, comparison_record, config, locked,
+    massless, plan, record_plan,
 };
 use crate::cmd::scene_args::BENCHMARK_BUILDING;
 use slipload_sim::{MethodName, Plan, run_plan};
@@ -108,7 +108,7 @@ fn opensees_equal_accuracy() -> Vec<(f64, f64, bool)> {
 /// `newmark` against their guards (and the withdrawn targets beside them), stick-slip
 /// events, and the counted work beside what a unit of it costs.
 pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
-    let (b3, b10) = (BENCHMARK_BUILDING, TEN_STORY_BUILDING);
+    let (b3, b10) = (config(BENCHMARK_BUILDING)?, config(TEN_STORY_BUILDING)?);
     // `exact`: its speed targets of issue 17 are withdrawn (the method's floor is above
     // them, results/performance/README.md); its rows are regression guards with 20 %
     // headroom on the rates and ratios to newmark measured on the two machines the
@@ -118,13 +118,13 @@ pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
     for (name, building, guard, withdrawn) in [
         (
             "benchmark-3story",
-            b3.to_string(),
+            b3.clone(),
             ExactGuard::across([(69.2, 42.42), (52.95, 54.71)]),
             (Some(1000.0), Some(5.0)),
         ),
         (
             "benchmark-3story m'=0",
-            massless(b3)?,
+            massless(b3.clone()),
             ExactGuard::across([(477.7, 6.954), (361.3, 8.700)]),
             (Some(5000.0), Some(1.5)),
         ),
@@ -133,7 +133,7 @@ pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
         // the floor under the m′ = 0 ratio.
         (
             "benchmark-3story m'=0 locked",
-            locked(&massless(b3)?)?,
+            locked(massless(b3.clone())),
             ExactGuard::across([(943.1, 3.946), (752.1, 4.710)]),
             (None, None),
         ),
@@ -144,7 +144,7 @@ pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
         // 10.37-10.57, which sets the guard; the rate guard is unchanged.
         (
             "ten-story",
-            b10.to_string(),
+            b10,
             ExactGuard {
                 ratio: ExactGuard::across([(70.94, 10.57)]).ratio,
                 ..ExactGuard::across([(98.14, 6.500), (74.06, 7.593)])
@@ -153,7 +153,7 @@ pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
         ),
         (
             "paper-1story",
-            PAPER_1STORY_BUILDING.to_string(),
+            config(PAPER_1STORY_BUILDING)?,
             ExactGuard::across([(2575.6, 0.567), (2234.4, 0.6574)]),
             (None, None),
         ),
@@ -224,7 +224,7 @@ pub(super) fn guards(bench: &mut Bench) -> anyhow::Result<()> {
 /// The equal-accuracy case: `exact` and `newmark` along a ladder of steps on the scene
 /// of the comparison with OpenSees, and the times to reach 1e-3 and 1e-4.
 pub(super) fn equal_accuracy(bench: &mut Bench) -> anyhow::Result<()> {
-    let b3 = BENCHMARK_BUILDING;
+    let b3 = config(BENCHMARK_BUILDING)?;
     // What an engineer buys: the time to reach a peak-drift error of 1e-3 and 1e-4 against
     // `exact` (continuous peaks), newmark along a ladder of steps against exact at its
     // default step, on the scene of the equal-accuracy comparison with OpenSees (the
@@ -232,7 +232,7 @@ pub(super) fn equal_accuracy(bench: &mut Bench) -> anyhow::Result<()> {
     // samples), and OpenSees's times from that comparison beside them.
     let case = "equal accuracy: benchmark-3story m'=0, 15 s synthetic";
     if bench.want(case) {
-        let building = massless(b3)?;
+        let building = massless(b3);
         let record = comparison_record()?;
         let plans = (|| -> anyhow::Result<(Plan, Vec<(f64, Plan)>)> {
             let pe = record_plan(&building, &record, MethodName::Exact, None)?;

@@ -1,11 +1,19 @@
 //! The scenes of `slipload bench`: the embedded buildings and the edits that make the
 //! bench's variants of them (massless dampers, damped braces, locked dampers, one damper),
 //! the bench's shear buildings, and the peaks-only scenes and plans under the 15 s
-//! synthetic record or the record of the equal-accuracy comparison with OpenSees.
+//! synthetic record or the record of the equal-accuracy comparison with OpenSees. Built
+//! from the library's config types (a building's config, a scene's), as a scene file
+//! would be read.
 
 use anyhow::Context;
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
-use slipload_sim::{MethodName, Plan, Scene, SceneOverrides};
+use slipload_sim::building::{DissipatorConfig, SlipLoad};
+use slipload_sim::scene::{
+    BuildingRef, ExcitationConfig, MethodConfig, OutputsConfig, RecordConfig, SceneConfig,
+    SyntheticConfig,
+};
+use slipload_sim::units::{Damping, Mass, Time};
+use slipload_sim::{BuildingConfig, MethodName, Plan, Scene, SceneOverrides};
 use std::path::Path;
 
 /// The ten-storey building, embedded so `slipload bench` runs with no files.
@@ -14,45 +22,47 @@ pub(super) const TEN_STORY_BUILDING: &str = include_str!("../../../../../configs
 pub(super) const PAPER_1STORY_BUILDING: &str =
     include_str!("../../../../../configs/paper-1story.json");
 
-/// A building JSON with `edit` applied to each dissipator (with its index).
+/// The config of a building file's JSON (an embedded building, a shear building).
+pub(super) fn config(building: &str) -> anyhow::Result<BuildingConfig> {
+    Ok(serde_json::from_str(building)?)
+}
+
+/// `building` with `edit` applied to each dissipator (with its index).
 fn edit_dissipators(
-    building: &str,
-    mut edit: impl FnMut(usize, &mut serde_json::Value),
-) -> anyhow::Result<String> {
-    let mut v: serde_json::Value = serde_json::from_str(building)?;
-    if let Some(ds) = v["dissipators"].as_array_mut() {
-        for (i, d) in ds.iter_mut().enumerate() {
-            edit(i, d);
-        }
+    mut building: BuildingConfig,
+    mut edit: impl FnMut(usize, &mut DissipatorConfig),
+) -> BuildingConfig {
+    for (i, d) in building.dissipators.iter_mut().enumerate() {
+        edit(i, d);
     }
-    Ok(v.to_string())
+    building
 }
 
-/// A building JSON with every dissipator mass set to 0 (the m′ = 0 design model).
-pub(super) fn massless(building: &str) -> anyhow::Result<String> {
-    edit_dissipators(building, |_, d| d["mass"] = 0.into())
+/// `building` with every dissipator mass set to 0 (the m′ = 0 design model).
+pub(super) fn massless(building: BuildingConfig) -> BuildingConfig {
+    edit_dissipators(building, |_, d| d.mass = Some(Mass(0.0)))
 }
 
-/// A building JSON with a brace dashpot c′ = 10⁵ N·s/m on every dissipator (under 1 % of
+/// `building` with a brace dashpot c′ = 10⁵ N·s/m on every dissipator (under 1 % of
 /// critical on the shipped frames): a massless dissipator then keeps a velocity of its
 /// own, and its condensation into an EPP element is exact, so the reduced and full plans
 /// agree to round-off. (With c′ = 0 the reduced plan steps the algebraic element by the
 /// return mapping, more accurately than the full plan's zero-mass DOF: docs/MODEL.md.)
-pub(super) fn damped_braces(building: &str) -> anyhow::Result<String> {
-    edit_dissipators(building, |_, d| d["brace_damping"] = 1e5.into())
+pub(super) fn damped_braces(building: BuildingConfig) -> BuildingConfig {
+    edit_dissipators(building, |_, d| d.brace_damping = Some(Damping(1e5)))
 }
 
-/// A building JSON with every dissipator's slip load at 1e12 N, far above any force its
+/// `building` with every dissipator's slip load at 1e12 N, far above any force its
 /// brace carries under the bench records: the dissipators never slip.
-pub(super) fn locked(building: &str) -> anyhow::Result<String> {
-    edit_dissipators(building, |_, d| d["slip_load"] = "1e12 N".into())
+pub(super) fn locked(building: BuildingConfig) -> BuildingConfig {
+    edit_dissipators(building, |_, d| d.slip_load = Some(SlipLoad::Force(1e12)))
 }
 
-/// A building JSON with the slip load of every dissipator but the first set to 0.
-pub(super) fn first_damper_only(building: &str) -> anyhow::Result<String> {
+/// `building` with the slip load of every dissipator but the first set to 0.
+pub(super) fn first_damper_only(building: BuildingConfig) -> BuildingConfig {
     edit_dissipators(building, |i, d| {
         if i > 0 {
-            d["slip_load"] = 0.into();
+            d.slip_load = Some(SlipLoad::Force(0.0));
         }
     })
 }
@@ -85,25 +95,40 @@ impl SceneOpts {
     }
 }
 
-/// A scene of `building` (JSON) under the 15 s (or `duration`) synthetic record, peaks
-/// only unless energies are asked for.
-pub(super) fn scene(building: &str, o: SceneOpts) -> anyhow::Result<Scene> {
-    let json = format!(
-        r#"{{ "name": "bench", "building": {building},
-             "excitation": {{ "synthetic": {{ "seed": 2007, "duration": {}, "dt": 0.01 }} }},
-             "outputs": {{ "energies": {}, "histories": false }}, "reduce": {} }}"#,
-        o.duration, o.energies, o.reduce
-    );
+/// The name and origin of every bench scene (the origin names it in errors).
+const NAME: &str = "bench";
+const ORIGIN: &str = "slipload bench (embedded scene)";
+
+/// A scene of `building` under the 15 s (or `duration`) synthetic record, peaks only
+/// unless energies are asked for.
+pub(super) fn scene(building: &BuildingConfig, o: SceneOpts) -> anyhow::Result<Scene> {
+    let cfg = SceneConfig {
+        name: Some(NAME.into()),
+        description: None,
+        building: BuildingRef::Inline(Box::new(building.clone())),
+        excitation: ExcitationConfig {
+            synthetic: Some(SyntheticConfig {
+                seed: Some(2007),
+                duration: Some(Time(o.duration)),
+                dt: Some(Time(0.01)),
+                ..SyntheticConfig::default()
+            }),
+            ..ExcitationConfig::default()
+        },
+        duration: None,
+        method: MethodConfig::default(),
+        outputs: OutputsConfig {
+            energies: o.energies,
+            histories: false,
+        },
+        reduce: o.reduce,
+    };
     let over = SceneOverrides {
         method: Some(o.method),
         dt: o.dt,
         ..Default::default()
     };
-    Ok(Scene::from_json(
-        &json,
-        Path::new("slipload bench (embedded scene)"),
-        &over,
-    )?)
+    Ok(Scene::from_config(cfg, Path::new(ORIGIN), &over)?)
 }
 
 /// The record of the equal-accuracy comparison with OpenSees
@@ -135,32 +160,46 @@ pub(super) fn comparison_record() -> anyhow::Result<std::path::PathBuf> {
     Ok(path)
 }
 
-/// The peaks-only scene of `building` (JSON) under the record file `record` (m/s²).
+/// The peaks-only plan of `building` under the record file `record` (m/s²).
 pub(super) fn record_plan(
-    building: &str,
+    building: &BuildingConfig,
     record: &Path,
     method: MethodName,
     dt: Option<f64>,
 ) -> anyhow::Result<Plan> {
-    let json = serde_json::json!({
-        "name": "bench",
-        "building": serde_json::from_str::<serde_json::Value>(building)?,
-        "excitation": { "record": { "file": record, "units": "m/s2" } },
-        "outputs": { "energies": false, "histories": false },
-    });
+    let cfg = SceneConfig {
+        name: Some(NAME.into()),
+        description: None,
+        building: BuildingRef::Inline(Box::new(building.clone())),
+        excitation: ExcitationConfig {
+            record: Some(RecordConfig {
+                file: record.to_path_buf(),
+                units: Some("m/s2".into()),
+                dt: None,
+                scale: None,
+                scale_pga_g: None,
+                window: None,
+            }),
+            ..ExcitationConfig::default()
+        },
+        duration: None,
+        method: MethodConfig::default(),
+        outputs: OutputsConfig {
+            energies: false,
+            histories: false,
+        },
+        reduce: true,
+    };
     let over = SceneOverrides {
         method: Some(method),
         dt,
         ..Default::default()
     };
-    let scene = Scene::from_json(
-        &json.to_string(),
-        Path::new("slipload bench (embedded scene)"),
-        &over,
-    )?;
+    let scene = Scene::from_config(cfg, Path::new(ORIGIN), &over)?;
     Ok(Plan::compile(&scene)?)
 }
 
-pub(super) fn plan(building: &str, o: SceneOpts) -> anyhow::Result<Plan> {
+/// The plan of [`scene`].
+pub(super) fn plan(building: &BuildingConfig, o: SceneOpts) -> anyhow::Result<Plan> {
     Ok(Plan::compile(&scene(building, o)?)?)
 }
