@@ -429,11 +429,11 @@ fn walk_scene(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
 }
 
 fn walk_study(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
-    walk::<slipload_opt::study::StudyConfig>("study", w, t)
+    walk::<slipload_opt::model::config::StudyConfig>("study", w, t)
 }
 
 fn walk_designs(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
-    walk::<Vec<slipload_opt::rank::NamedDesign>>("designs", w, t)
+    walk::<Vec<slipload_opt::phases::rank::NamedDesign>>("designs", w, t)
 }
 
 fn roots() -> [(&'static str, WalkFn); 4] {
@@ -959,19 +959,19 @@ fn the_defaults_listed_are_the_ones_the_parsers_fill_in() {
         ),
         (
             "study.suites[].synthetic",
-            defaults::<slipload_opt::study::SyntheticSuiteConfig>(),
+            defaults::<slipload_opt::model::config::SyntheticSuiteConfig>(),
         ),
         (
             "study.fidelity",
-            defaults::<slipload_opt::study::FidelityConfig>(),
+            defaults::<slipload_opt::model::config::FidelityConfig>(),
         ),
         (
             "study.sweep",
-            defaults::<slipload_opt::study::SweepConfig>(),
+            defaults::<slipload_opt::model::config::SweepConfig>(),
         ),
         (
             "study.refine",
-            defaults::<slipload_opt::study::RefineConfig>(),
+            defaults::<slipload_opt::model::config::RefineConfig>(),
         ),
     ] {
         for (key, v) in value.as_object().unwrap() {

@@ -15,7 +15,8 @@ use crate::cmd::scene_args::BENCHMARK_BUILDING;
 use crate::cmd::study_args::load_study;
 use anyhow::{Context, bail, ensure};
 use serde::Serialize;
-use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
+use slipload_opt::eval::evaluate::{Task, run_tasks};
+use slipload_opt::model::fidelity::Fidelity;
 use slipload_sim::accuracy::{median, observed_order};
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::integrator::newmark::{StepPath, run_on_path};
@@ -425,7 +426,7 @@ fn comparison_record() -> anyhow::Result<std::path::PathBuf> {
         "slipload-bench-comparison-{}.csv",
         std::process::id()
     ));
-    slipload_opt::output::write_atomic(&path, format_csv(record).as_bytes())?;
+    slipload_opt::base::output::write_atomic(&path, format_csv(record).as_bytes())?;
     Ok(path)
 }
 

@@ -12,6 +12,7 @@ pub mod report;
 pub mod scene_args;
 pub mod simulate;
 pub mod study_args;
+pub mod study_text;
 pub mod sweep;
 pub mod table;
 
@@ -65,7 +66,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 /// or a device: said before any work, naming the flag (a folder that does not exist yet
 /// is created later).
 pub(crate) fn output_folder(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
-    Ok(slipload_opt::output::check_output_folder(flag, dir)?)
+    Ok(slipload_opt::base::output::check_output_folder(flag, dir)?)
 }
 
 pub(crate) fn count_flag(flag: &str, n: usize, limit: usize) -> anyhow::Result<()> {

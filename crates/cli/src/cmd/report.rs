@@ -8,7 +8,7 @@
 
 use crate::html::{csv_table, escape, json_table, markdown, sig};
 use anyhow::{Context, bail};
-use slipload_opt::output::write_atomic;
+use slipload_opt::base::output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
