@@ -230,13 +230,17 @@ impl StudyFolder {
             lock: Mutex::new(file),
             written: Mutex::new(written),
         };
+        // the list is kept from now on, even if this run is refused below: a later run
+        // must not take a user's file for an earlier slipload's
+        folder.save_list()?;
         let discarded = if request.fresh {
-            Some(folder.discard(&before)?)
+            let d = folder.discard(&before)?;
+            folder.save_list()?;
+            Some(d)
         } else {
             None
         };
         folder.refuse_foreign()?;
-        folder.save_list()?;
         Ok((folder, discarded))
     }
 
