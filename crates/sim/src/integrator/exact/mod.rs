@@ -131,7 +131,7 @@ mod propagate;
 mod search;
 
 use crate::error::SimError;
-use crate::integrator::Integrator;
+use crate::integrator::method::Integrator;
 use crate::integrator::state::{EnergyRow, base_shear, history_columns, push_energies};
 use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};

@@ -34,7 +34,7 @@ pub use banded::BandedStats;
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
-use crate::integrator::Integrator;
+use crate::integrator::method::Integrator;
 use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
     record_row, slip, slip_rate,
