@@ -1,6 +1,6 @@
 //! What kind of slipload input a JSON file is, recognised by its top-level keys — so that
 //! a file given to the wrong command is answered with what to run instead of a schema
-//! error about its first foreign field ([`SimError::WrongKind`]).
+//! error about its first foreign field ([`SimError::WrongKind`](crate::error::SimError::WrongKind)).
 //!
 //! The kinds and the keys that mark them (keys shared by several kinds, such as `name`
 //! and `description`, and `building` — which scenes and studies both have — mark none):
