@@ -383,7 +383,7 @@ fn dot<const M: usize>(a: &[f64; M], b: &[f64; M]) -> f64 {
 mod tests {
     #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
     use super::*;
-    use crate::friction::{BoxQp, kkt_residual};
+    use crate::friction::box_qp::{BoxQp, kkt_residual};
     use nalgebra::{DMatrix, DVector};
     use proptest::collection::vec;
     use proptest::prelude::*;
