@@ -16,7 +16,7 @@ pub enum Bound {
     Upper,
 }
 
-/// Work done by one [`BoxQp::solve`] call.
+/// Work done by one [`BoxQp::solve`](crate::friction::BoxQp::solve) call.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BoxQpStats {
     /// Active-set iterations: each one is a solve of the free-set linear system (one forward and
@@ -30,7 +30,7 @@ pub struct BoxQpStats {
     pub fast: bool,
 }
 
-/// Errors of [`BoxQp`].
+/// Errors of [`BoxQp`](crate::friction::BoxQp).
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum BoxQpError {
