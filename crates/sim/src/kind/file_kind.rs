@@ -1,21 +1,8 @@
-//! What kind of slipload input a JSON file is, recognised by its top-level keys — so that
-//! a file given to the wrong command is answered with what to run instead of a schema
-//! error about its first foreign field ([`SimError::WrongKind`]).
-//!
-//! The kinds and the keys that mark them (keys shared by several kinds, such as `name`
-//! and `description`, and `building` — which scenes and studies both have — mark none):
-//! - building: `floor_masses`, `mass_matrix`, `storey_stiffness`, `stiffness_matrix`,
-//!   `damping`, `storey_heights`, `dissipators`;
-//! - scene: `excitation`, `duration`, `method`, `outputs`, `reduce`;
-//! - study: `suites`, `space`, `constraints`, `objective`, `fidelity`, `sweep`, `refine`;
-//! - candidate designs (`optimize` writes `candidates.json`): a list of objects with
-//!   `slip_loads_kn`.
-//!
-//! An object with `building` and no other marking key is a scene. A file matching no kind,
-//! or two kinds equally, is not recognised (the schema error stands).
+//! The kinds of slipload input file and what a command expects, each kind recognised by
+//! a JSON file's top-level keys (listed in the `kind` module's docs). Plain data with no
+//! error of its own: `SimError::WrongKind` names these types, so the error enum sits
+//! above this file.
 
-use crate::error::SimError;
-use serde::de::DeserializeOwned;
 use std::path::Path;
 
 /// The kinds of input file slipload reads.
@@ -142,33 +129,6 @@ impl Expected {
     }
 }
 
-/// The wrong-kind error for `text` at `path` when it is recognisably another kind than
-/// `expected` (`None` when it is of the expected kind or not recognised).
-pub fn wrong_kind(text: &str, path: &Path, expected: Expected) -> Option<SimError> {
-    let found = FileKind::of_json(text)?;
-    (!expected.accepts(found)).then(|| SimError::WrongKind {
-        path: path.to_path_buf(),
-        found,
-        expected,
-    })
-}
-
-/// Parses `text` as `T`, a file of the `expected` kind. When it does not fit and is
-/// recognisably another kind of file, the error says which and what to run instead;
-/// otherwise it is serde's (field, line and column).
-pub fn parse<T: DeserializeOwned>(
-    text: &str,
-    path: &Path,
-    expected: Expected,
-) -> Result<T, SimError> {
-    serde_json::from_str(text).map_err(|source| {
-        wrong_kind(text, path, expected).unwrap_or_else(|| SimError::Json {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,29 +161,5 @@ mod tests {
         assert_eq!(kind("not json"), None);
         // As many scene keys as study keys: not recognised.
         assert_eq!(kind(r#"{"method": {}, "suites": []}"#), None);
-    }
-
-    #[test]
-    fn parse_names_the_kind_found() {
-        #[derive(Debug, serde::Deserialize)]
-        #[serde(deny_unknown_fields)]
-        #[allow(dead_code)]
-        struct Scene {
-            building: String,
-        }
-        let study = r#"{"building": "b.json", "suites": [], "space": {}, "objective": {}}"#;
-        let e = parse::<Scene>(study, Path::new("s.json"), Expected::SceneOrBuilding)
-            .expect_err("a study is not a scene");
-        let msg = e.to_string();
-        assert!(msg.contains("s.json is a study"), "{msg}");
-        assert!(msg.contains("slipload optimize s.json"), "{msg}");
-        // A scene with a misspelt field keeps serde's message.
-        let e = parse::<Scene>(
-            r#"{"building": "b", "excitatoin": {}}"#,
-            Path::new("t.json"),
-            Expected::SceneOrBuilding,
-        )
-        .expect_err("unknown field");
-        assert!(e.to_string().contains("excitatoin"), "{e}");
     }
 }

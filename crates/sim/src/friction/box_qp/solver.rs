@@ -1,64 +1,9 @@
-//! Box-constrained convex QP for the friction forces of one implicit time step.
-//!
-//! # Contract
-//!
-//! [`BoxQp`] solves
-//!
-//! ```text
-//! F = argmin_{lo ≤ F ≤ hi}  ½ FᵀWF − Fᵀb
-//! ```
-//!
-//! for a symmetric positive definite `W` (the Delassus matrix, m×m, fixed for the whole run and
-//! checked by a Cholesky factorisation in [`BoxQp::new`]), a right-hand side `b` (the free slip
-//! rates `w_free`, new every step) and bounds `lo ≤ hi` (per damper; `lo = hi` fixes a
-//! variable, infinite bounds are allowed). Because `W` is positive definite the minimiser is
-//! unique and is characterised by the KKT conditions, written with the slip rates
-//! `w = b − WF`:
-//!
-//! * `lo_i < F_i < hi_i` (stick): `w_i = 0`;
-//! * `F_i = hi_i`: `w_i ≥ 0`;  `F_i = lo_i`: `w_i ≤ 0` (slip).
-//!
-//! The returned `F` lies inside the box *exactly*: a variable reported at a bound
-//! ([`BoxQp::status`]) holds exactly `lo_i` or `hi_i`, bit for bit. The KKT conditions hold to
-//! round-off: [`kkt_residual`] is a small multiple of `m · ε` relative to `‖W‖∞‖F‖∞ + ‖b‖∞`
-//! (the tests assert `≤ 1e-10`; in practice it is ~1e-15).
-//!
-//! # Algorithm
-//!
-//! A primal active-set method for strictly convex QP (Nocedal & Wright, *Numerical
-//! Optimization*, 2nd ed., §16.5), specialised to bounds. The working set is the set of
-//! variables held at a bound; the others ("free") solve the equality-constrained subproblem
-//! `W_FF F_F = b_F − W_FB F_B`. Each iteration either
-//!
-//! 1. steps from the current feasible iterate towards that subproblem's solution, stopping at
-//!    the first bound it meets (the blocking variable joins the working set), or
-//! 2. having reached the subproblem's solution, computes `w` on the bound variables (their
-//!    multipliers) and releases one whose multiplier has the wrong sign (the one that alone
-//!    would lower the objective most, `w_i²/(2 W_ii)`); when none has, the iterate is
-//!    optimal.
-//!
-//! The objective decreases strictly at every step of positive length, so a working set is
-//! never revisited except through zero-length (degenerate) steps. After a few consecutive
-//! degenerate steps the choices switch to a least-index rule (Bland's rule), and a variable
-//! that is blocked again, at zero step, right after being released is not released again in
-//! that call (its multiplier's sign was lost in round-off). An iteration cap of `10·m + 50`
-//! turns any remaining failure into [`BoxQpError::IterationLimit`]; the method never loops
-//! forever and never returns a non-finite `F`.
-//!
-//! The free-set matrix `W_FF` is kept as a Cholesky factor that is updated, not recomputed,
-//! when one variable enters (bordering, O(k²)) or leaves (Givens rotations, O(k²)) the free
-//! set, and it survives between calls. Each call starts from the previous call's working set
-//! (warm start), so when the stick/slip pattern of consecutive time steps is unchanged a call
-//! costs one triangular solve pair plus one product with `W` and does not touch the factor.
-//! The factor is recomputed from scratch when many variables change at once, after many
-//! updates, or when the computed free-variable residual exceeds the round-off threshold.
-//!
-//! Round-off thresholds are relative: a multiplier counts as having the wrong sign only if it
-//! exceeds `8 (m + 1) ε (‖W‖∞‖F‖∞ + ‖b‖∞)`, so grazing contacts do not flip-flop.
-//!
-//! `solve` does not allocate: all scratch space is sized in [`BoxQp::new`].
+//! The primal active-set solver [`BoxQp`] (the method is in the `box_qp` module docs):
+//! the working set, the free block's Cholesky factor kept up to date by bordering and
+//! Givens rotations, the warm start and the fast path of cached free-block inverses.
 
-use thiserror::Error;
+use super::cholesky::{axpy, cholesky_in_place, cholesky_solve, dot, pivot_floor};
+use super::outcome::{Bound, BoxQpError, BoxQpStats};
 
 /// Marks "not in the free list" in the position table.
 const NONE: usize = usize::MAX;
@@ -77,95 +22,6 @@ const INV_SLOTS: usize = 16;
 
 /// Marks an empty cache slot (no free set has all 64 bits).
 const EMPTY: u64 = u64::MAX;
-
-/// Where a variable sits after a solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Bound {
-    /// Strictly inside or, at a tie, on the box but not held there: the damper sticks
-    /// (`w_i = 0` to round-off).
-    #[default]
-    Free,
-    /// Held at `lo_i` (`w_i ≤ 0`). Fixed variables (`lo_i = hi_i`) report `Lower`.
-    Lower,
-    /// Held at `hi_i` (`w_i ≥ 0`).
-    Upper,
-}
-
-/// Work done by one [`BoxQp::solve`] call.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct BoxQpStats {
-    /// Active-set iterations: each one is a solve of the free-set linear system (one forward and
-    /// one backward triangular solve). A warm start with an unchanged pattern takes 1.
-    pub iterations: u32,
-    /// Changes to the free-set Cholesky factor: full factorisations plus incremental
-    /// insertions and deletions of one variable (each O(k²)). 0 when the pattern is unchanged.
-    pub factorizations: u32,
-    /// The answer came from the fast path: the previous working set was still optimal and its
-    /// free block's inverse was cached (one product with `W_FF⁻¹`, one with `W`).
-    pub fast: bool,
-}
-
-/// Errors of [`BoxQp`].
-#[derive(Debug, Error)]
-#[non_exhaustive]
-pub enum BoxQpError {
-    /// A slice has the wrong length.
-    #[error("{what} has length {got}, expected {expected}")]
-    DimensionMismatch {
-        /// Which argument.
-        what: &'static str,
-        /// Length required by the problem size.
-        expected: usize,
-        /// Length given.
-        got: usize,
-    },
-    /// `W` is not symmetric to within `1e-8·sqrt(W_ii W_jj)`.
-    #[error("W is not symmetric: W[{row},{col}] = {upper} but W[{col},{row}] = {lower}")]
-    NotSymmetric {
-        /// Row of the first offending entry (above the diagonal).
-        row: usize,
-        /// Column of the first offending entry.
-        col: usize,
-        /// `W[row, col]`.
-        upper: f64,
-        /// `W[col, row]`.
-        lower: f64,
-    },
-    /// A Cholesky pivot was not above `4 m ε W_ii`: `W` is not (numerically) positive definite.
-    #[error("W is not positive definite: Cholesky pivot {pivot:e} for variable {index}")]
-    NotPositiveDefinite {
-        /// Variable whose pivot failed.
-        index: usize,
-        /// The pivot `W_ii − Σ L_ip²`.
-        pivot: f64,
-    },
-    /// Bounds that admit no value: `lo > hi`, a NaN, `lo = +∞` or `hi = −∞`.
-    #[error("invalid bounds for variable {index}: lo = {lo}, hi = {hi}")]
-    BadBounds {
-        /// Variable index.
-        index: usize,
-        /// Its lower bound.
-        lo: f64,
-        /// Its upper bound.
-        hi: f64,
-    },
-    /// A NaN or infinity in the input (`W`, `b`) or, after overflow, in the solution.
-    #[error("{what}[{index}] = {value} is not finite")]
-    NonFinite {
-        /// `"W"`, `"b"` or `"solution"`.
-        what: &'static str,
-        /// Flat index of the entry (column-major for `W`).
-        index: usize,
-        /// The value found.
-        value: f64,
-    },
-    /// The active-set iteration hit its cap (`10·m + 50`). The warm start is reset.
-    #[error("box QP did not terminate within {iterations} iterations")]
-    IterationLimit {
-        /// Iterations performed.
-        iterations: u32,
-    },
-}
 
 /// Solver for min ½FᵀWF − Fᵀb over lo ≤ F ≤ hi, W SPD fixed at construction.
 ///
@@ -212,81 +68,6 @@ pub struct BoxQp {
     last_mask: u64,
     /// Fast path scratch: free variables in increasing order.
     idx: Vec<usize>,
-}
-
-/// `aᵀb` over the shorter length, with four partial sums so that it vectorises.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut acc = [0.0f64; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = ca
-        .remainder()
-        .iter()
-        .zip(cb.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in ca.zip(cb) {
-        for l in 0..4 {
-            acc[l] += x[l] * y[l];
-        }
-    }
-    (acc[0] + acc[2]) + (acc[1] + acc[3]) + tail
-}
-
-/// `y += a x`.
-fn axpy(a: f64, x: &[f64], y: &mut [f64]) {
-    for (yi, xi) in y.iter_mut().zip(x) {
-        *yi += a * xi;
-    }
-}
-
-/// Smallest acceptable Cholesky pivot for a variable with diagonal `w_ii` in an m×m problem:
-/// below this the pivot is indistinguishable from round-off.
-fn pivot_floor(m: usize, w_ii: f64) -> f64 {
-    4.0 * m as f64 * f64::EPSILON * w_ii
-}
-
-/// In-place Cholesky factorisation `A = L Lᵀ` of the leading `k×k` block of `a` (row-major,
-/// leading dimension `ld`, lower triangle read and overwritten). On a pivot not above
-/// `floor(q)` returns `Err((q, pivot))`.
-fn cholesky_in_place(
-    a: &mut [f64],
-    k: usize,
-    ld: usize,
-    floor: impl Fn(usize) -> f64,
-) -> Result<(), (usize, f64)> {
-    for j in 0..k {
-        let rj = j * ld;
-        let s = a[rj + j] - dot(&a[rj..rj + j], &a[rj..rj + j]);
-        if s.is_nan() || s <= floor(j) {
-            return Err((j, s));
-        }
-        let d = s.sqrt();
-        a[rj + j] = d;
-        for i in j + 1..k {
-            let ri = i * ld;
-            let s = a[ri + j] - dot(&a[ri..ri + j], &a[rj..rj + j]);
-            a[ri + j] = s / d;
-        }
-    }
-    Ok(())
-}
-
-/// Solves `L Lᵀ x = y` in place for the leading `k×k` factor `l` (row-major, leading
-/// dimension `ld`).
-fn cholesky_solve(l: &[f64], k: usize, ld: usize, y: &mut [f64]) {
-    for q in 0..k {
-        let rq = q * ld;
-        let s = y[q] - dot(&l[rq..rq + q], &y[..q]);
-        y[q] = s / l[rq + q];
-    }
-    for q in (0..k).rev() {
-        let rq = q * ld;
-        let xq = y[q] / l[rq + q];
-        y[q] = xq;
-        axpy(-xq, &l[rq..rq + q], &mut y[..q]);
-    }
 }
 
 impl BoxQp {
@@ -922,49 +703,6 @@ impl BoxQp {
         self.fresh = false;
         self.updates += 1;
     }
-}
-
-/// KKT violation of `f` for min ½FᵀWF − Fᵀb over lo ≤ F ≤ hi, relative to the problem's size.
-///
-/// With `w = b − WF` and `L = ‖W‖∞`, each variable contributes the natural (projected-gradient)
-/// residual `L·|F_i − clamp(F_i + w_i/L, lo_i, hi_i)|`, which is `|w_i|` for an interior
-/// variable, the wrong-sign part of `w_i` at a bound, and covers infeasibility too; the
-/// maximum is divided by `L‖F‖∞ + ‖b‖∞` (if that is 0, it is returned unscaled). 0 exactly at
-/// the minimiser; round-off gives a few `m·ε`. Returns `+∞` if any input is non-finite or a
-/// bound pair is invalid. `w` is column-major m×m.
-///
-/// For positive definite `W` with smallest eigenvalue `μ`, the distance to the minimiser is at
-/// most `2 ‖r‖₂ / μ`, where `r` is the vector of unscaled per-variable residuals.
-///
-/// # Panics
-/// If a slice length does not match `m`.
-pub fn kkt_residual(w: &[f64], m: usize, b: &[f64], lo: &[f64], hi: &[f64], f: &[f64]) -> f64 {
-    assert_eq!(w.len(), m * m, "W must be m×m");
-    for s in [b, lo, hi, f] {
-        assert_eq!(s.len(), m, "vectors must have length m");
-    }
-    if w.iter().chain(b).chain(f).any(|v| !v.is_finite())
-        || lo
-            .iter()
-            .zip(hi)
-            .any(|(l, h)| l.is_nan() || h.is_nan() || l > h)
-    {
-        return f64::INFINITY;
-    }
-    let w_norm = (0..m)
-        .map(|i| (0..m).map(|j| w[i + j * m].abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let step = if w_norm > 0.0 { w_norm } else { 1.0 };
-    let mut worst = 0.0f64;
-    for i in 0..m {
-        let wi = b[i] - (0..m).map(|j| w[i + j * m] * f[j]).sum::<f64>();
-        let projected = (f[i] + wi / step).min(hi[i]).max(lo[i]);
-        worst = worst.max(step * (f[i] - projected).abs());
-    }
-    let f_norm = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let b_norm = b.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let scale = w_norm * f_norm + b_norm;
-    if scale > 0.0 { worst / scale } else { worst }
 }
 
 #[cfg(test)]
