@@ -7,7 +7,7 @@
 /// or a device: said before any work, naming the flag (a folder that does not exist yet
 /// is created later).
 pub(crate) fn output_folder(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
-    Ok(slipload_opt::output::check_output_folder(flag, dir)?)
+    Ok(slipload_opt::base::output::check_output_folder(flag, dir)?)
 }
 
 /// Refuses a count flag (`--count`, `--repeats`, `--shards` …) of `n` above `limit`,

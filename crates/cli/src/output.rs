@@ -1,5 +1,5 @@
 //! Terminal output: `--quiet` and standard output that survives a closed pipe. Files are
-//! written by [`slipload_opt::output::write_atomic`] (temporary file, sync, rename).
+//! written by [`slipload_opt::base::output::write_atomic`] (temporary file, sync, rename).
 
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};

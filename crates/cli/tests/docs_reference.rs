@@ -346,19 +346,19 @@ fn the_defaults_listed_are_the_ones_the_parsers_fill_in() {
         ),
         (
             "study.suites[].synthetic",
-            defaults::<slipload_opt::study::SyntheticSuiteConfig>(),
+            defaults::<slipload_opt::model::config::SyntheticSuiteConfig>(),
         ),
         (
             "study.fidelity",
-            defaults::<slipload_opt::study::FidelityConfig>(),
+            defaults::<slipload_opt::model::config::FidelityConfig>(),
         ),
         (
             "study.sweep",
-            defaults::<slipload_opt::study::SweepConfig>(),
+            defaults::<slipload_opt::model::config::SweepConfig>(),
         ),
         (
             "study.refine",
-            defaults::<slipload_opt::study::RefineConfig>(),
+            defaults::<slipload_opt::model::config::RefineConfig>(),
         ),
     ] {
         for (key, v) in value.as_object().unwrap() {

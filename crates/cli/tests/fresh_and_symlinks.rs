@@ -27,7 +27,9 @@ fn fresh_removes_every_file_slipload_wrote_and_names_what_it_keeps() {
     assert!(ok, "{err}");
     let fresh_bytes = std::fs::read(out.join("responses.csv")).unwrap();
     // what other commands left here: optimize's figures and tables, a ranking, a
-    // family table, the report, a temporary file of an interrupted write
+    // family table, the report, a temporary file of an interrupted write — each named in
+    // the folder's list of the files slipload wrote there (the lock file), as those
+    // commands name them
     let stale = [
         "convergence.svg",
         "convergence.csv",
@@ -41,9 +43,15 @@ fn fresh_removes_every_file_slipload_wrote_and_names_what_it_keeps() {
         "report.html",
         ".designs.csv.tmp",
     ];
+    let mut list = std::fs::read_to_string(out.join(".slipload.lock")).unwrap();
     for f in stale {
         std::fs::write(out.join(f), "stale").unwrap();
+        if !f.ends_with(".tmp") {
+            list.push_str(f);
+            list.push('\n');
+        }
     }
+    std::fs::write(out.join(".slipload.lock"), list).unwrap();
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"]);
     assert!(ok, "{err}");
@@ -95,5 +103,63 @@ fn an_output_that_is_a_symlink_is_refused_and_its_target_untouched() {
         // refused before anything ran: no journal, no table
         assert!(!out.join("manifest.json").exists(), "{name}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--fresh` removes the files slipload wrote and nothing else: a user's own files in
+/// the folder — under any name, one of slipload's output names included — are kept and
+/// named, and a file under an output name that slipload did not write is never
+/// overwritten: the run is refused before it starts, naming it.
+#[test]
+fn a_users_files_are_kept_and_never_overwritten() {
+    let dir = common::scratch("fresh", "users");
+    let st = study(&dir);
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    // the user's own table, under the name the sweep writes, in a folder slipload never
+    // wrote into
+    std::fs::write(out.join("designs.csv"), "my designs").unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    for extra in [&[][..], &["--fresh"][..]] {
+        let mut args = vec!["sweep", s(&st), "--out", s(&out), "--quiet"];
+        args.extend_from_slice(extra);
+        let (ok, err) = run(&args);
+        assert!(
+            !ok,
+            "sweep {extra:?} over a user's designs.csv must be refused"
+        );
+        assert!(
+            err.contains("designs.csv") && err.contains("did not write"),
+            "the refusal names the file and why: {err}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(out.join("designs.csv")).unwrap(),
+            "my designs"
+        );
+        assert!(!out.join("journal.jsonl").exists(), "nothing ran: {err}");
+    }
+    // moved away, the sweep runs; --fresh then removes its files and keeps the user's
+    std::fs::rename(out.join("designs.csv"), dir.join("my-designs.csv")).unwrap();
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--quiet"]);
+    assert!(ok, "{err}");
+    std::fs::write(out.join("my-plot.png"), "mine too").unwrap();
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--fresh", "--quiet"]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("--fresh: kept my-plot.png, notes.txt"),
+        "it names what it keeps: {err}"
+    );
+    assert!(
+        err.contains("journal.jsonl"),
+        "it names what it removed: {err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("my-plot.png")).unwrap(),
+        "mine too"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -114,3 +114,70 @@ fn a_second_command_into_a_folder_in_use_is_refused_and_the_first_is_intact() {
     ok(&["merge", "--out", s(&merged), s(&out)]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Two processes sweeping into one folder: while the first runs (it holds the lock), the
+/// second is refused at once, and the first finishes with the bytes of a sweep that ran
+/// alone.
+#[test]
+fn two_processes_one_folder_the_second_is_refused_and_the_first_finishes() {
+    use std::process::{Command, Stdio};
+    let dir = common::scratch("lock", "two");
+    // the tiny study with enough designs that the first run is still going when the
+    // second starts (its lock is watched, not its time)
+    let st = study(&dir);
+    let text = std::fs::read_to_string(&st)
+        .unwrap()
+        .replace("\"points\": 2", "\"points\": 2000");
+    std::fs::write(&st, text).unwrap();
+    let out = dir.join("out");
+    let mut first = Command::new(env!("CARGO_BIN_EXE_slipload"))
+        .args([
+            "sweep",
+            s(&st),
+            "--out",
+            s(&out),
+            "--quiet",
+            "--threads",
+            "1",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // wait until the first holds the folder's lock
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(T * 5);
+    loop {
+        let held = std::fs::File::open(out.join(".slipload.lock"))
+            .map(|f| matches!(f.try_lock_shared(), Err(std::fs::TryLockError::WouldBlock)))
+            .unwrap_or(false);
+        if held {
+            break;
+        }
+        assert!(
+            first.try_wait().unwrap().is_none(),
+            "the first sweep ended before its lock was seen"
+        );
+        assert!(std::time::Instant::now() < deadline, "no lock taken");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    refused_busy(&["sweep", s(&st), "--out", s(&out), "--quiet"], &out);
+    let done = first.wait_with_output().unwrap();
+    assert!(
+        done.status.success(),
+        "the first sweep finishes: {}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let alone = dir.join("alone");
+    ok(&["sweep", s(&st), "--out", s(&alone), "--quiet"]);
+    let files = |d: &Path| -> Vec<(String, Vec<u8>)> {
+        snapshot(d)
+            .into_iter()
+            .filter(|(n, _)| n != ".slipload.lock" && n != "journal.jsonl")
+            .collect()
+    };
+    assert!(
+        files(&out) == files(&alone),
+        "the first run's files are those of a sweep that ran alone"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -8,11 +8,12 @@
 //!   axis ([`plot::axis`]) and style ([`plot::style`]) helpers; the SVG → PNG step
 //!   ([`plot::raster`]).
 //! - [`study::write`]: the study figures of `optimize`, `sweep` and `merge` (SVG, PNG and
-//!   the CSV of their data) from a [`slipload_opt::pipeline::FigureData`], returning the
+//!   the CSV of their data) from a [`slipload_opt::phases::figures::FigureData`], returning the
 //!   names written; [`study::map_csv`], [`study::convergence_csv`],
 //!   [`study::drift_profiles_csv`], [`study::scatter_csv`] give the CSV texts alone.
-//! - [`write_optimized`]: every figure of an `optimize` run from its report — the study
-//!   figures and, for a study with `objectives`, the front — the one call each front makes.
+//! - [`StudyFigures`]: the figure writer every front hands to the study commands of
+//!   [`slipload_opt::pipeline`] (it implements [`slipload_opt::pipeline::FigureWriter`]):
+//!   the study figures and, for a study with `objectives`, the front.
 //! - [`pareto::write_front`]: the front figure of a study with `objectives`
 //!   (`pareto-front.{svg,png,csv}`), [`pareto::front_csv`] its CSV text alone.
 //! - [`check_fonts`]: whether the PNG text font can be found, checked before any work so
@@ -31,16 +32,31 @@ pub mod study;
 pub use error::{FigureError, FontError};
 pub use plot::raster::check_fonts;
 
-/// Every figure `optimize` draws from its report, into `dir`: the study figures
-/// ([`study::write`]) and, when the study names `objectives`, the front
-/// ([`pareto::write_front`]). Returns the names written.
-pub fn write_optimized(
-    report: &slipload_opt::pipeline::StudyReport,
-    dir: &std::path::Path,
-) -> Result<Vec<String>, FigureError> {
-    let mut written = study::write(&report.figures, dir)?;
-    if let Some(p) = &report.pareto {
-        written.extend(pareto::write_front(p, dir)?);
+/// The figure writer of the study commands: [`study::write`] for the study figures,
+/// [`pareto::write_front`] for a front, [`check_fonts`] before any work. Its errors reach
+/// the caller as [`slipload_opt::OptError::Figure`] holding the [`FigureError`] (or the
+/// [`FontError`]), whose message is shown as it is.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StudyFigures;
+
+impl slipload_opt::pipeline::FigureWriter for StudyFigures {
+    fn check(&self) -> Result<(), slipload_opt::OptError> {
+        check_fonts().map_err(|e| slipload_opt::OptError::Figure(Box::new(e)))
     }
-    Ok(written)
+
+    fn study(
+        &self,
+        data: &slipload_opt::phases::figures::FigureData,
+        dir: &std::path::Path,
+    ) -> Result<Vec<String>, slipload_opt::OptError> {
+        study::write(data, dir).map_err(|e| slipload_opt::OptError::Figure(Box::new(e)))
+    }
+
+    fn front(
+        &self,
+        report: &slipload_opt::phases::pareto::ParetoReport,
+        dir: &std::path::Path,
+    ) -> Result<Vec<String>, slipload_opt::OptError> {
+        pareto::write_front(report, dir).map_err(|e| slipload_opt::OptError::Figure(Box::new(e)))
+    }
 }

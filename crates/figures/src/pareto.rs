@@ -5,7 +5,8 @@
 //! on the front and the knee are marked.
 
 use crate::FigureError;
-use slipload_opt::pareto::{ParetoMetric, ParetoObjective, ParetoReport};
+use slipload_opt::model::objectives::{ParetoMetric, ParetoObjective};
+use slipload_opt::phases::pareto::ParetoReport;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -132,7 +133,10 @@ pub fn write_front(p: &ParetoReport, dir: &Path) -> Result<Vec<String>, FigureEr
         }
         fig = fig.panel(panel);
     }
-    slipload_opt::output::write_atomic(&dir.join("pareto-front.csv"), front_csv(p).as_bytes())?;
+    slipload_opt::base::output::write_atomic(
+        &dir.join("pareto-front.csv"),
+        front_csv(p).as_bytes(),
+    )?;
     fig.save(&dir.join("pareto-front"))?;
     Ok(vec!["pareto-front".to_string()])
 }

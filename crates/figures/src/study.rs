@@ -1,5 +1,5 @@
 //! The study figures of `optimize`, `sweep` and `merge`, drawn from the figure data of
-//! their reports ([`slipload_opt::pipeline::FigureData`]), each with the CSV of its data
+//! their reports ([`slipload_opt::phases::figures::FigureData`]), each with the CSV of its data
 //! written beside it:
 //! - objective map over the slip loads of two dissipators, the others at the optimum
 //!   (opt-in);
@@ -9,8 +9,10 @@
 //! - per-record peak drift ratio of the best design vs the bare frame.
 
 use crate::FigureError;
-use slipload_opt::collapse::objective_text;
-use slipload_opt::pipeline::{Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter};
+use slipload_opt::base::collapse::objective_text;
+use slipload_opt::phases::figures::{
+    Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter,
+};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -89,7 +91,7 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
     use crate::plot::{Figure, HeatMap, Legend, Marker, Panel, Series, style};
     let mut names = Vec::new();
     let mut put = |stem: &str, csv: String, fig: Figure| -> Result<(), FigureError> {
-        slipload_opt::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
+        slipload_opt::base::output::write_atomic(&dir.join(format!("{stem}.csv")), csv.as_bytes())?;
         fig.save(&dir.join(stem))?;
         names.push(stem.to_string());
         Ok(())

@@ -8,8 +8,10 @@
 use slipload_figures::plot::meta::FigureMeta;
 use slipload_figures::plot::{Figure, HeatMap, Panel};
 use slipload_figures::{FigureError, check_fonts, study};
-use slipload_opt::collapse::objective_text;
-use slipload_opt::pipeline::{Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter};
+use slipload_opt::base::collapse::objective_text;
+use slipload_opt::phases::figures::{
+    Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter,
+};
 use std::path::{Path, PathBuf};
 
 /// A fresh folder for one test (removed first if a previous run left it).

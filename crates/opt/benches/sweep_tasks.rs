@@ -4,7 +4,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use slipload_opt::Study;
-use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
+use slipload_opt::eval::evaluate::{Task, run_tasks};
+use slipload_opt::model::fidelity::Fidelity;
 use std::hint::black_box;
 use std::path::Path;
 

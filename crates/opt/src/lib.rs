@@ -1,41 +1,34 @@
 //! slipload-opt: the per-floor slip loads μᵢNᵢ of friction dissipators that minimise a
 //! drift or energy objective over whole ground-motion suites (docs/MODEL.md § Optimisation).
 //!
+//! The crate is built in layers, each importing only from the layers below it (a test,
+//! `crates/cli/tests/module_graph.rs`, fails on any import that runs back up or round):
+//!
+//! | layer | owns |
+//! |---|---|
+//! | [`pipeline`] | one library call per study command (`optimize`, `sweep`, `merge`, `rank`, `table`): opens the study folder, runs the phases, draws the figures through a [`pipeline::FigureWriter`], returns the report |
+//! | [`phases`] | the phases of a study: the sweep, the refinement and its finalists, the design table, the front search, the ranking, the design family, the figure data |
+//! | [`eval`] | evaluation: simulating a design over the records at a fidelity, task journals, the automatic sweep-method probe, progress |
+//! | [`store`] | the study folder: its one-writer lock, the files slipload wrote there, `fresh`, the journals and their fingerprint check |
+//! | [`model`] | the study's description: its configuration, design space, objectives, samplers, fidelities and fingerprint |
+//! | [`base`] | errors, atomic output, metrics, collapse wording, shards, the small QP |
+//!
 //! A [`Study`] (JSON, validated before anything runs) names a building, record suites, a
-//! [`DesignSpace`] and an [`Objective`]. A sweep runs a sample of designs × every record
-//! as independent tasks ([`evaluate`]), journalled ([`journal`]) and shardable
-//! ([`Shard`]); [`refine`] improves the best sweep points; [`table`] and [`rank`] turn the
-//! results into the tables engineers hand on. [`pipeline`] runs those phases for a
-//! command — [`pipeline::optimize_study`] is the whole study — and writes its files
-//! ([`output::write_atomic`]), returning a report a caller renders.
+//! [`DesignSpace`] and an [`Objective`]. A front (the CLI, the Python package) loads it,
+//! and calls one function of [`pipeline`] with the options, the output folder, a progress
+//! observer and a figure writer; it shows the report that call returns.
 
-pub mod collapse;
-pub mod error;
-pub mod evaluate;
-pub mod family;
-pub mod fidelity;
-pub mod fingerprint;
-pub mod folder_lock;
-pub mod journal;
-pub mod metrics;
-pub mod objective;
-pub mod optimize;
-pub mod output;
-pub mod pareto;
+pub mod base;
+pub mod eval;
+pub mod model;
+pub mod phases;
 pub mod pipeline;
-pub mod qp;
-pub mod rank;
-pub mod refine;
-pub mod sampler;
-pub mod shard;
-pub mod space;
-pub mod study;
-pub mod sweep;
-pub mod table;
+pub mod store;
 
-pub use error::OptError;
-pub use metrics::RecordMetrics;
-pub use objective::{Metric, Objective, Statistic, Term};
-pub use shard::Shard;
-pub use space::{Bound, ConstraintsConfig, DesignSpace, OnBound, Shape, SpaceConfig};
-pub use study::{Study, StudyConfig};
+pub use base::error::OptError;
+pub use base::metrics::RecordMetrics;
+pub use base::shard::Shard;
+pub use model::config::StudyConfig;
+pub use model::objective::{Metric, Objective, Statistic, Term};
+pub use model::space::{Bound, ConstraintsConfig, DesignSpace, OnBound, Shape, SpaceConfig};
+pub use model::study::Study;

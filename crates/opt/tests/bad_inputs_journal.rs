@@ -3,10 +3,23 @@
 //! study is refused; a task journal of the check is refused the same way.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::journal::{Journal, read};
-use slipload_opt::sweep::{self, Manifest};
+use slipload_opt::phases::sweep::{self, Manifest};
+use slipload_opt::store::journal::{Journal, read};
 use slipload_opt::{Shard, Study};
 use std::path::{Path, PathBuf};
+
+/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
+/// returned value is dropped).
+fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
+    let request = slipload_opt::store::folder::FolderRequest {
+        path: dir,
+        option: "out",
+        fresh: false,
+    };
+    slipload_opt::store::folder::StudyFolder::open(request)
+        .unwrap()
+        .0
+}
 
 fn study_with(edit: impl Fn(&mut serde_json::Value)) -> Study {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");
@@ -64,12 +77,12 @@ fn the_fingerprint_is_stable_and_names_what_changed() {
 fn a_journal_of_another_study_or_without_a_fingerprint_is_refused() {
     let dir = scratch("other");
     let a = study_with(|_| {});
-    sweep::run(&a, &dir, Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&a, &open_folder(&dir), Shard::ALL, false, &|| {}).unwrap();
     let j = dir.join("journal.jsonl");
     let (entries, _) = read(&j).unwrap();
     assert_eq!(entries.len(), 4 * 2);
     let b = study_with(|v| v["suites"][0]["synthetic"]["pga_g"] = 0.8.into());
-    let e = sweep::run(&b, &dir, Shard::ALL, true, &|| {})
+    let e = sweep::run(&b, &open_folder(&dir), Shard::ALL, true, &|| {})
         .unwrap_err()
         .to_string();
     assert!(
@@ -93,10 +106,10 @@ fn a_torn_header_is_a_fresh_journal() {
     let a = study_with(|_| {});
     let j = dir.join("journal.jsonl");
     std::fs::write(&j, "{\"journal\":\"sweep\",\"finger").unwrap();
-    let r = sweep::run(&a, &dir, Shard::ALL, false, &|| {}).unwrap();
+    let r = sweep::run(&a, &open_folder(&dir), Shard::ALL, false, &|| {}).unwrap();
     assert_eq!((r.resumed, r.ran), (0, 8));
     let fresh = scratch("torn-header-fresh");
-    sweep::run(&a, &fresh, Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&a, &open_folder(&fresh), Shard::ALL, false, &|| {}).unwrap();
     // the same header and entries (their order follows the threads)
     let sorted = |p: &Path| {
         let t = std::fs::read_to_string(p).unwrap();

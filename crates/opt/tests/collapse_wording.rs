@@ -7,11 +7,12 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::RecordMetrics;
-use slipload_opt::rank::{Ranking, SuiteRanking};
-use slipload_opt::study::RefineMethod;
-use slipload_opt::sweep::Manifest;
-use slipload_opt::table::DesignTable;
-use slipload_opt::{Study, family};
+use slipload_opt::Study;
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::phases::family;
+use slipload_opt::phases::rank::{Ranking, SuiteRanking};
+use slipload_opt::phases::sweep::Manifest;
+use slipload_opt::phases::table::DesignTable;
 use std::path::Path;
 
 /// A yielding three-storey frame whose collapse limit is the drift ratio `limit`; one

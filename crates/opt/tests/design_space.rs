@@ -3,7 +3,7 @@
 //! become the same constraints on z, and samples stay feasible.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::sampler;
+use slipload_opt::model::sampler;
 use slipload_opt::{Bound, Shape, Study};
 use std::path::{Path, PathBuf};
 
@@ -108,7 +108,7 @@ fn profile_space_scales_one_shape() {
 #[test]
 fn family_scaling_scales_periods_and_records() {
     let s = benchmark(|_| {});
-    let t = slipload_opt::family::scaled_study(&s, 1.25, 2.0).unwrap();
+    let t = slipload_opt::phases::family::scaled_study(&s, 1.25, 2.0).unwrap();
     // K/p² with M fixed: every period × p (eigen-solver round-off, 1e-9 relative)
     let (p0, p1) = (s.building.modes.periods(), t.building.modes.periods());
     for (a, b) in p0.iter().zip(&p1) {
@@ -118,7 +118,7 @@ fn family_scaling_scales_periods_and_records() {
     let c = &t.building.damping * 1.25;
     assert!((c - &s.building.damping).abs().max() <= 1e-12 * s.building.damping.abs().max());
     assert_eq!(t.records[0].pga(), 2.0 * s.records[0].pga());
-    assert!(slipload_opt::family::scaled_study(&s, 0.0, 1.0).is_err());
+    assert!(slipload_opt::phases::family::scaled_study(&s, 0.0, 1.0).is_err());
 }
 
 #[test]

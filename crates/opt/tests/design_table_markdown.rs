@@ -3,7 +3,7 @@
 //! computed), rounded as the table's units say; the CSV keeps every digit.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::table::{DesignTable, TableRow};
+use slipload_opt::phases::table::{DesignTable, TableRow};
 
 /// Three storeys, dampers on floors 1 and 3.
 fn table() -> DesignTable {

@@ -5,15 +5,29 @@
 //! the file gives it, compared bit for bit (same scene, same integrator).
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::evaluate::{DesignLoads, Fidelity, hht_alpha, run_designs};
-use slipload_opt::rank::{NamedDesign, rank, to_newtons};
-use slipload_opt::sampler::FrictionLaw;
-use slipload_opt::sweep::{self, Manifest};
-use slipload_opt::table::{DesignTable, standard_designs};
+use slipload_opt::eval::evaluate::{DesignLoads, run_designs};
+use slipload_opt::model::fidelity::{Fidelity, hht_alpha};
+use slipload_opt::model::sampler::FrictionLaw;
+use slipload_opt::phases::rank::{NamedDesign, rank, to_newtons};
+use slipload_opt::phases::sweep::{self, Manifest};
+use slipload_opt::phases::table::{DesignTable, standard_designs};
 use slipload_opt::{RecordMetrics, Shard, Study};
 use slipload_sim::scene::{InitialState, MethodSettings, OutputsConfig, Scene, default_dt};
 use slipload_sim::{Plan, run_plan};
 use std::path::{Path, PathBuf};
+
+/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
+/// returned value is dropped).
+fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
+    let request = slipload_opt::store::folder::FolderRequest {
+        path: dir,
+        option: "out",
+        fresh: false,
+    };
+    slipload_opt::store::folder::StudyFolder::open(request)
+        .unwrap()
+        .0
+}
 
 /// The benchmark study on two 2-s synthetic records and two sample points, its building
 /// inlined with the dissipators edited by `edit`.
@@ -80,7 +94,7 @@ fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
 
 /// The sweep's rows of design 1 (the file's), record by record.
 fn file_rows(st: &Study, dir: &Path) -> Vec<RecordMetrics> {
-    let rows = sweep::run(st, dir, Shard::ALL, false, &|| {})
+    let rows = sweep::run(st, &open_folder(&dir), Shard::ALL, false, &|| {})
         .unwrap()
         .rows
         .unwrap();

@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::Study;
-use slipload_opt::fingerprint::of_study;
+use slipload_opt::model::fingerprint::of_study;
 use std::path::Path;
 
 fn study(building_extra: Option<(&str, serde_json::Value)>) -> Study {

@@ -5,10 +5,23 @@
 //! to recover.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::journal::{checked_line, crc32, read};
-use slipload_opt::sweep;
+use slipload_opt::phases::sweep;
+use slipload_opt::store::journal::{checked_line, crc32, read};
 use slipload_opt::{Shard, Study};
 use std::path::{Path, PathBuf};
+
+/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
+/// returned value is dropped).
+fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
+    let request = slipload_opt::store::folder::FolderRequest {
+        path: dir,
+        option: "out",
+        fresh: false,
+    };
+    slipload_opt::store::folder::StudyFolder::open(request)
+        .unwrap()
+        .0
+}
 
 fn study() -> Study {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");
@@ -30,7 +43,7 @@ fn scratch(name: &str) -> PathBuf {
 /// A fresh sweep into `name`: (folder, journal text, responses.csv).
 fn swept(st: &Study, name: &str) -> (PathBuf, String, Vec<u8>) {
     let dir = scratch(name);
-    sweep::run(st, &dir, Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(st, &open_folder(&dir), Shard::ALL, false, &|| {}).unwrap();
     let j = std::fs::read_to_string(dir.join("journal.jsonl")).unwrap();
     let csv = std::fs::read(dir.join("responses.csv")).unwrap();
     (dir, j, csv)
@@ -62,7 +75,7 @@ fn a_line_that_fails_its_checksum_is_run_again() {
     std::fs::write(&j, lines.join("\n") + "\n").unwrap();
     let (entries, _) = read(&j).unwrap();
     assert_eq!(entries.len(), 4 * 2 - 1, "the damaged line is not trusted");
-    let r = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap();
+    let r = sweep::run(&st, &open_folder(&dir), Shard::ALL, true, &|| {}).unwrap();
     assert_eq!((r.resumed, r.ran), (7, 1), "exactly its task runs again");
     assert_eq!(r.distrusted, 1, "the run says one line was not trusted");
     assert!(std::fs::read(dir.join("responses.csv")).unwrap() == csv);
@@ -83,7 +96,7 @@ fn an_older_journal_without_checksums_is_recomputed() {
         })
         .collect();
     std::fs::write(&j, old).unwrap();
-    let r = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap();
+    let r = sweep::run(&st, &open_folder(&dir), Shard::ALL, true, &|| {}).unwrap();
     assert_eq!((r.resumed, r.ran), (0, 8), "none of its lines is trusted");
     assert_eq!(r.distrusted, 8);
     assert!(std::fs::read(dir.join("responses.csv")).unwrap() == csv);
@@ -98,7 +111,7 @@ fn a_line_that_is_no_entry_is_refused_with_how_to_recover() {
     let mut lines: Vec<&str> = text.lines().collect();
     lines[3] = "garbage";
     std::fs::write(&j, lines.join("\n") + "\n").unwrap();
-    let e = sweep::run(&st, &dir, Shard::ALL, true, &|| {}).unwrap_err();
+    let e = sweep::run(&st, &open_folder(&dir), Shard::ALL, true, &|| {}).unwrap_err();
     let mut chain = e.to_string();
     let mut src = std::error::Error::source(&e);
     while let Some(s) = src {

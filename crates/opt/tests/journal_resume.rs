@@ -3,11 +3,24 @@
 //! sweep over pools of 1, 2 and 3 threads gives bit-identical responses.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::journal::{Journal, read};
-use slipload_opt::sweep::{self, Manifest};
+use slipload_opt::phases::sweep::{self, Manifest};
+use slipload_opt::store::journal::{Journal, read};
 use slipload_opt::{Shard, Study};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
+/// returned value is dropped).
+fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
+    let request = slipload_opt::store::folder::FolderRequest {
+        path: dir,
+        option: "out",
+        fresh: false,
+    };
+    slipload_opt::store::folder::StudyFolder::open(request)
+        .unwrap()
+        .0
+}
 
 fn study(points: usize) -> Study {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");
@@ -30,7 +43,7 @@ fn scratch(name: &str) -> PathBuf {
 fn torn_last_line_is_dropped_and_cut_off() {
     let dir = scratch("torn");
     let st = study(3);
-    sweep::run(&st, &dir, Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&st, &open_folder(&dir), Shard::ALL, false, &|| {}).unwrap();
     let j = dir.join("journal.jsonl");
     let (entries, len) = read(&j).unwrap();
     assert_eq!(entries.len(), 5 * 2);
@@ -56,7 +69,7 @@ fn torn_last_line_is_dropped_and_cut_off() {
 fn corrupt_middle_line_and_changed_study_are_errors() {
     let dir = scratch("corrupt");
     let st = study(3);
-    sweep::run(&st, &dir, Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&st, &open_folder(&dir), Shard::ALL, false, &|| {}).unwrap();
     let j = dir.join("journal.jsonl");
     let text = std::fs::read_to_string(&j).unwrap();
     let mut lines: Vec<&str> = text.lines().collect();
@@ -68,7 +81,7 @@ fn corrupt_middle_line_and_changed_study_are_errors() {
     std::fs::write(&j, &text).unwrap();
     let mut other = study(3);
     other.config.sweep.seed = 99;
-    let e = sweep::run(&other, &dir, Shard::ALL, true, &|| {})
+    let e = sweep::run(&other, &open_folder(&dir), Shard::ALL, true, &|| {})
         .unwrap_err()
         .to_string();
     assert!(e.contains("study changed"), "{e}");
@@ -86,7 +99,7 @@ fn pools_of_one_two_three_threads_give_the_same_bits() {
             .build()
             .unwrap();
         let rows = pool
-            .install(|| sweep::run(&st, &dir, Shard::ALL, false, &|| {}))
+            .install(|| sweep::run(&st, &open_folder(&dir), Shard::ALL, false, &|| {}))
             .unwrap()
             .rows
             .unwrap();

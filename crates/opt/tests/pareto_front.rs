@@ -1,10 +1,12 @@
-//! Contract: the front tools of `slipload_opt::pareto` find the known analytic front of
+//! Contract: the front tools of `slipload_opt::phases::pareto` find the known analytic front of
 //! synthetic problems — ZDT1 on a box (two objectives, front f₂ = 1 − √f₁) and the
 //! DTLZ2 sphere (three objectives, front the unit sphere's octant) — and their exact
 //! hypervolume converges to the analytic one from below.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::pareto::{crowding_distance, first_front, hypervolume, knee, nondominated_ranks};
+use slipload_opt::phases::pareto::{
+    crowding_distance, first_front, hypervolume, knee, nondominated_ranks,
+};
 
 /// ZDT1 (Zitzler, Deb & Thiele 2000) with `x` in [0, 1]^d: f₁ = x₁,
 /// g = 1 + 9 · mean(x₂…), f₂ = g (1 − √(f₁/g)). Its front is g = 1: x₂… = 0.

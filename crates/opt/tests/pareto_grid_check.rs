@@ -7,7 +7,7 @@
 //! their ratio. The grid itself (92,610 simulations) is the script's to run, not a test's.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use slipload_opt::pareto::{first_front, hypervolume};
+use slipload_opt::phases::pareto::{first_front, hypervolume};
 use std::path::PathBuf;
 
 fn root() -> PathBuf {

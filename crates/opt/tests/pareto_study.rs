@@ -7,9 +7,11 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::Study;
-use slipload_opt::pareto::{ParetoReport, dominates, evaluate_objectives};
-use slipload_opt::pipeline::{NoProgress, OptimizeOptions, StudyReport, optimize_study};
-use slipload_opt::sweep::Manifest;
+use slipload_opt::eval::progress::NoProgress;
+use slipload_opt::phases::pareto::{ParetoReport, dominates, evaluate_objectives};
+use slipload_opt::phases::sweep::Manifest;
+use slipload_opt::pipeline::{NoFigures, OptimizeOptions, StudyReport, optimize_study};
+use slipload_opt::store::folder::FolderRequest;
 use std::path::{Path, PathBuf};
 
 fn config() -> (serde_json::Value, PathBuf) {
@@ -31,6 +33,15 @@ fn config() -> (serde_json::Value, PathBuf) {
 fn study() -> Study {
     let (v, path) = config();
     Study::from_json(&v.to_string(), &path).unwrap()
+}
+
+/// The output folder `out`, as the library's study commands take it.
+fn folder(out: &Path) -> FolderRequest<'_> {
+    FolderRequest {
+        path: out,
+        option: "out",
+        fresh: false,
+    }
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -58,7 +69,15 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let st = study();
     let nr = st.records.len();
     let out = scratch("run");
-    let r = optimize_study(&st, &out, &OptimizeOptions::default(), &NoProgress).unwrap();
+    let r = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+    .unwrap();
     let p = r.pareto.as_ref().unwrap();
     let ev = &p.search.evaluated;
     assert_eq!(p.search.sweep_designs, 6);
@@ -106,7 +125,7 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     assert_eq!(json["front"].as_array().unwrap().len(), front.len());
     assert_eq!(json["knee"], p.front_labels()[p.knee]);
     assert_eq!(json["held"], p.certified.held());
-    let hv = slipload_opt::pareto::hypervolume(
+    let hv = slipload_opt::phases::pareto::hypervolume(
         &front
             .iter()
             .map(|&i| ev[i].objectives.clone())
@@ -126,7 +145,15 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
         .collect();
     let before = bytes(&out, &files);
     let journals = bytes(&out, &JOURNALS);
-    let r2 = optimize_study(&st, &out, &OptimizeOptions::default(), &NoProgress).unwrap();
+    let r2 = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+    .unwrap();
     assert_eq!(r2.work.run(), 0, "nothing simulated again");
     let w2 = r2.work.pareto.unwrap();
     assert_eq!((w2[0].run, w2[0].reused), (0, 6 * nr));
@@ -138,7 +165,15 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let text = std::fs::read_to_string(&pj).unwrap();
     let keep: Vec<&str> = text.lines().take(1 + 3 * nr).collect();
     std::fs::write(&pj, keep.join("\n") + "\n").unwrap();
-    let r3 = optimize_study(&st, &out, &OptimizeOptions::default(), &NoProgress).unwrap();
+    let r3 = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+    .unwrap();
     let w3 = r3.work.pareto.unwrap();
     assert_eq!((w3[0].run, w3[0].reused), (3 * nr, 3 * nr));
     assert!(
@@ -169,8 +204,17 @@ fn one_and_two_threads_write_the_same_bytes() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| optimize_study(&st, &out, &OptimizeOptions::default(), &NoProgress))
-            .unwrap();
+        pool.install(|| {
+            optimize_study(
+                &st,
+                &OptimizeOptions::default(),
+                folder(&out),
+                &NoProgress,
+                &NoFigures,
+            )
+            .map(|r| r.report)
+        })
+        .unwrap();
         // pareto.jsonl holds tasks in finishing order: compare its sorted lines
         let mut b = bytes(&out, &files);
         let last = b.pop().unwrap();

@@ -7,11 +7,13 @@
 //! gives the figure data of one whole sweep.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
+use slipload_opt::eval::progress::{NoProgress, Phase, Progress};
+use slipload_opt::phases::figures::MapRequest;
+use slipload_opt::phases::table::DesignTable;
 use slipload_opt::pipeline::{
-    MapRequest, NoProgress, OptimizeOptions, Phase, Progress, StudyReport, merge_shards,
-    optimize_study, sweep_study,
+    NoFigures, OptimizeOptions, StudyReport, merge_shards, optimize_study, sweep_study,
 };
-use slipload_opt::table::DesignTable;
+use slipload_opt::store::folder::FolderRequest;
 use slipload_opt::{Shard, Study};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -30,6 +32,15 @@ fn study(points: usize) -> Study {
     v["refine"]["max_evaluations"] = 6.into();
     v["refine"]["finalists"] = 2.into();
     Study::from_json(&v.to_string(), &path).unwrap()
+}
+
+/// The output folder `out`, as the library's study commands take it.
+fn folder(out: &Path) -> FolderRequest<'_> {
+    FolderRequest {
+        path: out,
+        option: "out",
+        fresh: false,
+    }
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -92,7 +103,9 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
         }),
     };
     let progress = Recorder::default();
-    let r = optimize_study(&st, &out, &options, &progress).unwrap();
+    let r = optimize_study(&st, &options, folder(&out), &progress, &NoFigures)
+        .map(|r| r.report)
+        .unwrap();
 
     // the phases, in order, each ticked once per simulation it ran
     assert_eq!(
@@ -158,7 +171,7 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
     let refine_csv = std::fs::read_to_string(out.join("refine.csv")).unwrap();
     assert_eq!(refine_csv, r.refine_csv());
     assert_eq!(refine_csv.lines().count(), evaluations + 1);
-    let candidates: Vec<slipload_opt::rank::NamedDesign> =
+    let candidates: Vec<slipload_opt::phases::rank::NamedDesign> =
         serde_json::from_str(&std::fs::read_to_string(out.join("candidates.json")).unwrap())
             .unwrap();
     assert_eq!(candidates, r.candidates);
@@ -188,7 +201,15 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
     let files = bytes(&StudyReport::FILES);
     let journals = bytes(&JOURNALS);
     let again = Recorder::default();
-    let r2 = optimize_study(&st, &out, &OptimizeOptions::default(), &again).unwrap();
+    let r2 = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &again,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+    .unwrap();
     assert_eq!(
         again.order(),
         [
@@ -214,7 +235,9 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
     assert!(bytes(&StudyReport::FILES) == files, "the same files");
     assert!(bytes(&JOURNALS) == journals, "no journal grew");
     // asked again, the objective map comes from check.jsonl too
-    let r3 = optimize_study(&st, &out, &options, &NoProgress).unwrap();
+    let r3 = optimize_study(&st, &options, folder(&out), &NoProgress, &NoFigures)
+        .map(|r| r.report)
+        .unwrap();
     let m = r3.work.map.unwrap();
     assert_eq!((m.run, m.reused), (0, 4 * nr));
     assert_eq!(r3.work.run(), 0);
@@ -236,7 +259,8 @@ fn bad_options_and_another_studys_folder_are_refused_before_anything_runs() {
             map: Some(MapRequest { floors, grid }),
         };
         let progress = Recorder::default();
-        let e = optimize_study(&st, &out, &options, &progress)
+        let e = optimize_study(&st, &options, folder(&out), &progress, &NoFigures)
+            .map(|r| r.report)
             .unwrap_err()
             .to_string();
         assert!(e.contains(says), "{e}");
@@ -245,9 +269,25 @@ fn bad_options_and_another_studys_folder_are_refused_before_anything_runs() {
     }
     // a folder holding another study's journals
     let out = scratch("other");
-    sweep_study(&study(2), &out, Shard::ALL, false, &NoProgress).unwrap();
+    sweep_study(
+        &study(2),
+        Shard::ALL,
+        false,
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .unwrap();
     let progress = Recorder::default();
-    let e = optimize_study(&st, &out, &OptimizeOptions::default(), &progress).unwrap_err();
+    let e = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &progress,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+    .unwrap_err();
     let chain = std::iter::successors(Some(&e as &dyn std::error::Error), |e| e.source())
         .map(ToString::to_string)
         .collect::<Vec<_>>();
@@ -266,7 +306,15 @@ fn merged_shards_give_the_figure_data_of_one_whole_sweep() {
     let st = study(4);
     let whole = scratch("whole");
     let progress = Recorder::default();
-    let one = sweep_study(&st, &whole, Shard::ALL, false, &progress).unwrap();
+    let one = sweep_study(
+        &st,
+        Shard::ALL,
+        false,
+        folder(&whole),
+        &progress,
+        &NoFigures,
+    )
+    .unwrap();
     let tasks = one.report.manifest.tasks();
     assert_eq!(progress.order(), [Phase::Sweep]);
     assert_eq!(progress.of(Phase::Sweep), (tasks, tasks));
@@ -277,14 +325,14 @@ fn merged_shards_give_the_figure_data_of_one_whole_sweep() {
     for (i, d) in dirs.iter().enumerate() {
         let shard = Shard { index: i, count: 2 };
         let progress = Recorder::default();
-        let part = sweep_study(&st, d, shard, false, &progress).unwrap();
+        let part = sweep_study(&st, shard, false, folder(d), &progress, &NoFigures).unwrap();
         let mine = (0..tasks).filter(|&k| shard.owns(k)).count();
         assert_eq!(progress.of(Phase::Sweep), (mine, mine));
         assert!(part.figures.is_none(), "a shard draws nothing");
     }
     let merged = scratch("merged");
     let shards: Vec<&Path> = dirs.iter().map(PathBuf::as_path).collect();
-    let m = merge_shards(&shards, &merged).unwrap();
+    let m = merge_shards(&shards, folder(&merged), &NoFigures).unwrap();
     assert_eq!(m.figures.unwrap(), whole_figures);
     for f in ["manifest.json", "designs.csv", "responses.csv"] {
         assert!(

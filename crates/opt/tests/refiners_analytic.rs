@@ -7,8 +7,8 @@
 
 use nalgebra::DMatrix;
 use slipload_opt::DesignSpace;
-use slipload_opt::refine::{Evaluations, Point, refine};
-use slipload_opt::study::{RefineConfig, RefineMethod};
+use slipload_opt::model::config::{RefineConfig, RefineMethod};
+use slipload_opt::phases::refine::{Evaluations, Point, refine};
 
 /// f = (z₀ − 1.2)² + 2u² + v² + ½uv, u = z₁ − 0.3, v = z₂ − 0.6.
 fn f(z: &[f64]) -> f64 {
@@ -87,7 +87,7 @@ fn every_refiner_improves_within_its_budget() {
 
 #[test]
 fn a_saved_refiner_state_continues_to_the_same_answer() {
-    use slipload_opt::refine::{Refiner, TrustRegion};
+    use slipload_opt::phases::refine::{Refiner, TrustRegion};
     let sp = space();
     let cfg = RefineConfig::default();
     let start = Point {

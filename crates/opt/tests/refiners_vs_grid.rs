@@ -6,10 +6,11 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::Study;
-use slipload_opt::evaluate::{Fidelity, run_designs};
-use slipload_opt::optimize::optimize;
-use slipload_opt::study::RefineMethod;
-use slipload_opt::sweep::Manifest;
+use slipload_opt::eval::evaluate::run_designs;
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::model::fidelity::Fidelity;
+use slipload_opt::phases::refinement::optimize;
+use slipload_opt::phases::sweep::Manifest;
 use std::path::Path;
 
 fn study(sweep: serde_json::Value) -> Study {

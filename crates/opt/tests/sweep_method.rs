@@ -7,11 +7,12 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::Study;
-use slipload_opt::evaluate::{Fidelity, run_designs, simulate_one};
-use slipload_opt::fidelity::EXACT_SWEEP_COST;
-use slipload_opt::optimize::{OptimizeReport, optimize};
-use slipload_opt::study::RefineMethod;
-use slipload_opt::sweep::Manifest;
+use slipload_opt::eval::evaluate::{run_designs, simulate_one};
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::model::fidelity::EXACT_SWEEP_COST;
+use slipload_opt::model::fidelity::Fidelity;
+use slipload_opt::phases::refinement::{OptimizeReport, optimize};
+use slipload_opt::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
 use std::path::Path;
 

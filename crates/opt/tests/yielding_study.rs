@@ -6,8 +6,8 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 #![allow(clippy::single_range_in_vec_init)] // one suite: a slice of one range
 
-use slipload_opt::refine::Point;
-use slipload_opt::table::DesignTable;
+use slipload_opt::phases::refine::Point;
+use slipload_opt::phases::table::DesignTable;
 use slipload_opt::{Metric, Objective, RecordMetrics, Statistic, Study, Term};
 use std::path::Path;
 

@@ -100,7 +100,9 @@ fn opt_kind(e: &OptError) -> Kind {
         | OptError::Write { .. }
         | OptError::NotRegular { .. }
         | OptError::Symlink { .. }
-        | OptError::FolderBusy { .. } => Kind::File,
+        | OptError::FolderBusy { .. }
+        | OptError::NotWritten { .. } => Kind::File,
+        OptError::Figure(f) => crate::figures::figure_kind(f.as_ref()),
         OptError::Simulation { .. } | OptError::NonFinite { .. } | OptError::Subproblem(_) => {
             Kind::Simulation
         }

@@ -1,37 +1,18 @@
-//! The study figures, drawn by the same library call as the command line's
-//! (`slipload_figures::study::write`), and the font check made before a study runs.
+//! The study figures are drawn by the library's own figure writer
+//! ([`slipload_figures::StudyFigures`], the command line's); this module only says which
+//! Python exception a figure error becomes.
 
-use crate::errors::{Kind, chain_message, raise};
-use pyo3::prelude::*;
+use crate::errors::Kind;
 use slipload_figures::{FigureError, FontError};
 
-fn figure_error(e: FigureError) -> PyErr {
-    let kind = match &e {
-        FigureError::Write(_) | FigureError::Font(_) => Kind::File,
-        // a figure the data cannot draw is a bug, not the caller's input
+/// The exception kind of a figure writer's error: a file that cannot be written or a
+/// missing font is the caller's file problem; a figure the data cannot draw is a bug.
+pub fn figure_kind(e: &(dyn std::error::Error + Send + Sync + 'static)) -> Kind {
+    if e.downcast_ref::<FontError>().is_some() {
+        return Kind::File;
+    }
+    match e.downcast_ref::<FigureError>() {
+        Some(FigureError::Write(_) | FigureError::Font(_)) => Kind::File,
         _ => Kind::Internal,
-    };
-    raise(kind, chain_message(&e))
-}
-
-/// Checks, before a study runs, that the figures can be rendered (the font is there), so
-/// that a long run does not fail at its end.
-pub fn check_fonts() -> PyResult<()> {
-    slipload_figures::check_fonts().map_err(|e: FontError| raise(Kind::File, chain_message(&e)))
-}
-
-/// Draws the study figures of `data` into `out`; the names written.
-pub fn write(
-    data: &slipload_opt::pipeline::FigureData,
-    out: &std::path::Path,
-) -> PyResult<Vec<String>> {
-    slipload_figures::study::write(data, out).map_err(figure_error)
-}
-
-/// Draws every figure of an `optimize` run into `out`; the names written.
-pub fn write_optimized(
-    report: &slipload_opt::pipeline::StudyReport,
-    out: &std::path::Path,
-) -> PyResult<Vec<String>> {
-    slipload_figures::write_optimized(report, out).map_err(figure_error)
+    }
 }

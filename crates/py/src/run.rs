@@ -11,7 +11,7 @@
 
 use crate::errors::{Cancelled, guarded, unwind_error};
 use pyo3::prelude::*;
-use slipload_opt::pipeline::{Phase, Progress};
+use slipload_opt::eval::progress::{Phase, Progress};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};

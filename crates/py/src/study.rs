@@ -10,13 +10,16 @@ use crate::records::PyRecord;
 use crate::run::watched;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use slipload_figures::StudyFigures;
 use slipload_opt::Study;
-use slipload_opt::folder_lock::FolderLock;
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::phases::family::FamilyReport;
+use slipload_opt::phases::figures::MapRequest;
+use slipload_opt::phases::rank::Ranking;
 use slipload_opt::pipeline::{
-    MapRequest, OptimizeOptions, StudyReport, SweepRun, family_study, merge_shards, optimize_study,
-    rank_study, sweep_study,
+    OptimizeOptions, SweepRun, family_study, merge_shards, optimize_study, rank_study, sweep_study,
 };
-use slipload_opt::study::RefineMethod;
+use slipload_opt::store::folder::{Discarded, FolderRequest};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -108,7 +111,7 @@ impl PyStudy {
     /// The study's fingerprint (what its journals are keyed by).
     #[getter]
     fn fingerprint(&self) -> String {
-        slipload_opt::sweep::Manifest::of(&self.inner)
+        slipload_opt::phases::sweep::Manifest::of(&self.inner)
             .fingerprint
             .hash
     }
@@ -149,16 +152,22 @@ fn refine_method(name: Option<&str>) -> PyResult<Option<RefineMethod>> {
     .transpose()
 }
 
-/// `--fresh`: the journals and outputs of earlier runs removed (the folder locked).
-fn fresh(out: &Path, d: &Bound<'_, PyDict>) -> PyResult<()> {
-    let gone = slipload_opt::journal::discard_journals(out).py()?;
-    d.set_item("removed", gone.removed)?;
-    d.set_item("kept", gone.kept)?;
-    Ok(())
+/// The output folder of a call: `out`, named `out` in errors.
+fn folder(out: &Path, fresh: bool) -> FolderRequest<'_> {
+    FolderRequest {
+        path: out,
+        option: "out",
+        fresh,
+    }
 }
 
-fn figures(data: &slipload_opt::pipeline::FigureData, out: &Path) -> PyResult<Vec<String>> {
-    crate::figures::write(data, out)
+/// `fresh`: what was removed and kept, into the returned dict.
+fn fresh_items(d: &Bound<'_, PyDict>, discarded: Option<&Discarded>) -> PyResult<()> {
+    if let Some(gone) = discarded {
+        d.set_item("removed", gone.removed.clone())?;
+        d.set_item("kept", gone.kept.clone())?;
+    }
+    Ok(())
 }
 
 /// Optimises a study into `out`, as `slipload optimize` does.
@@ -180,8 +189,6 @@ pub fn optimize<'py>(
         Some(s) => s.inner.clone(),
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
-    slipload_opt::output::check_output_folder("out", &out).py()?;
-    crate::figures::check_fonts()?;
     let options = OptimizeOptions {
         refine: refine_method(refine)?,
         map: map_floors.map(|(a, b)| MapRequest {
@@ -189,28 +196,15 @@ pub fn optimize<'py>(
             grid: map_grid,
         }),
     };
-    options.check(&study).py()?;
-    let d = PyDict::new(py);
-    let _lock = FolderLock::acquire(&out).py()?;
-    if fresh {
-        self::fresh(&out, &d)?;
-    }
-    let (report, written) = watched(py, threads, progress, |ctl| {
-        let report = optimize_study(&study, &out, &options, ctl).py()?;
-        let written = crate::figures::write_optimized(&report, &out)?;
-        Ok((report, written))
+    let run = watched(py, threads, progress, |ctl| {
+        optimize_study(&study, &options, folder(&out, fresh), ctl, &StudyFigures).py()
     })?;
-    let mut names: Vec<&str> = StudyReport::FILES.to_vec();
+    let mut names: Vec<&str> = run.files.clone();
     names.extend(SweepRun::FILES);
-    if report.pareto.is_some() {
-        names.extend(slipload_opt::pareto::ParetoReport::FILES);
-    }
-    let files = report_dict(py, &out, &names)?;
-    for (k, v) in files.iter() {
-        d.set_item(k, v)?;
-    }
-    d.set_item("figures", written)?;
-    let w = &report.work;
+    let d = report_dict(py, &out, &names)?;
+    fresh_items(&d, run.discarded.as_ref())?;
+    d.set_item("figures", run.drawn)?;
+    let w = &run.report.work;
     let work = PyDict::new(py);
     for (name, p) in [
         ("sweep", Some(&w.sweep)),
@@ -224,10 +218,10 @@ pub fn optimize<'py>(
         }
     }
     d.set_item("work", work)?;
-    d.set_item("sweep_method", report.sweep.manifest.method.as_str())?;
+    d.set_item("sweep_method", run.report.sweep.manifest.method.as_str())?;
     d.set_item(
         "sweep_method_reason",
-        report.sweep.manifest.method_reason.clone(),
+        run.report.sweep.manifest.method_reason.clone(),
     )?;
     Ok(d)
 }
@@ -251,31 +245,26 @@ pub fn sweep<'py>(
             "resume and fresh exclude each other: resume continues the journal, fresh removes it",
         ));
     }
-    slipload_opt::output::check_output_folder("out", &out).py()?;
-    crate::figures::check_fonts()?;
     let shard = match shard {
         None => slipload_opt::Shard::ALL,
         Some(spec) => slipload_opt::Shard::parse(spec, None, &|k| std::env::var(k).ok()).py()?,
     };
-    let d = PyDict::new(py);
-    let _lock = FolderLock::acquire(&out).py()?;
-    if fresh {
-        self::fresh(&out, &d)?;
-    }
     let study = study.inner.clone();
-    let (run, written) = watched(py, threads, progress, |ctl| {
-        let run = sweep_study(&study, &out, shard, resume, ctl).py()?;
-        let written = match &run.figures {
-            Some(f) => figures(f, &out)?,
-            None => Vec::new(),
-        };
-        Ok((run, written))
+    let run = watched(py, threads, progress, |ctl| {
+        sweep_study(
+            &study,
+            shard,
+            resume,
+            folder(&out, fresh),
+            ctl,
+            &StudyFigures,
+        )
+        .py()
     })?;
     let r = &run.report;
-    for (k, v) in report_dict(py, &out, &SweepRun::FILES)?.iter() {
-        d.set_item(k, v)?;
-    }
-    d.set_item("figures", written)?;
+    let d = report_dict(py, &out, &SweepRun::FILES)?;
+    fresh_items(&d, run.discarded.as_ref())?;
+    d.set_item("figures", run.drawn.clone())?;
     d.set_item("complete", run.figures.is_some())?;
     d.set_item("tasks", r.shard_tasks)?;
     d.set_item("ran", r.ran)?;
@@ -296,20 +285,12 @@ pub fn merge<'py>(
     if dirs.is_empty() {
         return Err(input("dirs: give at least one shard folder"));
     }
-    slipload_opt::output::check_output_folder("out", &out).py()?;
     let refs: Vec<&Path> = dirs.iter().map(PathBuf::as_path).collect();
-    slipload_opt::sweep::check_merge_folders(&refs, &out).py()?;
-    crate::figures::check_fonts()?;
-    let (run, written) = watched(py, None, None, |_| {
-        let run = merge_shards(&refs, &out).py()?;
-        let written = match &run.figures {
-            Some(f) => figures(f, &out)?,
-            None => Vec::new(),
-        };
-        Ok((run, written))
+    let run = watched(py, None, None, |_| {
+        merge_shards(&refs, folder(&out, false), &StudyFigures).py()
     })?;
     let d = report_dict(py, &out, &SweepRun::FILES)?;
-    d.set_item("figures", written)?;
+    d.set_item("figures", run.drawn)?;
     d.set_item("tasks", run.report.manifest.tasks())?;
     Ok(d)
 }
@@ -335,13 +316,10 @@ pub fn rank<'py>(
         )));
     }
     let study = study.inner.clone();
-    let candidates = guarded(|| slipload_opt::rank::load_designs(&study, &designs).py())?;
-    slipload_opt::output::check_output_folder("out", &out).py()?;
-    let _lock = FolderLock::acquire(&out).py()?;
     let ranking = watched(py, threads, progress, |ctl| {
-        rank_study(&study, &candidates, bootstrap, seed, &out, ctl).py()
+        rank_study(&study, &designs, bootstrap, seed, folder(&out, false), ctl).py()
     })?;
-    let d = report_dict(py, &out, &slipload_opt::rank::Ranking::FILES)?;
+    let d = report_dict(py, &out, &Ranking::FILES)?;
     d.set_item("markdown", ranking.to_markdown())?;
     Ok(d)
 }
@@ -364,20 +342,25 @@ pub fn table<'py>(
         Some(s) => s.inner.clone(),
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
-    slipload_opt::output::check_output_folder("out", &out).py()?;
-    slipload_opt::family::check_scales(&study, &period_scales, &intensity_scales).py()?;
-    let method = refine_method(refine)?.unwrap_or(study.config.refine.method);
-    let _lock = FolderLock::acquire(&out).py()?;
+    let method = refine_method(refine)?;
     let report = watched(py, threads, progress, |ctl| {
-        family_study(&study, &period_scales, &intensity_scales, method, &out, ctl).py()
+        family_study(
+            &study,
+            &period_scales,
+            &intensity_scales,
+            method,
+            folder(&out, false),
+            ctl,
+        )
+        .py()
     })?;
-    let d = report_dict(py, &out, &slipload_opt::family::FamilyReport::FILES)?;
+    let d = report_dict(py, &out, &FamilyReport::FILES)?;
     d.set_item("markdown", report.to_markdown())?;
     Ok(d)
 }
 
 /// The objective vectors of designs under a study's `objectives`, at the sweep fidelity
-/// (`slipload_opt::pareto::evaluate_objectives`): an array (designs, objectives).
+/// (`slipload_opt::phases::pareto::evaluate_objectives`): an array (designs, objectives).
 #[pyfunction]
 #[pyo3(signature = (study, slip_loads, *, progress=None, threads=None))]
 pub fn evaluate_objectives<'py>(
@@ -391,7 +374,7 @@ pub fn evaluate_objectives<'py>(
     let designs: Vec<Vec<f64>> = loads.chunks(nk).map(<[f64]>::to_vec).collect();
     let study = study.inner.clone();
     let vectors = watched(py, threads, progress, |ctl| {
-        slipload_opt::pareto::evaluate_objectives(&study, &designs, ctl).py()
+        slipload_opt::phases::pareto::evaluate_objectives(&study, &designs, ctl).py()
     })?;
     let m = vectors.first().map_or(0, Vec::len);
     crate::arrays::array2(py, nd, m, vectors.into_iter().flatten().collect())
@@ -407,7 +390,7 @@ fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
 #[pyfunction]
 pub fn nondominated_ranks(points: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
     let p = self::points(points, "points")?;
-    Ok(slipload_opt::pareto::nondominated_ranks(&p))
+    Ok(slipload_opt::phases::pareto::nondominated_ranks(&p))
 }
 
 /// The hypervolume the rows of `points` dominate up to `reference` (minimisation).
@@ -428,7 +411,7 @@ pub fn hypervolume(points: &Bound<'_, PyAny>, reference: &Bound<'_, PyAny>) -> P
             r.len()
         )));
     }
-    Ok(slipload_opt::pareto::hypervolume(&p, &r))
+    Ok(slipload_opt::phases::pareto::hypervolume(&p, &r))
 }
 
 /// The knee of a front (rows of `points`, minimisation): its index, by the rule of the
@@ -437,5 +420,5 @@ pub fn hypervolume(points: &Bound<'_, PyAny>, reference: &Bound<'_, PyAny>) -> P
 #[pyfunction]
 pub fn knee(points: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
     let p = self::points(points, "points")?;
-    Ok(slipload_opt::pareto::knee(&p))
+    Ok(slipload_opt::phases::pareto::knee(&p))
 }

@@ -175,3 +175,68 @@ def test_a_tqdm_bar_when_asked(tmp_path, capsys):
     pytest.importorskip("tqdm")
     slipload.sweep(str(STUDY), tmp_path / "o", progress=True)
     assert "sweep" in capsys.readouterr().err
+
+
+def test_two_threads_into_one_folder_the_second_is_refused_and_the_first_finishes(tmp_path):
+    """One study folder, one writer, also between the threads of one process: while a
+    sweep runs into a folder, a second sweep into it from another thread is refused at
+    once (a FileError that says the folder is in use), and the first finishes with the
+    bytes of a sweep that ran alone."""
+    import threading
+    import time
+
+    study = json.loads(STUDY.read_text())
+    study["sweep"]["points"] = 400
+    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
+    for s in study["suites"]:
+        if "records" in s:
+            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    out = tmp_path / "sweep"
+    running = threading.Event()
+    tried = threading.Event()
+    first = {}
+
+    def progress(phase, done, total):
+        if 0 < done < total and not running.is_set():
+            running.set()
+            # the first run keeps simulating while its caller waits here
+            tried.wait(timeout=120)
+
+    def first_run():
+        try:
+            first["report"] = slipload.sweep(str(path), out, progress=progress, threads=1)
+        except BaseException as e:  # reported below, in the test's own thread
+            first["error"] = e
+
+    t = threading.Thread(target=first_run)
+    t.start()
+    try:
+        assert running.wait(timeout=300), "the first sweep reports progress"
+        started = time.monotonic()
+        with pytest.raises(slipload.FileError, match="in use"):
+            slipload.sweep(str(path), out, progress=False, threads=1)
+        assert time.monotonic() - started < 30, "refused at once, not after waiting"
+    finally:
+        tried.set()
+        t.join(timeout=600)
+    assert "error" not in first, first.get("error")
+    assert first["report"].details["complete"]
+    run_cli("sweep", path, "--out", tmp_path / "alone", "--quiet")
+    same_folders(out, tmp_path / "alone")
+
+
+def test_fresh_keeps_the_users_files_and_names_them(tmp_path):
+    out = tmp_path / "o"
+    slipload.sweep(str(STUDY), out, progress=False)
+    (out / "notes.txt").write_text("mine")
+    again = slipload.sweep(str(STUDY), out, fresh=True, progress=False)
+    assert again.details["kept"] == ["notes.txt"]
+    assert "journal.jsonl" in again.details["removed"]
+    assert (out / "notes.txt").read_text() == "mine"
+    # a file under an output name that slipload did not write is never overwritten
+    (out / "rank.md").write_text("my ranking")
+    with pytest.raises(slipload.FileError, match="did not write"):
+        slipload.sweep(str(STUDY), out, fresh=True, progress=False)
+    assert (out / "rank.md").read_text() == "my ranking"

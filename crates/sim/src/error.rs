@@ -1,5 +1,6 @@
 //! Errors of the simulation crate: typed, carrying the values that explain them.
 
+use crate::kind::file_kind::{Expected, FileKind};
 use std::path::PathBuf;
 
 /// Everything that can go wrong while loading, compiling or running a scene.
@@ -35,9 +36,9 @@ pub enum SimError {
         /// The file.
         path: PathBuf,
         /// What it is.
-        found: crate::kind::FileKind,
+        found: FileKind,
         /// What the command reads.
-        expected: crate::kind::Expected,
+        expected: Expected,
     },
     /// A value is out of its valid range or inconsistent with others.
     #[error("{path}: field `{field}`: {message}")]
@@ -129,11 +130,11 @@ pub enum SimError {
         /// Floor number (from 1) of the last event.
         floor: usize,
     },
-    /// A run would exceed a work or memory limit no real study needs
-    /// ([`crate::limits`]).
+    /// A run would exceed a work or memory limit no real study needs (the `limits`
+    /// module, whose advice [`slipload_motion::limits::OVERRIDE_HINT`] ends the message).
     #[error(
         "{what}: {estimate} exceeds the limit of {limit} that no real study needs; {}",
-        crate::limits::OVERRIDE_HINT
+        slipload_motion::limits::OVERRIDE_HINT
     )]
     TooLarge {
         /// What was estimated (steps of a run, memory of its histories).

@@ -8,7 +8,7 @@ use super::scene_args::MethodArg;
 use anyhow::Context;
 use serde::Serialize;
 use slipload_motion::Units;
-use slipload_opt::output::write_atomic;
+use slipload_opt::base::output::write_atomic;
 use slipload_sim::accuracy::{DtSpec, StudyReport, StudySettings, median_report, run_study};
 use slipload_sim::kind::Expected;
 use slipload_sim::scene::{BuildingRef, ExcitationConfig, SceneConfig, SyntheticConfig};

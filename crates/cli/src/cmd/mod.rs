@@ -12,6 +12,7 @@ pub mod report;
 pub mod scene_args;
 pub mod simulate;
 pub mod study_args;
+pub mod study_text;
 pub mod sweep;
 pub mod table;
 
@@ -62,5 +63,5 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 }
 
 // The argument checks live in `crate::args` (below both the commands and the figures);
-// the study commands call them through these names.
-pub(crate) use crate::args::{count_flag, output_folder};
+// the study commands call this one through its name here.
+pub(crate) use crate::args::count_flag;

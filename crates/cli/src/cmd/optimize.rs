@@ -3,11 +3,15 @@
 //! then draw the figures and print the summary. With no study it runs the embedded
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
-use super::study_args::{PhaseBars, discard_journals, load_study};
-use slipload_opt::collapse::{objective_text, reduction, reduction_text};
-use slipload_opt::pipeline::{MapRequest, OptimizeOptions, StudyReport, optimize_study};
-use slipload_opt::study::RefineMethod;
-use slipload_opt::{OnBound, Study};
+use super::study_args::{PhaseBars, load_study};
+use super::study_text::{kn, on_bound_text};
+use slipload_figures::StudyFigures;
+use slipload_opt::Study;
+use slipload_opt::base::collapse::{objective_text, reduction, reduction_text};
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::phases::figures::MapRequest;
+use slipload_opt::pipeline::{OptimizeOptions, StudyReport, optimize_study};
+use slipload_opt::store::folder::{FolderRequest, StudyFolder};
 use std::path::PathBuf;
 
 /// Arguments of `slipload optimize`.
@@ -40,52 +44,6 @@ pub struct OptimizeArgs {
     pub fresh: bool,
 }
 
-pub(crate) fn kn(v: &[f64]) -> String {
-    v.iter()
-        .map(|x| format!("{:.1}", x / 1e3))
-        .collect::<Vec<_>>()
-        .join(" / ")
-}
-
-/// The design variables of the optimum that sit on a bound of the study's space, said
-/// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
-pub(crate) fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {
-    let load_of = |floor: usize| {
-        study
-            .space
-            .dampers
-            .iter()
-            .position(|&f| f + 1 == floor)
-            .map_or(f64::NAN, |k| loads[k] / 1e3)
-    };
-    on.iter()
-        .map(|b| {
-            let floors: Vec<String> = b.floors.iter().map(usize::to_string).collect();
-            if study.space.shape.is_some() {
-                format!(
-                    "the profile's {} (floors {}) at its {} bound, {} kN",
-                    b.variable,
-                    floors.join(", "),
-                    b.bound.as_str(),
-                    b.floors
-                        .iter()
-                        .map(|&f| format!("{:.1}", load_of(f)))
-                        .collect::<Vec<_>>()
-                        .join(" / ")
-                )
-            } else {
-                format!(
-                    "floor {} at its {} bound, {:.1} kN",
-                    floors.join(", "),
-                    b.bound.as_str(),
-                    b.floors.first().map_or(f64::NAN, |&f| load_of(f))
-                )
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
 /// What the optimum costs, from the design table: the mean (over the records) peak base
 /// shear and floor acceleration of the optimum beside the building file's slip loads and
 /// the bare frame's, rounded as the design table rounds them. `None` without an optimum
@@ -93,14 +51,14 @@ pub(crate) fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> Str
 pub fn costs_line(report: &StudyReport) -> Option<String> {
     let row = |name: &str| report.table.rows.iter().find(|r| r.design == name);
     let opt = row("optimum")?;
-    let others: Vec<(&str, &slipload_opt::table::TableRow)> = [
+    let others: Vec<(&str, &slipload_opt::phases::table::TableRow)> = [
         ("building file's slip loads", "file"),
         ("bare frame", "bare"),
     ]
     .into_iter()
     .filter_map(|(label, name)| row(name).map(|r| (label, r)))
     .collect();
-    let beside = |f: &dyn Fn(&slipload_opt::table::TableRow) -> String| {
+    let beside = |f: &dyn Fn(&slipload_opt::phases::table::TableRow) -> String| {
         if others.is_empty() {
             String::new()
         } else {
@@ -114,9 +72,11 @@ pub fn costs_line(report: &StudyReport) -> Option<String> {
             )
         }
     };
-    let shear = |r: &slipload_opt::table::TableRow| format!("{:.2} MN", r.base_shear_mean / 1e6);
-    let accel =
-        |r: &slipload_opt::table::TableRow| format!("{:.2} m/s²", r.peak_floor_acceleration_mean);
+    let shear =
+        |r: &slipload_opt::phases::table::TableRow| format!("{:.2} MN", r.base_shear_mean / 1e6);
+    let accel = |r: &slipload_opt::phases::table::TableRow| {
+        format!("{:.2} m/s²", r.peak_floor_acceleration_mean)
+    };
     Some(format!(
         "what the optimum costs (means over the records of each run's peak, {}): base shear {}{}, floor acceleration {}{}",
         report.table.fidelity,
@@ -130,14 +90,12 @@ pub fn costs_line(report: &StudyReport) -> Option<String> {
 /// Runs `slipload optimize`.
 pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    super::output_folder("--out", &args.out)?;
+    StudyFolder::check_path("--out", &args.out)?;
     if args.map {
         // GRID² designs × every record: the sweep's own design limit, per axis
         super::count_flag("--map-grid", args.map_grid, 1000)?;
     }
     let study = load_study(args.study.as_deref())?;
-    // the figures are drawn at the end: a missing font is refused before the run
-    slipload_figures::check_fonts()?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],
         other => anyhow::bail!(
@@ -157,25 +115,24 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
             grid: args.map_grid,
         }),
     };
-    // a bad map fails before --fresh discards anything
-    options.check(&study)?;
-    // one folder, one writer: refused at once if another command holds it
-    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
-    if args.fresh {
-        discard_journals(&args.out)?;
-    }
-    let report = optimize_study(&study, &args.out, &options, &PhaseBars::default())?;
-    let written = slipload_figures::write_optimized(&report, &args.out)?;
-    print_summary(&study, &report, started.elapsed().as_secs_f64());
-    let mut files: Vec<&str> = StudyReport::FILES.to_vec();
-    if report.pareto.is_some() {
-        files.extend(slipload_opt::pareto::ParetoReport::FILES);
-    }
-    outln!("wrote {}/{{{}}}", args.out.display(), files.join(","));
+    let folder = FolderRequest {
+        path: &args.out,
+        option: "--out",
+        fresh: args.fresh,
+    };
+    let run = optimize_study(
+        &study,
+        &options,
+        folder,
+        &PhaseBars::default(),
+        &StudyFigures,
+    )?;
+    print_summary(&study, &run.report, started.elapsed().as_secs_f64());
+    outln!("wrote {}/{{{}}}", args.out.display(), run.files.join(","));
     outln!(
         "figures (SVG, PNG, CSV): {}/{{{}}}",
         args.out.display(),
-        written.join(",")
+        run.drawn.join(",")
     );
     Ok(())
 }

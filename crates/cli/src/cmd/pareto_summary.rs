@@ -5,10 +5,11 @@
 //! front of drift against floor acceleration over the sweep's designs, which costs no
 //! simulation (and changes no file).
 
-use super::optimize::{kn, on_bound_text};
-use slipload_opt::pareto::{ParetoMetric, ParetoObjective, ParetoReport, first_front, knee};
+use super::study_text::{kn, on_bound_text};
+use slipload_opt::model::objectives::{ParetoMetric, ParetoObjective};
+use slipload_opt::phases::pareto::{ParetoReport, first_front, knee};
+use slipload_opt::phases::table::TableRow;
 use slipload_opt::pipeline::StudyReport;
-use slipload_opt::table::TableRow;
 use slipload_opt::{RecordMetrics, Study};
 
 /// One objective's value as the summary prints it, with its unit.

@@ -2,8 +2,9 @@
 //! rank and how stable the ranking is under a bootstrap over the records.
 
 use super::study_args::{PhaseBars, load_study};
+use slipload_opt::phases::rank::Ranking;
 use slipload_opt::pipeline::rank_study;
-use slipload_opt::rank::Ranking;
+use slipload_opt::store::folder::FolderRequest;
 use std::path::PathBuf;
 
 /// Arguments of `slipload rank`.
@@ -30,16 +31,17 @@ pub struct RankArgs {
 /// Runs `slipload rank`.
 pub fn run(args: RankArgs) -> anyhow::Result<()> {
     let study = load_study(Some(&args.study))?;
-    super::output_folder("--out", &args.out)?;
-    let designs = slipload_opt::rank::load_designs(&study, &args.designs)?;
-    // one folder, one writer: refused at once if another command holds it
-    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
+    let folder = FolderRequest {
+        path: &args.out,
+        option: "--out",
+        fresh: false,
+    };
     let r = rank_study(
         &study,
-        &designs,
+        &args.designs,
         args.bootstrap as usize,
         args.seed,
-        &args.out,
+        folder,
         &PhaseBars::default(),
     )?;
     out!("{}", r.to_markdown());

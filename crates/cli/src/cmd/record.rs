@@ -434,7 +434,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     match args.count {
         None => {
             let r = &records[0];
-            slipload_opt::output::write_atomic(&args.out, format_csv(r).as_bytes())?;
+            slipload_opt::base::output::write_atomic(&args.out, format_csv(r).as_bytes())?;
             eprintln!(
                 "wrote {} ({} samples, PGA {} g)",
                 args.out.display(),
@@ -445,7 +445,7 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
         Some(_) => {
             for r in &records {
                 let path = args.out.join(format!("{}.csv", r.name()));
-                slipload_opt::output::write_atomic(&path, format_csv(r).as_bytes())?;
+                slipload_opt::base::output::write_atomic(&path, format_csv(r).as_bytes())?;
             }
             eprintln!(
                 "wrote {} records to {} ({} samples each, PGA {} g)",

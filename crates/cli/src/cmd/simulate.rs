@@ -3,7 +3,7 @@
 
 use super::scene_args::SceneArgs;
 use anyhow::Context;
-use slipload_opt::output::write_atomic;
+use slipload_opt::base::output::write_atomic;
 use slipload_sim::{Outcome, Scene, simulate};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -57,7 +57,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     crate::args::count_flag("--repeat", args.repeat as usize, crate::args::MAX_REPEATS)?;
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
-        slipload_opt::output::write_target(path)
+        slipload_opt::base::output::write_target(path)
             .with_context(|| format!("--history {}", path.display()))?;
     }
     let mut scene = args

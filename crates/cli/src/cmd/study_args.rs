@@ -1,11 +1,12 @@
 //! Study selection shared by `sweep`, `optimize`, `rank` and `table`: a study file, or
 //! the embedded benchmark study ([`slipload_opt::Study::benchmark`]), plus the progress bars these commands draw on stderr, one per phase
-//! of the study run.
+//! of the study run, and what `--fresh` did.
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use slipload_opt::Study;
-use slipload_opt::pipeline::{Phase, Progress};
+use slipload_opt::eval::progress::{Phase, Progress};
+use slipload_opt::store::folder::Discarded;
 use std::path::Path;
 use std::sync::Mutex;
 
@@ -64,25 +65,22 @@ impl Progress for PhaseBars {
             bar.finish_and_clear();
         }
     }
-}
 
-/// `--fresh`: removes every file a slipload command wrote into `out` (journals, tables,
-/// figures, rankings, the report), saying what went and which other files stay.
-pub fn discard_journals(out: &Path) -> anyhow::Result<()> {
-    let d = slipload_opt::journal::discard_journals(out)?;
-    if !d.removed.is_empty() {
-        eprintln!(
-            "--fresh: removed {} from {}",
-            d.removed.join(", "),
-            out.display()
-        );
+    /// `--fresh`: says what went and which other files stay.
+    fn discarded(&self, dir: &Path, d: &Discarded) {
+        if !d.removed.is_empty() {
+            eprintln!(
+                "--fresh: removed {} from {}",
+                d.removed.join(", "),
+                dir.display()
+            );
+        }
+        if !d.kept.is_empty() {
+            eprintln!(
+                "--fresh: kept {} in {} (not written by slipload)",
+                d.kept.join(", "),
+                dir.display()
+            );
+        }
     }
-    if !d.kept.is_empty() {
-        eprintln!(
-            "--fresh: kept {} in {} (not written by slipload)",
-            d.kept.join(", "),
-            out.display()
-        );
-    }
-    Ok(())
 }

@@ -1,9 +1,11 @@
 //! `slipload sweep`: a sample of designs × every record of a study, journalled in the
 //! output folder (`--resume` continues it), optionally one shard of a job array.
 
-use super::study_args::{PhaseBars, discard_journals, load_study};
+use super::study_args::{PhaseBars, load_study};
+use slipload_figures::StudyFigures;
 use slipload_opt::Shard;
 use slipload_opt::pipeline::{SweepRun, sweep_study};
+use slipload_opt::store::folder::{FolderRequest, StudyFolder};
 use std::path::PathBuf;
 
 /// Arguments of `slipload sweep`.
@@ -35,7 +37,7 @@ const MAX_SHARDS: usize = 100_000;
 
 /// Runs `slipload sweep`.
 pub fn run(args: SweepArgs) -> anyhow::Result<()> {
-    super::output_folder("--out", &args.out)?;
+    StudyFolder::check_path("--out", &args.out)?;
     if let Some(n) = args.shards {
         super::count_flag("--shards", n, MAX_SHARDS)?;
         // without `--shard auto` the count would be ignored and the whole sweep run
@@ -49,19 +51,24 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         }
     }
     let study = load_study(Some(&args.study))?;
-    // the figures are drawn at the end: a missing font is refused before the run
-    slipload_figures::check_fonts()?;
     let shard = match &args.shard {
         None => Shard::ALL,
         Some(spec) => Shard::parse(spec, args.shards, &|k| std::env::var(k).ok())?,
     };
-    // one folder, one writer: refused at once if another command holds it
-    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
-    if args.fresh {
-        discard_journals(&args.out)?;
-    }
     let start = std::time::Instant::now();
-    let run = sweep_study(&study, &args.out, shard, args.resume, &PhaseBars::default())?;
+    let folder = FolderRequest {
+        path: &args.out,
+        option: "--out",
+        fresh: args.fresh,
+    };
+    let run = sweep_study(
+        &study,
+        shard,
+        args.resume,
+        folder,
+        &PhaseBars::default(),
+        &StudyFigures,
+    )?;
     let report = &run.report;
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
@@ -89,17 +96,16 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         report.manifest.method.as_str(),
         report.manifest.method_reason
     );
-    if let Some(figures) = &run.figures {
+    if run.figures.is_some() {
         eprintln!(
             "wrote {}/{{{}}}",
             args.out.display(),
             SweepRun::FILES.join(",")
         );
-        let written = slipload_figures::study::write(figures, &args.out)?;
         eprintln!(
             "figures (SVG, PNG, CSV): {}/{{{}}}",
             args.out.display(),
-            written.join(",")
+            run.drawn.join(",")
         );
     } else {
         eprintln!(

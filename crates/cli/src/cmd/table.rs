@@ -2,9 +2,10 @@
 //! (period scale × intensity scale), as `family.{csv,md}`.
 
 use super::study_args::{PhaseBars, load_study};
-use slipload_opt::family::FamilyReport;
+use slipload_opt::model::config::RefineMethod;
+use slipload_opt::phases::family::FamilyReport;
 use slipload_opt::pipeline::family_study;
-use slipload_opt::study::RefineMethod;
+use slipload_opt::store::folder::{FolderRequest, StudyFolder};
 use std::path::PathBuf;
 
 /// Arguments of `slipload table`.
@@ -28,18 +29,19 @@ pub struct TableArgs {
 
 /// Runs `slipload table`.
 pub fn run(args: TableArgs) -> anyhow::Result<()> {
-    super::output_folder("--out", &args.out)?;
+    StudyFolder::check_path("--out", &args.out)?;
     let study = load_study(args.study.as_deref())?;
-    slipload_opt::family::check_scales(&study, &args.period_scales, &args.intensity_scales)?;
-    let method = args.refine.unwrap_or(study.config.refine.method);
-    // one folder, one writer: refused at once if another command holds it
-    let _lock = slipload_opt::folder_lock::FolderLock::acquire(&args.out)?;
+    let folder = FolderRequest {
+        path: &args.out,
+        option: "--out",
+        fresh: false,
+    };
     let report = family_study(
         &study,
         &args.period_scales,
         &args.intensity_scales,
-        method,
-        &args.out,
+        args.refine,
+        folder,
         &PhaseBars::default(),
     )?;
     out!("{}\n\n{}", report.study, report.to_markdown());

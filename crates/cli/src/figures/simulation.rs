@@ -9,7 +9,7 @@
 
 use anyhow::Context;
 use slipload_figures::plot::{Figure, Legend, Marker, Panel, Series, style};
-use slipload_opt::output::write_atomic;
+use slipload_opt::base::output::write_atomic;
 use slipload_sim::{History, Outcome, Scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

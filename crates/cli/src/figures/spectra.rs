@@ -6,7 +6,7 @@ use slipload_figures::plot::{
     Figure, Legend, Panel, RGBColor, Series, strip_image_extension, style, with_suffix,
 };
 use slipload_motion::{DesignSpectrum, G, Spectrum};
-use slipload_opt::output::write_atomic;
+use slipload_opt::base::output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

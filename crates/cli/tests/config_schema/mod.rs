@@ -418,11 +418,11 @@ fn walk_scene(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
 }
 
 fn walk_study(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
-    walk::<slipload_opt::study::StudyConfig>("study", w, t)
+    walk::<slipload_opt::model::config::StudyConfig>("study", w, t)
 }
 
 fn walk_designs(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
-    walk::<Vec<slipload_opt::rank::NamedDesign>>("designs", w, t)
+    walk::<Vec<slipload_opt::phases::rank::NamedDesign>>("designs", w, t)
 }
 
 fn roots() -> [(&'static str, WalkFn); 4] {

@@ -224,8 +224,8 @@ impl Figure {
         })?;
         let svg_path = with_suffix(&stem, "svg");
         let png_path = with_suffix(&stem, "png");
-        slipload_opt::output::write_atomic(&svg_path, svg.as_bytes())?;
-        slipload_opt::output::write_atomic(&png_path, &png)?;
+        slipload_opt::base::output::write_atomic(&svg_path, svg.as_bytes())?;
+        slipload_opt::base::output::write_atomic(&png_path, &png)?;
         Ok((svg_path, png_path))
     }
 }

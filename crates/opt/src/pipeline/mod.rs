@@ -1,13 +1,18 @@
-//! Study runs: the library entry points behind `slipload optimize`, `sweep`, `merge`,
-//! `rank` and `table`. Each runs the phases of its command in order, journalled where
-//! the phase simulates, writes the command's files through
-//! [`crate::output::write_atomic`] and returns a typed report holding everything those
-//! files, the figures and the printed summary are made from. A caller (the CLI, a
-//! notebook binding, a job-array wrapper, a test) only chooses the options, shows the
-//! progress and renders the report.
+//! The top layer: one library call per study command — [`optimize_study`]
+//! (`slipload optimize`), [`sweep_study`] (`sweep`), [`merge_shards`] (`merge`),
+//! [`rank_study`] (`rank`) and [`family_study`] (`table`). Each takes the study, the
+//! command's options, the output folder as a [`crate::store::folder::FolderRequest`], a progress observer
+//! ([`crate::eval::progress::Progress`]) and, where it draws, a [`FigureWriter`]; it
+//! checks what it was given, opens the folder ([`crate::store::folder::StudyFolder`]: the
+//! path, the one-writer lock, `fresh`), runs the command's phases in order, journalled
+//! where they simulate, writes the files through the folder, draws the figures, and
+//! returns a typed report holding everything those files, the figures and the printed
+//! summary are made from. A front (the CLI, the Python package, a test) parses its
+//! arguments, makes this one call and shows the report: nothing of the folder, its lock,
+//! its journals or its file list is done there.
 //!
 //! The flow of [`optimize_study`], each phase resumable under the study's fingerprint
-//! ([`crate::fingerprint`]):
+//! ([`crate::model::fingerprint`]):
 //!
 //! | phase | runs | journal |
 //! |---|---|---|
@@ -20,27 +25,34 @@
 //! | [`Phase::ParetoCheck`] | the front's designs at the check fidelity | `check.jsonl` |
 //! | [`Phase::ParetoTable`] | the design table of the front's optima and knee | `check.jsonl` |
 //!
-//! then the candidates (the design table's designs), the figure data ([`figures`]) and
-//! the files ([`report`]): `refine.csv`, `optimum.json`, `design-table.{csv,md,json}`,
-//! `candidates.json`, beside the sweep's `manifest.json`, `designs.csv`, `responses.csv`
-//! (and, with `objectives`, `pareto.{csv,json}` and `pareto-table.{csv,md,json}`:
-//! [`crate::pareto`]).
+//! then the candidates (the design table's designs), the figure data
+//! ([`crate::phases::figures`]) and the files ([`StudyReport::write_files`]): `refine.csv`, `optimum.json`,
+//! `design-table.{csv,md,json}`, `candidates.json`, beside the sweep's `manifest.json`,
+//! `designs.csv`, `responses.csv` (and, with `objectives`, `pareto.{csv,json}` and
+//! `pareto-table.{csv,md,json}`: [`crate::phases::pareto`]), and the figures.
 //!
-//! Submodules, each importing only those above it: [`progress`] (phases and the progress
-//! callback), [`figures`] (figure data), [`report`] (the report and its files),
-//! [`optimize`](mod@optimize), [`sweep`](mod@sweep) and [`rank`](mod@rank) (the entry
-//! points).
+//! A new phase goes into [`crate::phases`] (taking its journal's path from the folder) and
+//! is called from the command that runs it here; a new output file is written through
+//! [`crate::store::folder::StudyFolder::write`] (and its name added to
+//! [`crate::store::folder::is_output_name`] when older folders may hold it).
+//!
+//! [`Phase::Sweep`]: crate::eval::progress::Phase::Sweep
+//! [`Phase::Refine`]: crate::eval::progress::Phase::Refine
+//! [`Phase::Check`]: crate::eval::progress::Phase::Check
+//! [`Phase::DesignTable`]: crate::eval::progress::Phase::DesignTable
+//! [`Phase::ObjectiveMap`]: crate::eval::progress::Phase::ObjectiveMap
+//! [`Phase::Pareto`]: crate::eval::progress::Phase::Pareto
+//! [`Phase::ParetoCheck`]: crate::eval::progress::Phase::ParetoCheck
+//! [`Phase::ParetoTable`]: crate::eval::progress::Phase::ParetoTable
 
-pub mod figures;
-pub mod optimize;
-pub mod progress;
-pub mod rank;
-pub mod report;
-pub mod sweep;
+mod figures;
+mod optimize;
+mod rank;
+mod report;
+mod sweep;
 
-pub use figures::{Convergence, DriftProfile, FigureData, MapRequest, ObjectiveMap, RecordScatter};
-pub use optimize::{OptimizeOptions, optimize_study};
-pub use progress::{NoProgress, Phase, Progress};
+pub use figures::{FigureWriter, NoFigures};
+pub use optimize::{OptimizeOptions, OptimizeRun, optimize_study};
 pub use rank::{family_study, rank_study};
 pub use report::{PhaseWork, StudyReport, Work};
 pub use sweep::{SweepRun, merge_shards, sweep_study};

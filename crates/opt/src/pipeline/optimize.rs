@@ -1,19 +1,21 @@
-//! [`optimize_study`]: sweep, refine, check the finalists, build the design table and the
-//! candidates (and the objective map when asked), each phase journalled and resumed
-//! under the study's fingerprint; then the files.
+//! [`optimize_study`] (`slipload optimize`): sweep, refine, check the finalists, build
+//! the design table and the candidates (and the objective map when asked), each phase
+//! journalled and resumed under the study's fingerprint; then the files and the figures.
 
-use super::figures::{FigureData, MapRequest, convergence, objective_map};
-use super::progress::{Phase, Progress, phase};
+use super::figures::FigureWriter;
 use super::report::{PhaseWork, StudyReport, Work};
-use crate::error::OptError;
-use crate::evaluate::TaskJournal;
-use crate::optimize::{check_finalists, refine_sweep};
-use crate::rank::NamedDesign;
-use crate::shard::Shard;
-use crate::study::{RefineMethod, Study};
-use crate::sweep::{self, Manifest};
-use crate::table::{DesignTable, standard_designs};
-use std::path::Path;
+use crate::base::error::OptError;
+use crate::base::shard::Shard;
+use crate::eval::evaluate::TaskJournal;
+use crate::eval::progress::{Phase, Progress, phase};
+use crate::model::config::RefineMethod;
+use crate::model::study::Study;
+use crate::phases::figures::{FigureData, MapRequest, convergence, objective_map};
+use crate::phases::rank::NamedDesign;
+use crate::phases::refinement::{check_finalists, refine_sweep};
+use crate::phases::sweep::{self, Manifest};
+use crate::phases::table::{DesignTable, standard_designs};
+use crate::store::folder::{Discarded, FolderRequest, StudyFolder};
 
 /// What [`optimize_study`] runs besides the study's own phases.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -35,12 +37,27 @@ impl OptimizeOptions {
     }
 }
 
-/// Optimises `study` into the folder `out`: checks the options, refuses the folder if a
-/// journal of another study is there, then runs the phases of [`super::Phase`] in order
-/// — sweep, refine, check, design table, objective map (when asked) — each reporting to
-/// `progress`, then writes `refine.csv`, `optimum.json`, `design-table.{csv,md,json}` and
-/// `candidates.json` ([`StudyReport::write_files`]) beside the sweep's files, and returns
-/// the report.
+/// What an `optimize` run did: its report, the figures drawn, what `fresh` removed.
+#[derive(Debug, Clone)]
+pub struct OptimizeRun {
+    /// Everything the run found.
+    pub report: StudyReport,
+    /// The figures drawn (their names).
+    pub drawn: Vec<String>,
+    /// The files written besides the figures, in the order a summary names them.
+    pub files: Vec<&'static str>,
+    /// What `fresh` removed and kept, when it was asked for.
+    pub discarded: Option<Discarded>,
+}
+
+/// `slipload optimize`: optimises `study` into the folder of `request`. Checks the
+/// figures can be drawn and the options, opens the folder (its lock; `fresh`), refuses it
+/// if a journal of another study is there, then runs the phases of
+/// [`crate::eval::progress::Phase`] in order — sweep, refine, check, design table,
+/// objective map (when asked), the front's phases (a study with `objectives`) — each
+/// reporting to `progress`, writes `refine.csv`, `optimum.json`,
+/// `design-table.{csv,md,json}` and `candidates.json` ([`StudyReport::write_files`])
+/// beside the sweep's files, draws the figures with `figures`, and returns the run.
 ///
 /// Every phase that simulates is resumable: the sweep continues `journal.jsonl`, the
 /// refinement replays `refine-METHOD.jsonl`, the check and the design table take their
@@ -49,21 +66,55 @@ impl OptimizeOptions {
 /// sweep's fidelity, which their key carries).
 pub fn optimize_study(
     study: &Study,
-    out: &Path,
+    options: &OptimizeOptions,
+    request: FolderRequest<'_>,
+    progress: &dyn Progress,
+    figures: &dyn FigureWriter,
+) -> Result<OptimizeRun, OptError> {
+    StudyFolder::check_path(request.option, request.path)?;
+    // the figures are drawn at the end: a missing font is refused before the run
+    figures.check()?;
+    // a bad map fails before `fresh` discards anything
+    options.check(study)?;
+    let (folder, discarded) = StudyFolder::open(request)?;
+    if let Some(d) = &discarded {
+        progress.discarded(folder.dir(), d);
+    }
+    let report = run_phases(study, &folder, options, progress)?;
+    folder.claim_figures()?;
+    let mut drawn = figures.study(&report.figures, folder.dir())?;
+    if let Some(p) = &report.pareto {
+        drawn.extend(figures.front(p, folder.dir())?);
+    }
+    let mut files: Vec<&'static str> = StudyReport::FILES.to_vec();
+    if report.pareto.is_some() {
+        files.extend(crate::phases::pareto::ParetoReport::FILES);
+    }
+    Ok(OptimizeRun {
+        report,
+        drawn,
+        files,
+        discarded,
+    })
+}
+
+/// The phases of [`optimize_study`] in the opened `folder`, and the report's files.
+fn run_phases(
+    study: &Study,
+    folder: &StudyFolder,
     options: &OptimizeOptions,
     progress: &dyn Progress,
 ) -> Result<StudyReport, OptError> {
-    options.check(study)?;
-    let _lock = crate::folder_lock::FolderLock::acquire(out)?;
+    let out = folder.dir();
     let method = options.refine.unwrap_or(study.config.refine.method);
     // every journal of the folder must be this study's: never mix another study's numbers
     let manifest = Manifest::of(study);
-    crate::journal::check_folder(out, &manifest.fingerprint)
+    crate::store::journal::check_folder(out, &manifest.fingerprint)
         .map_err(|e| e.context(format!("optimizing {} into {}", study.name, out.display())))?;
     let nr = study.records.len();
 
     let sweep = phase(progress, Phase::Sweep, manifest.tasks(), |tick| {
-        sweep::run(study, out, Shard::ALL, true, tick)
+        sweep::run(study, folder, Shard::ALL, true, tick)
             .map_err(|e| e.context(format!("sweeping {} into {}", study.name, out.display())))
     })?;
     let rows = sweep
@@ -72,14 +123,18 @@ pub fn optimize_study(
         .ok_or_else(|| OptError::Missing("the sweep is incomplete".into()))?;
 
     // the check fidelity's runs (finalists, design table) are journalled together
-    let check_journal = TaskJournal::open(study, &out.join("check.jsonl"), &manifest.fingerprint)?;
+    let check_journal = TaskJournal::open(
+        study,
+        &folder.journal("check.jsonl")?,
+        &manifest.fingerprint,
+    )?;
     let rc = study.config.refine;
     let refinement = phase(
         progress,
         Phase::Refine,
         rc.starts * rc.max_evaluations * nr,
         |tick| {
-            let journal = out.join(format!("refine-{}.jsonl", method.as_str()));
+            let journal = folder.journal(&format!("refine-{}.jsonl", method.as_str()))?;
             refine_sweep(study, &sweep.manifest, rows, method, Some(&journal), tick)
                 .map_err(|e| e.context("refining"))
         },
@@ -129,7 +184,7 @@ pub fn optimize_study(
     } else {
         Some(pareto_phases(
             study,
-            out,
+            folder,
             &sweep.manifest,
             rows,
             &check_journal,
@@ -209,7 +264,7 @@ pub fn optimize_study(
         sweep,
         pareto: pareto.map(|(p, _)| p),
     };
-    report.write_files(out)?;
+    report.write_files(folder)?;
     Ok(report)
 }
 
@@ -218,26 +273,26 @@ pub fn optimize_study(
 /// design table of a few front designs (`check.jsonl`), and the simulations of each.
 fn pareto_phases(
     study: &Study,
-    out: &Path,
+    folder: &StudyFolder,
     manifest: &Manifest,
-    rows: &[crate::metrics::RecordMetrics],
+    rows: &[crate::base::metrics::RecordMetrics],
     check_journal: &TaskJournal,
     progress: &dyn Progress,
-) -> Result<(crate::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
-    use crate::pareto::report::{build, knee_and_extremes, table_designs};
+) -> Result<(crate::phases::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
+    use crate::phases::pareto::report::{build, knee_and_extremes, table_designs};
     let nr = study.records.len();
     let cfg = study.config.pareto.unwrap_or_default();
     let journal = TaskJournal::open_kind(
         study,
-        &out.join("pareto.jsonl"),
+        &folder.journal("pareto.jsonl")?,
         "pareto",
         &manifest.fingerprint,
     )?;
     let search = phase(progress, Phase::Pareto, cfg.designs * nr, |tick| {
-        crate::pareto::search(study, manifest, rows, Some(&journal), tick)
+        crate::phases::pareto::search(study, manifest, rows, Some(&journal), tick)
             .map_err(|e| e.context("searching the front"))
     })?;
-    let front_size = crate::pareto::first_front(
+    let front_size = crate::phases::pareto::first_front(
         &search
             .evaluated
             .iter()
@@ -250,7 +305,7 @@ fn pareto_phases(
         Phase::ParetoCheck,
         (front_size + 1) * nr,
         |tick| {
-            crate::pareto::certify(study, &search, Some(check_journal), tick)
+            crate::phases::pareto::certify(study, &search, Some(check_journal), tick)
                 .map_err(|e| e.context("checking the front"))
         },
     )?;

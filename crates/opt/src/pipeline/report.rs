@@ -1,19 +1,18 @@
 //! What [`super::optimize_study`] found, and the files made from it: `refine.csv`,
 //! `optimum.json`, `design-table.{csv,md,json}` and `candidates.json`.
 
-use super::figures::FigureData;
-use crate::error::OptError;
-use crate::metrics::RecordMetrics;
-use crate::optimize::OptimizeReport;
-use crate::output::write_atomic;
-use crate::rank::NamedDesign;
-use crate::space::OnBound;
-use crate::study::RefineMethod;
-use crate::sweep::SweepReport;
-use crate::table::DesignTable;
+use crate::base::error::OptError;
+use crate::base::metrics::RecordMetrics;
+use crate::model::config::RefineMethod;
+use crate::model::space::OnBound;
+use crate::phases::figures::FigureData;
+use crate::phases::rank::NamedDesign;
+use crate::phases::refinement::OptimizeReport;
+use crate::phases::sweep::SweepReport;
+use crate::phases::table::DesignTable;
+use crate::store::folder::StudyFolder;
 use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// Simulations of one phase: run now, and taken from its journal.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -75,7 +74,7 @@ pub struct StudyReport {
     pub on_bound: Vec<OnBound>,
     /// The design table's designs (slip loads, N): the optimum first, then uniform and
     /// storey-shear designs of the same total, the building file's, the bare frame.
-    pub designs: Vec<(String, crate::evaluate::DesignLoads)>,
+    pub designs: Vec<(String, crate::eval::evaluate::DesignLoads)>,
     /// The design table at the check fidelity.
     pub table: DesignTable,
     /// The table's runs: `[0]` the bare frame, then per design its slip loads, × 0.75,
@@ -87,8 +86,8 @@ pub struct StudyReport {
     pub figures: FigureData,
     /// Simulations per phase, run now and reused.
     pub work: Work,
-    /// The front, when the study names `objectives` ([`crate::pareto`]).
-    pub pareto: Option<crate::pareto::ParetoReport>,
+    /// The front, when the study names `objectives` ([`crate::phases::pareto`]).
+    pub pareto: Option<crate::phases::pareto::ParetoReport>,
 }
 
 /// A finalist as `optimum.json` lists it.
@@ -96,9 +95,9 @@ pub struct StudyReport {
 struct FinalistEntry {
     #[serde(rename = "slip_loads_kN")]
     slip_loads_kn: Vec<f64>,
-    #[serde(with = "crate::collapse::objective_serde")]
+    #[serde(with = "crate::base::collapse::objective_serde")]
     objective_sweep: f64,
-    #[serde(with = "crate::collapse::objective_serde")]
+    #[serde(with = "crate::base::collapse::objective_serde")]
     objective_check: f64,
 }
 
@@ -112,11 +111,11 @@ struct OptimumFile<'a> {
     #[serde(rename = "slip_loads_kN")]
     slip_loads_kn: Vec<f64>,
     on_bound: &'a [OnBound],
-    #[serde(with = "crate::collapse::objective_serde")]
+    #[serde(with = "crate::base::collapse::objective_serde")]
     objective_value: f64,
-    #[serde(with = "crate::collapse::objective_serde")]
+    #[serde(with = "crate::base::collapse::objective_serde")]
     bare_objective: f64,
-    #[serde(with = "crate::collapse::objective_serde")]
+    #[serde(with = "crate::base::collapse::objective_serde")]
     file_objective: f64,
     sweep_designs: usize,
     refine_evaluations: usize,
@@ -169,8 +168,8 @@ impl StudyReport {
                 "{},{},{},{}",
                 i + 1,
                 self.method.as_str(),
-                crate::collapse::objective_text(p.f, None),
-                crate::collapse::objective_text(best, None)
+                crate::base::collapse::objective_text(p.f, None),
+                crate::base::collapse::objective_text(best, None)
             );
             for v in loads {
                 let _ = write!(s, ",{}", v / 1e3);
@@ -227,17 +226,14 @@ impl StudyReport {
 
     /// Writes `refine.csv`, `optimum.json`, `design-table.{csv,md,json}` and
     /// `candidates.json` into `out` (the sweep wrote its own files as it finished), and
-    /// the front's files ([`crate::pareto::ParetoReport::write_files`]) when there is one.
-    pub fn write_files(&self, out: &Path) -> Result<(), OptError> {
-        write_atomic(&out.join("refine.csv"), self.refine_csv().as_bytes())?;
-        write_atomic(&out.join("optimum.json"), self.optimum_json()?.as_bytes())?;
-        self.table.write_files(out)?;
-        write_atomic(
-            &out.join("candidates.json"),
-            self.candidates_json()?.as_bytes(),
-        )?;
+    /// the front's files ([`crate::phases::pareto::ParetoReport::write_files`]) when there is one.
+    pub fn write_files(&self, folder: &StudyFolder) -> Result<(), OptError> {
+        folder.write("refine.csv", self.refine_csv().as_bytes())?;
+        folder.write("optimum.json", self.optimum_json()?.as_bytes())?;
+        self.table.write_files(folder)?;
+        folder.write("candidates.json", self.candidates_json()?.as_bytes())?;
         if let Some(p) = &self.pareto {
-            p.write_files(out)?;
+            p.write_files(folder)?;
         }
         Ok(())
     }

@@ -1,14 +1,15 @@
 //! [`sweep_study`] and [`merge_shards`]: a study's sweep, whole or one shard of it, and
-//! the join of shard folders into the files one run writes, with the figure data of a
+//! the join of shard folders into the files one run writes, each with the figures of a
 //! complete sweep.
 
-use super::figures::FigureData;
-use super::progress::{Phase, Progress, phase};
-use crate::error::OptError;
-use crate::folder_lock::FolderLock;
-use crate::shard::Shard;
-use crate::study::Study;
-use crate::sweep::{self, Manifest, SweepReport};
+use super::figures::FigureWriter;
+use crate::base::error::OptError;
+use crate::base::shard::Shard;
+use crate::eval::progress::{Phase, Progress, phase};
+use crate::model::study::Study;
+use crate::phases::figures::FigureData;
+use crate::phases::sweep::{self, Manifest, SweepReport, check_merge_folders};
+use crate::store::folder::{Discarded, FolderRequest, StudyFolder};
 use std::path::Path;
 
 /// What a sweep (or a merge of its shards) did and found.
@@ -18,6 +19,10 @@ pub struct SweepRun {
     pub report: SweepReport,
     /// The figure data, when the sweep is complete (a whole run, or a merge).
     pub figures: Option<FigureData>,
+    /// The figures drawn (their names), when the sweep is complete.
+    pub drawn: Vec<String>,
+    /// What `fresh` removed and kept, when it was asked for.
+    pub discarded: Option<Discarded>,
 }
 
 impl SweepRun {
@@ -31,47 +36,88 @@ impl SweepRun {
         "journal.jsonl",
     ];
 
-    fn complete(report: SweepReport) -> Result<SweepRun, OptError> {
-        let figures = match &report.rows {
+    fn complete(
+        report: SweepReport,
+        folder: &StudyFolder,
+        figures: &dyn FigureWriter,
+        discarded: Option<Discarded>,
+    ) -> Result<SweepRun, OptError> {
+        let data = match &report.rows {
             Some(rows) => Some(FigureData::of_sweep(&report.manifest, rows)?),
             None => None,
         };
-        Ok(SweepRun { report, figures })
+        let drawn = match &data {
+            Some(d) => {
+                folder.claim_figures()?;
+                figures.study(d, folder.dir())?
+            }
+            None => Vec::new(),
+        };
+        Ok(SweepRun {
+            report,
+            figures: data,
+            drawn,
+            discarded,
+        })
     }
 }
 
-/// Sweeps `study` (the slice `shard` owns) into `out`, continuing its journal with
-/// `resume` ([`crate::sweep::run`]); reports the sweep phase to `progress`.
+/// `slipload sweep`: sweeps `study` (the slice `shard` owns) into the folder of `request`,
+/// continuing its journal with `resume` ([`crate::phases::sweep::run`]), reporting the
+/// sweep phase to `progress`; a complete sweep's figures are drawn by `figures`.
 pub fn sweep_study(
     study: &Study,
-    out: &Path,
     shard: Shard,
     resume: bool,
+    request: FolderRequest<'_>,
     progress: &dyn Progress,
+    figures: &dyn FigureWriter,
 ) -> Result<SweepRun, OptError> {
-    let _lock = FolderLock::acquire(out)?;
+    StudyFolder::check_path(request.option, request.path)?;
+    figures.check()?;
+    let (folder, discarded) = StudyFolder::open(request)?;
+    if let Some(d) = &discarded {
+        progress.discarded(folder.dir(), d);
+    }
     let manifest = Manifest::of(study);
     let mine = (0..manifest.tasks()).filter(|&k| shard.owns(k)).count();
     let report = phase(progress, Phase::Sweep, mine, |tick| {
-        sweep::run(study, out, shard, resume, tick)
-            .map_err(|e| e.context(format!("sweeping {} into {}", study.name, out.display())))
+        sweep::run(study, &folder, shard, resume, tick).map_err(|e| {
+            e.context(format!(
+                "sweeping {} into {}",
+                study.name,
+                folder.dir().display()
+            ))
+        })
     })?;
-    SweepRun::complete(report)
+    SweepRun::complete(report, &folder, figures, discarded)
 }
 
-/// Joins the shard folders `dirs` into `out` ([`crate::sweep::merge`]): the bytes one run
-/// writes, and the same figure data.
-pub fn merge_shards(dirs: &[&Path], out: &Path) -> Result<SweepRun, OptError> {
-    sweep::check_merge_folders(dirs, out)?;
-    let _lock = FolderLock::acquire(out)?;
-    let (manifest, rows) = sweep::merge(dirs, out)
-        .map_err(|e| e.context(format!("merging into {}", out.display())))?;
-    SweepRun::complete(SweepReport {
-        shard_tasks: manifest.tasks(),
-        resumed: manifest.tasks(),
-        ran: 0,
-        distrusted: 0,
-        manifest,
-        rows: Some(rows),
-    })
+/// `slipload merge`: joins the shard folders `dirs` into the folder of `request`
+/// ([`crate::phases::sweep::merge`]): the bytes one run writes, and the same figures.
+pub fn merge_shards(
+    dirs: &[&Path],
+    request: FolderRequest<'_>,
+    figures: &dyn FigureWriter,
+) -> Result<SweepRun, OptError> {
+    StudyFolder::check_path(request.option, request.path)?;
+    // a folder named twice, or the output among the shards, is refused
+    check_merge_folders(dirs, request.path)?;
+    figures.check()?;
+    let (folder, discarded) = StudyFolder::open(request)?;
+    let (manifest, rows) = sweep::merge(dirs, &folder)
+        .map_err(|e| e.context(format!("merging into {}", folder.dir().display())))?;
+    SweepRun::complete(
+        SweepReport {
+            shard_tasks: manifest.tasks(),
+            resumed: manifest.tasks(),
+            ran: 0,
+            distrusted: 0,
+            manifest,
+            rows: Some(rows),
+        },
+        &folder,
+        figures,
+        discarded,
+    )
 }

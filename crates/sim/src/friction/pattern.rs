@@ -205,7 +205,7 @@ impl<const M: usize> PatternQp<M> {
             slip[i] = e.d[i] + dot(&e.s[i], b);
             b_norm = b_norm.max(b[i].abs());
         }
-        // The general solver's round-off threshold (box_qp.rs), with ‖F‖∞ bounded by the
+        // The general solver's round-off threshold (box_qp/solver.rs), with ‖F‖∞ bounded by the
         // box (a threshold at most that much larger, still at round-off).
         let tol = self.tol_w + self.tol_b * b_norm;
         let mut slide = None;
@@ -282,7 +282,7 @@ impl<const M: usize> PatternQp<M> {
             for p in 0..j {
                 d -= l[j][p] * l[j][p];
             }
-            // The general solver's pivot floor (box_qp.rs).
+            // The general solver's pivot floor (box_qp/cholesky.rs).
             if d.is_nan() || d <= 4.0 * M as f64 * f64::EPSILON * w[idx[j]][idx[j]] {
                 usable = false;
                 break 'factor;
@@ -383,7 +383,7 @@ fn dot<const M: usize>(a: &[f64; M], b: &[f64; M]) -> f64 {
 mod tests {
     #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
     use super::*;
-    use crate::friction::{BoxQp, kkt_residual};
+    use crate::friction::box_qp::{BoxQp, kkt_residual};
     use nalgebra::{DMatrix, DVector};
     use proptest::collection::vec;
     use proptest::prelude::*;

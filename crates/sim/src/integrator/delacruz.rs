@@ -69,7 +69,7 @@
 //! |balance error − projection energy| ≤ (ω_max Δt)²/12 · (|input| + initial energy).
 
 use crate::error::SimError;
-use crate::integrator::Integrator;
+use crate::integrator::method::Integrator;
 use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, history_columns, initial_state,
     record_row, slip,

@@ -12,7 +12,8 @@ use super::scenes::{
 use crate::cmd::scene_args::BENCHMARK_BUILDING;
 use crate::cmd::study_args::load_study;
 use anyhow::{Context, bail};
-use slipload_opt::evaluate::{Fidelity, Task, run_tasks};
+use slipload_opt::eval::evaluate::{Task, run_tasks};
+use slipload_opt::model::fidelity::Fidelity;
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::{MethodName, Plan, run_plan};
 use std::time::Instant;

@@ -156,7 +156,7 @@ pub(super) fn comparison_record() -> anyhow::Result<std::path::PathBuf> {
         "slipload-bench-comparison-{}.csv",
         std::process::id()
     ));
-    slipload_opt::output::write_atomic(&path, format_csv(record).as_bytes())?;
+    slipload_opt::base::output::write_atomic(&path, format_csv(record).as_bytes())?;
     Ok(path)
 }
 

@@ -19,8 +19,8 @@ mod study;
 mod svg;
 mod tables;
 
-use slipload_opt::output::write_atomic;
-use std::path::PathBuf;
+use slipload_opt::base::output::write_atomic;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `slipload report`.
 #[derive(Debug, clap::Args)]
@@ -36,11 +36,36 @@ pub struct ReportArgs {
     pub max_rows: usize,
 }
 
+/// Writes the report to `out` atomically; into a study folder (one holding the lock file
+/// of slipload's study commands) it goes through the folder, so that the page joins the
+/// list of the files slipload wrote there (`--fresh` removes it; a user's own file under
+/// its name is never overwritten) and is not written while a command holds the folder.
+fn write_report(out: &Path, html: &[u8]) -> anyhow::Result<()> {
+    use slipload_opt::store::folder::{FolderRequest, LOCK_FILE, StudyFolder};
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if let Some(name) = out.file_name().and_then(|n| n.to_str())
+        && dir.join(LOCK_FILE).is_file()
+    {
+        let (folder, _) = StudyFolder::open(FolderRequest {
+            path: dir,
+            option: "--out",
+            fresh: false,
+        })?;
+        folder.write(name, html)?;
+    } else {
+        write_atomic(out, html)?;
+    }
+    Ok(())
+}
+
 /// Runs `slipload report`.
 pub fn run(args: ReportArgs) -> anyhow::Result<()> {
     let (kind, html) = page::build(&args.dir, args.max_rows.max(1))?;
     let out = args.out.unwrap_or_else(|| args.dir.join("report.html"));
-    write_atomic(&out, html.as_bytes())?;
+    write_report(&out, html.as_bytes())?;
     eprintln!(
         "report of the {} in {} written to {}",
         kind.noun(),

@@ -1,48 +1,11 @@
 //! Propagation: the truncated exponential series of a mode set, summed per substep
 //! ([`taylor`]) or cached as grid propagators ([`Stepping`]) once the mode set has lasted.
 
-use super::energy::GAUSS;
-use super::modes::{ModeOps, Model, SparseRows};
-use super::{LEAD_TERMS, TAYLOR_TERMS};
+use super::gauss::GAUSS;
+use super::kernels::{SparseRows, col, dot};
+use super::model::{ModeOps, Model, Stepping};
+use super::params::{LEAD_TERMS, TAYLOR_TERMS};
 use nalgebra::{DMatrix, DVector};
-
-/// What the grid substeps of one long-lived mode set reuse: the propagator over one grid
-/// interval, and every scanned function (events, then storey drifts) as Taylor rows so its
-/// coefficients are one product with y.
-pub(super) struct Stepping {
-    /// exp(A h) (its Taylor polynomial, exact to round-off as above), dim × dim.
-    pub(super) phi: DMatrix<f64>,
-    /// The input, viscous and friction work over one grid interval as quadratic forms of
-    /// its starting state, h Σ_g w_g exp(A x_g h)ᵀ Q_p exp(A x_g h) for each power
-    /// p(y) = yᵀ Q_p y: the same 6-point Gauss–Legendre rule as [`Model::integrate_powers`],
-    /// summed once per mode set instead of once per substep. `None` when energies are off.
-    /// The plastic work's form is formed only when a storey yields (`work[3]` empty
-    /// otherwise).
-    pub(super) work: Option<[DMatrix<f64>; 4]>,
-    /// Column f·K + k: the k-th Taylor row r Aᵏ/k! of scanned function f, so that its
-    /// coefficient on τᵏ over a substep from y is that column · y.
-    pub(super) rows: DMatrix<f64>,
-    /// Column f: Σ_{k≥1} |r Aᵏ/k!| hᵏ componentwise, so that |g(τ) − g(0)| ≤ Σ_j |y_j|·tail_j
-    /// for τ ≤ h (every term is nonnegative and grows with τ).
-    pub(super) tails: DMatrix<f64>,
-    /// Column f: Σ_{k≥LEAD_TERMS} |r Aᵏ/k!| hᵏ componentwise, the part of the tail past the
-    /// leading coefficients, which the second test forms exactly.
-    pub(super) tails_far: DMatrix<f64>,
-    /// Column f: Σ_{k≥LEAD_TERMS} k |r Aᵏ/k!| hᵏ⁻¹ componentwise, the same bound on the
-    /// rate g′(τ) past its leading terms: where the leading part of g′ keeps one sign by
-    /// more than Σ|y_j|·rate_tail_j, g is monotone on the substep (a drift's peak there is
-    /// at an end).
-    pub(super) rate_tails_far: DMatrix<f64>,
-    /// Column o: Σ_{k≥1} |r_o Aᵏ/k!| hᵏ componentwise for observed function o
-    /// ([`ModeOps::obs_rows`]), so that |g_o(τ)| ≤ |g_o(0)| + Σ_j |y_j|·tail_j on a
-    /// substep no longer than h: where that stays within the function's sampled peak, no
-    /// output step inside the substep can raise it.
-    pub(super) obs_tails: DMatrix<f64>,
-    /// exp(A Δt) over one output step, when a grid substep holds several
-    /// ([`ModeOps::out_steps`] ≥ 2): the states at the output steps inside it, one product
-    /// each.
-    pub(super) phi_out: Option<DMatrix<f64>>,
-}
 
 impl Model<'_> {
     /// The grid propagators of a mode set.
@@ -168,35 +131,6 @@ pub(super) fn lead_coefs(st: &Stepping, f: usize, y: &DVector<f64>) -> [f64; LEA
     std::array::from_fn(|i| dot(col(&st.rows, f * TAYLOR_TERMS + i + 1), y.as_slice()))
 }
 
-/// Column `j` of a column-major matrix, as a slice.
-#[inline]
-pub(super) fn col(m: &DMatrix<f64>, j: usize) -> &[f64] {
-    let r = m.nrows();
-    &m.as_slice()[j * r..(j + 1) * r]
-}
-
-/// Σ a_i b_i over slices of equal length, in four interleaved partial sums (the step
-/// loop's scalar products: no views, no shape checks, vectorisable).
-#[inline]
-pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut s = [0.0f64; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        s[0] += x[0] * y[0];
-        s[1] += x[1] * y[1];
-        s[2] += x[2] * y[2];
-        s[3] += x[3] * y[3];
-    }
-    let mut t = (s[0] + s[1]) + (s[2] + s[3]);
-    for (x, y) in ra.iter().zip(rb) {
-        t += x * y;
-    }
-    t
-}
-
 /// The leading terms c_k lenᵏ of [`lead_coefs`], each the largest |c_k τᵏ| on [0, len]:
 /// so g(0) + Σ min(0, ·) bounds g(0) + Σ c_k τᵏ from below there, |g(0)| + Σ |·| from
 /// above.
@@ -228,36 +162,6 @@ pub(super) fn monotone(c: &[f64; LEAD_TERMS - 1], len: f64, rest: f64) -> bool {
         }
     }
     lo > rest || hi < -rest
-}
-
-/// out = M x for a column-major M: the columns scaled and summed in order, over plain
-/// slices so the compiler vectorises the inner loop (the step loop's products with the
-/// propagators are small and dynamic-sized, where a generic product pays for its
-/// strides).
-#[inline]
-pub(super) fn mat_vec(m: &DMatrix<f64>, x: &[f64], out: &mut [f64]) {
-    let r = m.nrows();
-    let out = &mut out[..r];
-    let mut cols = m.as_slice().chunks_exact(r).zip(x);
-    if let Some((c0, &x0)) = cols.next() {
-        for (o, a) in out.iter_mut().zip(c0) {
-            *o = a * x0;
-        }
-    } else {
-        out.fill(0.0);
-    }
-    for (c, &xj) in cols {
-        for (o, a) in out.iter_mut().zip(c) {
-            *o += a * xj;
-        }
-    }
-}
-
-/// yᵀ Q y, with `scratch` for Q y.
-#[inline]
-pub(super) fn quadratic(q: &DMatrix<f64>, y: &DVector<f64>, scratch: &mut DVector<f64>) -> f64 {
-    mat_vec(q, y.as_slice(), scratch.as_mut_slice());
-    y.dot(scratch)
 }
 
 /// The Taylor coefficients p_k = Aᵏ y / k! of exp(Aτ) y.

@@ -2,7 +2,7 @@
 //! polynomial in τ (its Taylor coefficients), scanned at [`SCAN_POINTS`] points and its
 //! roots located by the Illinois method.
 
-use super::{SCAN_POINTS, TAYLOR_TERMS};
+use super::params::{SCAN_POINTS, TAYLOR_TERMS};
 
 /// Scalar polynomial Σ c_k τᵏ and its derivative.
 #[inline]

@@ -1,6 +1,6 @@
 //! The step loop of `newmark` for a compile-time DOF count `N` and contact count `NC`.
 //!
-//! Same step as the general loop in the parent module — the same operators and
+//! Same step as the general loop (`dense.rs`) — the same operators and
 //! predictors, the products summed in another order (round-off apart, the same numbers) —
 //! with every vector and operator a fixed-size array, so the products unroll and nothing
 //! is bounds-checked, and with the friction QP answered from its stick/slip pattern
@@ -12,7 +12,9 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::{EppPred, GROUND, Link, Operators, StepConstants, non_finite, outcome};
+use super::link::{EppPred, GROUND, Link};
+use super::operators::{Operators, StepConstants};
+use super::outcome::{non_finite, outcome};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;

@@ -1,0 +1,103 @@
+//! The automatic choice of a study's sweep method (a probe run of each candidate method,
+//! compared by counted work), and the constructors of a [`Study`] that make it: a study
+//! is loaded, checked, and its sweep method chosen before anything else runs.
+
+use crate::base::error::OptError;
+use crate::eval::evaluate::{DesignLoads, simulate_design};
+use crate::model::config::StudyConfig;
+use crate::model::fidelity::{EXACT_SWEEP_COST, Fidelity, SweepMethod};
+use crate::model::study::Study;
+use slipload_sim::scene::MethodName;
+use std::path::Path;
+
+/// The sweep's method: the one `fidelity.method` names; unnamed, `exact` where it costs
+/// at most [`EXACT_SWEEP_COST`] times `newmark` on the study's building, else `newmark`.
+/// The cost is each method's counted work (`Diagnostics::work`, multiply-adds of its
+/// dominant operations) on a probe: the study's first record at the building file's own
+/// slip loads, at the sweep's step and outputs. Counted work, not time, so the choice
+/// (and every byte after it) is the same on every machine and under any load;
+/// `slipload bench` reports each method's time per unit of work beside it. Where `exact`
+/// refuses the probe (a chattering or too-stiff dissipator exceeds its budget), the sweep
+/// is `newmark` and the reason says so.
+pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
+    if let Some(method) = study.config.fidelity.method {
+        return Ok(SweepMethod {
+            method,
+            reason: "named by the study (fidelity.method)".into(),
+        });
+    }
+    let probe = |method: MethodName| {
+        let fid = Fidelity {
+            method,
+            dt_s: study.config.fidelity.dt_s,
+            dt_factor: 1.0,
+            energies: study.needs_energies(),
+        };
+        // the building file's design as written (a locked or asymmetric damper as such)
+        simulate_design(
+            study,
+            &DesignLoads::file(study),
+            0,
+            &fid,
+            "file (the sweep-method probe)",
+        )
+    };
+    let record = study.records[0].name();
+    let newmark = probe(MethodName::Newmark)?.diagnostics.work;
+    let (method, reason) = match probe(MethodName::Exact) {
+        Ok(exact) => {
+            let ratio = exact.diagnostics.work as f64 / newmark.max(1) as f64;
+            let method = if ratio <= EXACT_SWEEP_COST {
+                MethodName::Exact
+            } else {
+                MethodName::Newmark
+            };
+            (
+                method,
+                format!(
+                    "chosen: exact costs {ratio:.2} x newmark's work on a probe (record {record}, the building's own slip loads); the sweep runs exact where that is at most {EXACT_SWEEP_COST}"
+                ),
+            )
+        }
+        Err(e) => (
+            MethodName::Newmark,
+            format!("chosen: exact refused the probe (record {record}): {e}"),
+        ),
+    };
+    Ok(SweepMethod { method, reason })
+}
+
+impl Study {
+    /// The embedded benchmark study (`configs/study-benchmark.json` with the embedded
+    /// benchmark building inlined): what every front optimises when no study is named.
+    pub fn benchmark() -> Result<Study, OptError> {
+        let name = Path::new(crate::model::study::BENCHMARK_STUDY_ORIGIN);
+        let mut cfg = StudyConfig::from_json(crate::model::study::BENCHMARK_STUDY, name)?;
+        let b: slipload_sim::BuildingConfig =
+            serde_json::from_str(slipload_sim::scene::BENCHMARK_BUILDING)
+                .map_err(|e| OptError::Argument(format!("the embedded benchmark building: {e}")))?;
+        cfg.building = slipload_sim::scene::BuildingRef::Inline(Box::new(b));
+        Study::from_config(cfg, name)
+    }
+
+    /// Reads, validates and resolves a study file.
+    pub fn load(path: &Path) -> Result<Study, OptError> {
+        let text = crate::model::study::read_text(path)?;
+        Study::from_json(&text, path)
+    }
+
+    /// Parses, validates and resolves a study; `path` names it in errors and anchors
+    /// relative paths.
+    pub fn from_json(text: &str, path: &Path) -> Result<Study, OptError> {
+        let cfg = StudyConfig::from_json(text, path)?;
+        Study::from_config(cfg, path)
+    }
+
+    /// Validates and resolves a config — building, space, constraints, then records — and
+    /// chooses the sweep's method ([`choose_sweep_method`]).
+    pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
+        let mut study = Study::described(cfg, path)?;
+        study.sweep_method = choose_sweep_method(&study)?;
+        Ok(study)
+    }
+}

@@ -1,0 +1,720 @@
+//! The study file's configuration as written (the serde structs of a study: suites,
+//! objective, fidelity, sweep, refine, and the front's settings by reference), parsed
+//! strictly and checked in full before any file is read ([`StudyConfig::validate`]):
+//! unknown fields, empty suites, reversed bounds and out-of-range settings are errors that
+//! name the field. The limits on a study's size are here too.
+
+use crate::base::error::OptError;
+use crate::model::objective::Term;
+use crate::model::space::{ConstraintsConfig, SpaceConfig};
+use serde::{Deserialize, Serialize};
+use slipload_motion::Units;
+use slipload_sim::scene::{BuildingRef, MethodName};
+use std::path::Path;
+
+/// A study file, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyConfig {
+    /// Short name (default: the file stem).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Free text.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// The building: a path relative to the study file, or inline.
+    pub building: BuildingRef,
+    /// One or more ground-motion suites.
+    pub suites: Vec<SuiteConfig>,
+    /// The design space.
+    pub space: SpaceConfig,
+    /// Optional linear constraints on the slip loads.
+    #[serde(default)]
+    pub constraints: ConstraintsConfig,
+    /// What to minimise.
+    pub objective: ObjectiveConfig,
+    /// Methods and time steps.
+    #[serde(default)]
+    pub fidelity: FidelityConfig,
+    /// The sweep's sample of designs.
+    #[serde(default)]
+    pub sweep: SweepConfig,
+    /// The refinement after the sweep.
+    #[serde(default)]
+    pub refine: RefineConfig,
+    /// The storey drift ratio past which a run counts as a collapse (the design fails that
+    /// record), overriding the building's `collapse_drift_ratio` for this study.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collapse_drift_ratio: Option<f64>,
+    /// Two to four objectives whose trade-off (Pareto front) the study searches besides
+    /// its `objective` ([`crate::phases::pareto`]); absent: a one-objective study, as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objectives: Option<Vec<crate::model::objectives::ParetoObjective>>,
+    /// Settings of the front's search (only with `objectives`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pareto: Option<crate::model::objectives::ParetoConfig>,
+}
+
+/// One suite of records.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuiteConfig {
+    /// Name used in tables.
+    pub name: String,
+    /// Record files or `*` patterns, relative to the study file.
+    #[serde(default)]
+    pub records: Vec<String>,
+    /// Units of the record values ("g", "m/s2", "cm/s2"); default: by format (AT2 = g).
+    #[serde(default)]
+    pub units: Option<String>,
+    /// Sample interval (s) of one-column text records.
+    #[serde(default)]
+    pub dt_s: Option<f64>,
+    /// How each record is scaled (default: as recorded).
+    #[serde(default)]
+    pub scale: Option<ScaleConfig>,
+    /// The embedded synthetic suite instead of files.
+    #[serde(default)]
+    pub synthetic: Option<SyntheticSuiteConfig>,
+}
+
+/// Scaling of every record of a suite.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ScaleConfig {
+    /// Multiply by this factor.
+    Factor(f64),
+    /// Scale to this peak ground acceleration, g.
+    PgaG(f64),
+    /// Scale to this 5 %-damped pseudo-spectral acceleration at the bare frame's T₁, g.
+    SaT1G(f64),
+}
+
+/// The embedded synthetic suite (Clough–Penzien, firm soil; slipload_motion).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SyntheticSuiteConfig {
+    /// Number of records (default 10).
+    #[serde(default = "default_count")]
+    pub count: usize,
+    /// Seed (default 2007, the embedded default suite).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// PGA of every record, g (default 0.4).
+    #[serde(default = "default_pga")]
+    pub pga_g: f64,
+    /// Duration of every record, s (default 20).
+    #[serde(default = "default_duration")]
+    pub duration_s: f64,
+}
+
+fn default_count() -> usize {
+    slipload_motion::DEFAULT_SUITE_SIZE
+}
+fn default_seed() -> u64 {
+    slipload_motion::DEFAULT_SUITE_SEED
+}
+fn default_pga() -> f64 {
+    slipload_motion::DEFAULT_SUITE_PGA_G
+}
+fn default_duration() -> f64 {
+    20.0
+}
+
+/// The objective: a weighted sum of suite statistics of response metrics.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectiveConfig {
+    /// The terms (at least one).
+    pub terms: Vec<Term>,
+}
+
+/// Methods and time steps.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FidelityConfig {
+    /// Method of the sweep and refinement. Absent: chosen for the study's building,
+    /// `exact` where a probe run costs it at most [`crate::model::fidelity::EXACT_SWEEP_COST`]
+    /// times `newmark`'s work, else `newmark` ([`crate::model::fidelity::choose_sweep_method`]).
+    #[serde(default)]
+    pub method: Option<MethodName>,
+    /// Time step, s (default: the simulation's, T₁/400 rounded to divide the record's dt).
+    #[serde(default)]
+    pub dt_s: Option<f64>,
+    /// Method of the final check (default `exact`, the event-driven reference).
+    #[serde(default = "default_check_method")]
+    pub check_method: MethodName,
+    /// Time step of the final check as a fraction of the sweep's (default 0.25).
+    #[serde(default = "default_check_factor")]
+    pub check_dt_factor: f64,
+}
+
+fn default_check_method() -> MethodName {
+    MethodName::Exact
+}
+
+fn default_check_factor() -> f64 {
+    0.25
+}
+
+impl Default for FidelityConfig {
+    fn default() -> Self {
+        FidelityConfig {
+            method: None,
+            dt_s: None,
+            check_method: default_check_method(),
+            check_dt_factor: default_check_factor(),
+        }
+    }
+}
+
+/// Samplers of the sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SamplerKind {
+    /// Full factorial grid with `levels` levels per variable.
+    Grid,
+    /// Latin hypercube of `points` points (seeded).
+    Lhs,
+    /// Halton sequence (bases 2, 3, 5, …) with a seeded random shift (Cranley–Patterson).
+    Halton,
+}
+
+/// The sweep's sample.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepConfig {
+    /// Sampler (default lhs).
+    #[serde(default = "default_sampler")]
+    pub sampler: SamplerKind,
+    /// Points of lhs/halton (default 32).
+    #[serde(default = "default_points")]
+    pub points: usize,
+    /// Levels per variable of the grid (default 5).
+    #[serde(default = "default_levels")]
+    pub levels: usize,
+    /// Seed (default 1).
+    #[serde(default = "default_sweep_seed")]
+    pub seed: u64,
+}
+
+fn default_sampler() -> SamplerKind {
+    SamplerKind::Lhs
+}
+fn default_points() -> usize {
+    32
+}
+fn default_levels() -> usize {
+    5
+}
+fn default_sweep_seed() -> u64 {
+    1
+}
+
+impl Default for SweepConfig {
+    fn default() -> Self {
+        SweepConfig {
+            sampler: default_sampler(),
+            points: default_points(),
+            levels: default_levels(),
+            seed: default_sweep_seed(),
+        }
+    }
+}
+
+/// Refiners.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RefineMethod {
+    /// Trust region on a fitted quadratic model, subproblem solved by clarabel.
+    TrustRegion,
+    /// Nelder–Mead simplex.
+    NelderMead,
+    /// Adaptive random search.
+    Random,
+}
+
+impl std::str::FromStr for RefineMethod {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "trust-region" => Ok(RefineMethod::TrustRegion),
+            "nelder-mead" => Ok(RefineMethod::NelderMead),
+            "random" => Ok(RefineMethod::Random),
+            o => Err(format!(
+                "unknown refiner {o:?}: expected trust-region, nelder-mead or random"
+            )),
+        }
+    }
+}
+
+impl RefineMethod {
+    /// The name as written.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RefineMethod::TrustRegion => "trust-region",
+            RefineMethod::NelderMead => "nelder-mead",
+            RefineMethod::Random => "random",
+        }
+    }
+}
+
+/// Refinement settings.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineConfig {
+    /// Refiner (default trust-region).
+    #[serde(default = "default_refiner")]
+    pub method: RefineMethod,
+    /// Refine from this many of the best sweep points (default 2).
+    #[serde(default = "default_starts")]
+    pub starts: usize,
+    /// Most design evaluations per start (default 40).
+    #[serde(default = "default_max_evals")]
+    pub max_evaluations: usize,
+    /// Stop when the step (trust radius, simplex size) falls below this, in variables
+    /// scaled to [0, 1] (default 2e-3).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Initial trust radius / simplex size, scaled (default 0.15).
+    #[serde(default = "default_radius")]
+    pub initial_radius: f64,
+    /// Designs verified at reference accuracy (default 3).
+    #[serde(default = "default_finalists")]
+    pub finalists: usize,
+    /// Seed of the random refiner (default 1).
+    #[serde(default = "default_sweep_seed")]
+    pub seed: u64,
+}
+
+fn default_refiner() -> RefineMethod {
+    RefineMethod::TrustRegion
+}
+fn default_starts() -> usize {
+    2
+}
+fn default_max_evals() -> usize {
+    40
+}
+fn default_tolerance() -> f64 {
+    2e-3
+}
+fn default_radius() -> f64 {
+    0.15
+}
+fn default_finalists() -> usize {
+    3
+}
+
+impl Default for RefineConfig {
+    fn default() -> Self {
+        RefineConfig {
+            method: default_refiner(),
+            starts: default_starts(),
+            max_evaluations: default_max_evals(),
+            tolerance: default_tolerance(),
+            initial_radius: default_radius(),
+            finalists: default_finalists(),
+            seed: default_sweep_seed(),
+        }
+    }
+}
+
+fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(OptError::invalid(
+            path,
+            field,
+            format!("must be finite and > 0, got {v}"),
+        ))
+    }
+}
+
+/// The smallest peak ground acceleration a study's suites may ask for, g: about the
+/// threshold of perceptible shaking. Below it no dissipator of a real frame slips, every
+/// design answers as the bare frame and an optimum would be rounding noise (at 1e-300 g
+/// the responses are subnormal numbers).
+/// The same floor as a scene's target PGA ([`slipload_sim::scene::TARGET_PGA_BAND_G`]).
+pub const MIN_STUDY_PGA_G: f64 = slipload_sim::scene::TARGET_PGA_BAND_G.0;
+
+/// A suite's target intensity (g) within [[`MIN_STUDY_PGA_G`], `MAX_ABS_ACCEL_G`].
+fn intensity_g(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
+    finite_positive(path, field, v)?;
+    let max = slipload_motion::MAX_ABS_ACCEL_G;
+    if !(MIN_STUDY_PGA_G..=max).contains(&v) {
+        return Err(OptError::invalid(
+            path,
+            field,
+            format!(
+                "{v:e} g is outside {MIN_STUDY_PGA_G} … {max} g: below it no dissipator slips and every design is the bare frame, beyond it no ground has shaken (wrong units?)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Most designs of a sweep (grid levels^variables, or points), bare and file included.
+pub const MAX_DESIGNS: f64 = 1e6;
+/// Most (design, record) tasks of a sweep (each keeps a row of responses in memory).
+pub const MAX_TASKS: f64 = 5e6;
+/// Most refine starts (and finalists) of a study: real studies use a handful.
+pub const MAX_REFINE_STARTS: usize = 1000;
+/// Most design evaluations per refine start: real studies use tens to hundreds.
+pub const MAX_REFINE_EVALUATIONS: usize = 100_000;
+/// Most integration steps of a whole sweep (about half a day of one core on a small
+/// building).
+pub const MAX_SWEEP_STEPS: f64 = 1e12;
+
+pub(crate) fn too_large(
+    what: String,
+    estimate: f64,
+    limit: f64,
+    unit: &str,
+) -> Result<(), OptError> {
+    if estimate <= limit || slipload_sim::limits::allow_large() {
+        return Ok(());
+    }
+    let c = slipload_sim::limits::count;
+    Err(OptError::TooLarge {
+        what,
+        estimate: format!("{} {unit}", c(estimate)),
+        limit: format!("{} {unit}", c(limit)),
+    })
+}
+
+/// Longest suite or design name, characters: a label of tables, not a text.
+pub const MAX_LABEL_CHARS: usize = 200;
+
+/// What is wrong with a suite or design name, if anything. Names label rows of the CSV
+/// and Markdown tables, which write them as they are: an empty name prints as nothing,
+/// and a comma, double quote, `|` or control character (a newline) would split or shift
+/// the row it labels.
+pub fn label_problem(name: &str) -> Option<String> {
+    if name.trim().is_empty() {
+        return Some("is empty: give it a name".into());
+    }
+    let n = name.chars().count();
+    if n > MAX_LABEL_CHARS {
+        return Some(format!("has {n} characters, more than {MAX_LABEL_CHARS}"));
+    }
+    if let Some(c) = name
+        .chars()
+        .find(|c| c.is_control() || matches!(c, ',' | '"' | '|'))
+    {
+        return Some(format!(
+            "holds {c:?}: a name may not hold a comma, double quote, `|` or control character"
+        ));
+    }
+    None
+}
+
+/// A study whose JSON is well formed but not shaped as a study, said in the file's own
+/// terms (serde would name Rust types, or stop at `}` with "expected value").
+fn shape_error(text: &str, path: &Path) -> Option<OptError> {
+    let v: serde_json::Value = serde_json::from_str(text).ok()?;
+    let kind = |v: &serde_json::Value| match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
+    };
+    let Some(obj) = v.as_object() else {
+        return Some(OptError::invalid(
+            path,
+            "(top level)",
+            format!(
+                "a study is a JSON object {{\"building\", \"suites\", \"space\", \"objective\", …}}, got {}",
+                kind(&v)
+            ),
+        ));
+    };
+    for (field, expected) in [
+        ("space", "an object with one key, \"free\" or \"profile\""),
+        ("objective", "an object {\"terms\": [...]}"),
+        ("sweep", "an object {\"sampler\", \"points\", \"seed\"}"),
+        ("refine", "an object"),
+        ("fidelity", "an object"),
+        ("constraints", "an object"),
+    ] {
+        let Some(x) = obj.get(field) else { continue };
+        let bad = match x.as_object() {
+            None => true,
+            Some(o) => field == "space" && o.len() != 1,
+        };
+        if bad {
+            let got = match x.as_object() {
+                Some(o) if o.is_empty() => "an empty object".to_string(),
+                Some(o) => format!(
+                    "an object with the keys {}",
+                    o.keys()
+                        .map(|k| format!("{k:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                None => kind(x).to_string(),
+            };
+            return Some(OptError::invalid(
+                path,
+                field,
+                format!("expected {expected}, got {got}"),
+            ));
+        }
+    }
+    None
+}
+
+impl StudyConfig {
+    /// Parses a study from JSON text; `path` names it in errors.
+    pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
+        serde_json::from_str(text).map_err(|source| {
+            // A building or scene given as a study: say so, and what to run.
+            match slipload_sim::kind::wrong_kind(text, path, slipload_sim::kind::Expected::Study) {
+                Some(e) => OptError::from(e),
+                None => shape_error(text, path).unwrap_or(OptError::Json {
+                    path: path.to_path_buf(),
+                    source,
+                }),
+            }
+        })
+    }
+
+    /// Checks what can be checked without files: counts, ranges, settings.
+    pub fn validate(&self, path: &Path) -> Result<(), OptError> {
+        // The name heads the summaries, tables and report: blank or holding a newline it
+        // prints as nothing or splits their lines (leave it out to take the file's stem).
+        if let Some(name) = &self.name
+            && (name.trim().is_empty() || name.chars().any(char::is_control))
+        {
+            return Err(OptError::invalid(
+                path,
+                "name",
+                format!(
+                    "{name:?} is blank or holds a control character: give a name on one line, or leave it out to take the file's name"
+                ),
+            ));
+        }
+        if self.suites.is_empty() {
+            return Err(OptError::invalid(
+                path,
+                "suites",
+                "must name at least one suite",
+            ));
+        }
+        for (i, s) in self.suites.iter().enumerate() {
+            let f = |x: &str| format!("suites[{i}].{x}");
+            // Results, statistics and tables are keyed by suite name: an empty name
+            // prints as nothing and two suites of one name would be pooled as one.
+            if let Some(problem) = label_problem(&s.name) {
+                return Err(OptError::invalid(
+                    path,
+                    f("name"),
+                    format!(
+                        "{:?} {problem} (a suite name labels rows of the CSV and Markdown tables)",
+                        s.name
+                    ),
+                ));
+            }
+            if let Some(j) = self.suites[..i].iter().position(|o| o.name == s.name) {
+                return Err(OptError::invalid(
+                    path,
+                    f("name"),
+                    format!(
+                        "{:?} is already the name of suites[{j}]: suite names must be distinct \
+                         (results are grouped by suite name)",
+                        s.name
+                    ),
+                ));
+            }
+            match (&s.synthetic, s.records.is_empty()) {
+                (Some(_), false) => {
+                    return Err(OptError::invalid(
+                        path,
+                        f("synthetic"),
+                        "give either records or synthetic, not both",
+                    ));
+                }
+                (None, true) => {
+                    return Err(OptError::invalid(
+                        path,
+                        f("records"),
+                        "the suite is empty: name record files (or patterns) or a synthetic suite",
+                    ));
+                }
+                (Some(syn), true) => {
+                    if syn.count == 0 {
+                        return Err(OptError::invalid(
+                            path,
+                            f("synthetic.count"),
+                            "the suite is empty: count must be at least 1",
+                        ));
+                    }
+                    intensity_g(path, &f("synthetic.pga_g"), syn.pga_g)?;
+                    finite_positive(path, &f("synthetic.duration_s"), syn.duration_s)?;
+                    if s.scale.is_some() || s.units.is_some() || s.dt_s.is_some() {
+                        return Err(OptError::invalid(
+                            path,
+                            f("synthetic"),
+                            "a synthetic suite takes no units, dt_s or scale (give pga_g)",
+                        ));
+                    }
+                }
+                (None, false) => {}
+            }
+            if let Some(u) = &s.units {
+                u.parse::<Units>()
+                    .map_err(|e| OptError::invalid(path, f("units"), e.to_string()))?;
+            }
+            if let Some(dt) = s.dt_s {
+                finite_positive(path, &f("dt_s"), dt)?;
+            }
+            match s.scale {
+                Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), v)?,
+                Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), v)?,
+                Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), v)?,
+                None => {}
+            }
+        }
+        if self.objective.terms.is_empty() {
+            return Err(OptError::invalid(
+                path,
+                "objective.terms",
+                "must have at least one term",
+            ));
+        }
+        for (i, t) in self.objective.terms.iter().enumerate() {
+            if !(t.weight.is_finite() && t.weight > 0.0) {
+                return Err(OptError::invalid(
+                    path,
+                    format!("objective.terms[{i}].weight"),
+                    format!("must be finite and > 0, got {}", t.weight),
+                ));
+            }
+        }
+        if let Some(dt) = self.fidelity.dt_s {
+            finite_positive(path, "fidelity.dt_s", dt)?;
+        }
+        let cf = self.fidelity.check_dt_factor;
+        if !(cf.is_finite() && cf > 0.0 && cf <= 1.0) {
+            return Err(OptError::invalid(
+                path,
+                "fidelity.check_dt_factor",
+                format!("must be in (0, 1], got {cf}"),
+            ));
+        }
+        let sw = &self.sweep;
+        match sw.sampler {
+            SamplerKind::Grid if sw.levels < 2 => {
+                return Err(OptError::invalid(
+                    path,
+                    "sweep.levels",
+                    format!("a grid needs at least 2 levels, got {}", sw.levels),
+                ));
+            }
+            SamplerKind::Lhs | SamplerKind::Halton if sw.points == 0 => {
+                return Err(OptError::invalid(
+                    path,
+                    "sweep.points",
+                    "must be at least 1",
+                ));
+            }
+            _ => {}
+        }
+        let r = &self.refine;
+        if r.starts == 0 {
+            return Err(OptError::invalid(
+                path,
+                "refine.starts",
+                "must be at least 1",
+            ));
+        }
+        if r.finalists == 0 {
+            return Err(OptError::invalid(
+                path,
+                "refine.finalists",
+                "must be at least 1",
+            ));
+        }
+        if !(r.tolerance.is_finite() && r.tolerance > 0.0 && r.tolerance < 1.0) {
+            return Err(OptError::invalid(
+                path,
+                "refine.tolerance",
+                format!("must be in (0, 1), got {}", r.tolerance),
+            ));
+        }
+        if !(r.initial_radius.is_finite()
+            && r.initial_radius > r.tolerance
+            && r.initial_radius <= 1.0)
+        {
+            return Err(OptError::invalid(
+                path,
+                "refine.initial_radius",
+                format!(
+                    "must be in (tolerance, 1], got {} (tolerance {})",
+                    r.initial_radius, r.tolerance
+                ),
+            ));
+        }
+        match (&self.objectives, &self.pareto) {
+            (Some(list), pareto) => {
+                crate::model::objectives::validate(list, None, path)?;
+                if let Some(p) = pareto {
+                    p.validate(path)?;
+                }
+            }
+            (None, Some(_)) => {
+                return Err(OptError::invalid(
+                    path,
+                    "pareto",
+                    "sets the search of a front, but the study names no `objectives` (give 2 to 4, or leave `pareto` out)",
+                ));
+            }
+            (None, None) => {}
+        }
+        self.check_counts(path)
+    }
+
+    /// Every count the study gives against the limits no real study comes near
+    /// ([`MAX_REFINE_STARTS`], [`MAX_REFINE_EVALUATIONS`],
+    /// [`slipload_motion::limits::MAX_SUITE_RECORDS`]), liftable with `--allow-large`.
+    fn check_counts(&self, path: &Path) -> Result<(), OptError> {
+        let p = path.display();
+        let r = &self.refine;
+        for (field, v, limit, unit) in [
+            ("refine.starts", r.starts, MAX_REFINE_STARTS, "starts"),
+            (
+                "refine.finalists",
+                r.finalists,
+                MAX_REFINE_STARTS,
+                "finalists",
+            ),
+            (
+                "refine.max_evaluations",
+                r.max_evaluations,
+                MAX_REFINE_EVALUATIONS,
+                "evaluations",
+            ),
+        ] {
+            too_large(
+                format!("{p}: field `{field}`"),
+                v as f64,
+                limit as f64,
+                unit,
+            )?;
+        }
+        for (i, s) in self.suites.iter().enumerate() {
+            if let Some(syn) = &s.synthetic {
+                too_large(
+                    format!("{p}: field `suites[{i}].synthetic.count`"),
+                    syn.count as f64,
+                    slipload_motion::limits::MAX_SUITE_RECORDS as f64,
+                    "records",
+                )?;
+            }
+        }
+        Ok(())
+    }
+}

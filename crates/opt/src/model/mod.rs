@@ -1,0 +1,13 @@
+//! The study's description, above [`crate::base`]: the design space, the objectives (one
+//! weighted objective, or the front's two to four), the study file's configuration, the
+//! samplers and designs, the fidelities, the study itself and its fingerprint. Nothing here
+//! simulates or touches an output folder.
+
+pub mod config;
+pub mod fidelity;
+pub mod fingerprint;
+pub mod objective;
+pub mod objectives;
+pub mod sampler;
+pub mod space;
+pub mod study;

@@ -1,0 +1,461 @@
+//! Studies: which building, which ground-motion suites, which design space, which
+//! objective, and how to sweep and refine — read from JSON, validated in full before any
+//! simulation runs (unknown fields, empty suites, reversed bounds, infeasible constraints
+//! are errors that name the field).
+//!
+//! Paths (building, records) are relative to the study file. Record patterns may use `*`
+//! in the file name (not in folder names); matches are sorted by name.
+
+use crate::base::error::OptError;
+use crate::model::config::{
+    MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G, SamplerKind, ScaleConfig,
+    StudyConfig, too_large,
+};
+use crate::model::fidelity::{Fidelity, SweepMethod};
+use crate::model::objective::{Metric, Objective};
+use crate::model::space::DesignSpace;
+use serde::{Deserialize, Serialize};
+use slipload_motion::{G, Record, SuiteTarget, Synthetic, Units};
+use slipload_sim::Building;
+use slipload_sim::scene::{BuildingRef, MethodName};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A suite, resolved: its name and the range of its records in [`Study::records`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SuiteInfo {
+    /// Name.
+    pub name: String,
+    /// Indices into the study's records.
+    pub range: Range<usize>,
+}
+
+/// A validated study with its building and records loaded.
+#[derive(Debug, Clone)]
+pub struct Study {
+    /// Name.
+    pub name: String,
+    /// The file it came from (or `<embedded>`).
+    pub path: PathBuf,
+    /// The config as written.
+    pub config: StudyConfig,
+    /// The building (slip loads of the file kept: the "paper" design).
+    pub building: Building,
+    /// All records of all suites, suite after suite.
+    pub records: Vec<Arc<Record>>,
+    /// The suites.
+    pub suites: Vec<SuiteInfo>,
+    /// The design space.
+    pub space: DesignSpace,
+    /// The objective.
+    pub objective: Objective,
+    /// The sweep's method, and why ([`crate::model::fidelity::choose_sweep_method`]).
+    pub sweep_method: SweepMethod,
+    /// The objectives of the front (empty: a one-objective study).
+    pub objectives: Vec<crate::model::objectives::ParetoObjective>,
+}
+
+pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
+    Ok(slipload_motion::limits::read_input_text(
+        path,
+        "study",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )?)
+}
+
+/// `*` matching of one file name (no other wildcards).
+fn wildcard(pattern: &str, name: &str) -> bool {
+    let parts: Vec<&str> = pattern.split('*').collect();
+    if parts.len() == 1 {
+        return pattern == name;
+    }
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
+        return false;
+    }
+    let mut rest = &name[first.len()..name.len() - last.len()];
+    for mid in &parts[1..parts.len() - 1] {
+        match rest.find(mid) {
+            Some(i) => rest = &rest[i + mid.len()..],
+            None => return false,
+        }
+    }
+    true
+}
+
+/// Files of one record entry: the file itself, or the sorted matches of a `*` pattern.
+fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<PathBuf>, OptError> {
+    let full = base.join(entry);
+    let name = full
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    if !name.contains('*') {
+        if !full.is_file() {
+            let what = if full.is_dir() {
+                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2)"
+            } else if full.exists() {
+                "is not a regular file"
+            } else {
+                "does not exist"
+            };
+            return Err(OptError::invalid(
+                path,
+                field,
+                format!("record file {} {what}", full.display()),
+            ));
+        }
+        return Ok(vec![full]);
+    }
+    let dir = full.parent().unwrap_or(Path::new("."));
+    if dir.to_string_lossy().contains('*') {
+        return Err(OptError::invalid(
+            path,
+            field,
+            "`*` is allowed in the file name only, not in folder names",
+        ));
+    }
+    let listing = std::fs::read_dir(dir).map_err(|source| OptError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut found: Vec<PathBuf> = listing
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_file() && wildcard(&name, &e.file_name().to_string_lossy()))
+        .map(|e| e.path())
+        .collect();
+    found.sort();
+    if found.is_empty() {
+        return Err(OptError::invalid(
+            path,
+            field,
+            format!("pattern {} matches no file", full.display()),
+        ));
+    }
+    Ok(found)
+}
+
+/// Estimates the sweep's designs, tasks and steps and each record's run before anything
+/// is sampled or simulated; refuses a time step that would skip record samples or
+/// outlast a record.
+fn check_work(
+    cfg: &StudyConfig,
+    path: &Path,
+    building: &Building,
+    space: &DesignSpace,
+    records: &[Arc<Record>],
+) -> Result<(), OptError> {
+    let p = path.display();
+    let sw = &cfg.sweep;
+    let designs = 2.0
+        + match sw.sampler {
+            SamplerKind::Grid => (sw.levels as f64).powi(space.dim() as i32),
+            SamplerKind::Lhs | SamplerKind::Halton => sw.points as f64,
+        };
+    let field = match sw.sampler {
+        SamplerKind::Grid => "sweep.levels",
+        _ => "sweep.points",
+    };
+    too_large(
+        format!("{p}: field `{field}`: the sweep's designs"),
+        designs,
+        MAX_DESIGNS,
+        "designs",
+    )?;
+    let tasks = designs * records.len() as f64;
+    too_large(
+        format!("{p}: the sweep's (design, record) tasks"),
+        tasks,
+        MAX_TASKS,
+        "tasks",
+    )?;
+    let fid = &cfg.fidelity;
+    // Unnamed, the sweep's method is chosen later; newmark's step checks are the stricter.
+    let method = fid.method.unwrap_or(MethodName::Newmark);
+    let t1 = building.t1();
+    let mut steps = 0.0;
+    for r in records {
+        let duration = r.duration();
+        let dt = match fid.dt_s {
+            Some(dt) => {
+                slipload_sim::scene::check_step_against_record(method, dt, r)
+                    .map_err(|e| OptError::invalid(path, "fidelity.dt_s", e.to_string()))?;
+                dt
+            }
+            None => slipload_sim::scene::default_dt(method, t1, Some(r.dt()), duration),
+        };
+        if dt > duration * (1.0 + 1e-9) {
+            return Err(OptError::invalid(
+                path,
+                "fidelity.dt_s",
+                format!(
+                    "time step {dt} s is longer than record {} ({duration} s): the run would be one step past its end",
+                    r.name()
+                ),
+            ));
+        }
+        let run = duration / dt;
+        let check = duration / (dt * fid.check_dt_factor);
+        too_large(
+            format!(
+                "{p}: field `fidelity.dt_s`: record {} ({duration} s) at the check's dt = {} s needs",
+                r.name(),
+                dt * fid.check_dt_factor
+            ),
+            check,
+            slipload_sim::limits::MAX_STEPS,
+            "steps",
+        )?;
+        steps += run;
+    }
+    too_large(
+        format!(
+            "{p}: the whole sweep ({} designs x {} records)",
+            designs,
+            records.len()
+        ),
+        steps * designs,
+        MAX_SWEEP_STEPS,
+        "integration steps",
+    )
+}
+
+/// The benchmark study (`configs/study-benchmark.json`), embedded so that every front
+/// runs the main job with no files; its building is the embedded benchmark building.
+pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchmark.json");
+
+/// How errors name the embedded benchmark study.
+pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
+
+impl Fidelity {
+    /// The study's sweep fidelity (energies only when the objective needs them).
+    pub fn sweep(study: &Study) -> Fidelity {
+        Fidelity {
+            method: study.sweep_method.method,
+            dt_s: study.config.fidelity.dt_s,
+            dt_factor: 1.0,
+            energies: study.needs_energies(),
+        }
+    }
+    /// The study's reference check fidelity (energies on).
+    pub fn check(study: &Study) -> Fidelity {
+        Fidelity {
+            method: study.config.fidelity.check_method,
+            dt_s: study.config.fidelity.dt_s,
+            dt_factor: study.config.fidelity.check_dt_factor,
+            energies: true,
+        }
+    }
+}
+
+impl Study {
+    /// Validates and resolves a config: building, space, constraints, then records; the
+    /// sweep method is left for [`crate::eval::probe`] to choose (every public constructor,
+    /// [`Study::from_config`] among them, goes through it).
+    pub(crate) fn described(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
+        cfg.validate(path)?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        let mut building = match &cfg.building {
+            BuildingRef::Path(p) => Building::load(&base.join(p))?,
+            BuildingRef::Inline(b) => Building::from_config(b, path)?,
+        };
+        let Some(heights) = building.storey_heights.clone() else {
+            return Err(OptError::invalid(
+                path,
+                "building",
+                "the building needs storey_heights: drift ratios are the responses every study reports",
+            ));
+        };
+        if let Some(r) = cfg.collapse_drift_ratio {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(OptError::invalid(
+                    path,
+                    "collapse_drift_ratio",
+                    format!("must be positive and finite, got {r}"),
+                ));
+            }
+            building.collapse_drift = Some(heights.iter().map(|h| r * h).collect());
+        }
+        let space = DesignSpace::new(&cfg.space, &cfg.constraints, &building, path)?;
+        let objectives = cfg.objectives.clone().unwrap_or_default();
+        if !objectives.is_empty() {
+            let yielding = building.storey_yield.iter().any(Option::is_some);
+            crate::model::objectives::validate(&objectives, Some(yielding), path)?;
+        }
+        let objective = Objective {
+            terms: cfg.objective.terms.clone(),
+        };
+        let t1 = building.t1();
+        let mut records = Vec::new();
+        let mut suites = Vec::new();
+        for (i, s) in cfg.suites.iter().enumerate() {
+            let start = records.len();
+            if let Some(syn) = &s.synthetic {
+                let params = Synthetic {
+                    duration_s: syn.duration_s,
+                    ..Synthetic::default()
+                };
+                let rs = slipload_motion::synthetic_suite(
+                    &params,
+                    syn.count,
+                    syn.seed,
+                    SuiteTarget::Pga {
+                        pga_m_s2: syn.pga_g * G,
+                    },
+                )?;
+                records.extend(rs.into_iter().map(Arc::new));
+            } else {
+                let units = match &s.units {
+                    Some(u) => Some(u.parse::<Units>().map_err(|e| {
+                        OptError::invalid(path, format!("suites[{i}].units"), e.to_string())
+                    })?),
+                    None => None,
+                };
+                // one file twice in a suite would count its record twice in every statistic
+                let mut seen: Vec<(PathBuf, usize)> = Vec::new();
+                for (j, entry) in s.records.iter().enumerate() {
+                    let field = format!("suites[{i}].records[{j}]");
+                    for file in expand(base, entry, path, &field)? {
+                        let key = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+                        if let Some((_, k)) = seen.iter().find(|(f, _)| *f == key) {
+                            return Err(OptError::invalid(
+                                path,
+                                field,
+                                format!(
+                                    "{} is already in this suite (suites[{i}].records[{k}]): a record counts once in a suite's statistics; name it once",
+                                    file.display()
+                                ),
+                            ));
+                        }
+                        seen.push((key, j));
+                        let r = slipload_motion::read_record(&file, units, s.dt_s)?;
+                        let r = match s.scale {
+                            None => r,
+                            Some(ScaleConfig::Factor(f)) => {
+                                let r = r.try_scaled(f)?;
+                                let pga_g = r.pga() / G;
+                                if pga_g < MIN_STUDY_PGA_G {
+                                    return Err(OptError::invalid(
+                                        path,
+                                        format!("suites[{i}].scale.factor"),
+                                        format!(
+                                            "scales {} to a PGA of {pga_g:.3e} g, below {MIN_STUDY_PGA_G} g: no dissipator slips and every design is the bare frame (give scale.pga_g, or check the factor)",
+                                            file.display()
+                                        ),
+                                    ));
+                                }
+                                r
+                            }
+                            Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(p * G)?,
+                            Some(ScaleConfig::SaT1G(sa)) => {
+                                slipload_motion::scale_to_spectral_acceleration(
+                                    std::slice::from_ref(&r),
+                                    t1,
+                                    0.05,
+                                    sa * G,
+                                )?
+                                .records
+                                .remove(0)
+                            }
+                        };
+                        records.push(Arc::new(r));
+                    }
+                }
+            }
+            suites.push(SuiteInfo {
+                name: s.name.clone(),
+                range: start..records.len(),
+            });
+        }
+        check_work(&cfg, path, &building, &space, &records)?;
+        let name = cfg.name.clone().unwrap_or_else(|| {
+            path.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "study".into())
+        });
+        let study = Study {
+            name,
+            path: path.to_path_buf(),
+            config: cfg,
+            building,
+            records,
+            suites,
+            space,
+            objective,
+            objectives,
+            sweep_method: SweepMethod {
+                method: MethodName::Newmark,
+                reason: String::new(),
+            },
+        };
+        Ok(study)
+    }
+
+    /// Whether any objective term needs the energies.
+    pub fn needs_energies(&self) -> bool {
+        self.objectives.iter().any(|o| o.needs_energies())
+            || self.objective.terms.iter().any(|t| {
+                matches!(
+                    t.metric,
+                    Metric::EnergyRatio
+                        | Metric::Rpi
+                        | Metric::HystereticEnergy
+                        | Metric::FrictionShare
+                )
+            })
+    }
+
+    /// The building file's friction law per dissipator of the space, when some
+    /// dissipator's is not a symmetric slip load (`locked`, or bounds with F⁻ ≠ −F⁺):
+    /// the file's design as written, which every run of "the file's design" carries
+    /// ([`crate::model::sampler::Design::friction_n`]). `None` when [`Study::file_slip_loads`]
+    /// says it all.
+    pub fn file_friction(&self) -> Option<Vec<crate::model::sampler::FrictionLaw>> {
+        use crate::model::sampler::FrictionLaw;
+        let laws: Vec<(FrictionLaw, bool)> = self
+            .space
+            .dampers
+            .iter()
+            .map(|&f| match self.building.dissipators[f] {
+                Some(d) if d.is_locked() => (FrictionLaw::Locked, false),
+                Some(d) => (
+                    FrictionLaw::Bounds([d.lower, d.upper]),
+                    d.upper.is_finite() && d.lower == -d.upper,
+                ),
+                None => (FrictionLaw::Bounds([0.0, 0.0]), true),
+            })
+            .collect();
+        (!laws.iter().all(|&(_, symmetric)| symmetric))
+            .then(|| laws.into_iter().map(|(l, _)| l).collect())
+    }
+
+    /// Slip loads of the building file per dissipator, N (the "paper" design): the upper
+    /// bound F⁺ (0 for a locked contact, which [`Study::file_friction`] carries).
+    pub fn file_slip_loads(&self) -> Vec<f64> {
+        self.space
+            .dampers
+            .iter()
+            .map(|&f| {
+                self.building.dissipators[f]
+                    .map(|d| if d.upper.is_finite() { d.upper } else { 0.0 })
+                    .unwrap_or(0.0)
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wildcard;
+
+    #[test]
+    fn wildcard_matches_like_a_shell() {
+        assert!(wildcard("*.AT2", "RSN6.AT2"));
+        assert!(wildcard("RSN*_*.AT2", "RSN6_IMPVALL.AT2"));
+        assert!(!wildcard("RSN*.AT2", "ELC.AT2"));
+        assert!(!wildcard("*.AT2", "x.at2"));
+        assert!(wildcard("a*a", "aa"));
+        assert!(!wildcard("a*a", "a"));
+    }
+}

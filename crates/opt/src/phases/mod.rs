@@ -1,0 +1,15 @@
+//! The phases of a study, above [`crate::eval`], each importing only the phases listed
+//! before it: the sweep ([`sweep`]), the refiners ([`refine`]) and the refinement with its
+//! checked finalists ([`refinement`]), the design table ([`table`]), the front search
+//! ([`pareto`]), the ranking ([`rank`]), the design family ([`family`]) and the data of
+//! the study figures ([`figures`]). A phase takes the paths of its journals from the
+//! study folder and never opens the folder itself.
+
+pub mod family;
+pub mod figures;
+pub mod pareto;
+pub mod rank;
+pub mod refine;
+pub mod refinement;
+pub mod sweep;
+pub mod table;

@@ -1,0 +1,595 @@
+//! The checks a building is held to: the shapes, signs and finiteness of its lists and
+//! matrices, the physical bands of its magnitudes (periods, masses, damping ratios, slip
+//! loads, storey heights), its dissipators and its storeys' yield laws. Each refusal names
+//! the file, the field, the value and what was expected.
+
+use super::config::{BuildingConfig, SlipLoad};
+use super::validated::{Dissipator, StoreyYield};
+use crate::error::SimError;
+use crate::modes::Modes;
+use crate::units::{is_non_negative, is_positive};
+use nalgebra::DMatrix;
+use std::path::Path;
+
+/// The physical band of a building's natural periods, s: [`PERIOD_BAND_S`].0 … .1. Real
+/// structures (from a shake-table model to a kilometre-tall tower) have periods of a few
+/// hundredths of a second to about ten seconds; a period outside 10⁻⁴ … 10⁴ s means a
+/// units slip or a typo in a mass or a stiffness (a stiffness of 1e300 N/m), which would
+/// give numbers but not answers. Applies to the bare frame and to the frame with every
+/// brace locked.
+pub const PERIOD_BAND_S: (f64, f64) = (1e-4, 1e4);
+
+/// The band of a dissipator's own period 2π√(m′/k′) (mass on its brace), s, when
+/// m′ > 0: wider below than [`PERIOD_BAND_S`] because light dissipators on stiff braces
+/// are a real study (m′ → 0 tends to the massless model, and the convergence to it is
+/// studied down to m′ = 1 mg on the benchmark's 448 MN/m brace, 3·10⁻⁷ s); below 1 ns
+/// a mass is a units slip (give m′ = 0 for that limit).
+pub const DISSIPATOR_PERIOD_BAND_S: (f64, f64) = (1e-9, 1e4);
+
+/// The band of a floor mass, kg (1 g … 10⁹ t): from laboratory models to the heaviest floors.
+pub const FLOOR_MASS_BAND_KG: (f64, f64) = (1e-3, 1e12);
+
+/// Largest damping ratio of any mode of the frame (from `damping`) and of any brace
+/// (c′ against its floor's mass on k′): heavily overdamped is ζ ≈ 1–2, beyond 10 is a
+/// units slip.
+pub const MAX_DAMPING_RATIO: f64 = 10.0;
+
+/// Largest slip load (or friction bound) as a multiple of the building's weight (M·g,
+/// all floors). Real slip loads are a few per cent of it per storey, and far larger ones
+/// are legitimate ways to approach the locked limit; but a bound F carries a rounding
+/// error of F × 2.2e-16, which beyond 10¹¹ × the weight exceeds 2·10⁻⁵ of the weight,
+/// so the forces near it (and tolerances scaled by it) lose their digits. A contact that
+/// must never slip is written `"locked"`.
+pub const MAX_SLIP_LOAD_PER_WEIGHT: f64 = 1e11;
+
+/// Largest harmonic floor force of a scene as a multiple of the building's weight: no
+/// shaker or service load comes near a hundred times the weight.
+pub const MAX_HARMONIC_FORCE_PER_WEIGHT: f64 = 100.0;
+
+/// The band of a storey height, m.
+pub const STOREY_HEIGHT_BAND_M: (f64, f64) = (1e-3, 1e3);
+
+pub(super) fn in_band(v: f64, band: (f64, f64)) -> bool {
+    v >= band.0 && v <= band.1
+}
+
+/// The floor masses against [`FLOOR_MASS_BAND_KG`], before any eigen solve: a subnormal
+/// or absurd mass must be named as such, not surface as an unstable stiffness.
+pub(super) fn check_floor_masses(
+    cfg: &BuildingConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+) -> Result<(), SimError> {
+    let n = mass.nrows();
+    for i in 0..n {
+        let m = mass[(i, i)];
+        if !in_band(m, FLOOR_MASS_BAND_KG) {
+            let field = if cfg.mass_matrix.is_some() {
+                format!("mass_matrix[{i}][{i}]")
+            } else {
+                format!("floor_masses[{i}]")
+            };
+            return Err(SimError::invalid(
+                path,
+                field,
+                format!(
+                    "a floor mass of {m:e} kg is outside the physical band {:e} … {:e} kg (check the units)",
+                    FLOOR_MASS_BAND_KG.0, FLOOR_MASS_BAND_KG.1
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The magnitudes of a validated building against the physical bands above; errors
+/// name the field, the value and the band.
+#[allow(clippy::too_many_arguments)] // the validated parts of one building
+pub(super) fn check_magnitudes(
+    cfg: &BuildingConfig,
+    path: &Path,
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    damping: &DMatrix<f64>,
+    modes: &Modes,
+    dissipators: &[Option<Dissipator>],
+    storey_heights: Option<&[f64]>,
+) -> Result<(), SimError> {
+    let (mass_field, stiffness_field) = (
+        if cfg.mass_matrix.is_some() {
+            "mass_matrix"
+        } else {
+            "floor_masses"
+        },
+        if cfg.stiffness_matrix.is_some() {
+            "stiffness_matrix"
+        } else {
+            "storey_stiffness"
+        },
+    );
+    let periods = modes.periods();
+    let (t_long, t_short) = (periods[0], periods[periods.len() - 1]);
+    if !(in_band(t_short, PERIOD_BAND_S) && in_band(t_long, PERIOD_BAND_S)) {
+        return Err(SimError::invalid(
+            path,
+            stiffness_field,
+            format!(
+                "the bare frame's natural periods are {t_long:.3e} … {t_short:.3e} s; a building's must lie within {:e} … {:e} s: a mass or a stiffness is absurd (check `{mass_field}` and `{stiffness_field}` and their units)",
+                PERIOD_BAND_S.0, PERIOD_BAND_S.1
+            ),
+        ));
+    }
+    // modal damping ratios ζ_k = φ_kᵀ C φ_k / (2 ω_k) (mass-normalised shapes)
+    for (k, period) in periods.iter().enumerate() {
+        let phi = modes.shapes.column(k);
+        let zeta = (phi.transpose() * damping * phi)[(0, 0)] / (2.0 * modes.omega[k]);
+        if !(zeta.is_finite() && zeta <= MAX_DAMPING_RATIO) {
+            return Err(SimError::invalid(
+                path,
+                "damping",
+                format!(
+                    "gives mode {} (T = {:.3e} s) a damping ratio of {zeta:.3e}; at most {MAX_DAMPING_RATIO} is physical (check the damping values and their units)",
+                    k + 1,
+                    period
+                ),
+            ));
+        }
+    }
+    if let Some(hs) = storey_heights
+        && let Some(i) = hs.iter().position(|&h| !in_band(h, STOREY_HEIGHT_BAND_M))
+    {
+        return Err(SimError::invalid(
+            path,
+            format!("storey_heights[{i}]"),
+            format!(
+                "a storey height of {:e} m is outside {:e} … {:e} m (check the units)",
+                hs[i], STOREY_HEIGHT_BAND_M.0, STOREY_HEIGHT_BAND_M.1
+            ),
+        ));
+    }
+    let weight = mass.sum() * slipload_motion::G;
+    let max_slip = MAX_SLIP_LOAD_PER_WEIGHT * weight;
+    // the cfg index of each floor's dissipator, to name fields
+    let index_of = |floor: usize| {
+        cfg.dissipators
+            .iter()
+            .position(|d| d.floor == floor + 1)
+            .unwrap_or(floor)
+    };
+    let mut braced = stiffness.clone();
+    let mut braced_mass = mass.clone();
+    for (floor, d) in dissipators.iter().enumerate() {
+        let Some(d) = d else { continue };
+        let f = |name: &str| format!("dissipators[{}].{name}", index_of(floor));
+        // the brace locked: k′ between floor i−1 (or the ground) and floor i, m′ on floor i
+        let k = d.brace_stiffness;
+        braced[(floor, floor)] += k;
+        if floor > 0 {
+            braced[(floor - 1, floor - 1)] += k;
+            braced[(floor, floor - 1)] -= k;
+            braced[(floor - 1, floor)] -= k;
+        }
+        braced_mass[(floor, floor)] += d.mass;
+        let shortest = Modes::compute(&braced_mass, &braced)
+            .map(|m| 2.0 * std::f64::consts::PI / m.omega[m.omega.len() - 1]);
+        match shortest {
+            Some(t) if in_band(t, PERIOD_BAND_S) => {}
+            found => {
+                return Err(SimError::invalid(
+                    path,
+                    f("brace_stiffness"),
+                    format!(
+                        "k′ = {k:e} N/m gives the frame with its braces locked a natural period of {}; a building's must lie within {:e} … {:e} s (check k′ and its units)",
+                        found.map_or_else(|| "no real value".to_string(), |t| format!("{t:.3e} s")),
+                        PERIOD_BAND_S.0,
+                        PERIOD_BAND_S.1
+                    ),
+                ));
+            }
+        }
+        if d.mass > 0.0 {
+            let t = 2.0 * std::f64::consts::PI * (d.mass / d.brace_stiffness).sqrt();
+            if !in_band(t, DISSIPATOR_PERIOD_BAND_S) {
+                return Err(SimError::invalid(
+                    path,
+                    f("mass"),
+                    format!(
+                        "the dissipator's period on its brace, 2π√(m′/k′) = {t:.3e} s (m′ = {:e} kg, k′ = {:e} N/m), is outside {:e} … {:e} s: give m′ = 0 for a massless dissipator, else check m′ and k′ and their units",
+                        d.mass,
+                        d.brace_stiffness,
+                        DISSIPATOR_PERIOD_BAND_S.0,
+                        DISSIPATOR_PERIOD_BAND_S.1
+                    ),
+                ));
+            }
+        }
+        let critical = 2.0 * (d.brace_stiffness * (mass[(floor, floor)] + d.mass)).sqrt();
+        let zeta = d.brace_damping / critical;
+        if !(zeta.is_finite() && zeta <= MAX_DAMPING_RATIO) {
+            return Err(SimError::invalid(
+                path,
+                f("brace_damping"),
+                format!(
+                    "c′ = {:e} N·s/m is {zeta:.3e} × critical for the brace and its floor's mass (2√(k′·m) = {critical:.3e} N·s/m); at most {MAX_DAMPING_RATIO} is physical (check the units)",
+                    d.brace_damping
+                ),
+            ));
+        }
+        if !d.is_locked() {
+            let (field, value) = if d.upper >= -d.lower {
+                (
+                    if cfg
+                        .dissipators
+                        .get(index_of(floor))
+                        .is_some_and(|c| c.bounds.is_some())
+                    {
+                        "bounds[1]"
+                    } else {
+                        "slip_load"
+                    },
+                    d.upper,
+                )
+            } else {
+                ("bounds[0]", d.lower)
+            };
+            if value.abs() > max_slip {
+                return Err(SimError::invalid(
+                    path,
+                    f(field),
+                    format!(
+                        "{value:e} N is more than {MAX_SLIP_LOAD_PER_WEIGHT:e} × the building's weight ({weight:.4e} N), where its rounding alone exceeds 2e-5 of the weight: write \"locked\" for a contact that never slips, else check the units"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn square<Q: Copy + Into<f64>>(
+    path: &Path,
+    field: &str,
+    rows: &[Vec<Q>],
+    n: Option<usize>,
+) -> Result<DMatrix<f64>, SimError> {
+    let rows: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| r.iter().map(|&q| q.into()).collect())
+        .collect();
+    let size = rows.len();
+    if size == 0 {
+        return Err(SimError::invalid(path, field, "must not be empty"));
+    }
+    if let Some(n) = n
+        && size != n
+    {
+        return Err(SimError::invalid(
+            path,
+            field,
+            format!("has {size} rows, expected {n} (one per floor)"),
+        ));
+    }
+    for (i, r) in rows.iter().enumerate() {
+        if r.len() != size {
+            return Err(SimError::invalid(
+                path,
+                format!("{field}[{i}]"),
+                format!("has {} entries, expected {size}", r.len()),
+            ));
+        }
+        if let Some(j) = r.iter().position(|v| !v.is_finite()) {
+            return Err(SimError::invalid(
+                path,
+                format!("{field}[{i}][{j}]"),
+                "must be finite",
+            ));
+        }
+    }
+    let m = DMatrix::from_fn(size, size, |i, j| rows[i][j]);
+    for i in 0..size {
+        for j in 0..i {
+            let (a, b) = (m[(i, j)], m[(j, i)]);
+            let scale = (m[(i, i)].abs() + m[(j, j)].abs()).max(f64::MIN_POSITIVE);
+            if (a - b).abs() > 1e-9 * scale {
+                return Err(SimError::invalid(
+                    path,
+                    format!("{field}[{i}][{j}]"),
+                    format!("matrix is not symmetric: {a} vs {b} at [{j}][{i}]"),
+                ));
+            }
+        }
+    }
+    Ok((&m + m.transpose()) * 0.5)
+}
+
+/// Validates a per-floor list: `n` entries (any non-zero count when `n` is `None`), each
+/// accepted by `ok`; `what` says what an entry must be ("a positive finite mass").
+pub(super) fn per_floor(
+    path: &Path,
+    field: &str,
+    values: &[f64],
+    n: Option<usize>,
+    ok: fn(f64) -> bool,
+    what: &str,
+) -> Result<Vec<f64>, SimError> {
+    match n {
+        None if values.is_empty() => {
+            return Err(SimError::invalid(
+                path,
+                field,
+                "must list at least one floor",
+            ));
+        }
+        Some(n) if values.len() != n => {
+            return Err(SimError::invalid(
+                path,
+                field,
+                format!("has {} values, expected {n} (one per floor)", values.len()),
+            ));
+        }
+        _ => {}
+    }
+    match values.iter().position(|v| !ok(*v)) {
+        Some(i) => Err(SimError::invalid(
+            path,
+            format!("{field}[{i}]"),
+            format!("must be {what}, got {}", values[i]),
+        )),
+        None => Ok(values.to_vec()),
+    }
+}
+
+/// The own stiffness of storey `i` (from 0) in a frame of stiffness matrix `k` (N/m, SPD):
+/// the storey shear over the storey drift when equal and opposite forces act on the
+/// storey's two floors (one force on the first floor for the first storey),
+/// 1 / (eᵀ K⁻¹ e) with e = e(floor i) − e(floor i−1). For a shear building (a chain of
+/// storey springs) it is exactly the storey's spring: the floors above move with the top
+/// floor and the storeys below carry no shear. For a full condensed matrix it is what the
+/// whole frame offers between those two floors; a spring k between them can be taken out
+/// of K (as a storey that yields takes out (1−α)k) and leave K − k e eᵀ positive
+/// semi-definite exactly when k ≤ 1/(eᵀK⁻¹e).
+/// `None` when `k` is not positive definite or `i` is not a storey.
+pub fn storey_stiffness(k: &DMatrix<f64>, i: usize) -> Option<f64> {
+    let n = k.nrows();
+    if i >= n {
+        return None;
+    }
+    let mut e = nalgebra::DVector::zeros(n);
+    e[i] = 1.0;
+    if i > 0 {
+        e[i - 1] = -1.0;
+    }
+    let chol = k.clone().cholesky()?;
+    let flex = e.dot(&chol.solve(&e));
+    (flex > 0.0 && flex.is_finite()).then(|| 1.0 / flex)
+}
+
+/// The error of a frame whose stiffness is not positive definite, naming the field that
+/// gave it.
+pub(super) fn unstable_frame(cfg: &BuildingConfig, path: &Path) -> SimError {
+    SimError::invalid(
+        path,
+        if cfg.stiffness_matrix.is_some() {
+            "stiffness_matrix"
+        } else {
+            "storey_stiffness"
+        },
+        "frame stiffness must be positive definite (the bare frame must be stable)",
+    )
+}
+
+/// Validates `dissipators`: one per floor, k′ > 0, m′ and c′ ≥ 0, and a slip load (or
+/// `"locked"`) or asymmetric bounds [F⁻, F⁺] with F⁻ ≤ 0 ≤ F⁺; `n` floors.
+pub(super) fn dissipators(
+    cfg: &BuildingConfig,
+    path: &Path,
+    n: usize,
+) -> Result<Vec<Option<Dissipator>>, SimError> {
+    let mut dissipators = vec![None; n];
+    for (idx, d) in cfg.dissipators.iter().enumerate() {
+        let f = |name: &str| format!("dissipators[{idx}].{name}");
+        if d.floor == 0 || d.floor > n {
+            return Err(SimError::invalid(
+                path,
+                f("floor"),
+                format!("must be a floor number from 1 to {n}, got {}", d.floor),
+            ));
+        }
+        if dissipators[d.floor - 1].is_some() {
+            return Err(SimError::invalid(
+                path,
+                f("floor"),
+                format!("floor {} already has a dissipator (one per floor)", d.floor),
+            ));
+        }
+        let k = d.brace_stiffness.0;
+        if !is_positive(k) {
+            return Err(SimError::invalid(
+                path,
+                f("brace_stiffness"),
+                format!("must be positive and finite, got {k}"),
+            ));
+        }
+        let m = d.mass.map_or(0.0, |m| m.0);
+        if !is_non_negative(m) {
+            return Err(SimError::invalid(
+                path,
+                f("mass"),
+                format!("must be finite and ≥ 0, got {m}"),
+            ));
+        }
+        let c = d.brace_damping.map_or(0.0, |c| c.0);
+        if !is_non_negative(c) {
+            return Err(SimError::invalid(
+                path,
+                f("brace_damping"),
+                format!("must be finite and ≥ 0, got {c}"),
+            ));
+        }
+        let (lower, upper) = match (&d.slip_load, &d.bounds) {
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("bounds"),
+                    "give either slip_load or bounds, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("slip_load"),
+                    "missing: give slip_load (N, or \"locked\") or bounds [F-, F+]",
+                ));
+            }
+            (Some(SlipLoad::Locked), None) => (f64::NEG_INFINITY, f64::INFINITY),
+            (Some(SlipLoad::Force(s)), None) => {
+                if !is_non_negative(*s) {
+                    return Err(SimError::invalid(
+                        path,
+                        f("slip_load"),
+                        format!("must be finite and ≥ 0, got {s}"),
+                    ));
+                }
+                (-*s, *s)
+            }
+            (None, Some([lo, hi])) => {
+                if !lo.0.is_finite() || lo.0 > 0.0 {
+                    return Err(SimError::invalid(
+                        path,
+                        f("bounds[0]"),
+                        format!("F- must be finite and ≤ 0, got {}", lo.0),
+                    ));
+                }
+                if !hi.0.is_finite() || hi.0 < 0.0 {
+                    return Err(SimError::invalid(
+                        path,
+                        f("bounds[1]"),
+                        format!("F+ must be finite and ≥ 0, got {}", hi.0),
+                    ));
+                }
+                (lo.0, hi.0)
+            }
+        };
+        dissipators[d.floor - 1] = Some(Dissipator {
+            brace_stiffness: k,
+            mass: m,
+            brace_damping: c,
+            lower,
+            upper,
+        });
+    }
+    Ok(dissipators)
+}
+
+/// Validates `storey_yield` against the frame: one entry per listed storey, Fy or the
+/// yield drift, α in [0, 1), and the spring's stiffness (from `storey_stiffness`, or given
+/// for a matrix frame), which must not exceed the storey's own stiffness in the frame
+/// ([`storey_stiffness`]).
+pub(super) fn storey_yield(
+    cfg: &BuildingConfig,
+    path: &Path,
+    n: usize,
+    stiffness: &DMatrix<f64>,
+) -> Result<Vec<Option<StoreyYield>>, SimError> {
+    let mut out = vec![None; n];
+    for (idx, y) in cfg.storey_yield.iter().enumerate() {
+        let f = |name: &str| format!("storey_yield[{idx}].{name}");
+        if y.storey == 0 || y.storey > n {
+            return Err(SimError::invalid(
+                path,
+                f("storey"),
+                format!("must be a storey number from 1 to {n}, got {}", y.storey),
+            ));
+        }
+        let i = y.storey - 1;
+        if out[i].is_some() {
+            return Err(SimError::invalid(
+                path,
+                f("storey"),
+                format!(
+                    "storey {} already has a yield law (one per storey)",
+                    y.storey
+                ),
+            ));
+        }
+        let k = match (&y.stiffness, &cfg.storey_stiffness) {
+            (Some(k), _) => k.0,
+            (None, Some(ks)) => ks[i].0,
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("stiffness"),
+                    "missing: a frame given as stiffness_matrix must say the stiffness of the storey spring that yields (N/m)",
+                ));
+            }
+        };
+        if !is_positive(k) {
+            return Err(SimError::invalid(
+                path,
+                f("stiffness"),
+                format!("must be positive and finite, got {k}"),
+            ));
+        }
+        // The spring is part of the frame: it cannot be stiffer than the storey it sits in.
+        let own = storey_stiffness(stiffness, i).ok_or_else(|| unstable_frame(cfg, path))?;
+        if k > own * (1.0 + 1e-9) {
+            let floors = if i == 0 {
+                "a force on floor 1, the ground fixed".to_string()
+            } else {
+                format!("equal and opposite forces on floors {i} and {}", i + 1)
+            };
+            return Err(SimError::invalid(
+                path,
+                f("stiffness"),
+                format!(
+                    "storey {}: the yielding spring's stiffness {k:.6e} N/m is stiffer than the storey it sits in, whose own stiffness in the frame is {own:.6e} N/m (storey shear over storey drift under {floors}); give at most {own:.6e} N/m",
+                    y.storey
+                ),
+            ));
+        }
+        let fy = match (&y.yield_shear, &y.yield_drift) {
+            (Some(_), Some(_)) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("yield_drift"),
+                    "give either yield_shear or yield_drift, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(SimError::invalid(
+                    path,
+                    f("yield_shear"),
+                    "missing: give yield_shear (N) or yield_drift (m)",
+                ));
+            }
+            (Some(v), None) => v.0,
+            (None, Some(d)) => d.0 * k,
+        };
+        if !is_positive(fy) {
+            let name = if y.yield_shear.is_some() {
+                "yield_shear"
+            } else {
+                "yield_drift"
+            };
+            return Err(SimError::invalid(
+                path,
+                f(name),
+                format!("must be positive and finite, got {fy}"),
+            ));
+        }
+        let alpha = y.post_yield_ratio.unwrap_or(0.0);
+        if !(alpha.is_finite() && (0.0..1.0).contains(&alpha)) {
+            return Err(SimError::invalid(
+                path,
+                f("post_yield_ratio"),
+                format!("must be in [0, 1), got {alpha}"),
+            ));
+        }
+        out[i] = Some(StoreyYield {
+            stiffness: k,
+            yield_shear: fy,
+            post_yield_ratio: alpha,
+        });
+    }
+    Ok(out)
+}

@@ -1,0 +1,20 @@
+//! The fixed parameters of `exact`: the series' length, the substep's phase, the scans,
+//! the work caps and the grazing threshold (their roles are in the module docs).
+
+/// Terms of the exponential's Taylor series kept on a substep.
+pub const TAYLOR_TERMS: usize = 22;
+/// Largest ρ·τ of a substep (ρ bounds the spectral radius of the mode matrices).
+pub const SUBSTEP_PHASE: f64 = 0.5;
+/// Scan intervals per substep for event and extremum detection.
+pub const SCAN_POINTS: usize = 8;
+/// Cap on the substeps of one run.
+pub const MAX_SUBSTEPS: u64 = 4_000_000;
+/// Cap on the events of one run.
+pub const MAX_EVENTS: u64 = 5_000_000;
+/// Mode sets kept in the cache.
+pub const MODE_CACHE: usize = 4096;
+/// Leading Taylor coefficients of a scanned function formed exactly on a grid substep
+/// before its full series is (the second exclusion test).
+pub const LEAD_TERMS: usize = 4;
+/// Grazing threshold, relative to the force bound or the velocity scale.
+pub const GRAZE_REL: f64 = 1e-10;
