@@ -124,7 +124,10 @@ fn a_users_files_are_kept_and_never_overwritten() {
         let mut args = vec!["sweep", s(&st), "--out", s(&out), "--quiet"];
         args.extend_from_slice(extra);
         let (ok, err) = run(&args);
-        assert!(!ok, "sweep {extra:?} over a user's designs.csv must be refused");
+        assert!(
+            !ok,
+            "sweep {extra:?} over a user's designs.csv must be refused"
+        );
         assert!(
             err.contains("designs.csv") && err.contains("did not write"),
             "the refusal names the file and why: {err}"
@@ -146,8 +149,14 @@ fn a_users_files_are_kept_and_never_overwritten() {
         err.contains("--fresh: kept my-plot.png, notes.txt"),
         "it names what it keeps: {err}"
     );
-    assert!(err.contains("journal.jsonl"), "it names what it removed: {err}");
-    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    assert!(
+        err.contains("journal.jsonl"),
+        "it names what it removed: {err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
     assert_eq!(
         std::fs::read_to_string(out.join("my-plot.png")).unwrap(),
         "mine too"

@@ -131,7 +131,15 @@ fn two_processes_one_folder_the_second_is_refused_and_the_first_finishes() {
     std::fs::write(&st, text).unwrap();
     let out = dir.join("out");
     let mut first = Command::new(env!("CARGO_BIN_EXE_slipload"))
-        .args(["sweep", s(&st), "--out", s(&out), "--quiet", "--threads", "1"])
+        .args([
+            "sweep",
+            s(&st),
+            "--out",
+            s(&out),
+            "--quiet",
+            "--threads",
+            "1",
+        ])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
