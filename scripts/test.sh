@@ -6,9 +6,10 @@
 #     a real headless browser),
 #   - the check script's npm packages (`npm ci` in scripts/check-report, from its lock file),
 #   - for the Python package's tests: a virtual environment it creates (target/py-venv)
-#     with maturin, pytest, numpy, pandas, matplotlib, nbclient, ipykernel and tqdm from the
-#     package index, into which it installs the package the README's way
-#     (`pip install ./crates/py`, built from this checkout).
+#     with maturin, pytest, numpy, pandas, matplotlib, nbclient, ipykernel, tqdm and
+#     openseespy (which runs the scripts `slipload opensees` writes) from the package index,
+#     into which it installs the package the README's way (`pip install ./crates/py`, built
+#     from this checkout).
 # Installing needs root or sudo and Debian's apt-get; without them it stops and says what
 # to install. Arguments are passed to `cargo test` (e.g. `scripts/test.sh -p slipload-sim`).
 # Usage: bash scripts/test.sh   (from anywhere)
@@ -82,7 +83,7 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 echo "== pip install the test tools and ./crates/py into $venv" >&2
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-    "maturin>=1.9.4,<2" pytest numpy pandas matplotlib nbclient nbformat ipykernel tqdm
+    "maturin>=1.9.4,<2" pytest numpy pandas matplotlib nbclient nbformat ipykernel tqdm openseespy
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./crates/py
 echo "== cargo build --release -p slipload (the command line the Python tests compare with)" >&2
 cargo build --release -p slipload --quiet

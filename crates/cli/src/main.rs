@@ -148,13 +148,37 @@ mod tests {
             assert!(Cli::try_parse_from(&args).is_ok(), "{args:?}");
         }
         assert!(Cli::try_parse_from(["slipload", "optimize", "--refine", "gradient"]).is_err());
+        for args in [
+            vec!["slipload", "opensees", "--out", "b.py"],
+            vec![
+                "slipload",
+                "opensees",
+                "configs/ten-story-yielding.json",
+                "--record",
+                "records/I-ELC180.AT2",
+                "--scale-pga-g",
+                "0.6",
+                "--window",
+                "1s,4s",
+                "--dt",
+                "2.5ms",
+                "--out",
+                "t.py",
+            ],
+        ] {
+            assert!(Cli::try_parse_from(&args).is_ok(), "{args:?}");
+        }
+        assert!(
+            Cli::try_parse_from(["slipload", "opensees"]).is_err(),
+            "--out is required"
+        );
         assert!(Cli::try_parse_from(["slipload", "simulate", "--method", "verlet"]).is_err());
     }
 
     /// `--quiet` and `--threads` are taken by every command, before or after its name.
     #[test]
     fn quiet_and_threads_are_global() {
-        let commands: [&[&str]; 13] = [
+        let commands: [&[&str]; 14] = [
             &["simulate"],
             &["explain"],
             &["record", "info", "a.AT2"],
@@ -168,6 +192,7 @@ mod tests {
             &["bench"],
             &["report", "d"],
             &["record", "synth", "--out", "r.csv"],
+            &["opensees", "--out", "o.py"],
         ];
         for c in commands {
             let after: Vec<&str> = std::iter::once("slipload")

@@ -94,7 +94,7 @@ fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
 
 /// The sweep's rows of design 1 (the file's), record by record.
 fn file_rows(st: &Study, dir: &Path) -> Vec<RecordMetrics> {
-    let rows = sweep::run(st, &open_folder(&dir), Shard::ALL, false, &|| {})
+    let rows = sweep::run(st, &open_folder(dir), Shard::ALL, false, &|| {})
         .unwrap()
         .rows
         .unwrap();

@@ -169,6 +169,16 @@ pub enum SimError {
         /// The excitation (record name, or `no record`).
         record: String,
     },
+    /// The scene has something the OpenSees script cannot write as elements OpenSees
+    /// solves with `newmark`'s discrete equations ([`crate::opensees`]); the gap names
+    /// the alternative.
+    #[error("{scene} cannot be written as an OpenSees script: {gap}")]
+    OpenSees {
+        /// The scene's name.
+        scene: String,
+        /// What cannot be written, and what to do instead.
+        gap: crate::opensees::OpenSeesGap,
+    },
     /// A ground-motion error (reading or scaling a record).
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),

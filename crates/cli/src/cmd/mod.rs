@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod bench;
 pub mod explain;
 pub mod merge;
+pub mod opensees;
 pub mod optimize;
 pub mod pareto_summary;
 pub mod rank;
@@ -43,6 +44,9 @@ pub enum Command {
     Bench(bench::BenchArgs),
     /// One self-contained HTML page (tables, figures, inputs) from an output folder
     Report(report::ReportArgs),
+    /// Write a scene as a self-contained OpenSeesPy script (Newmark at the same dt, the
+    /// dampers as elastic–perfectly plastic elements) that prints its peaks as JSON
+    Opensees(opensees::OpenSeesArgs),
 }
 
 /// Runs one subcommand.
@@ -59,6 +63,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Table(args) => table::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Report(args) => report::run(args),
+        Command::Opensees(args) => opensees::run(args),
     }
 }
 

@@ -135,7 +135,7 @@ pub struct ObjectiveConfig {
 pub struct FidelityConfig {
     /// Method of the sweep and refinement. Absent: chosen for the study's building,
     /// `exact` where a probe run costs it at most [`crate::model::fidelity::EXACT_SWEEP_COST`]
-    /// times `newmark`'s work, else `newmark` ([`crate::model::fidelity::choose_sweep_method`]).
+    /// times `newmark`'s work, else `newmark` ([`crate::eval::probe::choose_sweep_method`]).
     #[serde(default)]
     pub method: Option<MethodName>,
     /// Time step, s (default: the simulation's, T₁/400 rounded to divide the record's dt).

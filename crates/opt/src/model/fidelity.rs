@@ -1,6 +1,6 @@
 //! Fidelity: the method, time step and energies a batch of simulations runs at — the
 //! sweep's and the reference check's, both read from the study
-//! ([`crate::model::study::Study::sweep_fidelity`], [`crate::model::study::Study::check_fidelity`]);
+//! ([`Fidelity::sweep`], [`Fidelity::check`], defined beside the study);
 //! the sweep's method and why it was chosen ([`SweepMethod`], chosen by
 //! [`crate::eval::probe`]). Part of a study's
 //! fingerprint ([`crate::model::fingerprint`]) and of every check-journal key

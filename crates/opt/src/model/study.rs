@@ -50,7 +50,7 @@ pub struct Study {
     pub space: DesignSpace,
     /// The objective.
     pub objective: Objective,
-    /// The sweep's method, and why ([`crate::model::fidelity::choose_sweep_method`]).
+    /// The sweep's method, and why ([`crate::eval::probe::choose_sweep_method`]).
     pub sweep_method: SweepMethod,
     /// The objectives of the front (empty: a one-objective study).
     pub objectives: Vec<crate::model::objectives::ParetoObjective>,

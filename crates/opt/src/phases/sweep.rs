@@ -36,7 +36,7 @@ pub struct Manifest {
     pub objective: Objective,
     /// Sweep method name.
     pub method: MethodName,
-    /// Why the sweep runs that method ([`crate::model::fidelity::choose_sweep_method`]).
+    /// Why the sweep runs that method ([`crate::eval::probe::choose_sweep_method`]).
     #[serde(default)]
     pub method_reason: String,
     /// Sweep time step, s (`null`: sim's default per record).
