@@ -531,8 +531,9 @@ pub fn check_merge_folders(dirs: &[&Path], out: &Path) -> Result<(), OptError> {
 /// Refuses an output folder of `merge` that holds another study's sweep (its
 /// `manifest.json` or a journal of another fingerprint): merging over it would mix two
 /// studies' files.
-fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
-    let path = out.join("manifest.json");
+fn check_merge_output(folder: &StudyFolder, manifest: &Manifest) -> Result<(), OptError> {
+    let out = folder.dir();
+    let path = folder.path("manifest.json");
     // read through the bounded reader: a FIFO or device under that name is refused by
     // kind instead of blocking the merge
     let existing = match std::fs::symlink_metadata(&path) {
@@ -565,7 +566,7 @@ fn check_merge_output(out: &Path, manifest: &Manifest) -> Result<(), OptError> {
             )));
         }
     }
-    crate::store::journal::check_folder(out, &manifest.fingerprint)
+    folder.check_journals(&manifest.fingerprint)
 }
 
 /// Joins the journals of shard folders into `out`: the bytes a single run writes.
@@ -615,7 +616,7 @@ pub fn merge(
     }
     let (manifest, _) = manifest.ok_or_else(|| OptError::Shard("no folders to merge".into()))?;
     check_merge_folders(dirs, out)?;
-    check_merge_output(out, &manifest)?;
+    check_merge_output(folder, &manifest)?;
     let mut rows: Vec<Option<RecordMetrics>> = vec![None; manifest.tasks()];
     for dir in dirs {
         let jpath = dir.join("journal.jsonl");

@@ -109,7 +109,8 @@ fn run_phases(
     let method = options.refine.unwrap_or(study.config.refine.method);
     // every journal of the folder must be this study's: never mix another study's numbers
     let manifest = Manifest::of(study);
-    crate::store::journal::check_folder(out, &manifest.fingerprint)
+    folder
+        .check_journals(&manifest.fingerprint)
         .map_err(|e| e.context(format!("optimizing {} into {}", study.name, out.display())))?;
     let nr = study.records.len();
 

@@ -23,7 +23,8 @@
 
 use crate::base::error::OptError;
 use crate::base::output::{check_output_folder, refuse_symlink, write_atomic};
-use crate::store::journal::is_journal_name;
+use crate::model::fingerprint::Fingerprint;
+use crate::store::journal::{check_folder, is_journal_name};
 use std::collections::BTreeSet;
 use std::fs::{File, OpenOptions, TryLockError};
 use std::io::{Seek, SeekFrom, Write};
@@ -287,6 +288,13 @@ impl StudyFolder {
     pub fn journal(&self, name: &str) -> Result<PathBuf, OptError> {
         self.claim(&[name])?;
         Ok(self.path(name))
+    }
+
+    /// Checks every journal of the folder against the study's fingerprint `fp`: one
+    /// written for another study (or without a fingerprint) is refused, naming what
+    /// changed ([`crate::store::journal::check_folder`]).
+    pub fn check_journals(&self, fp: &Fingerprint) -> Result<(), OptError> {
+        check_folder(&self.dir, fp)
     }
 
     /// Writes `bytes` to the file `name` of the folder atomically
