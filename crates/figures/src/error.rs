@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use crate::plot::raster::{FONT_ENV, FONT_PATHS};
+use crate::names::{FONT_ENV, FONT_PATHS, METADATA_ID};
 
 /// Why a figure could not be drawn, rasterised, written or read back.
 #[derive(Debug, thiserror::Error)]
@@ -89,7 +89,7 @@ pub enum FigureError {
     #[error(transparent)]
     Write(#[from] slipload_opt::OptError),
     /// An SVG without the figure metadata element.
-    #[error("no <metadata id=\"{}\"> in the SVG", crate::plot::meta::METADATA_ID)]
+    #[error("no <metadata id=\"{}\"> in the SVG", METADATA_ID)]
     NoMetadata,
     /// The figure metadata element is not closed.
     #[error("unterminated figure metadata")]

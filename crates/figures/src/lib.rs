@@ -25,6 +25,7 @@
 //! `slipload-sim` → `slipload-motion`.
 
 mod error;
+pub mod names;
 pub mod pareto;
 pub mod plot;
 pub mod study;

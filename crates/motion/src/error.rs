@@ -6,6 +6,11 @@
 
 use std::path::PathBuf;
 
+/// How to go beyond a size limit ([`crate::limits`]), the end of the messages that refuse
+/// one.
+pub(crate) const OVERRIDE_HINT: &str =
+    "pass --allow-large (or set SLIPLOAD_ALLOW_LARGE=1) to run it anyway";
+
 /// Everything that can go wrong while reading, building or processing a ground motion.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -34,7 +39,7 @@ pub enum MotionError {
     /// An input file is larger than any real one ([`crate::limits`]).
     #[error(
         "{path}: the {what} file is {size}, more than any real {what} file (limit {limit}): not a {what}, or {hint}",
-        hint = crate::limits::OVERRIDE_HINT
+        hint = OVERRIDE_HINT
     )]
     FileTooLarge {
         /// The path.
@@ -49,7 +54,7 @@ pub enum MotionError {
     /// A count a user gave is beyond any real study's ([`crate::limits`]).
     #[error(
         "{count} {what} is more than any real study needs (limit {limit}); {hint}",
-        hint = crate::limits::OVERRIDE_HINT
+        hint = OVERRIDE_HINT
     )]
     TooMany {
         /// What is counted.

@@ -26,9 +26,9 @@ pub const MAX_SUITE_SAMPLES: f64 = 2e8;
 /// The environment variable that lifts the limits (`1`, `true` or `yes`).
 pub const ALLOW_LARGE_ENV: &str = "SLIPLOAD_ALLOW_LARGE";
 
-/// How to go beyond a limit, for error messages.
-pub const OVERRIDE_HINT: &str =
-    "pass --allow-large (or set SLIPLOAD_ALLOW_LARGE=1) to run it anyway";
+/// How to go beyond a limit, for error messages (the text the errors of this crate end
+/// with, defined beside them).
+pub const OVERRIDE_HINT: &str = crate::error::OVERRIDE_HINT;
 
 static ALLOW_LARGE: AtomicBool = AtomicBool::new(false);
 

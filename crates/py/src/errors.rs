@@ -102,7 +102,7 @@ fn opt_kind(e: &OptError) -> Kind {
         | OptError::Symlink { .. }
         | OptError::FolderBusy { .. }
         | OptError::NotWritten { .. } => Kind::File,
-        OptError::Figure(f) => crate::figures::figure_kind(f.as_ref()),
+        OptError::Figure(f) => figure_kind(f.as_ref()),
         OptError::Simulation { .. } | OptError::NonFinite { .. } | OptError::Subproblem(_) => {
             Kind::Simulation
         }
@@ -201,4 +201,19 @@ pub fn unwind_error(payload: Box<dyn Any + Send>) -> PyErr {
 /// Runs `body`, turning a panic into `slipload.InternalError` (the interpreter lives on).
 pub fn guarded<T>(body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| Err(unwind_error(payload)))
+}
+
+/// The exception kind of a figure writer's error (the library's own writer,
+/// [`slipload_figures::StudyFigures`], draws every study figure): a file that cannot be
+/// written or a missing font is the caller's file problem; a figure the data cannot
+/// draw is a bug.
+fn figure_kind(e: &(dyn std::error::Error + Send + Sync + 'static)) -> Kind {
+    use slipload_figures::{FigureError, FontError};
+    if e.downcast_ref::<FontError>().is_some() {
+        return Kind::File;
+    }
+    match e.downcast_ref::<FigureError>() {
+        Some(FigureError::Write(_) | FigureError::Font(_)) => Kind::File,
+        _ => Kind::Internal,
+    }
 }

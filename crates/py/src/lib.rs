@@ -13,7 +13,6 @@
 mod arrays;
 mod batch;
 mod errors;
-mod figures;
 mod records;
 mod run;
 mod scene;

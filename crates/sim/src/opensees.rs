@@ -29,7 +29,7 @@
 //! initial state other than rest, an unreduced plan. Numbers are written with `{:?}`,
 //! the shortest text that reads back to the same f64.
 
-use crate::error::SimError;
+use crate::error::{OpenSeesGap, SimError};
 use crate::plan::Plan;
 use crate::scene::{MethodName, Scene};
 use nalgebra::DMatrix;
@@ -50,66 +50,6 @@ pub const NEWTON_MAX_ITERATIONS: u32 = 100;
 /// acceleration at every step is most of it (about 24 bytes a step), and 256 MiB is ten
 /// million steps, more than any check of a design needs.
 pub const MAX_SCRIPT_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
-
-/// What a scene has that the OpenSees script cannot express as elements OpenSees solves
-/// with `newmark`'s discrete equations; each message names the alternative.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum OpenSeesGap {
-    /// The scene's method is not Newmark average acceleration.
-    #[error(
-        "the script integrates with Newmark average acceleration (gamma = 1/2, beta = 1/4) as method newmark does, and the scene's method is {method}; give method newmark (or bilinear, which ignores dissipator masses)"
-    )]
-    Method {
-        /// The scene's method.
-        method: &'static str,
-    },
-    /// A dissipator with mass under `newmark`: its friction contact between two masses has
-    /// no OpenSees element that steps it as `newmark` does.
-    #[error(
-        "the dissipator of floor {floor} has mass m' = {mass} kg; OpenSees has no friction contact between two masses that it solves as newmark does, so the script models brace + damper as one elastic-perfectly plastic spring with the mass ignored, which is method bilinear: give method bilinear (what frame programs compute), or mass 0"
-    )]
-    DissipatorMass {
-        /// Floor number, from 1.
-        floor: usize,
-        /// m′, kg.
-        mass: f64,
-    },
-    /// A massless damper whose brace has a dashpot: brace and contact are then not one
-    /// elastic–perfectly plastic element, and newmark steps it on the end-of-step slip rate.
-    #[error(
-        "the massless dissipator of floor {floor} has a brace dashpot c' = {damping} N*s/m; brace + contact are then a Kelvin brace in series with a rigid-plastic contact, which no OpenSees material models without a penalty stiffness (and newmark steps it on the slip rate, not by the return mapping): give brace_damping 0"
-    )]
-    BraceDamping {
-        /// Floor number, from 1.
-        floor: usize,
-        /// c′, N·s/m.
-        damping: f64,
-    },
-    /// A mass matrix with off-diagonal terms: OpenSees's nodes carry lumped masses.
-    #[error(
-        "mass_matrix has off-diagonal terms (floors {row} and {col}: {value} kg); OpenSees nodes carry lumped masses: give floor_masses"
-    )]
-    MassMatrix {
-        /// Row (floor number, from 1).
-        row: usize,
-        /// Column (floor number, from 1).
-        col: usize,
-        /// The term, kg.
-        value: f64,
-    },
-    /// An initial state other than rest.
-    #[error(
-        "the scene starts from an initial state other than rest, which the script does not set up (the elastic-perfectly plastic elements' initial slips included); remove excitation.initial"
-    )]
-    InitialState,
-    /// `reduce: false` keeps massless dissipators as zero-mass DOFs, which the script
-    /// does not model.
-    #[error(
-        "the scene asks for the unreduced model (reduce: false), whose massless dissipators are zero-mass DOFs; the script writes the reduced model: set reduce to true"
-    )]
-    Unreduced,
-}
 
 /// A spring, dashpot or plastic element between two nodes: node 0 is the ground, node i
 /// floor i.

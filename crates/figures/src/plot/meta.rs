@@ -5,10 +5,8 @@
 //! panel's axis ranges (data units) and every series' name, point count and data range.
 
 use crate::FigureError;
+use crate::names::METADATA_ID;
 use serde::{Deserialize, Serialize};
-
-/// The id of the metadata element.
-pub const METADATA_ID: &str = "slipload-figure";
 
 /// A figure: its title and panels (row-major order).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

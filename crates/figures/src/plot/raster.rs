@@ -4,23 +4,11 @@
 //! folders (Debian/Ubuntu package `fonts-dejavu-core`), or the file named by the
 //! environment variable `SLIPLOAD_FONT`. No font is embedded in the program.
 
+use crate::names::{FONT_ENV, FONT_PATHS};
 use crate::{FigureError, FontError};
 use resvg::{tiny_skia, usvg};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
-
-/// Environment variable naming a TrueType font file to use instead of DejaVu Sans.
-pub const FONT_ENV: &str = "SLIPLOAD_FONT";
-
-/// Where DejaVu Sans is looked for (Debian/Ubuntu, Fedora, Arch, Alpine, macOS Homebrew).
-pub const FONT_PATHS: [&str; 6] = [
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/TTF/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
-    "/usr/local/share/fonts/DejaVuSans.ttf",
-    "/opt/homebrew/share/fonts/DejaVuSans.ttf",
-];
 
 /// The fonts for PNG text (found once per process).
 fn fonts() -> Result<Arc<usvg::fontdb::Database>, FontError> {

@@ -1,9 +1,9 @@
 //! Drawing a [`Figure`] into SVG with plotters, in the look of [`style`].
 
 use super::axis::Scale;
+use super::figure::{Figure, HeatMap, Kind, Legend, Marker, Panel, Series};
 use super::meta::{AxisMeta, FigureMeta, HeatMapMeta, PanelMeta, SeriesMeta, range_of};
 use super::style::{self, INK, font_size};
-use super::{Figure, HeatMap, Kind, Legend, Marker, Panel, Series};
 use crate::FigureError;
 use plotters::coord::Shift;
 use plotters::prelude::*;

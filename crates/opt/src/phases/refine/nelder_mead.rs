@@ -4,7 +4,7 @@
 //! smaller than the tolerance (max vertex distance to the best, ∞-norm) or the budget
 //! is spent.
 
-use super::{Evaluations, Point, Refiner, clamp01};
+use super::evaluations::{Evaluations, Point, Refiner, clamp01};
 use crate::base::error::OptError;
 use crate::model::config::RefineConfig;
 use crate::model::space::DesignSpace;

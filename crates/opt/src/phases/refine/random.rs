@@ -3,7 +3,7 @@
 //! after a success and shrinks ×0.7 after two failures in a row. Seeded, deterministic.
 //! The baseline the model-based refiner should beat.
 
-use super::{Evaluations, Point, Refiner};
+use super::evaluations::{Evaluations, Point, Refiner};
 use crate::base::error::OptError;
 use crate::model::config::RefineConfig;
 use crate::model::sampler::SplitMix;

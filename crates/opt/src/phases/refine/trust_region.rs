@@ -11,7 +11,7 @@
 //! model predicts no decrease (or the QP is not solved). Stops when Δ < tolerance or the
 //! budget is spent.
 
-use super::{Evaluations, Point, Refiner, clamp01};
+use super::evaluations::{Evaluations, Point, Refiner, clamp01};
 use crate::base::error::OptError;
 use crate::base::qp;
 use crate::model::config::RefineConfig;

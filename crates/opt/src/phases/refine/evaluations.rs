@@ -1,0 +1,195 @@
+//! What every refiner shares: the [`Refiner`] state machine, the [`Point`]s it evaluates,
+//! and [`Evaluations`], which remembers every point evaluated (sweep points included) and
+//! counts the new ones.
+
+use crate::base::error::OptError;
+use crate::model::space::DesignSpace;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// An argmin-style refiner: a state machine (`init`, then `next_iter` until `terminate`)
+/// driven by [`run`]. Its state is plain data (the implementations serialise), so a
+/// refinement can be inspected, saved between iterations and continued.
+pub trait Refiner {
+    /// Sets the state up from the start point (may evaluate points).
+    fn init(
+        &mut self,
+        space: &DesignSpace,
+        start: &Point,
+        ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError>;
+    /// One iteration.
+    fn next_iter(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError>;
+    /// The refiner's own stopping test (the executor also stops at the budget).
+    fn terminate(&self) -> bool;
+    /// The best point of the state.
+    fn best(&self) -> &Point;
+}
+
+/// One evaluated design.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Point {
+    /// Scaled variables.
+    pub z: Vec<f64>,
+    /// Objective (+∞, written `"inf"`, for a design that collapses on a record).
+    #[serde(with = "objective_value")]
+    pub f: f64,
+}
+
+/// An objective value in a journal: a JSON number, or `"inf"` for +∞ (a collapsed
+/// design), which JSON numbers cannot hold.
+mod objective_value {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if *v == f64::INFINITY {
+            s.serialize_str("inf")
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Num(f64),
+            Text(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Num(v) => Ok(v),
+            Raw::Text(t) if t == "inf" => Ok(f64::INFINITY),
+            Raw::Text(t) => Err(serde::de::Error::custom(format!(
+                "objective {t:?}: expected a number or \"inf\""
+            ))),
+        }
+    }
+}
+
+/// The batch objective: objective values of several scaled points.
+pub type Oracle<'a> = dyn FnMut(&[Vec<f64>]) -> Result<Vec<f64>, OptError> + 'a;
+
+/// Called with each newly computed point.
+pub type Hook<'a> = dyn FnMut(&Point) -> Result<(), OptError> + 'a;
+
+/// Every evaluation so far, with a cache keyed by the exact bits of z.
+pub struct Evaluations<'a> {
+    oracle: Box<Oracle<'a>>,
+    cache: HashMap<Vec<u64>, f64>,
+    /// Values from an earlier, interrupted run: counted as new evaluations when asked
+    /// for (so the refiners take the same path) but not computed again.
+    replay: HashMap<Vec<u64>, f64>,
+    /// Called with every point the oracle computed (journal append).
+    hook: Option<Box<Hook<'a>>>,
+    /// Evaluations taken from the replay.
+    pub replayed: usize,
+    /// Points known before refining (not counted).
+    pub known: Vec<Point>,
+    /// New evaluations, in order.
+    pub log: Vec<Point>,
+}
+
+fn key(z: &[f64]) -> Vec<u64> {
+    z.iter().map(|v| v.to_bits()).collect()
+}
+
+impl<'a> Evaluations<'a> {
+    /// Starts with points already evaluated (the sweep's).
+    pub fn new(oracle: Box<Oracle<'a>>, known: Vec<Point>) -> Self {
+        let cache = known.iter().map(|p| (key(&p.z), p.f)).collect();
+        Evaluations {
+            oracle,
+            cache,
+            replay: HashMap::new(),
+            hook: None,
+            replayed: 0,
+            known,
+            log: Vec::new(),
+        }
+    }
+
+    /// Points evaluated by an earlier run of the same refinement (its journal), and a
+    /// hook called with every point computed from now on.
+    pub fn with_journal(mut self, replay: Vec<Point>, hook: Box<Hook<'a>>) -> Self {
+        self.replay = replay.into_iter().map(|p| (key(&p.z), p.f)).collect();
+        self.hook = Some(hook);
+        self
+    }
+
+    /// Objective at each point; only points never seen are evaluated (in one batch).
+    pub fn eval(&mut self, zs: &[Vec<f64>]) -> Result<Vec<f64>, OptError> {
+        let mut fresh: Vec<Vec<f64>> = Vec::new();
+        for z in zs {
+            if !self.cache.contains_key(&key(z)) && !fresh.contains(z) {
+                fresh.push(z.clone());
+            }
+        }
+        if !fresh.is_empty() {
+            let compute: Vec<Vec<f64>> = fresh
+                .iter()
+                .filter(|z| !self.replay.contains_key(&key(z)))
+                .cloned()
+                .collect();
+            let mut computed = if compute.is_empty() {
+                Vec::new()
+            } else {
+                (self.oracle)(&compute)?
+            }
+            .into_iter();
+            for z in fresh {
+                let f = match self.replay.get(&key(&z)) {
+                    Some(&f) => {
+                        self.replayed += 1;
+                        f
+                    }
+                    None => {
+                        let f = computed.next().expect("one value per computed point");
+                        if let Some(h) = self.hook.as_mut() {
+                            h(&Point { z: z.clone(), f })?;
+                        }
+                        f
+                    }
+                };
+                self.cache.insert(key(&z), f);
+                self.log.push(Point { z, f });
+            }
+        }
+        Ok(zs
+            .iter()
+            .map(|z| *self.cache.get(&key(z)).expect("evaluated above"))
+            .collect())
+    }
+
+    /// Objective at one point.
+    pub fn eval_one(&mut self, z: &[f64]) -> Result<f64, OptError> {
+        Ok(self.eval(&[z.to_vec()])?[0])
+    }
+
+    /// Number of new evaluations.
+    pub fn count(&self) -> usize {
+        self.log.len()
+    }
+
+    /// Every point seen (known, then new).
+    pub fn all(&self) -> impl Iterator<Item = &Point> {
+        self.known.iter().chain(self.log.iter())
+    }
+
+    /// The best point seen (first of equals).
+    pub fn best(&self) -> Option<Point> {
+        let mut best: Option<&Point> = None;
+        for p in self.all() {
+            if best.is_none_or(|b| p.f < b.f) {
+                best = Some(p);
+            }
+        }
+        best.cloned()
+    }
+}
+
+/// z clamped into [0, 1]^d.
+pub(crate) fn clamp01(z: &mut [f64]) {
+    for v in z {
+        *v = v.clamp(0.0, 1.0);
+    }
+}
