@@ -130,6 +130,22 @@ pub enum SimError {
         /// Floor number (from 1) of the last event.
         floor: usize,
     },
+    /// `exact` cannot hold what one run needs at once (two stick/slip mode sets' matrices
+    /// and propagators, and the scratch of forming one) within its memory budget
+    /// (`integrator::exact::MemoryBudget`). Refused before the first step.
+    #[error(
+        "exact: a run of this scene holds {} of matrices at once (two stick-slip mode sets and the scratch of forming one), more than its memory budget of {}; run newmark instead, at a small step (method.dt = {suggested_dt:.3e} s, a quarter of this scene's step: its error falls as dt²)",
+        shown_bytes(.needed),
+        shown_bytes(.budget)
+    )]
+    ExactMemory {
+        /// Bytes a run holds at once, bytes.
+        needed: u64,
+        /// The budget, bytes.
+        budget: u64,
+        /// A `newmark` step for the same scene, s.
+        suggested_dt: f64,
+    },
     /// A run would exceed a work or memory limit no real study needs (the `limits`
     /// module, whose advice [`slipload_motion::limits::OVERRIDE_HINT`] ends the message).
     #[error(
@@ -182,6 +198,11 @@ pub enum SimError {
     /// A ground-motion error (reading or scaling a record).
     #[error(transparent)]
     Motion(#[from] slipload_motion::MotionError),
+}
+
+/// A byte count for people, as [`crate::limits::bytes`].
+fn shown_bytes(b: &u64) -> String {
+    crate::limits::bytes(*b as f64)
 }
 
 impl SimError {

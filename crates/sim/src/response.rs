@@ -168,6 +168,11 @@ pub struct Diagnostics {
     /// `delacruz`). `slipload bench` sets its time per unit beside it.
     #[serde(default)]
     pub work: u64,
+    /// `exact`: the most bytes of stick/slip mode-set matrices its thread kept at once
+    /// during the run, with the scratch of forming one: within its memory budget
+    /// (`integrator::exact::MemoryBudget`). 0 for other methods.
+    #[serde(default)]
+    pub cache_peak_bytes: u64,
 }
 
 /// Iterations of `delacruz`'s three nested fixed-point loops, per invocation of each loop.

@@ -17,9 +17,9 @@ pub fn integrator(name: MethodName) -> Box<dyn Integrator + Send + Sync> {
 
 /// What [`run_plan`] would refuse before its first step, found without stepping: the
 /// method's own refusals ([`Plan::check_method`]), an initial state outside the friction
-/// bounds, and (for `exact`) the substep budget. These are the checks the integrators make
-/// as they start, called here rather than restated, so `slipload explain` refuses what
-/// `slipload simulate` refuses.
+/// bounds, and (for `exact`) the memory and substep budgets. These are the checks the
+/// integrators make as they start, called here rather than restated, so `slipload explain`
+/// refuses what `slipload simulate` refuses.
 pub fn check(plan: &Plan) -> Result<(), SimError> {
     plan.check_method()?;
     // the step-by-step methods' start; `exact` refuses the same inconsistent states

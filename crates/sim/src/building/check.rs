@@ -156,6 +156,10 @@ pub(super) fn check_magnitudes(
             .position(|d| d.floor == floor + 1)
             .unwrap_or(floor)
     };
+    // Each brace locked in turn must keep the shortest period in band; where the bounds
+    // on all of those periods show it, none is formed (one eigen solve per brace would make
+    // this check O(N⁴)).
+    let all_in_band = braced_periods_in_band(mass, stiffness, dissipators);
     let mut braced = stiffness.clone();
     let mut braced_mass = mass.clone();
     for (floor, d) in dissipators.iter().enumerate() {
@@ -163,18 +167,21 @@ pub(super) fn check_magnitudes(
         let f = |name: &str| format!("dissipators[{}].{name}", index_of(floor));
         // the brace locked: k′ between floor i−1 (or the ground) and floor i, m′ on floor i
         let k = d.brace_stiffness;
-        braced[(floor, floor)] += k;
-        if floor > 0 {
-            braced[(floor - 1, floor - 1)] += k;
-            braced[(floor, floor - 1)] -= k;
-            braced[(floor - 1, floor)] -= k;
+        if !all_in_band {
+            lock_brace(&mut braced, &mut braced_mass, floor, d);
         }
-        braced_mass[(floor, floor)] += d.mass;
-        let shortest = Modes::compute(&braced_mass, &braced)
-            .map(|m| 2.0 * std::f64::consts::PI / m.omega[m.omega.len() - 1]);
+        let shortest = if all_in_band {
+            None
+        } else {
+            Some(
+                Modes::compute(&braced_mass, &braced)
+                    .map(|m| 2.0 * std::f64::consts::PI / m.omega[m.omega.len() - 1]),
+            )
+        };
         match shortest {
-            Some(t) if in_band(t, PERIOD_BAND_S) => {}
-            found => {
+            None => {}
+            Some(Some(t)) if in_band(t, PERIOD_BAND_S) => {}
+            Some(found) => {
                 return Err(SimError::invalid(
                     path,
                     f("brace_stiffness"),
@@ -244,6 +251,79 @@ pub(super) fn check_magnitudes(
         }
     }
     Ok(())
+}
+
+/// Adds `d`'s brace, locked, to a frame: k′ between floor `floor` − 1 (or the ground) and
+/// floor `floor`, m′ on floor `floor`.
+fn lock_brace(k: &mut DMatrix<f64>, m: &mut DMatrix<f64>, floor: usize, d: &Dissipator) {
+    let kb = d.brace_stiffness;
+    k[(floor, floor)] += kb;
+    if floor > 0 {
+        k[(floor - 1, floor - 1)] += kb;
+        k[(floor, floor - 1)] -= kb;
+        k[(floor - 1, floor)] -= kb;
+    }
+    m[(floor, floor)] += d.mass;
+}
+
+/// Relative margin inside [`PERIOD_BAND_S`] that [`braced_periods_in_band`] asks of its
+/// bounds: far above the round-off of any one braced frame's computed period, so a frame
+/// its bounds admit is one [`Modes::compute`] admits.
+const BOUND_MARGIN: f64 = 1e-6;
+
+/// Smallest ratio of the least to the largest eigenvalue ω² that [`braced_periods_in_band`]
+/// accepts from its bounds: above it, round-off (about N·ε of the largest) cannot turn a
+/// braced frame's least eigenvalue non-positive, which [`Modes::compute`] would refuse.
+const BOUND_CONDITION: f64 = 1e-10;
+
+/// Whether every frame [`check_magnitudes`] forms as it locks the braces floor by floor
+/// (frame j: the bare frame with the braces of the first j dissipators locked) has all its
+/// eigenvalues positive and its shortest period inside [`PERIOD_BAND_S`], shown with two
+/// eigenvalue solves instead of one eigen decomposition per brace. Locking a brace adds
+/// k′ ≥ 0 to K and m′ ≥ 0 to M, so K ≤ K_j ≤ K_all and M ≤ M_j ≤ M_all (Loewner order)
+/// and by the Rayleigh quotient every eigenvalue ω² of frame j lies in
+/// [λ_min(M_all, K), λ_max(M, K_all)], and its largest in [λ_max(M_all, K), λ_max(M, K_all)].
+/// `true` when those bounds are in band by [`BOUND_MARGIN`] and [`BOUND_CONDITION`]; `false`
+/// means "not shown" (the frames are then formed one by one, as the refusals name the brace
+/// that first leaves the band).
+fn braced_periods_in_band(
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    dissipators: &[Option<Dissipator>],
+) -> bool {
+    let (mut k_all, mut m_all) = (stiffness.clone(), mass.clone());
+    for (floor, d) in dissipators.iter().enumerate() {
+        if let Some(d) = d {
+            lock_brace(&mut k_all, &mut m_all, floor, d);
+        }
+    }
+    let (Some(stiffest), Some(heaviest)) = (
+        pencil_eigenvalues(mass, &k_all),
+        pencil_eigenvalues(&m_all, stiffness),
+    ) else {
+        return false;
+    };
+    let largest = |l: &[f64]| l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let least = heaviest.iter().copied().fold(f64::INFINITY, f64::min);
+    let (high, low) = (largest(&stiffest), largest(&heaviest));
+    let period = |l: f64| 2.0 * std::f64::consts::PI / l.sqrt();
+    let (shortest, longest) = (period(high), period(low));
+    shortest >= PERIOD_BAND_S.0 * (1.0 + BOUND_MARGIN)
+        && longest <= PERIOD_BAND_S.1 * (1.0 - BOUND_MARGIN)
+        && least > BOUND_CONDITION * high
+}
+
+/// The eigenvalues of K φ = λ M φ (through M's Cholesky factor, as [`Modes::compute`]),
+/// unordered; `None` when M is not positive definite or one is not finite.
+fn pencil_eigenvalues(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Option<Vec<f64>> {
+    let linv = m.clone().cholesky()?.l().try_inverse()?;
+    let a = &linv * k * linv.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    if !a.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let l: Vec<f64> = a.symmetric_eigenvalues().iter().copied().collect();
+    l.iter().all(|x| x.is_finite()).then_some(l)
 }
 
 pub(super) fn square<Q: Copy + Into<f64>>(
@@ -592,4 +672,100 @@ pub(super) fn storey_yield(
         });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::collection::vec;
+    use proptest::prelude::*;
+
+    /// A shear frame (floor masses, storey stiffnesses) with a dissipator on every floor.
+    fn frame(
+        masses: &[f64],
+        storeys: &[f64],
+        braces: &[(f64, f64)],
+    ) -> (DMatrix<f64>, DMatrix<f64>, Vec<Option<Dissipator>>) {
+        let n = masses.len();
+        let m = DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(masses));
+        let mut k = DMatrix::zeros(n, n);
+        for (i, &ks) in storeys.iter().enumerate() {
+            k[(i, i)] += ks;
+            if i > 0 {
+                k[(i - 1, i - 1)] += ks;
+                k[(i, i - 1)] -= ks;
+                k[(i - 1, i)] -= ks;
+            }
+        }
+        let ds = braces
+            .iter()
+            .map(|&(brace_stiffness, mass)| {
+                Some(Dissipator {
+                    brace_stiffness,
+                    mass,
+                    brace_damping: 0.0,
+                    lower: -1.0,
+                    upper: 1.0,
+                })
+            })
+            .collect();
+        (m, k, ds)
+    }
+
+    /// Every frame the per-brace check forms, in band as it judges it.
+    fn each_frame_in_band(m: &DMatrix<f64>, k: &DMatrix<f64>, ds: &[Option<Dissipator>]) -> bool {
+        let (mut kb, mut mb) = (k.clone(), m.clone());
+        ds.iter().enumerate().all(|(floor, d)| {
+            let d = d.as_ref().expect("every floor has one");
+            lock_brace(&mut kb, &mut mb, floor, d);
+            Modes::compute(&mb, &kb).is_some_and(|md| {
+                in_band(
+                    2.0 * std::f64::consts::PI / md.omega[md.omega.len() - 1],
+                    PERIOD_BAND_S,
+                )
+            })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        /// The bounds never admit what the per-brace check refuses: braces from 10⁻³ to 10¹⁴
+        /// × the storey stiffness (the stiffest leave the band) and dissipator masses up to
+        /// ten times the floor's.
+        #[test]
+        fn the_bounds_admit_only_frames_the_per_brace_check_admits(
+            masses in vec(1e2..1e6f64, 1..7),
+            storey in 1e3..1e9f64,
+            braces in vec((-3.0..14.0f64, prop_oneof![Just(0.0), 0.0..10.0f64]), 7),
+        ) {
+            let n = masses.len();
+            let storeys = vec![storey; n];
+            let braces: Vec<(f64, f64)> = braces[..n]
+                .iter()
+                .zip(&masses)
+                .map(|(&(e, r), &m)| (storey * 10f64.powf(e), r * m))
+                .collect();
+            let (m, k, ds) = frame(&masses, &storeys, &braces);
+            if braced_periods_in_band(&m, &k, &ds) {
+                prop_assert!(each_frame_in_band(&m, &k, &ds));
+            }
+        }
+    }
+
+    #[test]
+    fn a_tall_frame_with_moderate_braces_is_admitted_by_the_bounds() {
+        // the bench's shear building: the bounds decide, no brace is formed on its own
+        let n = 60;
+        let (m, k, ds) = frame(&vec![5e5; n], &vec![1e9; n], &vec![(2e9, 0.0); n]);
+        assert!(braced_periods_in_band(&m, &k, &ds));
+        assert!(each_frame_in_band(&m, &k, &ds));
+    }
+
+    #[test]
+    fn a_brace_that_leaves_the_band_is_not_admitted_by_the_bounds() {
+        // k′ = 1e14 × k on floor 2: period ~1e-5 s, below the band
+        let (m, k, ds) = frame(&[1e3; 3], &[1e5; 3], &[(1e5, 0.0), (1e19, 0.0), (1e5, 0.0)]);
+        assert!(!braced_periods_in_band(&m, &k, &ds));
+        assert!(!each_frame_in_band(&m, &k, &ds));
+    }
 }

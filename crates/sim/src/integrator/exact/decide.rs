@@ -32,7 +32,7 @@ impl Model<'_> {
         for &c in decide {
             tmp[c] = Mode::Upper; // placeholder: its force is excluded below
         }
-        let ops = cache.get(self, &tmp);
+        let ops = cache.operators(self, &tmp);
         let mut g = &self.f0 * y;
         for (c, _) in plan.contacts.iter().enumerate() {
             if decide.contains(&c) {

@@ -31,7 +31,17 @@ impl SparseRows {
             }
             start.push(col.len());
         }
+        // held as counted (`bytes`): no spare capacity
+        col.shrink_to_fit();
+        val.shrink_to_fit();
+        start.shrink_to_fit();
         SparseRows { start, col, val }
+    }
+
+    /// Heap bytes held.
+    pub(super) fn bytes(&self) -> usize {
+        (self.start.capacity() + self.col.capacity()) * size_of::<usize>()
+            + self.val.capacity() * size_of::<f64>()
     }
 
     /// out = scale · (M x), each row summed in column order.

@@ -16,12 +16,16 @@
 //! dissipator's own fast mode (k′/m′ on a stiff brace, hundreds of rad/s) rings only while
 //! it slides, and the substeps of the stuck phases follow the frame's modes. The same
 //! polynomial gives every quantity inside the substep as a scalar polynomial in τ, which is
-//! where events and peaks are located. Mode matrices are cached per mode set
-//! ([`MODE_CACHE`] entries, cleared when full), and a thread keeps the mode sets of the
-//! last two buildings it ran (keyed by the bits of everything they are formed from), so
-//! the records of a suite on one design form each mode set's operators and propagators
-//! once; when a run steps with a mode set's propagators is decided by that run's own use
-//! of it, so its bits do not depend on what ran before it on the thread.
+//! where events and peaks are located. A thread keeps the mode sets it forms (those of
+//! the last two buildings it ran, keyed by the bits of everything they are formed from)
+//! within a byte budget ([`MemoryBudget`], least recently used out first), so the records
+//! of a suite on one design form each mode set's operators and propagators once while the
+//! budget holds them; when a run steps with a mode set's propagators is decided by that
+//! run's own use count of it (at most [`MODE_CACHE`] counts, restarted when full), so its
+//! bits depend neither on what ran before it on the thread nor on what the budget evicted
+//! (a mode set met again is formed again, the same bits). A scene whose run cannot hold
+//! two mode sets and the scratch of forming one within the budget is refused before its
+//! first step ([`SimError::ExactMemory`](crate::error::SimError::ExactMemory)).
 //!
 //! Map of the module, by concept, each file importing only those listed before it:
 //! - `params`: the method's constants; `gauss`: the quadrature rule of the energies;
@@ -33,8 +37,10 @@
 //!   functions, the substep grid);
 //! - `energy`: the powers as quadratic forms, their quadrature, the stored energies;
 //! - `propagate`: the truncated series per substep and the cached grid propagators;
-//! - `cache`: the mode sets of a run over those the thread keeps; `decide`: the box QP
-//!   that decides contacts at an event;
+//! - `memory`: a mode set's bytes, their bounds for a plan, a run's working set and the
+//!   budget ([`MemoryBudget`]);
+//! - `cache`: the mode sets of a run over those the thread keeps, within the budget;
+//!   `decide`: the box QP that decides contacts at an event;
 //! - `run`: the run itself (inputs per record piece, substeps, events, peaks, outputs).
 //!
 //! Frames: the run advances frame by frame, a frame being one output step, or, when the run
@@ -135,6 +141,7 @@ mod decide;
 mod energy;
 mod gauss;
 mod kernels;
+mod memory;
 mod model;
 mod modes;
 mod params;
@@ -142,9 +149,10 @@ mod propagate;
 mod run;
 mod search;
 
+pub use memory::{MemoryBudget, working_set_bytes};
 pub use params::{
-    GRAZE_REL, LEAD_TERMS, MAX_EVENTS, MAX_SUBSTEPS, MODE_CACHE, SCAN_POINTS, SUBSTEP_PHASE,
-    TAYLOR_TERMS,
+    GRAZE_REL, LEAD_TERMS, MAX_EVENTS, MAX_SUBSTEPS, MEMORY_CAP, MEMORY_FLOOR, MODE_CACHE,
+    MODE_SETS_KEPT, SCAN_POINTS, SUBSTEP_PHASE, TAYLOR_TERMS,
 };
 pub use run::Exact;
 pub(crate) use run::check;

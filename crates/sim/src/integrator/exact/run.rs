@@ -6,6 +6,7 @@ use super::cache::Cache;
 use super::energy::Integrals;
 use super::gauss::GAUSS;
 use super::kernels::{col, dot, mat_vec, quadratic, row_dot};
+use super::memory::{MemoryBudget, check_memory};
 use super::model::{Mode, ModeOps, Model, Scale};
 use super::modes::observed_peak;
 use super::params::{
@@ -126,8 +127,10 @@ fn substep_budget(model: &Model, plan: &Plan) -> Result<(), SimError> {
 }
 
 /// What [`Exact`] refuses before its first step beyond [`Plan::check_method`], without
-/// stepping: a model it cannot build, and a substep budget it would exceed.
+/// stepping: a working set its memory budget ([`MemoryBudget::for_plan`]) cannot hold, a
+/// model it cannot build, and a substep budget it would exceed.
 pub(crate) fn check(plan: &Plan) -> Result<(), SimError> {
+    check_memory(plan, MemoryBudget::for_plan(plan))?;
     let model = Model::new(plan)?;
     substep_budget(&model, plan)
 }
@@ -137,13 +140,26 @@ impl Integrator for Exact {
         "exact"
     }
 
-    #[allow(clippy::too_many_lines)]
+    /// Runs `plan` within its default memory budget ([`MemoryBudget::for_plan`]).
     fn run(&self, plan: &Plan) -> Result<Outcome, SimError> {
+        self.run_within(plan, MemoryBudget::for_plan(plan))
+    }
+}
+
+impl Exact {
+    /// Runs `plan` keeping at most `budget` bytes of mode-set matrices on this thread
+    /// ([`MemoryBudget`]); refused before the first step with
+    /// [`SimError::ExactMemory`] when a run's working set does not fit it. The answer does
+    /// not depend on the budget, to the last bit: only the time does.
+    #[allow(clippy::too_many_lines)]
+    pub fn run_within(&self, plan: &Plan, budget: MemoryBudget) -> Result<Outcome, SimError> {
         let dt = plan.method.dt;
         if !is_positive(dt) {
             return Err(SimError::BadTimeStep { dt });
         }
         plan.check_method()?;
+        // from the plan's sizes alone, before anything is formed
+        check_memory(plan, budget)?;
         let model = Model::new(plan)?;
         let lay = &model.lay;
         let (n, dim) = (lay.n, lay.dim);
@@ -223,7 +239,7 @@ impl Integrator for Exact {
                 }
             }
         }
-        let mut cache = Cache::new(plan);
+        let mut cache = Cache::new(plan, budget);
         model.decide(&mut cache, &y, &mut modes, &to_decide, 0.0)?;
         let mut ops = cache.get(&model, &modes);
         let mut integ = Integrals::default();
@@ -385,7 +401,7 @@ impl Integrator for Exact {
                     // A grid substep of a mode set that has lasted uses its propagators;
                     // any other substep sums the Taylor coefficients p_k = Aᵏ y / k!.
                     if regular && ops.prepared().is_none() {
-                        ops.count_use(&model);
+                        cache.count_use(&model, &ops);
                     }
                     // Bounds: a prepared mode set's tails hold for any substep no longer
                     // than its grid interval (every term grows with τ), so substeps off
@@ -861,6 +877,7 @@ impl Integrator for Exact {
                 events,
                 strain_energy_area: strain_area,
                 work: work.get(),
+                cache_peak_bytes: cache.peak_bytes() as u64,
                 ..Default::default()
             },
             history,
