@@ -88,6 +88,59 @@ pub enum ScaleConfig {
     PgaG(f64),
     /// Scale to this 5 %-damped pseudo-spectral acceleration at the bare frame's T₁, g.
     SaT1G(f64),
+    /// One factor for the whole suite, so that its mean 5 %-damped spectrum is at least
+    /// 90 % of a code spectrum over [0.2 T, 2 T] (ASCE 7-16 §16.2.3).
+    CodeSpectrum(CodeSpectrumConfig),
+}
+
+/// The target of a suite scaled to a code spectrum: the ASCE 7-16 design response
+/// spectrum (§11.4.6) of S_DS, S_D1 and T_L, at a hazard level.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CodeSpectrumConfig {
+    /// S_DS, g: the design spectral response acceleration at short periods (§11.4.5).
+    pub sds_g: f64,
+    /// S_D1, g: the design spectral response acceleration at 1 s (§11.4.5).
+    pub sd1_g: f64,
+    /// T_L, s: the long-period transition period (§11.4.6).
+    pub tl_s: f64,
+    /// The hazard level the suite stands for (default `design`).
+    #[serde(default)]
+    pub hazard: Hazard,
+    /// The period T of the range [0.2 T, 2 T], s (default: the bare frame's first period,
+    /// the building's T₁).
+    #[serde(default)]
+    pub period_s: Option<f64>,
+}
+
+/// A hazard level of a code-scaled suite.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Hazard {
+    /// The design earthquake: the design spectrum of S_DS and S_D1 itself.
+    #[default]
+    Design,
+    /// The risk-targeted maximum considered earthquake: 1.5 × the design spectrum
+    /// (ASCE 7-16 §11.4.5: S_DS = 2/3 S_MS, S_D1 = 2/3 S_M1).
+    MceR,
+}
+
+impl Hazard {
+    /// The factor on the design spectrum: 1 for `design`, 1.5 for `mce_r`.
+    pub fn factor(self) -> f64 {
+        match self {
+            Hazard::Design => 1.0,
+            Hazard::MceR => 1.5,
+        }
+    }
+
+    /// The level's name as a study file writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Hazard::Design => "design",
+            Hazard::MceR => "mce_r",
+        }
+    }
 }
 
 /// The embedded synthetic suite (Clough–Penzien, firm soil; slipload_motion).
@@ -575,6 +628,15 @@ impl StudyConfig {
                 Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), v)?,
                 Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), v)?,
                 Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), v)?,
+                Some(ScaleConfig::CodeSpectrum(c)) => {
+                    let g = |k: &str| f(&format!("scale.code_spectrum.{k}"));
+                    intensity_g(path, &g("sds_g"), c.sds_g)?;
+                    intensity_g(path, &g("sd1_g"), c.sd1_g)?;
+                    finite_positive(path, &g("tl_s"), c.tl_s)?;
+                    if let Some(t) = c.period_s {
+                        finite_positive(path, &g("period_s"), t)?;
+                    }
+                }
                 None => {}
             }
         }

@@ -15,7 +15,7 @@ use crate::model::fidelity::{Fidelity, SweepMethod};
 use crate::model::objective::{Metric, Objective};
 use crate::model::space::DesignSpace;
 use serde::{Deserialize, Serialize};
-use slipload_motion::{G, Record, SuiteTarget, Synthetic, Units};
+use slipload_motion::{DesignSpectrum, G, Record, SuiteTarget, Synthetic, Units};
 use slipload_sim::Building;
 use slipload_sim::scene::{BuildingRef, MethodName};
 use std::ops::Range;
@@ -29,6 +29,39 @@ pub struct SuiteInfo {
     pub name: String,
     /// Indices into the study's records.
     pub range: Range<usize>,
+    /// How the suite was scaled to a code spectrum, when it was
+    /// ([`ScaleConfig::CodeSpectrum`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub code_scaling: Option<CodeScaling>,
+}
+
+/// A suite scaled to a code spectrum (ASCE 7-16 §16.2.3): one factor for every record,
+/// the smallest that puts the suite's mean 5 %-damped spectrum at or above 90 % of the
+/// target at every period of [0.2 T, 2 T] ([`slipload_motion::scale_suite_asce7`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CodeScaling {
+    /// The hazard level.
+    pub hazard: Hazard,
+    /// S_DS, S_D1 (g) and T_L (s) of the design spectrum, as the study gives them.
+    pub sds_g: f64,
+    /// S_D1, g.
+    pub sd1_g: f64,
+    /// T_L, s.
+    pub tl_s: f64,
+    /// T, s: the period the range is built around.
+    pub period_s: f64,
+    /// The period range [0.2 T, 2 T], s.
+    pub range_s: [f64; 2],
+    /// The suite's factor (every record × this).
+    pub factor: f64,
+    /// The period where the scaled mean spectrum meets 90 % of the target, s.
+    pub controlling_period_s: f64,
+    /// The periods the spectra are compared at, s (log-spaced over the range).
+    pub periods_s: Vec<f64>,
+    /// The scaled suite's mean 5 %-damped pseudo-spectral acceleration there, g.
+    pub mean_sa_g: Vec<f64>,
+    /// The target spectrum there (the design spectrum × the hazard's factor), g.
+    pub target_sa_g: Vec<f64>,
 }
 
 /// A validated study with its building and records loaded.
@@ -228,6 +261,51 @@ pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchm
 /// How errors name the embedded benchmark study.
 pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
 
+/// Scales the records of suite `i` by one factor to the code spectrum `c` over
+/// [0.2 T, 2 T] (T = `c.period_s`, else the building's `t1`), refusing a factor that puts
+/// a record below [`MIN_STUDY_PGA_G`].
+fn scale_to_code(
+    unscaled: &[Record],
+    c: &CodeSpectrumConfig,
+    t1: f64,
+    path: &Path,
+    i: usize,
+) -> Result<(Vec<Record>, CodeScaling), OptError> {
+    let h = c.hazard.factor();
+    let target = DesignSpectrum::new(c.sds_g * h, c.sd1_g * h, c.tl_s).map_err(|e| {
+        OptError::invalid(path, format!("suites[{i}].scale.code_spectrum"), e.to_string())
+    })?;
+    let period = c.period_s.unwrap_or(t1);
+    let a = slipload_motion::scale_suite_asce7(unscaled, &target, period, 0.05)?;
+    for r in &a.suite.records {
+        let pga_g = r.pga() / G;
+        if pga_g < MIN_STUDY_PGA_G {
+            return Err(OptError::invalid(
+                path,
+                format!("suites[{i}].scale.code_spectrum"),
+                format!(
+                    "scales {} to a PGA of {pga_g:.3e} g, below {MIN_STUDY_PGA_G} g: no dissipator slips and every design is the bare frame (check S_DS and S_D1)",
+                    r.name()
+                ),
+            ));
+        }
+    }
+    let scaling = CodeScaling {
+        hazard: c.hazard,
+        sds_g: c.sds_g,
+        sd1_g: c.sd1_g,
+        tl_s: c.tl_s,
+        period_s: period,
+        range_s: [0.2 * period, 2.0 * period],
+        factor: a.factor,
+        controlling_period_s: a.controlling_period_s,
+        mean_sa_g: a.mean_psa_m_s2.iter().map(|m| m * a.factor / G).collect(),
+        target_sa_g: a.target_psa_m_s2.iter().map(|t| t / G).collect(),
+        periods_s: a.periods_s,
+    };
+    Ok((a.suite.records, scaling))
+}
+
 impl Fidelity {
     /// The study's sweep fidelity (energies only when the objective needs them).
     pub fn sweep(study: &Study) -> Fidelity {
@@ -291,6 +369,7 @@ impl Study {
         let mut suites = Vec::new();
         for (i, s) in cfg.suites.iter().enumerate() {
             let start = records.len();
+            let mut code_scaling = None;
             if let Some(syn) = &s.synthetic {
                 let params = Synthetic {
                     duration_s: syn.duration_s,
@@ -314,6 +393,8 @@ impl Study {
                 };
                 // one file twice in a suite would count its record twice in every statistic
                 let mut seen: Vec<(PathBuf, usize)> = Vec::new();
+                // a suite scaled to a code spectrum: read whole, then one factor for all
+                let mut unscaled: Vec<Record> = Vec::new();
                 for (j, entry) in s.records.iter().enumerate() {
                     let field = format!("suites[{i}].records[{j}]");
                     for file in expand(base, entry, path, &field)? {
@@ -331,6 +412,10 @@ impl Study {
                         seen.push((key, j));
                         let r = slipload_motion::read_record(&file, units, s.dt_s)?;
                         let r = match s.scale {
+                            Some(ScaleConfig::CodeSpectrum(_)) => {
+                                unscaled.push(r);
+                                continue;
+                            }
                             None => r,
                             Some(ScaleConfig::Factor(f)) => {
                                 let r = r.try_scaled(f)?;
@@ -362,10 +447,16 @@ impl Study {
                         records.push(Arc::new(r));
                     }
                 }
+                            if let Some(ScaleConfig::CodeSpectrum(c)) = s.scale {
+                    let (scaled, scaling) = scale_to_code(&unscaled, &c, t1, path, i)?;
+                    records.extend(scaled.into_iter().map(Arc::new));
+                    code_scaling = Some(scaling);
+                }
             }
             suites.push(SuiteInfo {
                 name: s.name.clone(),
                 range: start..records.len(),
+                code_scaling: code_scaling.take(),
             });
         }
         check_work(&cfg, path, &building, &space, &records)?;
