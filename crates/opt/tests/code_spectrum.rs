@@ -30,7 +30,10 @@ fn study(hazard: &str, extra: &str) -> Result<Study, slipload_opt::OptError> {
 fn one_factor_puts_the_mean_spectrum_at_90_percent_of_the_target() {
     let st = study("design", "").unwrap();
     let suite = &st.suites[0];
-    assert!(suite.range.len() >= 11, "ASCE 7-16 §16.2.2: 11 records at least");
+    assert!(
+        suite.range.len() >= 11,
+        "ASCE 7-16 §16.2.2: 11 records at least"
+    );
     let c = suite.code_scaling.as_ref().unwrap();
     let t1 = st.building.t1();
     assert_eq!(c.period_s, t1);
@@ -54,7 +57,10 @@ fn one_factor_puts_the_mean_spectrum_at_90_percent_of_the_target() {
     // at least 90 % everywhere, and exactly 90 % at the controlling period (the factor is
     // the smallest that does it); the tolerance is summation round-off over 11+ records
     assert!(least >= 0.9 * (1.0 - 1e-12), "least ratio {least}");
-    assert!((least - 0.9).abs() < 1e-9, "least ratio {least}: not the smallest factor");
+    assert!(
+        (least - 0.9).abs() < 1e-9,
+        "least ratio {least}: not the smallest factor"
+    );
     let k = c
         .periods_s
         .iter()
@@ -90,7 +96,9 @@ fn the_mce_level_is_one_and_a_half_times_the_design_level() {
 
 #[test]
 fn a_bad_target_is_refused_naming_the_field() {
-    let e = study("design", r#", "period_s": -1"#).unwrap_err().to_string();
+    let e = study("design", r#", "period_s": -1"#)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("suites[0].scale.code_spectrum.period_s"), "{e}");
     let e = study("maximum", "").unwrap_err().to_string();
     assert!(e.contains("maximum") || e.contains("hazard"), "{e}");

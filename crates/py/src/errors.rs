@@ -88,6 +88,7 @@ fn sim_kind(e: &SimError) -> Kind {
         | SimError::Friction { .. }
         | SimError::DelaCruzNotConverged { .. }
         | SimError::ExactBudget { .. }
+        | SimError::ExactMemory { .. }
         | SimError::ExactZeno { .. }
         | SimError::NonFiniteResponse { .. } => Kind::Simulation,
         _ => Kind::Input,

@@ -273,7 +273,11 @@ fn scale_to_code(
 ) -> Result<(Vec<Record>, CodeScaling), OptError> {
     let h = c.hazard.factor();
     let target = DesignSpectrum::new(c.sds_g * h, c.sd1_g * h, c.tl_s).map_err(|e| {
-        OptError::invalid(path, format!("suites[{i}].scale.code_spectrum"), e.to_string())
+        OptError::invalid(
+            path,
+            format!("suites[{i}].scale.code_spectrum"),
+            e.to_string(),
+        )
     })?;
     let period = c.period_s.unwrap_or(t1);
     let a = slipload_motion::scale_suite_asce7(unscaled, &target, period, 0.05)?;
@@ -447,7 +451,7 @@ impl Study {
                         records.push(Arc::new(r));
                     }
                 }
-                            if let Some(ScaleConfig::CodeSpectrum(c)) = s.scale {
+                if let Some(ScaleConfig::CodeSpectrum(c)) = s.scale {
                     let (scaled, scaling) = scale_to_code(&unscaled, &c, t1, path, i)?;
                     records.extend(scaled.into_iter().map(Arc::new));
                     code_scaling = Some(scaling);
