@@ -8,8 +8,8 @@
 
 use crate::base::error::OptError;
 use crate::model::config::{
-    MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G, SamplerKind, ScaleConfig,
-    StudyConfig, too_large,
+    CodeSpectrumConfig, Hazard, MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G,
+    SamplerKind, ScaleConfig, StudyConfig, too_large,
 };
 use crate::model::fidelity::{Fidelity, SweepMethod};
 use crate::model::objective::{Metric, Objective};

@@ -41,11 +41,22 @@ pub struct ReportArgs {
 /// list of the files slipload wrote there (`--fresh` removes it; a user's own file under
 /// its name is never overwritten) and is not written while a command holds the folder.
 fn write_report(out: &Path, html: &[u8]) -> anyhow::Result<()> {
-    use slipload_opt::store::folder::{FolderRequest, LOCK_FILE, StudyFolder};
+    use slipload_opt::store::folder::{FolderRequest, LOCK_FILE, StudyFolder, is_output_name};
     let dir = match out.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
+    // a study's own file (a sweep's table, a journal) is never replaced by a report
+    if let Some(name) = out.file_name().and_then(|n| n.to_str())
+        && name != "report.html"
+        && is_output_name(name)
+        && std::fs::symlink_metadata(out).is_ok()
+    {
+        anyhow::bail!(
+            "--out {}: {name} is a file slipload's study commands write there, and the report never replaces it: give another --out (an .html file)",
+            out.display()
+        );
+    }
     if let Some(name) = out.file_name().and_then(|n| n.to_str())
         && dir.join(LOCK_FILE).is_file()
     {
