@@ -18,24 +18,77 @@
 //! (`-.64E-02`) or use a `D` exponent. A line whose blank-separated tokens are not all
 //! numbers is read as fixed-width columns (the width taken from the first data line,
 //! e.g. 10 for `8F10.5`), and failing that by splitting touching numbers at their signs
-//! (`-0.00123-0.00456`). CR, CRLF and a missing final newline are all accepted.
+//! (`-0.00123-0.00456`). CR, CRLF, a UTF-8 byte-order mark and a missing final newline
+//! are all accepted.
+//!
+//! Units: a title line (before the header) may state the unit of the values, as PEER's
+//! `ACCELERATION TIME SERIES IN UNITS OF G` does (the rule is that of
+//! [`crate::unit_label`]). [`parse_at2`] reads the values in the unit the title states,
+//! else in g, and refuses a unit slipload does not convert
+//! ([`MotionError::UnknownHeaderUnits`]). [`parse_at2_in`] reads them in the unit it is
+//! given; when the title states another one, the record carries a note that says so
+//! ([`Record::notes`]).
+//!
 //! Malformed input gives a [`MotionError`]; the reader never panics.
 
 use crate::error::snippet;
 use crate::number::{parse_number, split_touching};
+use crate::unit_label::{Stated, stated_in_at2_title};
 use crate::{MotionError, Record, Units};
 
-/// Reads a PEER `.AT2` record (values in g) from its text; `name` names it in errors and
-/// becomes the record's name.
+/// Reads a PEER `.AT2` record from its text, the values in the unit its title states
+/// (PEER's files: g), else in g; `name` names it in errors and becomes the record's name.
 pub fn parse_at2(text: &str, name: &str) -> Result<Record, MotionError> {
-    parse_at2_in(text, name, Units::G)
+    read_at2(text, name, None)
 }
 
-/// Like [`parse_at2`], with the values read in `units` instead of g (for files that use
-/// the AT2 layout with other units).
+/// Like [`parse_at2`], with the values read in `units` whatever the title says (for files
+/// that use the AT2 layout with other units). When the title states another unit, the
+/// record's [`Record::notes`] say that `units` overrode it.
 pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, MotionError> {
+    read_at2(text, name, Some(units))
+}
+
+/// The unit the title lines (`lines` before the header) state, with the 1-based line
+/// and its text, if any.
+fn title_units<'a>(lines: &[&'a str]) -> Option<(Stated, usize, &'a str)> {
+    lines.iter().enumerate().find_map(|(i, l)| {
+        let stated = stated_in_at2_title(l);
+        (stated != Stated::Nothing).then(|| (stated, i + 1, l.trim()))
+    })
+}
+
+fn read_at2(text: &str, name: &str, given: Option<Units>) -> Result<Record, MotionError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let lines: Vec<&str> = text.split('\n').map(|l| l.trim_end_matches('\r')).collect();
     let header = find_header(&lines, name)?;
+    let stated = title_units(&lines[..header.line_index]);
+    let mut override_note = None;
+    let units = match (&stated, given) {
+        (None | Some((Stated::Nothing, ..)), given) => given.unwrap_or(Units::G),
+        (Some((Stated::Known(u), ..)), None) => *u,
+        (Some((Stated::Unknown(unit), line, text)), None) => {
+            return Err(MotionError::UnknownHeaderUnits {
+                file: name.to_string(),
+                line: *line,
+                header: snippet(text),
+                unit: snippet(unit),
+            });
+        }
+        (Some((Stated::Known(u), ..)), Some(g)) if *u == g => g,
+        (Some((said, line, text)), Some(g)) => {
+            let said = match said {
+                Stated::Known(u) => u.to_string(),
+                Stated::Unknown(w) => w.clone(),
+                Stated::Nothing => String::new(),
+            };
+            override_note = Some(format!(
+                "{name}: values read in {g} as given, not in {said} as its header says (line {line}: `{}`)",
+                snippet(text)
+            ));
+            g
+        }
+    };
     if !(header.dt_s.is_finite() && header.dt_s > 0.0) {
         return Err(MotionError::BadTimeStep {
             file: name.to_string(),
@@ -156,7 +209,11 @@ pub fn parse_at2_in(text: &str, name: &str, units: Units) -> Result<Record, Moti
         header.npts,
         header.dt_s,
     );
-    Ok(Record::new(name, header.dt_s, values)?.with_provenance(provenance))
+    let record = Record::new(name, header.dt_s, values)?.with_provenance(provenance);
+    Ok(match override_note {
+        Some(note) => record.with_note(note),
+        None => record,
+    })
 }
 
 /// NPTS and DT and where they were found.

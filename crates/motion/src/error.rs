@@ -277,6 +277,36 @@ pub enum MotionError {
         /// Columns on this line.
         found: usize,
     },
+    /// A file's column header states a unit other than the one given to read it in.
+    #[error(
+        "{file}:{line}: the header `{header}` says the values are in {stated}, but units {given} were given: drop the units or make them agree with the header"
+    )]
+    UnitsContradictHeader {
+        /// The file or record name.
+        file: String,
+        /// 1-based line of the header.
+        line: usize,
+        /// The header line (at most 40 characters).
+        header: String,
+        /// The unit the header states.
+        stated: crate::Units,
+        /// The unit given.
+        given: crate::Units,
+    },
+    /// A file's header names an acceleration unit slipload does not convert.
+    #[error(
+        "{file}:{line}: the header `{header}` names the unit `{unit}`, which slipload does not convert (it reads g, m/s2 and cm/s2): convert the values and their header to one of these"
+    )]
+    UnknownHeaderUnits {
+        /// The file or record name.
+        file: String,
+        /// 1-based line of the header.
+        line: usize,
+        /// The header line (at most 40 characters).
+        header: String,
+        /// The unit as written (lower-cased, at most 40 characters).
+        unit: String,
+    },
     /// An acceleration unit that is not known.
     #[error("unknown acceleration unit `{given}` (expected g, m/s2, m/s^2, cm/s2 or gal)")]
     UnknownUnits {

@@ -35,6 +35,7 @@ mod scaling;
 mod spectrum;
 mod synthetic;
 mod text;
+mod unit_label;
 mod units;
 
 pub use at2::{parse_at2, parse_at2_in};

@@ -4,7 +4,10 @@
 //! finite time step dt > 0 (s). Sample k is the ground acceleration at t = k·dt; between
 //! samples the acceleration is linear (the convention of every integrator in slipload),
 //! and outside [0, duration] it is zero. Constructors validate; no method produces a
-//! record that breaks the contract.
+//! record that breaks the contract. A record carries what was done to it since it was
+//! read or built: its provenance (free text), its [`Record::scale_factor`] (the product of
+//! the factors its samples were multiplied by) and the [`Record::notes`] its reader
+//! decided a user should hear about; windows and scalings keep them.
 
 use crate::MotionError;
 
@@ -39,6 +42,13 @@ pub struct Record {
     provenance: String,
     dt_s: f64,
     accel_m_s2: Vec<f64>,
+    /// Product of the factors the samples were multiplied by since the record was read
+    /// or built (1 for none).
+    #[serde(skip)]
+    scale_factor: f64,
+    /// What the reader decided a user should hear about, one sentence each.
+    #[serde(skip)]
+    notes: Vec<String>,
 }
 
 impl Record {
@@ -71,7 +81,47 @@ impl Record {
             provenance: String::new(),
             dt_s,
             accel_m_s2,
+            scale_factor: 1.0,
+            notes: Vec::new(),
         })
+    }
+
+    /// Returns the record with one more note: a sentence a user should hear about how
+    /// it was read (e.g. units given that override the file's own), kept through
+    /// windows and scalings.
+    pub fn with_note(mut self, note: impl Into<String>) -> Record {
+        self.notes.push(note.into());
+        self
+    }
+
+    /// The notes of [`Record::with_note`], in the order they were added (empty for most
+    /// records).
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// The product of the factors the samples were multiplied by ([`Record::try_scaled`],
+    /// [`Record::scaled_to_pga`]) since the record was read, built or generated: 1 for a
+    /// record as read. The PGA before scaling is `pga() / scale_factor()`.
+    pub fn scale_factor(&self) -> f64 {
+        self.scale_factor
+    }
+
+    /// Returns the record as built from a process that set its amplitude (a generator
+    /// scaling its noise to a target): scale factor 1.
+    pub(crate) fn generated(mut self) -> Record {
+        self.scale_factor = 1.0;
+        self
+    }
+
+    /// A record derived from this one: new samples (and a processing note), the same
+    /// name, step and notes, the scale factor multiplied by `factor`.
+    fn derived(&self, samples: Vec<f64>, factor: f64, what: &str) -> Result<Record, MotionError> {
+        let mut r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        r.scale_factor = self.scale_factor * factor;
+        r.notes = self.notes.clone();
+        r.provenance = self.note(what);
+        Ok(r)
     }
 
     /// Returns the record with its provenance (where it came from, how it was processed)
@@ -213,9 +263,9 @@ impl Record {
             });
         }
         let samples = self.accel_m_s2.iter().map(|a| a * factor).collect();
-        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
+        let r = self.derived(samples, factor, &format!("scaled by {factor}"))?;
         r.check_plausible()?;
-        Ok(r.with_provenance(self.note(&format!("scaled by {factor}"))))
+        Ok(r)
     }
 
     /// The record scaled so that its PGA is exactly `pga_m_s2` (m/s², finite, ≥ 0):
@@ -260,8 +310,11 @@ impl Record {
                 }
             })
             .collect();
-        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
-        Ok(r.with_provenance(self.note(&format!("scaled by {factor} to PGA {pga_m_s2} m/s2"))))
+        self.derived(
+            samples,
+            factor,
+            &format!("scaled by {factor} to PGA {pga_m_s2} m/s2"),
+        )
     }
 
     /// The part of the record in [start_s, start_s + duration_s] (seconds), resampled at
@@ -295,8 +348,11 @@ impl Record {
         let samples = (0..=m)
             .map(|k| self.accel_at((start_s + k as f64 * self.dt_s).min(end)))
             .collect();
-        let r = Record::new(self.name.clone(), self.dt_s, samples)?;
-        Ok(r.with_provenance(self.note(&format!("window {start_s} s + {duration_s} s"))))
+        self.derived(
+            samples,
+            1.0,
+            &format!("window {start_s} s + {duration_s} s"),
+        )
     }
 
     /// Provenance with one more processing note appended.

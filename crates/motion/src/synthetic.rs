@@ -221,6 +221,8 @@ pub fn synthetic_suite(
                     r.try_scaled(sa_m_s2 / sa)
                 }
             }
+            // scaling the unit-variance noise to the target is part of making the record
+            .map(Record::generated)
         })
         .collect()
 }

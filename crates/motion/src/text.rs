@@ -2,9 +2,15 @@
 //!
 //! Contract ([`parse_text`]): one record per file, one sample per line, either two
 //! columns (time s, acceleration) or one column (acceleration, with the time step given).
-//! Columns are separated by commas, semicolons or blanks. Blank lines and lines starting
-//! with `#` are skipped; the first remaining line may be a column header (any line that
-//! does not parse as numbers there is taken as one). With a time column, the step is
+//! A UTF-8 byte-order mark before the first line is not part of it. Columns are separated
+//! by commas, semicolons or blanks. Blank lines and lines starting with `#` are skipped;
+//! the first remaining line may be a column header (any line that does not parse as
+//! numbers there is taken as one). The header's last field labels the acceleration
+//! column; when it states a unit (`accel_g`, `acc (cm/s2)`, `a_m_s2`, … — the rule and
+//! the spellings are those of [`crate::unit_label`]) the values are read in it, and
+//! `units` given by the caller must agree with it ([`MotionError::UnitsContradictHeader`];
+//! a unit slipload does not convert is [`MotionError::UnknownHeaderUnits`]). Without
+//! either the values are in m/s². With a time column, the step is
 //! (t_last − t_first)/(n − 1) and every step must be positive and within 0.1 % of it
 //! (printed time columns carry rounding; a larger deviation means a non-uniform grid,
 //! which a [`Record`] cannot represent). The record starts at its first sample: a time
@@ -16,22 +22,30 @@
 
 use crate::error::snippet;
 use crate::number::{parse_number, within};
+use crate::unit_label::{Stated, stated_in_label};
 use crate::{MotionError, Record, Units};
 
 /// Relative tolerance on each step of a time column (see the module docs).
 const TIME_STEP_TOLERANCE: f64 = 1e-3;
 
-/// Reads a text/CSV record. `units` are those of the acceleration column; `dt_s` (s) is
-/// required for one column and, with a time column, must agree with it (to 0.1 %) and is
-/// then used as the step. `name` names the record and appears in errors.
+/// Reads a text/CSV record. `units` are those of the acceleration column when given
+/// (`Units::G` or `Some(Units::G)`: a header that states another unit is then refused);
+/// `None` takes the unit the column header states, else m/s². `dt_s` (s) is required for
+/// one column and, with a time column, must agree with it (to 0.1 %) and is then used as
+/// the step. `name` names the record and appears in errors.
 pub fn parse_text(
     text: &str,
     name: &str,
-    units: Units,
+    units: impl Into<Option<Units>>,
     dt_s: Option<f64>,
 ) -> Result<Record, MotionError> {
+    let given = units.into();
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let file = || name.to_string();
-    let factor = units.to_m_s2();
+    // the header (which comes before any value) may set the unit
+    let mut units = given.unwrap_or(Units::MPerS2);
+    let mut from_header = false;
+    let mut factor = units.to_m_s2();
     let mut columns: Option<usize> = None;
     let mut column_header: Option<&str> = None;
     let mut times: Vec<(usize, f64)> = Vec::new();
@@ -46,6 +60,32 @@ pub fn parse_text(
         let parsed: Vec<Option<f64>> = fields.iter().map(|f| parse_number(f)).collect();
         if columns.is_none() && column_header.is_none() && parsed.iter().any(Option::is_none) {
             column_header = Some(line);
+            let label = fields.last().copied().unwrap_or(line);
+            match stated_in_label(label) {
+                Stated::Nothing => {}
+                Stated::Known(stated) => {
+                    if let Some(given) = given.filter(|g| *g != stated) {
+                        return Err(MotionError::UnitsContradictHeader {
+                            file: file(),
+                            line: line_no,
+                            header: snippet(line),
+                            stated,
+                            given,
+                        });
+                    }
+                    units = stated;
+                    from_header = true;
+                    factor = units.to_m_s2();
+                }
+                Stated::Unknown(unit) => {
+                    return Err(MotionError::UnknownHeaderUnits {
+                        file: file(),
+                        line: line_no,
+                        header: snippet(line),
+                        unit: snippet(&unit),
+                    });
+                }
+            }
             continue;
         }
         let expected = *columns.get_or_insert(fields.len());
@@ -152,7 +192,13 @@ pub fn parse_text(
             max_s: crate::MAX_RECORD_DT_S,
         });
     }
-    notes.push(format!("values in {units} converted to m/s2"));
+    if from_header {
+        notes.push(format!(
+            "values in {units} (as the header says) converted to m/s2"
+        ));
+    } else {
+        notes.push(format!("values in {units} converted to m/s2"));
+    }
     Ok(Record::new(name, dt, accel)?.with_provenance(notes.join("; ")))
 }
 

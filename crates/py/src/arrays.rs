@@ -1,10 +1,36 @@
 //! numpy arrays in and out. Inputs are taken as they are or refused with what was
-//! expected: a float64 array, C-contiguous, of the right shape, every value finite —
-//! never cast, copied across strides or truncated behind the caller's back.
+//! expected: a float64 array of the right shape, contiguous in memory, every value
+//! finite — never cast, copied across strides or truncated behind the caller's back.
+//! A contiguous array is read by index, in the order numpy shows it, whatever its memory
+//! order: C order, Fortran order (`numpy.asfortranarray`) and a transposed view (`x.T`)
+//! give the same rows; a strided view (`x[::2]`) is refused naming the parameter.
 
 use crate::errors::input;
-use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::ndarray::Dimension;
+use numpy::{
+    PyArray1, PyArray2, PyReadonlyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
+
+/// The values of `arr` in logical (row-major) order: C-ordered memory as it lies, any
+/// other contiguous layout read by index; an array that is not contiguous in memory (or
+/// not aligned) is refused, naming `what`.
+fn logical_values<D: Dimension>(
+    arr: &PyReadonlyArray<'_, f64, D>,
+    what: &str,
+) -> PyResult<Vec<f64>> {
+    let slice = arr.as_slice().map_err(|_| {
+        input(format!(
+            "{what}: the array is not contiguous in memory (a strided view); pass numpy.ascontiguousarray(x)"
+        ))
+    })?;
+    if arr.is_c_contiguous() {
+        Ok(slice.to_vec())
+    } else {
+        // Fortran order or a transposed view: memory order is not the rows' order
+        Ok(arr.as_array().iter().copied().collect())
+    }
+}
 
 fn describe(obj: &Bound<'_, PyAny>) -> String {
     let dtype = obj
@@ -36,23 +62,20 @@ pub fn vector(obj: &Bound<'_, PyAny>, what: &str, finite: bool) -> PyResult<Vec<
             describe(obj)
         ))
     })?;
-    let slice = arr.as_slice().map_err(|_| {
-        input(format!(
-            "{what}: the array is not contiguous in memory (a strided view); pass numpy.ascontiguousarray(x)"
-        ))
-    })?;
-    if slice.is_empty() {
+    let values = logical_values(&arr, what)?;
+    if values.is_empty() {
         return Err(input(format!("{what}: the array is empty")));
     }
-    if finite && let Some((i, v)) = slice.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+    if finite && let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
         return Err(input(format!(
             "{what}[{i}] is {v}: every value must be a finite number"
         )));
     }
-    Ok(slice.to_vec())
+    Ok(values)
 }
 
-/// A 2-D float64 array `what` as (rows, columns, row-major values).
+/// A 2-D float64 array `what` as (rows, columns, row-major values), row i being `x[i]`
+/// whatever the array's memory order.
 pub fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, Vec<f64>)> {
     let arr: PyReadonlyArray2<'_, f64> = obj.extract().map_err(|_| {
         input(format!(
@@ -61,22 +84,18 @@ pub fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, Vec
         ))
     })?;
     let shape = arr.shape().to_vec();
-    let slice = arr.as_slice().map_err(|_| {
-        input(format!(
-            "{what}: the array is not contiguous in memory (a strided view); pass numpy.ascontiguousarray(x)"
-        ))
-    })?;
-    if slice.is_empty() {
+    let values = logical_values(&arr, what)?;
+    if values.is_empty() {
         return Err(input(format!("{what}: the array is empty")));
     }
-    if let Some((k, v)) = slice.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+    if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
         return Err(input(format!(
             "{what}[{}, {}] is {v}: every value must be a finite number",
             k / shape[1],
             k % shape[1]
         )));
     }
-    Ok((shape[0], shape[1], slice.to_vec()))
+    Ok((shape[0], shape[1], values))
 }
 
 /// A vector as a 1-D numpy array (moved, not copied).

@@ -104,6 +104,20 @@ impl PyRecord {
         self.inner.pga() / slipload_motion::G
     }
 
+    /// What the reader said about the file, one sentence each (units given that override
+    /// an AT2 title's); empty for most records.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.inner.notes().to_vec()
+    }
+
+    /// The product of the factors the record was scaled by since it was read or built
+    /// (1 as read); the PGA before scaling is `pga / scale_factor`.
+    #[getter]
+    fn scale_factor(&self) -> f64 {
+        self.inner.scale_factor()
+    }
+
     /// Accelerations, m/s² (a copy).
     #[getter]
     fn accel<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {

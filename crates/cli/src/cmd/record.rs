@@ -46,9 +46,15 @@ struct ReadOptions {
 }
 
 impl ReadOptions {
+    /// Reads the record in `path`, printing its reader's notes (units that override the
+    /// file's own) on stderr.
     fn read(&self, path: &Path) -> anyhow::Result<Record> {
         // MotionError already names the file and line.
-        read_record(path, self.units, self.dt).context("reading a ground-motion record")
+        let r = read_record(path, self.units, self.dt).context("reading a ground-motion record")?;
+        for note in r.notes() {
+            eprintln!("note: {note}");
+        }
+        Ok(r)
     }
 }
 
@@ -233,10 +239,10 @@ fn info(args: &InfoArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The rows as a table: every column as wide as its widest cell (the file column left-,
+/// the numbers right-aligned), so that a long value never shifts the columns after it.
 fn info_table(rows: &[InfoRow]) -> String {
-    let width = rows.iter().map(|r| r.file.len()).max().unwrap_or(4).max(4);
-    let mut s = format!(
-        "{:<width$}  {:>6}  {:>7}  {:>8}  {:>9}  {:>7}  {:>8}  {:>8}  {:>9}  {:>7}\n",
+    const HEAD: [&str; 10] = [
         "file",
         "npts",
         "dt_s",
@@ -246,25 +252,66 @@ fn info_table(rows: &[InfoRow]) -> String {
         "pgv_m_s",
         "pgd_m",
         "arias_m_s",
-        "d5_95_s"
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{:<width$}  {:>6}  {:>7.4}  {:>8.3}  {:>9.4}  {:>7.4}  {:>8.4}  {:>8.4}  {:>9.4}  {:>7.3}",
-            r.file,
-            r.npts,
-            r.dt_s,
-            r.duration_s,
-            r.pga_m_s2,
-            r.pga_g,
-            r.pgv_m_s,
-            r.pgd_m,
-            r.arias_m_s,
-            r.d5_95_s
-        );
+        "d5_95_s",
+    ];
+    // the widths the usual records need, so that a table of them reads as it always has
+    const MIN_WIDTH: [usize; 10] = [4, 6, 7, 8, 9, 7, 8, 8, 9, 7];
+    let cells: Vec<[String; 10]> = rows
+        .iter()
+        .map(|r| {
+            [
+                r.file.clone(),
+                r.npts.to_string(),
+                dt_text(r.dt_s),
+                format!("{:.3}", r.duration_s),
+                format!("{:.4}", r.pga_m_s2),
+                format!("{:.4}", r.pga_g),
+                format!("{:.4}", r.pgv_m_s),
+                format!("{:.4}", r.pgd_m),
+                format!("{:.4}", r.arias_m_s),
+                format!("{:.3}", r.d5_95_s),
+            ]
+        })
+        .collect();
+    let width: Vec<usize> = (0..HEAD.len())
+        .map(|c| {
+            cells
+                .iter()
+                .map(|row| row[c].chars().count())
+                .chain([HEAD[c].len(), MIN_WIDTH[c]])
+                .max()
+                .unwrap_or(MIN_WIDTH[c])
+        })
+        .collect();
+    let line = |row: &[String]| -> String {
+        let mut l = String::new();
+        for (c, cell) in row.iter().enumerate() {
+            let w = width[c];
+            if c == 0 {
+                let _ = write!(l, "{cell:<w$}");
+            } else {
+                let _ = write!(l, "  {cell:>w$}");
+            }
+        }
+        l.push('\n');
+        l
+    };
+    let mut s = line(&HEAD.map(str::to_string));
+    for row in &cells {
+        s.push_str(&line(row));
     }
     s
+}
+
+/// A sample interval for the table: four decimals when they hold it exactly (0.0200,
+/// 0.0050), else every digit it has (0.00025 s, not 0.0003).
+fn dt_text(dt_s: f64) -> String {
+    let four = format!("{dt_s:.4}");
+    if four.parse::<f64>().is_ok_and(|v| v == dt_s) {
+        four
+    } else {
+        format!("{dt_s}")
+    }
 }
 
 fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {

@@ -1,8 +1,14 @@
 //! `slipload simulate`: one building under one excitation, responses as the output
 //! contract (JSON) or a table.
+//!
+//! The table names the ground motion with its PGA (and, when it was scaled, the factor
+//! and the PGA before); stderr carries the notes of the scene and of the record's reader
+//! (units that override an AT2 title's), and says when the time step does not divide
+//! the duration, so that the last step ends past it.
 
 use super::scene_args::SceneArgs;
 use anyhow::Context;
+use slipload_motion::{G, Record};
 use slipload_opt::base::output::write_atomic;
 use slipload_sim::{Outcome, Scene, simulate};
 use std::fmt::Write as _;
@@ -63,6 +69,12 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     let mut scene = args
         .scene
         .load(args.history.is_some() || args.plot.is_some())?;
+    for note in scene.record.iter().flat_map(|r| r.notes()) {
+        eprintln!("note: {note}");
+    }
+    if let Some(note) = past_duration_note(&scene) {
+        eprintln!("note: {note}");
+    }
     if args.plot.is_some() {
         scene.outputs.energies = true;
     }
@@ -101,6 +113,66 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// When the time step does not divide the simulated duration, the run takes whole steps
+/// and its last one ends past the duration: the sentence that says so (None when the
+/// last step ends on the duration, within the 1e-9 slack of [`Scene::steps`]).
+pub fn past_duration_note(scene: &Scene) -> Option<String> {
+    let dt = scene.method.dt;
+    let steps = scene.steps();
+    let end = steps as f64 * dt;
+    let duration = scene.duration;
+    (end > duration * (1.0 + 1e-9)).then(|| {
+        format!(
+            "dt = {} s does not divide the duration {} s: the run takes {steps} steps and ends at t = {} s, {} s past it (give a duration or a dt that divides it to end on it)",
+            short(dt),
+            short(duration),
+            short(end),
+            short(end - duration)
+        )
+    })
+}
+
+/// A number for people: six significant digits, trailing zeros dropped (0.002, not
+/// 0.0020000000000006963); exponent form for very large or small ones.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let magnitude = x.abs().log10().floor();
+    if !(-4.0..9.0).contains(&magnitude) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5.0 - magnitude).max(0.0) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// The ground motion as the table names it: its PGA in g and m/s², and when it was
+/// scaled, the factor and the PGA before scaling.
+pub fn record_line(record: &Record) -> String {
+    let pga = record.pga();
+    let mut line = format!(
+        "ground motion {}: PGA {:.4} g ({:.4} m/s2)",
+        record.name(),
+        pga / G,
+        pga
+    );
+    let factor = record.scale_factor();
+    if factor != 1.0 {
+        let _ = write!(
+            line,
+            ", scaled by {} from PGA {:.4} g",
+            short(factor),
+            pga / factor / G
+        );
+    }
+    line
+}
+
 /// Plastic drift below this fraction of the storey's yield drift is round-off of a storey
 /// that never yielded (its elastic-plastic element never slipped): shown as 0.
 pub const PLASTIC_DRIFT_NOISE: f64 = 1e-6;
@@ -127,6 +199,9 @@ pub fn table(scene: &Scene, out: &Outcome) -> String {
         "{name}: method {}, dt = {:.6e} s, {} steps, {:.4} s of CPU",
         r.method, r.dt, r.steps, r.cpu_seconds
     );
+    if let Some(record) = &scene.record {
+        let _ = writeln!(s, "{}", record_line(record));
+    }
     let _ = writeln!(
         s,
         "{}",

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _slipload
@@ -141,12 +142,15 @@ def _watched(call: Callable[..., Any], progress: Progress, *args: Any, **kwargs:
 def read_record(path: PathLike, units: Optional[str] = None, dt: Optional[float] = None) -> Record:
     """Reads a ground-motion record file: a PEER ``.AT2`` file (values in g) or a CSV/text
     file (one column of accelerations with ``dt``, or time and acceleration columns;
-    values in m/s² unless ``units`` says otherwise).
+    values in the unit the column header states — ``accel_g``, ``a (cm/s2)`` — else in
+    m/s², unless ``units`` says otherwise).
 
     Args:
         path: the file.
-        units: units of the values: ``"g"``, ``"m/s2"``, ``"cm/s2"`` (default: the
-            format's — g for AT2, m/s² for text).
+        units: units of the values: ``"g"``, ``"m/s2"``, ``"cm/s2"`` (default: the unit
+            the file states, else the format's — g for AT2, m/s² for text). A CSV header
+            that states another unit is refused; for an AT2 file whose title states
+            another unit, ``units`` wins and a warning (and ``Record.notes``) says so.
         dt: time step of a one-column text file, s (for an AT2 file or a time column it
             must agree with the file's step).
 
@@ -155,16 +159,20 @@ def read_record(path: PathLike, units: Optional[str] = None, dt: Optional[float]
 
     Raises:
         InputError: the file is not a record (the message names the line and what was
-            expected). FileError: the file cannot be read.
+            expected), or ``units`` contradict its header. FileError: the file cannot be
+            read.
     """
-    return Record.read(os.fspath(path), units=units, dt=dt)
+    record = Record.read(os.fspath(path), units=units, dt=dt)
+    for note in record.notes:
+        warnings.warn(note, UserWarning, stacklevel=2)
+    return record
 
 
 def record_from_array(accel: Any, dt: float, units: str = "m/s2", name: str = "array") -> Record:
     """A record from a numpy array of ground accelerations at a uniform step.
 
     Args:
-        accel: 1-D float64 numpy array, C-contiguous, every value finite (an int array
+        accel: 1-D float64 numpy array, contiguous, every value finite (an int array
             or a strided view is refused, not silently converted).
         dt: time step, s (> 0).
         units: units of ``accel``: ``"m/s2"`` (default), ``"g"`` or ``"cm/s2"``.
@@ -350,6 +358,8 @@ def batch_designs(
         records: the suite.
         slip_loads: 2-D float64 array, shape (designs, dissipators): the slip loads, N,
             of the floors that carry a dissipator, in floor order (``scene.damper_floors``).
+            Row d is design d in any memory order (C, Fortran, a transposed view); a
+            strided view is refused.
         method, dt: as in :func:`simulate`.
         outputs: ``None`` or ``["energies"]`` (histories are not collected here).
         progress, threads: as in :func:`batch`.
@@ -631,7 +641,8 @@ def evaluate_objectives(
     Args:
         study: a study with ``objectives`` (see :func:`load_study`).
         slip_loads: 2-D float64 array (designs, dissipators), N, in the order of the
-            study's ``damper_floors``.
+            study's ``damper_floors``; row d is design d in any memory order (C,
+            Fortran, a transposed view); a strided view is refused.
         progress, threads: as in :func:`batch`.
 
     Returns:

@@ -43,6 +43,14 @@ class Record:
     def pga_g(self) -> float:
         """Peak ground acceleration, g."""
     @property
+    def notes(self) -> List[str]:
+        """What the reader said about the file, one sentence each (units given that
+        override an AT2 title's); empty for most records."""
+    @property
+    def scale_factor(self) -> float:
+        """Product of the factors the record was scaled by since it was read or built (1 as
+        read); the PGA before scaling is ``pga / scale_factor``."""
+    @property
     def accel(self) -> FloatArray:
         """Accelerations, m/s² (a copy)."""
     @property
