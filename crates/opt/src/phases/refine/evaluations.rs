@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 /// An argmin-style refiner: a state machine (`init`, then `next_iter` until `terminate`)
-/// driven by [`run`]. Its state is plain data (the implementations serialise), so a
+/// driven by [`super::run`]. Its state is plain data (the implementations serialise), so a
 /// refinement can be inspected, saved between iterations and continued.
 pub trait Refiner {
     /// Sets the state up from the start point (may evaluate points).
