@@ -8,18 +8,8 @@ use slipload_opt::store::journal::{Journal, read};
 use slipload_opt::{Shard, Study};
 use std::path::{Path, PathBuf};
 
-/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
-/// returned value is dropped).
-fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
-    let request = slipload_opt::store::folder::FolderRequest {
-        path: dir,
-        option: "out",
-        fresh: false,
-    };
-    slipload_opt::store::folder::StudyFolder::open(request)
-        .unwrap()
-        .0
-}
+mod common;
+use common::open_folder;
 
 fn study_with(edit: impl Fn(&mut serde_json::Value)) -> Study {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");

@@ -16,18 +16,8 @@ use slipload_sim::scene::{InitialState, MethodSettings, OutputsConfig, Scene, de
 use slipload_sim::{Plan, run_plan};
 use std::path::{Path, PathBuf};
 
-/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
-/// returned value is dropped).
-fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
-    let request = slipload_opt::store::folder::FolderRequest {
-        path: dir,
-        option: "out",
-        fresh: false,
-    };
-    slipload_opt::store::folder::StudyFolder::open(request)
-        .unwrap()
-        .0
-}
+mod common;
+use common::open_folder;
 
 /// The benchmark study on two 2-s synthetic records and two sample points, its building
 /// inlined with the dissipators edited by `edit`.

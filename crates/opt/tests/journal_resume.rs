@@ -9,18 +9,8 @@ use slipload_opt::{Shard, Study};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The sweep's output folder `dir`, opened as a study command opens it (locked until the
-/// returned value is dropped).
-fn open_folder(dir: &std::path::Path) -> slipload_opt::store::folder::StudyFolder {
-    let request = slipload_opt::store::folder::FolderRequest {
-        path: dir,
-        option: "out",
-        fresh: false,
-    };
-    slipload_opt::store::folder::StudyFolder::open(request)
-        .unwrap()
-        .0
-}
+mod common;
+use common::open_folder;
 
 fn study(points: usize) -> Study {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");

@@ -11,8 +11,10 @@ use slipload_opt::eval::progress::NoProgress;
 use slipload_opt::phases::pareto::{ParetoReport, dominates, evaluate_objectives};
 use slipload_opt::phases::sweep::Manifest;
 use slipload_opt::pipeline::{NoFigures, OptimizeOptions, StudyReport, optimize_study};
-use slipload_opt::store::folder::FolderRequest;
 use std::path::{Path, PathBuf};
+
+mod common;
+use common::folder;
 
 fn config() -> (serde_json::Value, PathBuf) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-pareto.json");
@@ -33,15 +35,6 @@ fn config() -> (serde_json::Value, PathBuf) {
 fn study() -> Study {
     let (v, path) = config();
     Study::from_json(&v.to_string(), &path).unwrap()
-}
-
-/// The output folder `out`, as the library's study commands take it.
-fn folder(out: &Path) -> FolderRequest<'_> {
-    FolderRequest {
-        path: out,
-        option: "out",
-        fresh: false,
-    }
 }
 
 fn scratch(name: &str) -> PathBuf {

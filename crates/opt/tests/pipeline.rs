@@ -13,11 +13,13 @@ use slipload_opt::phases::table::DesignTable;
 use slipload_opt::pipeline::{
     NoFigures, OptimizeOptions, StudyReport, merge_shards, optimize_study, sweep_study,
 };
-use slipload_opt::store::folder::FolderRequest;
 use slipload_opt::{Shard, Study};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
+
+mod common;
+use common::folder;
 
 /// The benchmark study on 2 synthetic records of 4 s, `points` Halton designs, a short
 /// trust-region refinement and 2 finalists.
@@ -32,15 +34,6 @@ fn study(points: usize) -> Study {
     v["refine"]["max_evaluations"] = 6.into();
     v["refine"]["finalists"] = 2.into();
     Study::from_json(&v.to_string(), &path).unwrap()
-}
-
-/// The output folder `out`, as the library's study commands take it.
-fn folder(out: &Path) -> FolderRequest<'_> {
-    FolderRequest {
-        path: out,
-        option: "out",
-        fresh: false,
-    }
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -79,7 +79,7 @@ pub struct SuiteConfig {
 }
 
 /// Scaling of every record of a suite.
-#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum ScaleConfig {
     /// Multiply by this factor.
@@ -95,7 +95,7 @@ pub enum ScaleConfig {
 
 /// The target of a suite scaled to a code spectrum: the ASCE 7-16 design response
 /// spectrum (§11.4.6) of S_DS, S_D1 and T_L, at a hazard level.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CodeSpectrumConfig {
     /// S_DS, g: the design spectral response acceleration at short periods (§11.4.5).
@@ -104,9 +104,10 @@ pub struct CodeSpectrumConfig {
     pub sd1_g: f64,
     /// T_L, s: the long-period transition period (§11.4.6).
     pub tl_s: f64,
-    /// The hazard level the suite stands for (default `design`).
+    /// The hazard level the suite stands for, by name: `design` (the default) or `mce_r`
+    /// ([`Hazard`]; read by [`CodeSpectrumConfig::hazard`]).
     #[serde(default)]
-    pub hazard: Hazard,
+    pub hazard: Option<String>,
     /// The period T of the range [0.2 T, 2 T], s (default: the bare frame's first period,
     /// the building's T₁).
     #[serde(default)]
@@ -123,6 +124,20 @@ pub enum Hazard {
     /// The risk-targeted maximum considered earthquake: 1.5 × the design spectrum
     /// (ASCE 7-16 §11.4.5: S_DS = 2/3 S_MS, S_D1 = 2/3 S_M1).
     MceR,
+}
+
+impl CodeSpectrumConfig {
+    /// The hazard level named by `hazard` (`design` when absent); an unknown name is an
+    /// error that lists the names.
+    pub fn hazard(&self) -> Result<Hazard, String> {
+        match self.hazard.as_deref() {
+            None | Some("design") => Ok(Hazard::Design),
+            Some("mce_r") => Ok(Hazard::MceR),
+            Some(other) => Err(format!(
+                "unknown hazard level {other:?}: expected \"design\" (the design earthquake) or \"mce_r\" (the risk-targeted maximum considered earthquake, 1.5 x design)"
+            )),
+        }
+    }
 }
 
 impl Hazard {
@@ -624,12 +639,14 @@ impl StudyConfig {
             if let Some(dt) = s.dt_s {
                 finite_positive(path, &f("dt_s"), dt)?;
             }
-            match s.scale {
-                Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), v)?,
-                Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), v)?,
-                Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), v)?,
+            match &s.scale {
+                Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), *v)?,
+                Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), *v)?,
+                Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), *v)?,
                 Some(ScaleConfig::CodeSpectrum(c)) => {
                     let g = |k: &str| f(&format!("scale.code_spectrum.{k}"));
+                    c.hazard()
+                        .map_err(|e| OptError::invalid(path, g("hazard"), e))?;
                     intensity_g(path, &g("sds_g"), c.sds_g)?;
                     intensity_g(path, &g("sd1_g"), c.sd1_g)?;
                     finite_positive(path, &g("tl_s"), c.tl_s)?;

@@ -271,7 +271,10 @@ fn scale_to_code(
     path: &Path,
     i: usize,
 ) -> Result<(Vec<Record>, CodeScaling), OptError> {
-    let h = c.hazard.factor();
+    let hazard = c.hazard().map_err(|e| {
+        OptError::invalid(path, format!("suites[{i}].scale.code_spectrum.hazard"), e)
+    })?;
+    let h = hazard.factor();
     let target = DesignSpectrum::new(c.sds_g * h, c.sd1_g * h, c.tl_s).map_err(|e| {
         OptError::invalid(
             path,
@@ -295,7 +298,7 @@ fn scale_to_code(
         }
     }
     let scaling = CodeScaling {
-        hazard: c.hazard,
+        hazard,
         sds_g: c.sds_g,
         sd1_g: c.sd1_g,
         tl_s: c.tl_s,
@@ -415,14 +418,14 @@ impl Study {
                         }
                         seen.push((key, j));
                         let r = slipload_motion::read_record(&file, units, s.dt_s)?;
-                        let r = match s.scale {
+                        let r = match &s.scale {
                             Some(ScaleConfig::CodeSpectrum(_)) => {
                                 unscaled.push(r);
                                 continue;
                             }
                             None => r,
                             Some(ScaleConfig::Factor(f)) => {
-                                let r = r.try_scaled(f)?;
+                                let r = r.try_scaled(*f)?;
                                 let pga_g = r.pga() / G;
                                 if pga_g < MIN_STUDY_PGA_G {
                                     return Err(OptError::invalid(
@@ -436,7 +439,7 @@ impl Study {
                                 }
                                 r
                             }
-                            Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(p * G)?,
+                            Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(*p * G)?,
                             Some(ScaleConfig::SaT1G(sa)) => {
                                 slipload_motion::scale_to_spectral_acceleration(
                                     std::slice::from_ref(&r),
@@ -451,8 +454,8 @@ impl Study {
                         records.push(Arc::new(r));
                     }
                 }
-                if let Some(ScaleConfig::CodeSpectrum(c)) = s.scale {
-                    let (scaled, scaling) = scale_to_code(&unscaled, &c, t1, path, i)?;
+                if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
+                    let (scaled, scaling) = scale_to_code(&unscaled, c, t1, path, i)?;
                     records.extend(scaled.into_iter().map(Arc::new));
                     code_scaling = Some(scaling);
                 }
