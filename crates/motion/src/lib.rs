@@ -47,7 +47,7 @@ pub use intensity::{
 };
 pub use reader::{RecordFormat, read_record};
 pub use record::{
-    G, MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, max_abs_accel_m_s2,
+    MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, max_abs_accel_m_s2,
 };
 pub use scaling::{
     ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
@@ -62,4 +62,4 @@ pub use synthetic::{
     default_suite, derive_seed, synthetic_suite,
 };
 pub use text::{format_csv, parse_text};
-pub use units::Units;
+pub use units::{G, Units};

@@ -10,9 +10,7 @@
 //! decided a user should hear about; windows and scalings keep them.
 
 use crate::MotionError;
-
-/// Standard gravity, m/s² per g (the value used by PEER and by ASCE 7).
-pub const G: f64 = 9.80665;
+use crate::units::G;
 
 /// The largest |ground acceleration| a reader accepts and a scaling may produce, in g.
 /// The largest recorded ground accelerations are about 4–5 g; a value beyond this bound

@@ -23,7 +23,7 @@
 //! `in/sec/sec`, `accel_ft_s2`) is reported as [`Stated::Unknown`], so that the caller
 //! refuses it instead of reading the values in another unit. Anything else states no unit.
 
-use crate::Units;
+use crate::{MotionError, Units};
 
 /// What a label says about the unit of its values.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -203,5 +203,22 @@ mod tests {
         assert_eq!(t("PEER STRONG MOTION DATABASE RECORD"), Stated::Nothing);
         assert_eq!(t("UNITS OF MEASURE VARY"), Stated::Nothing);
         assert_eq!(t("UNITS"), Stated::Nothing);
+    }
+}
+
+impl std::str::FromStr for Units {
+    type Err = MotionError;
+
+    /// Accepts (case-insensitive, surrounding blanks ignored) `g`, `m/s2`, `m/s^2`,
+    /// `m/s²`, `cm/s2`, `cm/s^2`, `cm/s²`, `gal`.
+    fn from_str(s: &str) -> Result<Units, MotionError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "g" => Ok(Units::G),
+            "m/s2" | "m/s^2" | "m/s²" => Ok(Units::MPerS2),
+            "cm/s2" | "cm/s^2" | "cm/s²" | "gal" => Ok(Units::CmPerS2),
+            _ => Err(MotionError::UnknownUnits {
+                given: crate::error::snippet(s),
+            }),
+        }
     }
 }

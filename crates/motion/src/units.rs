@@ -3,8 +3,8 @@
 //! Contract: [`Units::to_m_s2`] is the factor from the unit to m/s²; g is standard gravity
 //! [`crate::G`] = 9.80665 m/s² (the value PEER uses), 1 gal = 1 cm/s² = 0.01 m/s².
 
-use crate::MotionError;
-use std::str::FromStr;
+/// Standard gravity, m/s² per g (the value used by PEER and by ASCE 7).
+pub const G: f64 = 9.80665;
 
 /// The unit of acceleration values in a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -22,26 +22,9 @@ impl Units {
     /// Multiply a value in this unit by this factor to get m/s².
     pub fn to_m_s2(self) -> f64 {
         match self {
-            Units::G => crate::G,
+            Units::G => G,
             Units::MPerS2 => 1.0,
             Units::CmPerS2 => 0.01,
-        }
-    }
-}
-
-impl FromStr for Units {
-    type Err = MotionError;
-
-    /// Accepts (case-insensitive, surrounding blanks ignored) `g`, `m/s2`, `m/s^2`,
-    /// `m/s²`, `cm/s2`, `cm/s^2`, `cm/s²`, `gal`.
-    fn from_str(s: &str) -> Result<Units, MotionError> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "g" => Ok(Units::G),
-            "m/s2" | "m/s^2" | "m/s²" => Ok(Units::MPerS2),
-            "cm/s2" | "cm/s^2" | "cm/s²" | "gal" => Ok(Units::CmPerS2),
-            _ => Err(MotionError::UnknownUnits {
-                given: crate::error::snippet(s),
-            }),
         }
     }
 }
@@ -59,6 +42,7 @@ impl std::fmt::Display for Units {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::MotionError;
 
     #[test]
     fn parses_every_spelling() {

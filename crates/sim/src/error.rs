@@ -200,9 +200,9 @@ pub enum SimError {
     Motion(#[from] slipload_motion::MotionError),
 }
 
-/// A byte count for people, as [`crate::limits::bytes`].
+/// A byte count for people, as [`slipload_motion::limits::bytes`].
 fn shown_bytes(b: &u64) -> String {
-    crate::limits::bytes(*b as f64)
+    slipload_motion::limits::bytes(*b as f64)
 }
 
 impl SimError {
