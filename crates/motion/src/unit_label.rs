@@ -140,6 +140,23 @@ pub(crate) fn stated_in_at2_title(line: &str) -> Stated {
     }
 }
 
+impl std::str::FromStr for Units {
+    type Err = MotionError;
+
+    /// Accepts (case-insensitive, surrounding blanks ignored) `g`, `m/s2`, `m/s^2`,
+    /// `m/s²`, `cm/s2`, `cm/s^2`, `cm/s²`, `gal`.
+    fn from_str(s: &str) -> Result<Units, MotionError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "g" => Ok(Units::G),
+            "m/s2" | "m/s^2" | "m/s²" => Ok(Units::MPerS2),
+            "cm/s2" | "cm/s^2" | "cm/s²" | "gal" => Ok(Units::CmPerS2),
+            _ => Err(MotionError::UnknownUnits {
+                given: crate::error::snippet(s),
+            }),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,22 +220,5 @@ mod tests {
         assert_eq!(t("PEER STRONG MOTION DATABASE RECORD"), Stated::Nothing);
         assert_eq!(t("UNITS OF MEASURE VARY"), Stated::Nothing);
         assert_eq!(t("UNITS"), Stated::Nothing);
-    }
-}
-
-impl std::str::FromStr for Units {
-    type Err = MotionError;
-
-    /// Accepts (case-insensitive, surrounding blanks ignored) `g`, `m/s2`, `m/s^2`,
-    /// `m/s²`, `cm/s2`, `cm/s^2`, `cm/s²`, `gal`.
-    fn from_str(s: &str) -> Result<Units, MotionError> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "g" => Ok(Units::G),
-            "m/s2" | "m/s^2" | "m/s²" => Ok(Units::MPerS2),
-            "cm/s2" | "cm/s^2" | "cm/s²" | "gal" => Ok(Units::CmPerS2),
-            _ => Err(MotionError::UnknownUnits {
-                given: crate::error::snippet(s),
-            }),
-        }
     }
 }
