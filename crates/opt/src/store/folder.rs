@@ -272,6 +272,17 @@ impl StudyFolder {
     /// Adds `names` to the list of slipload's files (before they are written, so that an
     /// interrupted write still leaves them slipload's).
     pub fn claim<S: AsRef<str>>(&self, names: &[S]) -> Result<(), OptError> {
+        // the list keeps one name a line: a name that would split or hide a line is refused
+        if let Some(bad) = names
+            .iter()
+            .map(AsRef::as_ref)
+            .find(|n| n.is_empty() || n.chars().any(char::is_control) || n.contains('/'))
+        {
+            return Err(OptError::Argument(format!(
+                "{bad:?} in {}: an output file's name holds no control character or '/': give a plain file name",
+                self.dir.display()
+            )));
+        }
         let changed = {
             let mut w = self.written();
             let mut changed = false;
@@ -423,5 +434,38 @@ pub fn check_idle(dir: &Path) -> Result<(), OptError> {
             dir: dir.to_path_buf(),
         }),
         Err(TryLockError::Error(source)) => Err(OptError::Io { path, source }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+    use super::*;
+
+    #[test]
+    fn the_list_keeps_one_plain_name_a_line() {
+        let dir = std::env::temp_dir().join(format!("slipload-folder-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let request = FolderRequest {
+            path: &dir,
+            option: "out",
+            fresh: false,
+        };
+        let (folder, _) = StudyFolder::open(request).unwrap();
+        folder.write("a.csv", b"x\n").unwrap();
+        // a name that would split a line of the list (and so name another file) is refused
+        for bad in ["b.html\nnotes.txt", "", "sub/c.csv", "d\r.csv"] {
+            assert!(folder.claim(&[bad]).is_err(), "{bad:?} was claimed");
+        }
+        drop(folder);
+        let (again, _) = StudyFolder::open(request).unwrap();
+        assert_eq!(again.files(), vec!["a.csv".to_string()]);
+        // a second opening while the first holds the folder is refused, in one process too
+        assert!(matches!(
+            StudyFolder::open(request),
+            Err(OptError::FolderBusy { .. })
+        ));
+        drop(again);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
