@@ -37,6 +37,18 @@ fn study() -> Study {
     Study::from_json(&v.to_string(), &path).unwrap()
 }
 
+/// `study` optimised into `out` with the default options, no progress and no figures.
+fn optimized(study: &Study, out: &Path) -> Result<StudyReport, slipload_opt::OptError> {
+    optimize_study(
+        study,
+        &OptimizeOptions::default(),
+        folder(out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .map(|r| r.report)
+}
+
 fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("slipload-pareto-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -62,15 +74,7 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let st = study();
     let nr = st.records.len();
     let out = scratch("run");
-    let r = optimize_study(
-        &st,
-        &OptimizeOptions::default(),
-        folder(&out),
-        &NoProgress,
-        &NoFigures,
-    )
-    .map(|r| r.report)
-    .unwrap();
+    let r = optimized(&st, &out).unwrap();
     let p = r.pareto.as_ref().unwrap();
     let ev = &p.search.evaluated;
     assert_eq!(p.search.sweep_designs, 6);
@@ -138,15 +142,7 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
         .collect();
     let before = bytes(&out, &files);
     let journals = bytes(&out, &JOURNALS);
-    let r2 = optimize_study(
-        &st,
-        &OptimizeOptions::default(),
-        folder(&out),
-        &NoProgress,
-        &NoFigures,
-    )
-    .map(|r| r.report)
-    .unwrap();
+    let r2 = optimized(&st, &out).unwrap();
     assert_eq!(r2.work.run(), 0, "nothing simulated again");
     let w2 = r2.work.pareto.unwrap();
     assert_eq!((w2[0].run, w2[0].reused), (0, 6 * nr));
@@ -158,15 +154,7 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let text = std::fs::read_to_string(&pj).unwrap();
     let keep: Vec<&str> = text.lines().take(1 + 3 * nr).collect();
     std::fs::write(&pj, keep.join("\n") + "\n").unwrap();
-    let r3 = optimize_study(
-        &st,
-        &OptimizeOptions::default(),
-        folder(&out),
-        &NoProgress,
-        &NoFigures,
-    )
-    .map(|r| r.report)
-    .unwrap();
+    let r3 = optimized(&st, &out).unwrap();
     let w3 = r3.work.pareto.unwrap();
     assert_eq!((w3[0].run, w3[0].reused), (3 * nr, 3 * nr));
     assert!(
@@ -197,17 +185,7 @@ fn one_and_two_threads_write_the_same_bytes() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| {
-            optimize_study(
-                &st,
-                &OptimizeOptions::default(),
-                folder(&out),
-                &NoProgress,
-                &NoFigures,
-            )
-            .map(|r| r.report)
-        })
-        .unwrap();
+        pool.install(|| optimized(&st, &out)).unwrap();
         // pareto.jsonl holds tasks in finishing order: compare its sorted lines
         let mut b = bytes(&out, &files);
         let last = b.pop().unwrap();

@@ -36,6 +36,20 @@ def same_folders(a: pathlib.Path, b: pathlib.Path):
     return fa
 
 
+def long_study(tmp_path):
+    """The study of STUDY with 400 sweep points (a sweep of seconds, long enough to stop or
+    to meet part-way), written into tmp_path with its paths made absolute."""
+    study = json.loads(STUDY.read_text())
+    study["sweep"]["points"] = 400
+    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
+    for s in study["suites"]:
+        if "records" in s:
+            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    return path
+
+
 @pytest.fixture(scope="module")
 def cli_optimized(tmp_path_factory):
     out = tmp_path_factory.mktemp("cli") / "opt"
@@ -142,14 +156,7 @@ def test_ctrl_c_stops_a_sweep_and_resume_finishes_it(tmp_path):
     import signal
     import threading
 
-    study = json.loads(STUDY.read_text())
-    study["sweep"]["points"] = 400
-    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
-    for s in study["suites"]:
-        if "records" in s:
-            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
-    path = tmp_path / "study.json"
-    path.write_text(json.dumps(study))
+    path = long_study(tmp_path)
     out = tmp_path / "sweep"
     seen = []
     fired = threading.Event()
@@ -185,14 +192,7 @@ def test_two_threads_into_one_folder_the_second_is_refused_and_the_first_finishe
     import threading
     import time
 
-    study = json.loads(STUDY.read_text())
-    study["sweep"]["points"] = 400
-    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
-    for s in study["suites"]:
-        if "records" in s:
-            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
-    path = tmp_path / "study.json"
-    path.write_text(json.dumps(study))
+    path = long_study(tmp_path)
     out = tmp_path / "sweep"
     running = threading.Event()
     tried = threading.Event()
