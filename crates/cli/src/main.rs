@@ -89,6 +89,10 @@ fn main() -> std::process::ExitCode {
     }
     match cmd::run(cli.command) {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) if e.is::<cmd::check_summary::NoAcceptableDesign>() => {
+            eprintln!("{}", message(&e));
+            std::process::ExitCode::from(cmd::check_summary::NO_ACCEPTABLE_DESIGN)
+        }
         Err(e) => {
             eprintln!("error: {}", message(&e));
             std::process::ExitCode::FAILURE

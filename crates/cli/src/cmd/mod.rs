@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod bench;
+pub mod check_summary;
 pub mod explain;
 pub mod merge;
 pub mod opensees;

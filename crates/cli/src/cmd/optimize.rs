@@ -4,12 +4,13 @@
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
 use super::study_args::{PhaseBars, load_study};
-use super::study_text::{kn, on_bound_text};
+use super::study_text::{kn, on_bound_text, runs_text};
 use slipload_figures::StudyFigures;
 use slipload_opt::Study;
 use slipload_opt::base::collapse::{objective_text, reduction, reduction_text};
 use slipload_opt::model::config::RefineMethod;
 use slipload_opt::phases::figures::MapRequest;
+use slipload_opt::phases::refinement::RefineTarget;
 use slipload_opt::pipeline::{OptimizeOptions, StudyReport, optimize_study};
 use slipload_opt::store::folder::{FolderRequest, StudyFolder};
 use std::path::PathBuf;
@@ -134,7 +135,10 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         args.out.display(),
         run.drawn.join(",")
     );
-    Ok(())
+    if let Some(c) = &run.report.code_check {
+        outln!("{}", super::check_summary::verdict(c));
+    }
+    super::check_summary::outcome(run.report.code_check.as_ref())
 }
 
 /// The summary: what ran and what was reused, the optimum against the bare frame and the
@@ -142,10 +146,14 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
 fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     let r = &report.refine;
     let w = &report.work;
-    let nr = report.sweep.manifest.records.len();
     let method = report.method.as_str();
     let floors: Vec<String> = report.damper_floors.iter().map(usize::to_string).collect();
-    outln!("{}: {} over {} records", report.study, report.objective, nr);
+    outln!(
+        "{}: {} over {}",
+        report.study,
+        report.objective,
+        runs_text(&report.sweep.manifest)
+    );
     outln!(
         "sweep and refinement run {} ({})",
         report.sweep.manifest.method.as_str(),
@@ -153,9 +161,9 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     );
     // What ran now, and what was taken from the journals of an earlier run.
     outln!(
-        "sweep: {} designs × {} records, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
+        "sweep: {} designs × {}, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",
         report.sweep.manifest.designs.len(),
-        nr,
+        runs_text(&report.sweep.manifest),
         w.sweep.run,
         w.sweep.reused,
         method,
@@ -237,12 +245,18 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             kn(&study.file_slip_loads())
         ),
     };
-    outln!(
-        "objective {} — bare frame {}, {file_design}: {}",
-        obj(r.optimum.f),
-        against(r.bare_objective),
-        against(r.file_objective)
-    );
+    if r.target == RefineTarget::Violation {
+        outln!(
+            "no design of the sweep meets the study's limits: the refiners looked for the closest (the smallest sum of exceedances)"
+        );
+    } else {
+        outln!(
+            "objective {} — bare frame {}, {file_design}: {}",
+            obj(r.optimum.f),
+            against(r.bare_objective),
+            against(r.file_objective)
+        );
+    }
     if let Some(line) = costs_line(report) {
         outln!("{line}");
     }
@@ -260,11 +274,29 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     for f in &r.finalists {
         outln!(
-            "  {} kN: objective {} (sweep {})",
+            "  {} kN: objective {} ({} {}){}",
             kn(&f.slip_loads_n),
             obj(f.f_check),
-            obj(f.f_sweep)
+            if r.target == RefineTarget::Violation {
+                "sum of exceedances at the sweep's fidelity"
+            } else {
+                "sweep"
+            },
+            obj(f.f_sweep),
+            f.check.as_ref().map_or(String::new(), |c| format!(
+                ", {}",
+                if c.passes() {
+                    format!("meets every limit (margin {:.1} %)", 100.0 * c.margin())
+                } else {
+                    format!("misses the limits by {:.1} %", -100.0 * c.margin())
+                }
+            ))
         );
+    }
+    if let Some(c) = &report.code_check {
+        for line in super::check_summary::lines(c) {
+            outln!("{line}");
+        }
     }
     match &report.pareto {
         Some(p) => {

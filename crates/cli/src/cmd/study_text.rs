@@ -11,6 +11,26 @@ pub(crate) fn kn(v: &[f64]) -> String {
         .join(" / ")
 }
 
+/// The runs of each design, in words: `10 records`, or `11 records × 3 property cases
+/// (nominal, lower, upper)` for a study with property bounds.
+pub(crate) fn runs_text(m: &slipload_opt::phases::sweep::Manifest) -> String {
+    let cases = m.checks.cases();
+    let records = m.record_count();
+    if cases.len() == 1 {
+        format!("{records} records")
+    } else {
+        format!(
+            "{records} records × {} property cases ({})",
+            cases.len(),
+            cases
+                .iter()
+                .map(|c| c.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
 /// The design variables of the optimum that sit on a bound of the study's space, said
 /// with the floors they set and their slip loads ("floor 1 at its upper bound, 2000.0 kN").
 pub(crate) fn on_bound_text(study: &Study, loads: &[f64], on: &[OnBound]) -> String {

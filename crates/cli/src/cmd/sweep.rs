@@ -72,10 +72,10 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
     let report = &run.report;
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
-        "{}: {} designs × {} records; shard {}/{}: {} tasks ({} from the journal, {} run in {:.2} s, {:.1} tasks/s)",
+        "{}: {} designs × {}; shard {}/{}: {} tasks ({} from the journal, {} run in {:.2} s, {:.1} tasks/s)",
         study.name,
         report.manifest.designs.len(),
-        report.manifest.records.len(),
+        super::study_text::runs_text(&report.manifest),
         shard.index,
         shard.count,
         report.shard_tasks,

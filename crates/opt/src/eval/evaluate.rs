@@ -95,16 +95,16 @@ impl DesignLoads {
     }
 }
 
-/// Simulates `design` under record `record` of the study: its responses.
+/// Simulates `design` in run `run` of the study (a record at a property case,
+/// [`Study::run`]): its responses.
 pub fn run_design(
     study: &Study,
     design: &DesignLoads,
-    record: usize,
+    run: usize,
     fid: &Fidelity,
     label: &str,
 ) -> Result<RecordMetrics, OptError> {
-    let rec = &study.records[record];
-    let out = simulate_design(study, design, record, fid, label)?;
+    let out = simulate_design(study, design, run, fid, label)?;
     let heights = study
         .building
         .storey_heights
@@ -114,7 +114,7 @@ pub fn run_design(
     if let Some(quantity) = m.first_non_finite() {
         return Err(OptError::NonFinite {
             design: label.to_string(),
-            record: rec.name().to_string(),
+            record: study.run_name(run),
             quantity,
         });
     }
@@ -138,17 +138,28 @@ pub fn simulate_one(
     )
 }
 
-/// The simulation of [`run_design`], whole (responses and diagnostics).
+/// The simulation of [`run_design`], whole (responses and diagnostics). At a bound
+/// case every slip load (or friction law) is scaled by the case's factor and every
+/// brace stiffness by its own.
 pub fn simulate_design(
     study: &Study,
     design: &DesignLoads,
-    record: usize,
+    run: usize,
     fid: &Fidelity,
     label: &str,
 ) -> Result<slipload_sim::Outcome, OptError> {
+    let (case, record) = study.run(run);
     let rec = &study.records[record];
     let n = study.building.floors();
-    let building = design.building(study);
+    let building = if case.is_nominal() {
+        design.building(study)
+    } else {
+        let mut b = design.scaled(case.slip_load).building(study);
+        for d in b.dissipators.iter_mut().flatten() {
+            d.brace_stiffness *= case.brace_stiffness;
+        }
+        b
+    };
     let duration = rec.duration();
     let dt = fid
         .dt_s
@@ -179,7 +190,7 @@ pub fn simulate_design(
     };
     let wrap = |source| OptError::Simulation {
         design: label.to_string(),
-        record: rec.name().to_string(),
+        record: study.run_name(run),
         source: Box::new(source),
     };
     let plan = Plan::compile(&scene).map_err(wrap)?;
@@ -196,7 +207,7 @@ pub struct Task {
     /// The friction law per dissipator, N, overriding the slip loads (the building
     /// file's design as written).
     pub friction: Option<Vec<FrictionLaw>>,
-    /// Record index.
+    /// Run index (the record, at a property case: [`Study::run`]).
     pub record: usize,
 }
 
@@ -289,8 +300,8 @@ impl TaskJournal {
         let (appender, entries) = open_journal::<TaskEntry>(path, kind, fp, Reuse::Resume)?;
         let mut known = HashMap::new();
         for (i, e) in entries.into_iter().enumerate() {
-            let name = study.records.get(e.record).map(|r| r.name());
-            if name != Some(e.record_name.as_str()) {
+            let name = (e.record < study.runs()).then(|| study.run_name(e.record));
+            if name.as_deref() != Some(e.record_name.as_str()) {
                 return Err(OptError::Journal {
                     path: path.to_path_buf(),
                     line: i + 2,
@@ -325,7 +336,8 @@ fn key(loads: &[f64]) -> Vec<u64> {
     loads.iter().map(|v| v.to_bits()).collect()
 }
 
-/// Responses of several designs over every record: `result[d][r]`.
+/// Responses of several designs over every run (record at a property case,
+/// [`Study::run`]): `result[d][r]`.
 pub fn run_designs<D: Clone + Into<DesignLoads>>(
     study: &Study,
     designs: &[D],
@@ -343,7 +355,7 @@ pub fn run_designs_journalled<D: Clone + Into<DesignLoads>>(
     journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<Vec<RecordMetrics>>, OptError> {
-    let nr = study.records.len();
+    let nr = study.runs();
     let designs: Vec<DesignLoads> = designs.iter().cloned().map(Into::into).collect();
     let tasks: Vec<Task> = designs
         .iter()
@@ -404,7 +416,7 @@ pub fn run_designs_journalled<D: Clone + Into<DesignLoads>>(
             j.appender.append(&TaskEntry {
                 fidelity: tag.clone(),
                 record: t.record,
-                record_name: study.records[t.record].name().to_string(),
+                record_name: study.run_name(t.record),
                 slip_loads_n: t.slip_loads.clone(),
                 friction_n: t.friction.clone(),
                 metrics: m.clone(),

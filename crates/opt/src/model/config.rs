@@ -53,6 +53,24 @@ pub struct StudyConfig {
     /// Settings of the front's search (only with `objectives`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pareto: Option<crate::model::objectives::ParetoConfig>,
+    /// The dampers' lower- and upper-bound properties, each case analysed
+    /// ([`crate::model::check`]); absent: nominal properties only, as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub property_bounds: Option<crate::model::check::PropertyBoundsConfig>,
+    /// What the device table needs beyond the building ([`DevicesConfig`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub devices: Option<DevicesConfig>,
+}
+
+/// The study key `devices`: the geometry the device specification needs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DevicesConfig {
+    /// The brace's angle to the horizontal, degrees (0 ≤ θ < 90): the device table then
+    /// gives the brace's axial force F/cos θ and axial stiffness k′/cos²θ, where F and k′
+    /// are the storey-level (horizontal) force and stiffness the building gives.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brace_angle_deg: Option<f64>,
 }
 
 /// One suite of records.
@@ -76,6 +94,9 @@ pub struct SuiteConfig {
     /// The embedded synthetic suite instead of files.
     #[serde(default)]
     pub synthetic: Option<SyntheticSuiteConfig>,
+    /// The suite's acceptance limits ([`crate::model::check::SuiteLimits`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limits: Option<crate::model::check::SuiteLimits>,
 }
 
 /// Scaling of every record of a suite.
@@ -656,6 +677,21 @@ impl StudyConfig {
                 }
                 None => {}
             }
+            if let Some(l) = &s.limits {
+                l.validate(path, i)?;
+            }
+        }
+        if let Some(b) = &self.property_bounds {
+            b.validate(path)?;
+        }
+        if let Some(t) = self.devices.and_then(|d| d.brace_angle_deg)
+            && !(t.is_finite() && (0.0..90.0).contains(&t))
+        {
+            return Err(OptError::invalid(
+                path,
+                "devices.brace_angle_deg",
+                format!("must be in [0, 90) degrees from the horizontal, got {t}"),
+            ));
         }
         if self.objective.terms.is_empty() {
             return Err(OptError::invalid(

@@ -246,6 +246,15 @@ pub fn of_study(study: &crate::Study, designs: &[crate::model::sampler::Design])
     }
     part("objective", "objective".into(), &h);
 
+    // property bounds and limits, only when the study names them: a study without keeps
+    // the fingerprint it had before they existed (the bounds change every run, the
+    // limits what the refiners minimise)
+    if !study.checks.is_empty() {
+        let mut h = Fnv64::default();
+        h.str(&serde_json::to_string(&study.checks).expect("the checks serialise"));
+        part("checks", "property bounds and limits".into(), &h);
+    }
+
     // the front's objectives and search, only when the study names them: a
     // one-objective study keeps the fingerprint it had before they existed
     if !study.objectives.is_empty() {

@@ -7,6 +7,8 @@
 //! in the file name (not in folder names); matches are sorted by name.
 
 use crate::base::error::OptError;
+use crate::base::metrics::RecordMetrics;
+use crate::model::check::{CaseName, Checks, DesignCheck, PropertyCase};
 use crate::model::config::{
     CodeSpectrumConfig, Hazard, MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G,
     SamplerKind, ScaleConfig, StudyConfig, too_large,
@@ -87,6 +89,8 @@ pub struct Study {
     pub sweep_method: SweepMethod,
     /// The objectives of the front (empty: a one-objective study).
     pub objectives: Vec<crate::model::objectives::ParetoObjective>,
+    /// The property bounds and acceptance limits (empty: none, as before).
+    pub checks: Checks,
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
@@ -196,7 +200,13 @@ fn check_work(
         MAX_DESIGNS,
         "designs",
     )?;
-    let tasks = designs * records.len() as f64;
+    // each property case runs every record again
+    let cases = if cfg.property_bounds.is_some() {
+        3.0
+    } else {
+        1.0
+    };
+    let tasks = designs * records.len() as f64 * cases;
     too_large(
         format!("{p}: the sweep's (design, record) tasks"),
         tasks,
@@ -248,7 +258,7 @@ fn check_work(
             designs,
             records.len()
         ),
-        steps * designs,
+        steps * designs * cases,
         MAX_SWEEP_STEPS,
         "integration steps",
     )
@@ -472,6 +482,10 @@ impl Study {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_else(|| "study".into())
         });
+        let checks = Checks::of(
+            cfg.property_bounds,
+            cfg.suites.iter().map(|s| s.limits.clone()).collect(),
+        );
         let study = Study {
             name,
             path: path.to_path_buf(),
@@ -482,12 +496,83 @@ impl Study {
             space,
             objective,
             objectives,
+            checks,
             sweep_method: SweepMethod {
                 method: MethodName::Newmark,
                 reason: String::new(),
             },
         };
         Ok(study)
+    }
+
+    /// The runs of every design: the property cases × the records, nominal first (the
+    /// records alone for a study without property bounds).
+    pub fn runs(&self) -> usize {
+        self.checks.cases().len() * self.records.len()
+    }
+
+    /// The property case and the record of run `i`.
+    pub fn run(&self, i: usize) -> (PropertyCase, usize) {
+        let n = self.records.len();
+        (self.checks.cases()[i / n], i % n)
+    }
+
+    /// The name of run `i`: the record's, with the case after it (`NAME [lower]`) for a
+    /// bound case.
+    pub fn run_name(&self, i: usize) -> String {
+        let (case, r) = self.run(i);
+        let name = self.records[r].name();
+        if case.is_nominal() {
+            name.to_string()
+        } else {
+            format!("{name} [{}]", case.name.as_str())
+        }
+    }
+
+    /// The names of every run, in order.
+    pub fn run_names(&self) -> Vec<String> {
+        (0..self.runs()).map(|i| self.run_name(i)).collect()
+    }
+
+    /// The objective of one design from its runs (`rows`, [`Study::runs`] long) and the
+    /// bare frame's: at the case the study's objective reads.
+    pub fn objective_value(
+        &self,
+        rows: &[RecordMetrics],
+        bare: &[RecordMetrics],
+    ) -> Result<f64, OptError> {
+        let ranges: Vec<Range<usize>> = self.suites.iter().map(|s| s.range.clone()).collect();
+        self.checks.objective(
+            &self.objective,
+            rows,
+            Some(bare),
+            &ranges,
+            self.records.len(),
+        )
+    }
+
+    /// The check of one design's runs against every limit at every property case.
+    pub fn check_design(&self, rows: &[RecordMetrics]) -> Result<DesignCheck, OptError> {
+        let suites: Vec<(&str, Range<usize>)> = self
+            .suites
+            .iter()
+            .map(|s| (s.name.as_str(), s.range.clone()))
+            .collect();
+        self.checks.check(rows, &suites, self.records.len())
+    }
+
+    /// This study at its nominal properties only (no bound cases; the limits kept): its
+    /// runs are the first [`Study::records`] runs of this study's, under the same names,
+    /// so that journalled nominal runs are shared.
+    pub fn nominal(&self) -> Study {
+        let mut s = self.clone();
+        s.checks.property_bounds = None;
+        s
+    }
+
+    /// The cases' names, in run order.
+    pub fn case_names(&self) -> Vec<CaseName> {
+        self.checks.cases().iter().map(|c| c.name).collect()
     }
 
     /// Whether any objective term needs the energies.

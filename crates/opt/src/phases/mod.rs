@@ -5,6 +5,7 @@
 //! the study figures ([`figures`]). A phase takes the paths of its journals from the
 //! study folder and never opens the folder itself.
 
+pub mod check;
 pub mod family;
 pub mod figures;
 pub mod pareto;

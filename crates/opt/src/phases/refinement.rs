@@ -4,7 +4,8 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::eval::evaluate::{TaskJournal, run_designs, run_designs_journalled, suite_ranges};
+use crate::eval::evaluate::{TaskJournal, run_designs, run_designs_journalled};
+use crate::model::check::DesignCheck;
 use crate::model::config::RefineMethod;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
@@ -28,6 +29,46 @@ pub struct Finalist {
     pub f_sweep: f64,
     /// Objective at the check fidelity.
     pub f_check: f64,
+    /// Its check against the study's limits at the check fidelity (`None`: the study has
+    /// no limits).
+    pub check: Option<DesignCheck>,
+}
+
+impl Finalist {
+    /// Whether it meets every limit (a study without limits: always).
+    pub fn passes(&self) -> bool {
+        self.check.as_ref().is_none_or(DesignCheck::passes)
+    }
+}
+
+/// What the refiners minimise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RefineTarget {
+    /// The objective (a study without limits).
+    Objective,
+    /// The objective of designs that meet every limit; +∞ for one that does not (a
+    /// rejected step), so that no failing design wins over a passing one.
+    PassingObjective,
+    /// The sum of the exceedances ([`DesignCheck::violation`]): no design of the sweep
+    /// meets the limits, so the refiners look for the closest one (0: it passes).
+    Violation,
+}
+
+impl RefineTarget {
+    /// The value a design takes: `f` its objective, `check` its check (present with limits).
+    pub fn value(self, f: f64, check: Option<&DesignCheck>) -> f64 {
+        match (self, check) {
+            (RefineTarget::Objective, _) | (_, None) => f,
+            (RefineTarget::PassingObjective, Some(c)) => {
+                if c.passes() {
+                    f
+                } else {
+                    f64::INFINITY
+                }
+            }
+            (RefineTarget::Violation, Some(c)) => c.violation(),
+        }
+    }
 }
 
 /// What `optimize` found.
@@ -57,6 +98,11 @@ pub struct OptimizeReport {
     pub bare_objective: f64,
     /// Objective of the building file's slip loads.
     pub file_objective: f64,
+    /// What the refiners minimised.
+    pub target: RefineTarget,
+    /// The recommended design's runs at the check fidelity and the bare frame's (a study
+    /// with limits: the first finalist's, for the code check).
+    pub recommended_runs: Option<(Vec<RecordMetrics>, Vec<RecordMetrics>)>,
     /// Simulations run by refinement and check in this run (the sweep's not included,
     /// nor refinement points replayed from the journal of an earlier run).
     pub simulations: usize,
@@ -64,18 +110,26 @@ pub struct OptimizeReport {
     pub replayed: usize,
 }
 
-/// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same fidelity.
+/// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same
+/// fidelity; each mapped to what `target` minimises.
 pub fn objectives(
     study: &Study,
     designs: &[Vec<f64>],
     bare: &[RecordMetrics],
     fid: &Fidelity,
+    target: RefineTarget,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<f64>, OptError> {
-    let ranges = suite_ranges(study);
     run_designs(study, designs, fid, tick)?
         .iter()
-        .map(|rows| study.objective.value(rows, Some(bare), &ranges))
+        .map(|rows| {
+            let f = study.objective_value(rows, bare)?;
+            let check = match target {
+                RefineTarget::Objective => None,
+                _ => Some(study.check_design(rows)?),
+            };
+            Ok(target.value(f, check.as_ref()))
+        })
         .collect()
 }
 
@@ -98,6 +152,8 @@ pub struct Refinement {
     pub bare_objective: f64,
     /// Objective of the building file's slip loads (sweep fidelity).
     pub file_objective: f64,
+    /// What the refiners minimised.
+    pub target: RefineTarget,
 }
 
 /// Refines from the sweep (`manifest`, its complete `rows`) with `method`, then checks
@@ -133,13 +189,37 @@ pub fn refine_sweep(
     let cfg = study.config.refine;
     let nr = manifest.records.len();
     let obj = manifest.objectives(rows)?;
+    let checks = manifest.checks_of(rows)?;
     let bare = rows[..nr].to_vec();
     let sweep_fid = Fidelity::sweep(study);
+    // with limits: the passing designs' objective, or (none passing) the exceedances
+    let target = match &checks {
+        None => RefineTarget::Objective,
+        Some(c) => {
+            let sampled = manifest
+                .designs
+                .iter()
+                .zip(c)
+                .filter(|(d, _)| d.z.is_some());
+            if sampled.clone().any(|(_, c)| c.passes()) {
+                RefineTarget::PassingObjective
+            } else {
+                RefineTarget::Violation
+            }
+        }
+    };
     let known: Vec<Point> = manifest
         .designs
         .iter()
         .zip(&obj)
-        .filter_map(|(d, (f, _))| d.z.clone().map(|z| Point { z, f: *f }))
+        .enumerate()
+        .filter_map(|(i, (d, (f, _)))| {
+            let check = checks.as_ref().map(|c| &c[i]);
+            d.z.clone().map(|z| Point {
+                z,
+                f: target.value(*f, check),
+            })
+        })
         .collect();
     let mut order: Vec<usize> = (0..known.len()).collect();
     order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
@@ -151,7 +231,7 @@ pub fn refine_sweep(
         )
         .cloned()
         .expect("index from the list");
-    if !best_sweep.f.is_finite() {
+    if !best_sweep.f.is_finite() && target != RefineTarget::PassingObjective {
         return Err(OptError::Missing(format!(
             "every sampled design collapses on some record of the study (the drift limit of the building): widen the slip-load range or lower the suites' intensity ({} designs)",
             known.len()
@@ -161,7 +241,7 @@ pub fn refine_sweep(
         let bare = bare.clone();
         move |zs: &[Vec<f64>]| -> Result<Vec<f64>, OptError> {
             let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
-            objectives(study, &designs, &bare, &sweep_fid, tick)
+            objectives(study, &designs, &bare, &sweep_fid, target, tick)
         }
     };
     let mut ev = Evaluations::new(Box::new(oracle), known.clone());
@@ -192,6 +272,7 @@ pub fn refine_sweep(
         replayed,
         bare_objective: obj[0].0,
         file_objective: obj[1].0,
+        target,
     })
 }
 
@@ -205,7 +286,7 @@ pub fn check_finalists(
     tick: &(dyn Fn() + Sync),
 ) -> Result<OptimizeReport, OptError> {
     let cfg = study.config.refine;
-    let nr = study.records.len();
+    let nr = study.runs();
     let Refinement {
         method,
         known,
@@ -215,7 +296,9 @@ pub fn check_finalists(
         replayed,
         bare_objective,
         file_objective,
+        target,
     } = refinement;
+    let limits = study.checks.has_limits();
     let sweep_designs = known.len();
     // finalists: the best distinct points of everything evaluated
     // (a design that collapsed at the sweep's fidelity is no finalist)
@@ -247,42 +330,93 @@ pub fn check_finalists(
     // A sweep that ran the reference itself leaves the check nothing to correct: exact's
     // responses are exact between events whatever its output step, so the finalists'
     // objectives are the sweep's.
-    let check_reran =
-        !(check.method == MethodName::Exact && Fidelity::sweep(study).method == MethodName::Exact);
+    // (a study with limits checks its finalists' responses: they run at the check
+    // fidelity even when the sweep ran it, taken from the journal where they are there)
+    let check_reran = limits
+        || !(check.method == MethodName::Exact
+            && Fidelity::sweep(study).method == MethodName::Exact);
+    let mut runs_check = Vec::new();
     let fc = if check_reran {
         let mut designs = vec![vec![0.0; study.space.dampers.len()]];
         designs.extend(loads.iter().cloned());
         let mut runs = run_designs_journalled(study, &designs, &check, check_journal, tick)?;
         let bare_check = runs.remove(0);
-        let ranges = suite_ranges(study);
-        runs.iter()
-            .map(|rows| study.objective.value(rows, Some(&bare_check), &ranges))
-            .collect::<Result<Vec<f64>, OptError>>()?
+        let fc = runs
+            .iter()
+            .map(|rows| study.objective_value(rows, &bare_check))
+            .collect::<Result<Vec<f64>, OptError>>()?;
+        runs_check = runs;
+        runs_check.push(bare_check);
+        fc
     } else {
         all.iter().map(|p| p.f).collect()
+    };
+    let checks: Vec<Option<DesignCheck>> = if limits {
+        runs_check[..all.len()]
+            .iter()
+            .map(|rows| study.check_design(rows).map(Some))
+            .collect::<Result<_, _>>()?
+    } else {
+        vec![None; all.len()]
     };
     let mut finalists: Vec<Finalist> = all
         .iter()
         .zip(loads)
         .zip(fc)
-        .map(|((p, l), f)| Finalist {
+        .zip(checks)
+        .map(|(((p, l), f), check)| Finalist {
             z: p.z.clone(),
             slip_loads_n: l,
             f_sweep: p.f,
             f_check: f,
+            check,
         })
         .collect();
     let sweep_order: Vec<Vec<f64>> = finalists.iter().map(|f| f.z.clone()).collect();
-    finalists.sort_by(|a, b| a.f_check.total_cmp(&b.f_check));
+    // a finalist that meets the limits ranks before every one that does not; those that
+    // do not rank by how far they miss
+    let key = |f: &Finalist| match &f.check {
+        Some(c) if !c.passes() => (1, c.violation()),
+        _ => (0, f.f_check),
+    };
+    let order: Vec<usize> = {
+        let mut o: Vec<usize> = (0..finalists.len()).collect();
+        o.sort_by(|&a, &b| {
+            let (ka, kb) = (key(&finalists[a]), key(&finalists[b]));
+            ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+        });
+        o
+    };
+    let recommended_runs = match (limits, order.first()) {
+        (true, Some(&i)) => Some((
+            runs_check[i].clone(),
+            runs_check.last().expect("the bare frame's runs").clone(),
+        )),
+        _ => None,
+    };
+    let mut sorted: Vec<Finalist> = order.iter().map(|&i| finalists[i].clone()).collect();
+    std::mem::swap(&mut finalists, &mut sorted);
+    drop(sorted);
     let ranking_held = finalists.iter().map(|f| &f.z).eq(sweep_order.iter());
     let checked = if check_reran { 1 + finalists.len() } else { 0 };
     let simulations = (log.len() - replayed + checked) * nr;
+    // with limits the optimum is the recommended design: the best finalist that passes
+    // (or, none passing, the closest)
+    let optimum = match (limits, finalists.first()) {
+        (true, Some(f)) => Point {
+            z: f.z.clone(),
+            f: f.f_sweep,
+        },
+        _ => optimum,
+    };
     Ok(OptimizeReport {
         method,
         sweep_designs,
         best_sweep,
         optimum_loads: study.space.slip_loads(&optimum.z),
         optimum,
+        target,
+        recommended_runs,
         log,
         finalists,
         ranking_held,

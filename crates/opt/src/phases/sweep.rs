@@ -12,6 +12,7 @@ use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::base::shard::Shard;
 use crate::eval::evaluate::{Task, run_tasks};
+use crate::model::check::{Checks, DesignCheck};
 use crate::model::fidelity::Fidelity;
 use crate::model::fingerprint::Fingerprint;
 use crate::model::objective::Objective;
@@ -49,8 +50,12 @@ pub struct Manifest {
     pub storeys: usize,
     /// Suites.
     pub suites: Vec<SuiteInfo>,
-    /// Record names.
+    /// Run names: the records, then (with property bounds) the records at the lower and
+    /// the upper bound ([`Study::run_name`]).
     pub records: Vec<String>,
+    /// The property bounds and limits (absent: none).
+    #[serde(default, skip_serializing_if = "Checks::is_empty")]
+    pub checks: Checks,
     /// Designs.
     pub designs: Vec<Design>,
     /// The study's fingerprint: every journal of the folder must carry the same
@@ -99,7 +104,8 @@ impl Manifest {
             damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
             storeys: study.building.floors(),
             suites: study.suites.clone(),
-            records: study.records.iter().map(|r| r.name().to_string()).collect(),
+            records: study.run_names(),
+            checks: study.checks.clone(),
             designs,
             fingerprint,
         }
@@ -192,10 +198,11 @@ impl Manifest {
             let Some(m) = row else { continue };
             let (d, r) = self.task(k);
             let design = &self.designs[d];
+            let record = r % self.record_count();
             let suite = self
                 .suites
                 .iter()
-                .find(|su| su.range.contains(&r))
+                .find(|su| su.range.contains(&record))
                 .map(|su| su.name.as_str())
                 .unwrap_or("");
             let _ = write!(s, "{d},{},{},{suite}", design.label, self.records[r]);
@@ -245,27 +252,31 @@ impl Manifest {
         s
     }
 
-    /// Objective of every design (`rows[d · records + r]` complete), and of its terms.
+    /// The number of records (the runs of one property case).
+    pub fn record_count(&self) -> usize {
+        self.records.len() / self.checks.cases().len()
+    }
+
+    /// Objective of every design (`rows[d · runs + r]` complete), and of its terms, at
+    /// the case the objective reads.
     pub fn objectives(&self, rows: &[RecordMetrics]) -> Result<Vec<(f64, Vec<f64>)>, OptError> {
         let nr = self.records.len();
+        let records = self.record_count();
         let ranges: Vec<_> = self.suites.iter().map(|s| s.range.clone()).collect();
         let bare = &rows[0..nr];
         (0..self.designs.len())
             .map(|d| {
                 let rec = &rows[d * nr..(d + 1) * nr];
-                let terms = self
-                    .objective
-                    .terms
-                    .iter()
-                    .map(|t| Objective::term_value(t, rec, Some(bare), &ranges))
-                    .collect::<Result<Vec<_>, _>>()?;
+                let terms =
+                    self.checks
+                        .terms(&self.objective, rec, Some(bare), &ranges, records)?;
                 let f = self
-                    .objective
-                    .value(rec, Some(bare), &ranges)
+                    .checks
+                    .objective(&self.objective, rec, Some(bare), &ranges, records)
                     .map_err(|e| match e {
                         OptError::NonFinite { quantity, .. } => OptError::NonFinite {
                             design: format!("{d} ({})", self.designs[d].label),
-                            record: format!("the {nr} records of the study"),
+                            record: format!("the {nr} runs of the study"),
                             quantity,
                         },
                         e => e,
@@ -275,12 +286,41 @@ impl Manifest {
             .collect()
     }
 
+    /// The check of every design against the study's limits (`None`: the study has no
+    /// limits).
+    pub fn checks_of(&self, rows: &[RecordMetrics]) -> Result<Option<Vec<DesignCheck>>, OptError> {
+        if !self.checks.has_limits() {
+            return Ok(None);
+        }
+        let nr = self.records.len();
+        let suites: Vec<(&str, std::ops::Range<usize>)> = self
+            .suites
+            .iter()
+            .map(|s| (s.name.as_str(), s.range.clone()))
+            .collect();
+        (0..self.designs.len())
+            .map(|d| {
+                self.checks
+                    .check(&rows[d * nr..(d + 1) * nr], &suites, self.record_count())
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map(Some)
+    }
+
     /// `designs.csv`: per design its slip loads, objective, terms, reduction against the
     /// bare frame (1 − f/f_bare) and rank (1 = best; bare and file designs included).
     pub fn designs_csv(&self, rows: &[RecordMetrics]) -> Result<String, OptError> {
         let obj = self.objectives(rows)?;
+        let checks = self.checks_of(rows)?;
+        // with limits, a design that passes ranks before every design that does not
+        let failed = |d: usize| checks.as_ref().is_some_and(|c| !c[d].passes());
         let mut order: Vec<usize> = (0..obj.len()).collect();
-        order.sort_by(|&a, &b| obj[a].0.total_cmp(&obj[b].0).then(a.cmp(&b)));
+        order.sort_by(|&a, &b| {
+            failed(a)
+                .cmp(&failed(b))
+                .then(obj[a].0.total_cmp(&obj[b].0))
+                .then(a.cmp(&b))
+        });
         let mut rank = vec![0; obj.len()];
         for (i, &d) in order.iter().enumerate() {
             rank[d] = i + 1;
@@ -292,6 +332,9 @@ impl Manifest {
         s.push_str(",objective");
         for t in &self.objective.terms {
             let _ = write!(s, ",{}_{}", t.statistic.as_str(), t.metric.as_str());
+        }
+        if checks.is_some() {
+            s.push_str(",check,governing_ratio,governing");
         }
         s.push_str(",reduction_vs_bare,rank\n");
         let f0 = obj[0].0;
@@ -308,6 +351,17 @@ impl Manifest {
                     v.to_string()
                 };
                 let _ = write!(s, ",{cell}");
+            }
+            if let Some(c) = &checks {
+                let c = &c[d];
+                let (ratio, what) = c.governing().map_or((String::new(), String::new()), |g| {
+                    (
+                        g.ratio.to_string(),
+                        format!("{} {} {}", g.suite, g.case.as_str(), g.criterion),
+                    )
+                });
+                let verdict = if c.passes() { "pass" } else { "fail" };
+                let _ = write!(s, ",{verdict},{ratio},{what}");
             }
             let red = reduction_text(reduction(obj[d].0, f0), None);
             let _ = writeln!(s, ",{red},{}", rank[d]);

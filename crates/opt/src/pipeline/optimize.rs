@@ -90,6 +90,9 @@ pub fn optimize_study(
     if report.pareto.is_some() {
         files.extend(crate::phases::pareto::ParetoReport::FILES);
     }
+    if report.code_check.is_some() {
+        files.extend(crate::phases::check::CodeCheck::FILES);
+    }
     Ok(OptimizeRun {
         report,
         drawn,
@@ -112,7 +115,11 @@ fn run_phases(
     folder
         .check_journals(&manifest.fingerprint)
         .map_err(|e| e.context(format!("optimizing {} into {}", study.name, out.display())))?;
-    let nr = study.records.len();
+    // every design runs each record at each property case; the design table and the
+    // objective map read the nominal properties
+    let nr = study.runs();
+    let nominal = study.nominal();
+    let records = study.records.len();
 
     let sweep = phase(progress, Phase::Sweep, manifest.tasks(), |tick| {
         sweep::run(study, folder, Shard::ALL, true, tick)
@@ -151,9 +158,9 @@ fn run_phases(
     let (table, table_runs) = phase(
         progress,
         Phase::DesignTable,
-        (designs.len() * 3 + 1) * nr,
+        (designs.len() * 3 + 1) * records,
         |tick| {
-            DesignTable::build_journalled(study, &designs, Some(&check_journal), tick)
+            DesignTable::build_journalled(&nominal, &designs, Some(&check_journal), tick)
                 .map_err(|e| e.context("design table"))
         },
     )?;
@@ -164,12 +171,12 @@ fn run_phases(
         Some(request) => Some(phase(
             progress,
             Phase::ObjectiveMap,
-            request.grid * request.grid * nr,
+            request.grid * request.grid * records,
             |tick| {
                 objective_map(
-                    study,
+                    &nominal,
                     &refined.optimum_loads,
-                    &rows[..nr],
+                    &rows[..records],
                     request,
                     Some(&check_journal),
                     tick,
@@ -219,11 +226,12 @@ fn run_phases(
             reused: table_reused,
         },
         map: map.as_ref().map(|m| PhaseWork {
-            run: m.objective.len() * nr - map_reused,
+            run: m.objective.len() * records - map_reused,
             reused: map_reused,
         }),
         pareto: pareto.as_ref().map(|(_, w)| *w),
     };
+    let code_check = crate::phases::check::CodeCheck::of(study, &refined)?;
     let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
     let figures = FigureData::of_design_table(
         &record_names,
@@ -264,6 +272,7 @@ fn run_phases(
         refine: refined,
         sweep,
         pareto: pareto.map(|(p, _)| p),
+        code_check,
     };
     report.write_files(folder)?;
     Ok(report)
@@ -281,7 +290,7 @@ fn pareto_phases(
     progress: &dyn Progress,
 ) -> Result<(crate::phases::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
     use crate::phases::pareto::report::{build, knee_and_extremes, table_designs};
-    let nr = study.records.len();
+    let nr = study.runs();
     let cfg = study.config.pareto.unwrap_or_default();
     let journal = TaskJournal::open_kind(
         study,
@@ -316,9 +325,9 @@ fn pareto_phases(
     let table = phase(
         progress,
         Phase::ParetoTable,
-        (designs.len() * 3 + 1) * nr,
+        (designs.len() * 3 + 1) * study.records.len(),
         |tick| {
-            DesignTable::build_journalled(study, &designs, Some(check_journal), tick)
+            DesignTable::build_journalled(&study.nominal(), &designs, Some(check_journal), tick)
                 .map_err(|e| e.context("the front's design table"))
         },
     )?;

@@ -28,7 +28,7 @@ pub fn rank_study(
     if let Some(d) = &discarded {
         progress.discarded(folder.dir(), d);
     }
-    let work = (designs.len() + 1) * study.records.len();
+    let work = (designs.len() + 1) * study.runs();
     let ranking = phase(progress, Phase::Rank, work, |tick| {
         rank(study, &designs, bootstrap, seed, tick)
     })?;

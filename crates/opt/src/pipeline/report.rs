@@ -88,6 +88,17 @@ pub struct StudyReport {
     pub work: Work,
     /// The front, when the study names `objectives` ([`crate::phases::pareto`]).
     pub pareto: Option<crate::phases::pareto::ParetoReport>,
+    /// The recommended design's code check, when the study names limits
+    /// ([`crate::phases::check`]).
+    pub code_check: Option<crate::phases::check::CodeCheck>,
+}
+
+/// The check's summary in `optimum.json`.
+#[derive(Debug, Clone, Serialize)]
+struct CheckEntry {
+    passes: bool,
+    verdict: String,
+    margin: f64,
 }
 
 /// A finalist as `optimum.json` lists it.
@@ -99,6 +110,8 @@ struct FinalistEntry {
     objective_sweep: f64,
     #[serde(with = "crate::base::collapse::objective_serde")]
     objective_check: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    check: Option<CheckEntry>,
 }
 
 /// `optimum.json`.
@@ -124,6 +137,9 @@ struct OptimumFile<'a> {
     /// Whether the finalists were run again at the check fidelity (not when the sweep
     /// ran `exact`, the check's method: their check objectives are then the sweep's).
     check_reran: bool,
+    /// The recommended design's code check (a study with limits).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    check: Option<CheckEntry>,
 }
 
 /// Pretty JSON with a final newline; through a [`serde_json::Value`], so object keys are
@@ -204,10 +220,20 @@ impl StudyReport {
                         slip_loads_kn: kn(&f.slip_loads_n),
                         objective_sweep: f.f_sweep,
                         objective_check: f.f_check,
+                        check: f.check.as_ref().map(|c| CheckEntry {
+                            passes: c.passes(),
+                            verdict: c.verdict(),
+                            margin: c.margin(),
+                        }),
                     })
                     .collect(),
                 ranking_held: r.ranking_held,
                 check_reran: r.check_reran,
+                check: self.code_check.as_ref().map(|c| CheckEntry {
+                    passes: c.passes,
+                    verdict: c.verdict.clone(),
+                    margin: c.margin,
+                }),
             },
             "optimum.json",
         )
@@ -234,6 +260,9 @@ impl StudyReport {
         folder.write("candidates.json", self.candidates_json()?.as_bytes())?;
         if let Some(p) = &self.pareto {
             p.write_files(folder)?;
+        }
+        if let Some(c) = &self.code_check {
+            c.write_files(folder)?;
         }
         Ok(())
     }

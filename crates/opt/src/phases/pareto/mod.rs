@@ -63,7 +63,7 @@ pub fn evaluate_objectives(
             "design {i} has slip load {v}: slip loads are finite and ≥ 0 N"
         )));
     }
-    let nr = study.records.len();
+    let nr = study.runs();
     let needs_bare = study.objectives.iter().any(|o| o.needs_bare());
     let mut all: Vec<Vec<f64>> = Vec::new();
     if needs_bare {

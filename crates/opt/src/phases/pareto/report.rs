@@ -142,7 +142,7 @@ pub fn certify(
     Ok(Certified {
         front,
         dominated_by,
-        ran: designs.len() * study.records.len() - reused,
+        ran: designs.len() * study.runs() - reused,
         reused,
         check,
         check_ranks,

@@ -1,0 +1,91 @@
+//! The code check on screen: one line per property case with its governing criterion,
+//! then the verdict; and the outcome a script can tell from a crash (exit code 3: the
+//! study ran and wrote its files, but no evaluated design meets its limits).
+
+use slipload_opt::model::check::{CheckLine, short};
+use slipload_opt::phases::check::CodeCheck;
+
+/// The exit code of a study that ran to its end but found no design meeting its limits.
+pub const NO_ACCEPTABLE_DESIGN: u8 = 3;
+
+/// The study ran and wrote its files, but no evaluated design meets every limit: the
+/// process exits with [`NO_ACCEPTABLE_DESIGN`].
+#[derive(Debug)]
+pub struct NoAcceptableDesign(pub String);
+
+impl std::fmt::Display for NoAcceptableDesign {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for NoAcceptableDesign {}
+
+fn line_text(l: &CheckLine) -> String {
+    format!(
+        "{} of {}: {} against {} (ratio {:.3}, {})",
+        l.criterion,
+        l.suite,
+        short(l.demand),
+        short(l.limit),
+        l.ratio,
+        l.source
+    )
+}
+
+/// The check's lines for the summary: per property case, how many criteria pass and the
+/// governing one.
+pub fn lines(c: &CodeCheck) -> Vec<String> {
+    let mut out = vec![format!(
+        "code check of the recommended design ({}; {}):",
+        c.chosen_as, c.fidelity
+    )];
+    for case in &c.cases {
+        let lines: Vec<&CheckLine> = c.case_lines(case.name).collect();
+        let pass = lines.iter().filter(|l| l.pass).count();
+        let gov = lines
+            .iter()
+            .copied()
+            .fold(None, |b: Option<&CheckLine>, l| match b {
+                Some(b) if b.ratio >= l.ratio => Some(b),
+                _ => Some(l),
+            });
+        out.push(format!(
+            "  {} properties (slip loads × {}, braces × {}): {pass} of {} criteria pass{}",
+            case.name.as_str(),
+            case.slip_load,
+            case.brace_stiffness,
+            lines.len(),
+            gov.map_or(String::new(), |g| format!("; governing {}", line_text(g)))
+        ));
+    }
+    out
+}
+
+/// The verdict line (the summary's last).
+pub fn verdict(c: &CodeCheck) -> String {
+    format!("verdict: {}", c.verdict)
+}
+
+/// `Err` with [`NoAcceptableDesign`] when the check fails: names the governing limit, the
+/// closest design and its margin.
+pub fn outcome(c: Option<&CodeCheck>) -> anyhow::Result<()> {
+    match c {
+        Some(c) if !c.passes => {
+            let gov = c.check.governing().map_or(String::new(), |g| {
+                format!("; governing limit {}", line_text(g))
+            });
+            Err(NoAcceptableDesign(format!(
+                "no evaluated design meets the study's limits: the closest, slip loads {} kN, misses by {:.1} %{gov} (files written; exit code {NO_ACCEPTABLE_DESIGN})",
+                c.slip_loads_kn
+                    .iter()
+                    .map(|v| format!("{v:.1}"))
+                    .collect::<Vec<_>>()
+                    .join(" / "),
+                -100.0 * c.margin
+            ))
+            .into())
+        }
+        _ => Ok(()),
+    }
+}

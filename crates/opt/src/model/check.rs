@@ -1,0 +1,732 @@
+//! What a design must pass: the property bounds its dampers are checked at and the
+//! acceptance limits of each suite — the study keys `property_bounds` and
+//! `suites[i].limits` — and the check of one design's responses against them.
+//!
+//! A study that names neither runs as before: one property case (nominal), no limits,
+//! and every file it writes keeps its bytes.
+//!
+//! **Property cases.** Slip loads vary over a device's life and between units (bolt
+//! tension, friction coefficient), so a design is analysed at its nominal properties and
+//! at its lower- and upper-bound properties (ASCE 7-16 Ch. 18, damping-device design
+//! properties with λ_min and λ_max; EN 15129 §4 on the variation of a device's
+//! properties): every slip load × λ_min (and the brace stiffness × its own λ_min, when
+//! the study names one) is the lower-bound case, × λ_max the upper-bound case. The runs of
+//! a study are its property cases × its records, nominal first ([`Checks::cases`]).
+//!
+//! **Acceptance limits.** Per suite, statistics of per-record responses against limits
+//! (e.g. the mean of the peak storey drift ratios, ASCE 7-16 §16.4.1.2), and a count of
+//! unacceptable responses (ASCE 7-16 §16.4.1.1: a record on which the run collapsed, or
+//! on which a per-record limit is exceeded), each checked at every property case.
+
+use crate::base::error::OptError;
+use crate::base::metrics::RecordMetrics;
+use crate::model::objective::{Metric, Objective, Statistic};
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::ops::Range;
+use std::path::Path;
+
+/// Factors on a property: `lower ≤ 1 ≤ upper`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Factors {
+    /// λ_min (≤ 1).
+    pub lower: f64,
+    /// λ_max (≥ 1).
+    pub upper: f64,
+}
+
+/// Which property case the objective reads.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BoundReading {
+    /// The nominal properties (the default).
+    #[default]
+    Nominal,
+    /// The worst (largest) objective of the nominal, lower- and upper-bound cases.
+    Worst,
+}
+
+impl BoundReading {
+    /// Name as written.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BoundReading::Nominal => "nominal",
+            BoundReading::Worst => "worst",
+        }
+    }
+}
+
+/// The study key `property_bounds`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PropertyBoundsConfig {
+    /// λ_min and λ_max of every slip load.
+    pub slip_load: Factors,
+    /// λ_min and λ_max of every brace stiffness (default: the brace as given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brace_stiffness: Option<Factors>,
+    /// Which case the objective reads (default `nominal`).
+    #[serde(default)]
+    pub objective_reads: BoundReading,
+}
+
+/// A property case's name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CaseName {
+    /// Nominal properties.
+    Nominal,
+    /// Lower-bound properties (× λ_min).
+    Lower,
+    /// Upper-bound properties (× λ_max).
+    Upper,
+}
+
+impl CaseName {
+    /// Name as written.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CaseName::Nominal => "nominal",
+            CaseName::Lower => "lower",
+            CaseName::Upper => "upper",
+        }
+    }
+}
+
+/// One property case: the factors every damper's slip load and brace stiffness take.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PropertyCase {
+    /// Which case.
+    pub name: CaseName,
+    /// Factor on every slip load.
+    pub slip_load: f64,
+    /// Factor on every brace stiffness.
+    pub brace_stiffness: f64,
+}
+
+impl PropertyCase {
+    /// The nominal case (factors 1).
+    pub const NOMINAL: PropertyCase = PropertyCase {
+        name: CaseName::Nominal,
+        slip_load: 1.0,
+        brace_stiffness: 1.0,
+    };
+
+    /// Whether the case changes nothing.
+    pub fn is_nominal(&self) -> bool {
+        self.name == CaseName::Nominal
+    }
+}
+
+/// One limit on a statistic of a suite's per-record responses (`suites[i].limits.criteria[j]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Criterion {
+    /// The per-record response.
+    pub metric: Metric,
+    /// The statistic over the suite's records.
+    pub statistic: Statistic,
+    /// The largest acceptable value, in the metric's unit (drift ratios dimensionless,
+    /// accelerations m/s², forces N).
+    pub max: f64,
+}
+
+/// A per-record limit whose exceedance makes a response unacceptable.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordLimit {
+    /// The per-record response.
+    pub metric: Metric,
+    /// The largest acceptable value on one record.
+    pub max: f64,
+}
+
+/// The count of unacceptable responses a suite allows (`suites[i].limits.unacceptable`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Unacceptable {
+    /// How many records may respond unacceptably (default 1: ASCE 7-16 §16.4.1.1 for
+    /// Risk Category I and II with at least 11 records; give 0 for III and IV).
+    #[serde(default = "one")]
+    pub max_count: usize,
+    /// Per-record limits: a record exceeding any of them responds unacceptably (a run
+    /// that collapses always does).
+    #[serde(default)]
+    pub record_limits: Vec<RecordLimit>,
+}
+
+fn one() -> usize {
+    1
+}
+
+impl Default for Unacceptable {
+    fn default() -> Self {
+        Unacceptable {
+            max_count: 1,
+            record_limits: Vec::new(),
+        }
+    }
+}
+
+/// The acceptance limits of one suite (`suites[i].limits`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuiteLimits {
+    /// Limits on statistics over the suite.
+    #[serde(default)]
+    pub criteria: Vec<Criterion>,
+    /// The count of unacceptable responses (default: at most 1, collapses counted).
+    #[serde(default)]
+    pub unacceptable: Unacceptable,
+}
+
+/// The metrics a limit may read: responses a code limits. The objective's ratios and
+/// indices (energy ratio, RPI, friction share, hysteretic energy) are no acceptance
+/// criteria.
+fn limitable(m: Metric) -> bool {
+    matches!(
+        m,
+        Metric::PeakDriftRatio
+            | Metric::ResidualDriftRatio
+            | Metric::PeakFloorAcceleration
+            | Metric::BaseShear
+            | Metric::PeakDuctility
+    )
+}
+
+fn check_factor(path: &Path, field: &str, v: f64, below: bool) -> Result<(), OptError> {
+    let ok = v.is_finite() && v > 0.0 && if below { v <= 1.0 } else { v >= 1.0 };
+    if ok {
+        Ok(())
+    } else {
+        Err(OptError::invalid(
+            path,
+            field,
+            format!(
+                "must be {} 1{}, got {v}",
+                if below { "in (0," } else { "finite and ≥" },
+                if below { "]" } else { "" }
+            ),
+        ))
+    }
+}
+
+impl PropertyBoundsConfig {
+    /// Checks the factors: 0 < λ_min ≤ 1 ≤ λ_max, finite.
+    pub fn validate(&self, path: &Path) -> Result<(), OptError> {
+        let mut parts = vec![("slip_load", self.slip_load)];
+        if let Some(k) = self.brace_stiffness {
+            parts.push(("brace_stiffness", k));
+        }
+        for (name, f) in parts {
+            check_factor(
+                path,
+                &format!("property_bounds.{name}.lower"),
+                f.lower,
+                true,
+            )?;
+            check_factor(
+                path,
+                &format!("property_bounds.{name}.upper"),
+                f.upper,
+                false,
+            )?;
+        }
+        Ok(())
+    }
+}
+
+impl SuiteLimits {
+    /// Checks the limits of `suites[suite]`: limitable metrics, finite positive limits.
+    pub fn validate(&self, path: &Path, suite: usize) -> Result<(), OptError> {
+        let field = |x: String| format!("suites[{suite}].limits.{x}");
+        let metric = |f: String, m: Metric| {
+            if limitable(m) {
+                Ok(())
+            } else {
+                Err(OptError::invalid(
+                    path,
+                    f,
+                    format!(
+                        "{} is not an acceptance criterion: limit peak_drift_ratio, residual_drift_ratio, peak_floor_acceleration, base_shear or peak_ductility",
+                        m.as_str()
+                    ),
+                ))
+            }
+        };
+        let value = |f: String, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(OptError::invalid(
+                    path,
+                    f,
+                    format!("must be finite and > 0, got {v}"),
+                ))
+            }
+        };
+        if self.criteria.is_empty() && self.unacceptable.record_limits.is_empty() {
+            return Err(OptError::invalid(
+                path,
+                field("criteria".into()),
+                "the suite's limits name no criterion: give criteria (e.g. {\"metric\": \"peak_drift_ratio\", \"statistic\": \"mean\", \"max\": 0.02}) or unacceptable.record_limits",
+            ));
+        }
+        for (j, c) in self.criteria.iter().enumerate() {
+            metric(field(format!("criteria[{j}].metric")), c.metric)?;
+            value(field(format!("criteria[{j}].max")), c.max)?;
+        }
+        for (j, c) in self.unacceptable.record_limits.iter().enumerate() {
+            metric(
+                field(format!("unacceptable.record_limits[{j}].metric")),
+                c.metric,
+            )?;
+            value(field(format!("unacceptable.record_limits[{j}].max")), c.max)?;
+        }
+        Ok(())
+    }
+}
+
+/// The checks of a study, resolved: its property bounds and each suite's limits (in the
+/// order of the suites). Written into the sweep's manifest only when the study has some.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Checks {
+    /// The property bounds, when the study names them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub property_bounds: Option<PropertyBoundsConfig>,
+    /// Each suite's limits (empty when no suite has any).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub limits: Vec<Option<SuiteLimits>>,
+}
+
+/// One line of a design's check: a criterion at one suite and property case.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckLine {
+    /// The suite.
+    pub suite: String,
+    /// The property case.
+    pub case: CaseName,
+    /// What is checked, e.g. `mean peak_drift_ratio`, `unacceptable responses`.
+    pub criterion: String,
+    /// The limit.
+    pub limit: f64,
+    /// The design's demand.
+    pub demand: f64,
+    /// demand / limit; for the count of unacceptable responses count / (allowed + ½), so
+    /// that it is ≤ 1 exactly when the count is allowed (and 0 when no record responds
+    /// unacceptably).
+    pub ratio: f64,
+    /// Whether the criterion is met.
+    pub pass: bool,
+    /// The study key of the limit, e.g. `suites[1].limits.criteria[0]`.
+    pub source: String,
+}
+
+/// A design's check against every limit at every property case.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct DesignCheck {
+    /// One line per (suite, case, criterion), suite after suite, case after case.
+    pub lines: Vec<CheckLine>,
+}
+
+impl DesignCheck {
+    /// Every line passes.
+    pub fn passes(&self) -> bool {
+        self.lines.iter().all(|l| l.pass)
+    }
+
+    /// The governing line: the largest ratio (the first of equals).
+    pub fn governing(&self) -> Option<&CheckLine> {
+        self.lines
+            .iter()
+            .fold(None, |best: Option<&CheckLine>, l| match best {
+                Some(b) if b.ratio >= l.ratio => Some(b),
+                _ => Some(l),
+            })
+    }
+
+    /// The margin of the governing line, 1 − ratio (negative: the limit is exceeded).
+    pub fn margin(&self) -> f64 {
+        self.governing().map_or(f64::INFINITY, |l| 1.0 - l.ratio)
+    }
+
+    /// The sum of the exceedances, Σ max(0, ratio − 1): 0 exactly when the design passes;
+    /// what the refiners minimise when no design of the sweep passes.
+    pub fn violation(&self) -> f64 {
+        self.lines.iter().map(|l| (l.ratio - 1.0).max(0.0)).sum()
+    }
+
+    /// A one-line verdict: `PASS (governing: …, ratio 0.93)` or `FAIL (…)`.
+    pub fn verdict(&self) -> String {
+        let head = if self.passes() { "PASS" } else { "FAIL" };
+        match self.governing() {
+            Some(g) => format!(
+                "{head} (governing: {} of {} at {} properties, demand {} against limit {}, ratio {:.3}; {})",
+                g.criterion,
+                g.suite,
+                g.case.as_str(),
+                short(g.demand),
+                short(g.limit),
+                g.ratio,
+                g.source
+            ),
+            None => format!("{head} (no limits)"),
+        }
+    }
+}
+
+/// A number in 4 significant figures.
+pub fn short(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return v.to_string();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if (-3..5).contains(&mag) {
+        let decimals = (3 - mag).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+impl Checks {
+    /// The checks a study file names.
+    pub fn of(bounds: Option<PropertyBoundsConfig>, limits: Vec<Option<SuiteLimits>>) -> Checks {
+        let limits = if limits.iter().any(Option::is_some) {
+            limits
+        } else {
+            Vec::new()
+        };
+        Checks {
+            property_bounds: bounds,
+            limits,
+        }
+    }
+
+    /// No bounds and no limits: the study runs as one without checks.
+    pub fn is_empty(&self) -> bool {
+        self.property_bounds.is_none() && self.limits.is_empty()
+    }
+
+    /// Whether any suite has limits.
+    pub fn has_limits(&self) -> bool {
+        !self.limits.is_empty()
+    }
+
+    /// The property cases, nominal first: `[nominal]`, or `[nominal, lower, upper]`.
+    pub fn cases(&self) -> Vec<PropertyCase> {
+        let mut out = vec![PropertyCase::NOMINAL];
+        if let Some(b) = &self.property_bounds {
+            let k = b.brace_stiffness.unwrap_or(Factors {
+                lower: 1.0,
+                upper: 1.0,
+            });
+            out.push(PropertyCase {
+                name: CaseName::Lower,
+                slip_load: b.slip_load.lower,
+                brace_stiffness: k.lower,
+            });
+            out.push(PropertyCase {
+                name: CaseName::Upper,
+                slip_load: b.slip_load.upper,
+                brace_stiffness: k.upper,
+            });
+        }
+        out
+    }
+
+    /// Which case the objective reads.
+    pub fn reading(&self) -> BoundReading {
+        self.property_bounds
+            .map_or(BoundReading::Nominal, |b| b.objective_reads)
+    }
+
+    /// The objective of one design over its runs (`rows`: the cases × `records` runs,
+    /// nominal first; `bare`: the bare frame's runs): the nominal case's, or the worst of
+    /// the cases'.
+    pub fn objective(
+        &self,
+        objective: &Objective,
+        rows: &[RecordMetrics],
+        bare: Option<&[RecordMetrics]>,
+        suites: &[Range<usize>],
+        records: usize,
+    ) -> Result<f64, OptError> {
+        let case = |c: usize| {
+            let span = c * records..(c + 1) * records;
+            objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)
+        };
+        match self.reading() {
+            BoundReading::Nominal => case(0),
+            BoundReading::Worst => {
+                let mut worst = f64::NEG_INFINITY;
+                for c in 0..self.cases().len() {
+                    worst = worst.max(case(c)?);
+                }
+                Ok(worst)
+            }
+        }
+    }
+
+    /// Each term's value at the case the objective reads (for the worst reading: at the
+    /// case whose objective is the worst).
+    pub fn terms(
+        &self,
+        objective: &Objective,
+        rows: &[RecordMetrics],
+        bare: Option<&[RecordMetrics]>,
+        suites: &[Range<usize>],
+        records: usize,
+    ) -> Result<Vec<f64>, OptError> {
+        let mut at = 0;
+        if self.reading() == BoundReading::Worst {
+            let mut worst = f64::NEG_INFINITY;
+            for c in 0..self.cases().len() {
+                let span = c * records..(c + 1) * records;
+                let f = objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)?;
+                if f > worst {
+                    (worst, at) = (f, c);
+                }
+            }
+        }
+        let span = at * records..(at + 1) * records;
+        objective
+            .terms
+            .iter()
+            .map(|t| {
+                Objective::term_value(
+                    t,
+                    &rows[span.clone()],
+                    bare.map(|b| &b[span.clone()]),
+                    suites,
+                )
+            })
+            .collect()
+    }
+
+    /// The check of one design's runs (`rows`, cases × `records`, nominal first) against
+    /// every suite's limits at every case. `suites`: (name, record range) per suite.
+    pub fn check(
+        &self,
+        rows: &[RecordMetrics],
+        suites: &[(&str, Range<usize>)],
+        records: usize,
+    ) -> Result<DesignCheck, OptError> {
+        let mut lines = Vec::new();
+        for (c, case) in self.cases().iter().enumerate() {
+            let runs = &rows[c * records..(c + 1) * records];
+            for (i, (name, range)) in suites.iter().enumerate() {
+                let Some(Some(lim)) = self.limits.get(i) else {
+                    continue;
+                };
+                for (j, crit) in lim.criteria.iter().enumerate() {
+                    let vals = range
+                        .clone()
+                        .map(|r| crit.metric.value(&runs[r], None))
+                        .collect::<Result<Vec<f64>, _>>()?;
+                    let demand = crit.statistic.of(&vals);
+                    lines.push(CheckLine {
+                        suite: name.to_string(),
+                        case: case.name,
+                        criterion: format!("{} {}", crit.statistic.as_str(), crit.metric.as_str()),
+                        limit: crit.max,
+                        demand,
+                        ratio: demand / crit.max,
+                        pass: demand <= crit.max,
+                        source: format!("suites[{i}].limits.criteria[{j}]"),
+                    });
+                }
+                let u = &lim.unacceptable;
+                let mut count = 0usize;
+                for r in range.clone() {
+                    let m = &runs[r];
+                    let mut bad = m.collapsed();
+                    for rl in &u.record_limits {
+                        bad |= rl.metric.value(m, None)? > rl.max;
+                    }
+                    count += usize::from(bad);
+                }
+                lines.push(CheckLine {
+                    suite: name.to_string(),
+                    case: case.name,
+                    criterion: "unacceptable responses".into(),
+                    limit: u.max_count as f64,
+                    demand: count as f64,
+                    ratio: count as f64 / (u.max_count as f64 + 0.5),
+                    pass: count <= u.max_count,
+                    source: format!("suites[{i}].limits.unacceptable"),
+                });
+            }
+        }
+        Ok(DesignCheck { lines })
+    }
+}
+
+/// The check as CSV: one line per criterion, with its source.
+pub fn check_csv(check: &DesignCheck) -> String {
+    let mut s = String::from("suite,case,criterion,limit,demand,ratio,pass,source\n");
+    for l in &check.lines {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{}",
+            l.suite,
+            l.case.as_str(),
+            l.criterion,
+            l.limit,
+            l.demand,
+            l.ratio,
+            if l.pass { "pass" } else { "FAIL" },
+            l.source
+        );
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn metrics(drift: f64, collapsed: bool) -> RecordMetrics {
+        RecordMetrics {
+            drift_ratio: vec![drift],
+            residual_drift_ratio: vec![0.0],
+            peak_floor_acceleration: 1.0,
+            peak_base_shear: 1.0,
+            peak_displacement: 0.01,
+            stroke: vec![0.0],
+            energy_input: None,
+            energy_friction: None,
+            strain_energy_area: None,
+            ductility: None,
+            energy_plastic: None,
+            collapse: collapsed.then_some((1, 1.0)),
+        }
+    }
+
+    fn checks(max_count: usize) -> Checks {
+        Checks::of(
+            Some(PropertyBoundsConfig {
+                slip_load: Factors {
+                    lower: 0.8,
+                    upper: 1.2,
+                },
+                brace_stiffness: None,
+                objective_reads: BoundReading::Worst,
+            }),
+            vec![Some(SuiteLimits {
+                criteria: vec![Criterion {
+                    metric: Metric::PeakDriftRatio,
+                    statistic: Statistic::Mean,
+                    max: 0.02,
+                }],
+                unacceptable: Unacceptable {
+                    max_count,
+                    record_limits: vec![RecordLimit {
+                        metric: Metric::PeakDriftRatio,
+                        max: 0.03,
+                    }],
+                },
+            })],
+        )
+    }
+
+    #[test]
+    fn a_check_reads_every_case_and_counts_unacceptable_records() {
+        // three cases × two records; the upper case has one record past the per-record limit
+        let rows = vec![
+            metrics(0.010, false),
+            metrics(0.012, false),
+            metrics(0.015, false),
+            metrics(0.017, false),
+            metrics(0.005, false),
+            metrics(0.031, false),
+        ];
+        let suites = [("s", 0..2)];
+        let c = checks(0).check(&rows, &suites, 2).unwrap();
+        assert_eq!(c.lines.len(), 6);
+        // the mean over the upper case: (0.005 + 0.031) / 2 = 0.018 ≤ 0.02
+        assert!(c.lines[4].pass);
+        assert!((c.lines[4].demand - 0.018).abs() < 1e-15);
+        // one unacceptable response where none is allowed fails, and governs
+        assert!(!c.lines[5].pass);
+        assert_eq!(c.lines[5].ratio, 2.0);
+        assert!(!c.passes());
+        assert_eq!(
+            c.governing().unwrap().source,
+            "suites[0].limits.unacceptable"
+        );
+        assert!((c.violation() - 1.0).abs() < 1e-15);
+        // none: ratio 0
+        assert_eq!(c.lines[1].ratio, 0.0);
+        // one allowed: it passes, below ratio 1; the upper case's mean drift governs
+        let c = checks(1).check(&rows, &suites, 2).unwrap();
+        assert!(c.passes());
+        assert_eq!(c.violation(), 0.0);
+        assert_eq!(c.lines[5].ratio, 1.0 / 1.5);
+        assert_eq!(
+            c.governing().unwrap().source,
+            "suites[0].limits.criteria[0]"
+        );
+    }
+
+    #[test]
+    fn a_collapse_is_an_unacceptable_response_without_record_limits() {
+        let mut ch = checks(0);
+        ch.limits[0]
+            .as_mut()
+            .unwrap()
+            .unacceptable
+            .record_limits
+            .clear();
+        ch.property_bounds = None;
+        let rows = vec![metrics(0.01, true), metrics(0.01, false)];
+        let c = ch.check(&rows, &[("s", 0..2)], 2).unwrap();
+        assert!(!c.lines[1].pass);
+        assert_eq!(c.lines[1].demand, 1.0);
+    }
+
+    #[test]
+    fn the_worst_reading_takes_the_largest_case_objective() {
+        let obj = Objective {
+            terms: vec![crate::model::objective::Term {
+                metric: Metric::PeakDriftRatio,
+                statistic: Statistic::Mean,
+                weight: 1.0,
+            }],
+        };
+        let rows = vec![
+            metrics(0.010, false),
+            metrics(0.030, false),
+            metrics(0.005, false),
+        ];
+        let ch = checks(1);
+        let f = ch.objective(&obj, &rows, None, &[0..1], 1).unwrap();
+        assert_eq!(f, 0.030);
+        assert_eq!(
+            ch.terms(&obj, &rows, None, &[0..1], 1).unwrap(),
+            vec![0.030]
+        );
+        let mut nominal = ch.clone();
+        nominal.property_bounds.as_mut().unwrap().objective_reads = BoundReading::Nominal;
+        assert_eq!(
+            nominal.objective(&obj, &rows, None, &[0..1], 1).unwrap(),
+            0.010
+        );
+    }
+
+    #[test]
+    fn factors_out_of_order_are_refused_by_field() {
+        let b = PropertyBoundsConfig {
+            slip_load: Factors {
+                lower: 1.1,
+                upper: 1.2,
+            },
+            brace_stiffness: None,
+            objective_reads: BoundReading::Nominal,
+        };
+        let e = b.validate(Path::new("s.json")).unwrap_err().to_string();
+        assert!(e.contains("property_bounds.slip_load.lower"), "{e}");
+    }
+}

@@ -1,0 +1,248 @@
+//! The code check of the recommended design: its responses at the check fidelity, at
+//! every property case, against every suite's acceptance limits — one line per
+//! criterion with its limit, demand, ratio, verdict and the study key the limit comes
+//! from — with the suites' code scaling beside it, written as `code-check.csv`,
+//! `code-check.md` and `code-check.json` (only for a study with limits or bounds).
+
+use crate::base::error::OptError;
+use crate::base::metrics::RecordMetrics;
+use crate::model::check::{CaseName, DesignCheck, PropertyCase, check_csv, short};
+use crate::model::fidelity::Fidelity;
+use crate::model::study::{CodeScaling, Study};
+use crate::phases::refinement::OptimizeReport;
+use crate::store::folder::StudyFolder;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// A suite as the check names it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckedSuite {
+    /// Name.
+    pub name: String,
+    /// Its records.
+    pub records: usize,
+    /// How it was scaled to a code spectrum, when it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub code_scaling: Option<CodeScaling>,
+}
+
+/// The code check of one design.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CodeCheck {
+    /// The study.
+    pub study: String,
+    /// Floors (from 1) of the dampers.
+    pub damper_floors: Vec<usize>,
+    /// The design's slip loads, kN per damper (nominal).
+    #[serde(rename = "slip_loads_kN")]
+    pub slip_loads_kn: Vec<f64>,
+    /// How the design was chosen.
+    pub chosen_as: String,
+    /// The objective's label, and which property case it reads.
+    pub objective: String,
+    /// Its value at the check fidelity.
+    pub objective_value: f64,
+    /// The fidelity of the responses checked.
+    pub fidelity: String,
+    /// The property cases.
+    pub cases: Vec<PropertyCase>,
+    /// The suites.
+    pub suites: Vec<CheckedSuite>,
+    /// Every criterion at every suite and case.
+    pub check: DesignCheck,
+    /// Whether every criterion passes.
+    pub passes: bool,
+    /// The verdict with its governing criterion.
+    pub verdict: String,
+    /// The margin of the governing criterion, 1 − ratio.
+    pub margin: f64,
+}
+
+impl CodeCheck {
+    /// The files [`CodeCheck::write_files`] writes.
+    pub const FILES: [&str; 3] = ["code-check.csv", "code-check.md", "code-check.json"];
+
+    /// The check of the recommended design of `refined` (its runs at the check fidelity;
+    /// `None` when the study has no limits).
+    pub fn of(study: &Study, refined: &OptimizeReport) -> Result<Option<CodeCheck>, OptError> {
+        let Some((runs, bare)) = &refined.recommended_runs else {
+            return Ok(None);
+        };
+        let Some(first) = refined.finalists.first() else {
+            return Ok(None);
+        };
+        Ok(Some(Self::of_runs(
+            study,
+            &first.slip_loads_n,
+            runs,
+            bare,
+            if first.passes() {
+                format!(
+                    "the best of {} finalists that meets every limit, at the check fidelity",
+                    refined.finalists.len()
+                )
+            } else {
+                format!(
+                    "no evaluated design meets every limit: the closest of {} finalists (the smallest sum of exceedances)",
+                    refined.finalists.len()
+                )
+            },
+        )?))
+    }
+
+    /// The check of the design `slip_loads_n` from its runs at the check fidelity.
+    pub fn of_runs(
+        study: &Study,
+        slip_loads_n: &[f64],
+        runs: &[RecordMetrics],
+        bare: &[RecordMetrics],
+        chosen_as: String,
+    ) -> Result<CodeCheck, OptError> {
+        let check = study.check_design(runs)?;
+        let fid = Fidelity::check(study);
+        let reading = study.checks.reading();
+        Ok(CodeCheck {
+            study: study.name.clone(),
+            damper_floors: study.space.dampers.iter().map(|f| f + 1).collect(),
+            slip_loads_kn: slip_loads_n.iter().map(|v| v / 1e3).collect(),
+            chosen_as,
+            objective: format!(
+                "{} (at the {} properties)",
+                study.objective.label(),
+                reading.as_str()
+            ),
+            objective_value: study.objective_value(runs, bare)?,
+            fidelity: format!(
+                "{} at {} x the sweep time step",
+                fid.method.as_str(),
+                fid.dt_factor
+            ),
+            cases: study.checks.cases(),
+            suites: study
+                .suites
+                .iter()
+                .map(|s| CheckedSuite {
+                    name: s.name.clone(),
+                    records: s.range.len(),
+                    code_scaling: s.code_scaling.clone(),
+                })
+                .collect(),
+            passes: check.passes(),
+            verdict: check.verdict(),
+            margin: check.margin(),
+            check,
+        })
+    }
+
+    /// `code-check.csv`: one line per criterion.
+    pub fn to_csv(&self) -> String {
+        check_csv(&self.check)
+    }
+
+    /// `code-check.json`.
+    pub fn to_json(&self) -> Result<String, OptError> {
+        let mut s = serde_json::to_string_pretty(self).map_err(|source| OptError::Json {
+            path: "code-check.json".into(),
+            source,
+        })?;
+        s.push('\n');
+        Ok(s)
+    }
+
+    /// `code-check.md`: the design, the cases, the suites' scaling, one table per suite
+    /// (criteria × cases) and the verdict.
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "# Code check: {}\n", self.study);
+        let _ = writeln!(s, "**Verdict: {}**\n", self.verdict);
+        let loads = self
+            .damper_floors
+            .iter()
+            .zip(&self.slip_loads_kn)
+            .map(|(f, v)| format!("floor {f}: {v:.1}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let _ = writeln!(s, "Design (nominal slip loads, kN): {loads}.\n");
+        let _ = writeln!(s, "Chosen as {}.\n", self.chosen_as);
+        let _ = writeln!(
+            s,
+            "Objective: {} = {}. Responses: {}.\n",
+            self.objective,
+            short(self.objective_value),
+            self.fidelity
+        );
+        s.push_str(
+            "| property case | slip-load factor | brace-stiffness factor |\n|---|---:|---:|\n",
+        );
+        for c in &self.cases {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} |",
+                c.name.as_str(),
+                c.slip_load,
+                c.brace_stiffness
+            );
+        }
+        s.push('\n');
+        for suite in &self.suites {
+            let _ = writeln!(s, "## {} ({} records)\n", suite.name, suite.records);
+            if let Some(c) = &suite.code_scaling {
+                let _ = writeln!(
+                    s,
+                    "Scaled to the {} spectrum (S_DS = {} g, S_D1 = {} g, T_L = {} s; ASCE 7-16 §16.2.3): factor {:.4} over [{:.3}, {:.3}] s, controlled at {:.3} s.\n",
+                    c.hazard.as_str(),
+                    c.sds_g,
+                    c.sd1_g,
+                    c.tl_s,
+                    c.factor,
+                    c.range_s[0],
+                    c.range_s[1],
+                    c.controlling_period_s
+                );
+            }
+            let lines: Vec<_> = self
+                .check
+                .lines
+                .iter()
+                .filter(|l| l.suite == suite.name)
+                .collect();
+            if lines.is_empty() {
+                s.push_str("No limits on this suite.\n\n");
+                continue;
+            }
+            s.push_str("| case | criterion | limit | demand | ratio | verdict | source |\n");
+            s.push_str("|---|---|---:|---:|---:|---|---|\n");
+            for l in lines {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {:.3} | {} | `{}` |",
+                    l.case.as_str(),
+                    l.criterion,
+                    short(l.limit),
+                    short(l.demand),
+                    l.ratio,
+                    if l.pass { "pass" } else { "**FAIL**" },
+                    l.source
+                );
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// Writes `code-check.{csv,md,json}` into the study folder.
+    pub fn write_files(&self, folder: &StudyFolder) -> Result<(), OptError> {
+        folder.write("code-check.csv", self.to_csv().as_bytes())?;
+        folder.write("code-check.md", self.to_markdown().as_bytes())?;
+        folder.write("code-check.json", self.to_json()?.as_bytes())?;
+        Ok(())
+    }
+
+    /// The lines of one property case.
+    pub fn case_lines(
+        &self,
+        case: CaseName,
+    ) -> impl Iterator<Item = &crate::model::check::CheckLine> {
+        self.check.lines.iter().filter(move |l| l.case == case)
+    }
+}
