@@ -1,0 +1,269 @@
+//! Contract: a study with `property_bounds` runs every design at its nominal, lower- and
+//! upper-bound properties; a bound case is the design with every slip load × λ (and
+//! every brace stiffness × its λ) run at nominal properties. With `suites[i].limits` the
+//! optimum is a design that meets every limit at every case, and its code check says so
+//! with demands equal to those of the re-simulated design; a study whose limits no design
+//! can meet reports the closest design, failing, naming the governing limit. The
+//! objective's `worst` reading is the largest of the cases' objectives. Bad bounds and
+//! limits are refused naming the field.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use slipload_opt::Study;
+use slipload_opt::base::metrics::RecordMetrics;
+use slipload_opt::eval::evaluate::run_one;
+use slipload_opt::eval::progress::NoProgress;
+use slipload_opt::model::check::CaseName;
+use slipload_opt::model::fidelity::Fidelity;
+use slipload_opt::model::objective::Statistic;
+use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::folder;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The benchmark study on 3 synthetic records of 6 s, a short sweep and refinement,
+/// with `patch` applied to its JSON.
+fn study(patch: impl Fn(&mut serde_json::Value)) -> Result<Study, slipload_opt::OptError> {
+    let path = root().join("configs/study-benchmark.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    v["suites"][0]["synthetic"]["count"] = 3.into();
+    v["suites"][0]["synthetic"]["duration_s"] = 6.0.into();
+    v["sweep"]["points"] = 10.into();
+    v["refine"]["starts"] = 1.into();
+    v["refine"]["max_evaluations"] = 6.into();
+    v["refine"]["finalists"] = 2.into();
+    v["fidelity"] = serde_json::json!({ "method": "newmark", "check_method": "newmark", "check_dt_factor": 0.5 });
+    patch(&mut v);
+    Study::from_json(&v.to_string(), &path)
+}
+
+fn bounds(v: &mut serde_json::Value) {
+    v["property_bounds"] = serde_json::json!({
+        "slip_load": { "lower": 0.8, "upper": 1.25 },
+        "brace_stiffness": { "lower": 0.9, "upper": 1.1 },
+        "objective_reads": "worst"
+    });
+}
+
+fn limits(drift: f64) -> impl Fn(&mut serde_json::Value) {
+    move |v: &mut serde_json::Value| {
+        bounds(v);
+        v["suites"][0]["limits"] = serde_json::json!({
+            "criteria": [
+                { "metric": "peak_drift_ratio", "statistic": "mean", "max": drift },
+                { "metric": "residual_drift_ratio", "statistic": "max", "max": 0.005 }
+            ],
+            "unacceptable": { "max_count": 0, "record_limits": [ { "metric": "peak_drift_ratio", "max": 1.5 * drift } ] }
+        });
+    }
+}
+
+/// The same study with every brace stiffness of its building × `k` and no bounds.
+fn braces_times(k: f64) -> Study {
+    let b: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("configs/benchmark-3story.json")).unwrap(),
+    )
+    .unwrap();
+    let mut b = b;
+    for d in b["dissipators"].as_array_mut().unwrap() {
+        d["brace_stiffness"] = format!("{} N/m", 448.12e6 * k).into();
+    }
+    study(|v| v["building"] = b.clone()).unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("slipload-check-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn a_bound_case_is_the_scaled_design_at_nominal_properties() {
+    let st = study(bounds).unwrap();
+    let n = st.records.len();
+    assert_eq!(st.runs(), 3 * n);
+    assert_eq!(st.run_name(n), format!("{} [lower]", st.records[0].name()));
+    let fid = Fidelity::sweep(&st);
+    let design = [900e3, 700e3, 400e3];
+    for (case, lambda, k) in [(1, 0.8, 0.9), (2, 1.25, 1.1)] {
+        let other = braces_times(k);
+        let scaled: Vec<f64> = design.iter().map(|v| lambda * v).collect();
+        for r in 0..n {
+            let at_case = run_one(&st, &design, case * n + r, &fid, "case").unwrap();
+            let by_hand = run_one(&other, &scaled, r, &fid, "by hand").unwrap();
+            // one simulation, set up two ways: every bit agrees
+            assert_eq!(at_case, by_hand, "case {case}, record {r}");
+        }
+    }
+}
+
+#[test]
+fn the_worst_reading_is_the_largest_case_objective() {
+    let worst = study(bounds).unwrap();
+    let fid = Fidelity::sweep(&worst);
+    let runs = |s: &Study, d: &[f64]| -> Vec<RecordMetrics> {
+        (0..s.runs())
+            .map(|r| run_one(s, d, r, &fid, "d").unwrap())
+            .collect()
+    };
+    let bare = runs(&worst, &[0.0; 3]);
+    let rows = runs(&worst, &[900e3, 700e3, 400e3]);
+    let f = worst.objective_value(&rows, &bare).unwrap();
+    let n = worst.records.len();
+    let per_case: Vec<f64> = (0..3)
+        .map(|c| {
+            let v: Vec<f64> = rows[c * n..(c + 1) * n]
+                .iter()
+                .map(RecordMetrics::peak_drift_ratio)
+                .collect();
+            Statistic::Mean.of(&v)
+        })
+        .collect();
+    assert_eq!(f, per_case.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    let nominal = study(|v| {
+        bounds(v);
+        v["property_bounds"]["objective_reads"] = "nominal".into();
+    })
+    .unwrap();
+    assert_eq!(nominal.objective_value(&rows, &bare).unwrap(), per_case[0]);
+}
+
+#[test]
+fn the_optimum_meets_every_limit_and_its_check_is_the_resimulated_design() {
+    let st = study(limits(0.012)).unwrap();
+    let out = scratch("pass");
+    let run = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .unwrap();
+    let c = run.report.code_check.as_ref().unwrap();
+    assert!(c.passes, "{}", c.verdict);
+    assert!(c.verdict.starts_with("PASS"));
+    for f in ["code-check.csv", "code-check.md", "code-check.json"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    // re-simulate the optimum at each case, independently of the study's cases: the
+    // scaled design on the building with scaled braces, at the check fidelity
+    let optimum = &run.report.refine.optimum_loads;
+    let check = Fidelity::check(&st);
+    let n = st.records.len();
+    for (case, lambda, k) in [
+        (CaseName::Nominal, 1.0, 1.0),
+        (CaseName::Lower, 0.8, 0.9),
+        (CaseName::Upper, 1.25, 1.1),
+    ] {
+        let other = braces_times(k);
+        let scaled: Vec<f64> = optimum.iter().map(|v| lambda * v).collect();
+        let rows: Vec<RecordMetrics> = (0..n)
+            .map(|r| run_one(&other, &scaled, r, &check, "again").unwrap())
+            .collect();
+        let drift: Vec<f64> = rows.iter().map(RecordMetrics::peak_drift_ratio).collect();
+        let mean = Statistic::Mean.of(&drift);
+        let residual = rows
+            .iter()
+            .map(RecordMetrics::residual)
+            .fold(0.0, f64::max);
+        let lines: Vec<_> = c.case_lines(case).collect();
+        assert_eq!(lines.len(), 3);
+        // the same numbers summed in the same order: equal to the last bit
+        assert_eq!(lines[0].demand, mean, "{case:?}");
+        assert_eq!(lines[1].demand, residual, "{case:?}");
+        assert!(mean <= 0.012 && residual <= 0.005, "{case:?}: the claim holds");
+        let unacceptable = drift.iter().filter(|&&d| d > 1.5 * 0.012).count();
+        assert_eq!(lines[2].demand, unacceptable as f64);
+        assert_eq!(unacceptable, 0);
+    }
+    let optimum_json = std::fs::read_to_string(out.join("optimum.json")).unwrap();
+    assert!(optimum_json.contains("\"passes\": true"), "{optimum_json}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn limits_no_design_meets_end_with_the_closest_design_and_the_governing_limit() {
+    // a mean peak drift of 0.1 % is beyond any slip load of the space
+    let st = study(limits(0.001)).unwrap();
+    let out = scratch("fail");
+    let run = optimize_study(
+        &st,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .unwrap();
+    let c = run.report.code_check.as_ref().unwrap();
+    assert!(!c.passes);
+    assert!(c.margin < 0.0);
+    // the governing limit is a failing one, the largest ratio of all (here every record
+    // exceeds the per-record limit: the count governs)
+    let g = c.check.governing().unwrap();
+    assert!(!g.pass);
+    assert!(c.check.lines.iter().all(|l| l.ratio <= g.ratio));
+    assert_eq!(g.source, "suites[0].limits.unacceptable");
+    assert_eq!(g.demand, st.records.len() as f64);
+    assert!(c.verdict.starts_with("FAIL"), "{}", c.verdict);
+    assert!(c.chosen_as.contains("no evaluated design meets every limit"));
+    // the files are written all the same
+    assert!(out.join("code-check.md").is_file());
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_study_without_bounds_or_limits_has_one_case_and_no_check() {
+    let st = study(|_| {}).unwrap();
+    assert_eq!(st.runs(), st.records.len());
+    assert!(st.checks.is_empty());
+    let m = slipload_opt::phases::sweep::Manifest::of(&st);
+    assert!(!m.to_json().contains("checks"));
+}
+
+#[test]
+fn bad_bounds_and_limits_are_refused_by_field() {
+    let cases: Vec<(Box<dyn Fn(&mut serde_json::Value)>, &str)> = vec![
+        (
+            Box::new(|v| {
+                v["property_bounds"] = serde_json::json!({ "slip_load": { "lower": 1.2, "upper": 1.3 } })
+            }),
+            "property_bounds.slip_load.lower",
+        ),
+        (
+            Box::new(|v| {
+                v["property_bounds"] = serde_json::json!({ "slip_load": { "lower": 0.8, "upper": 0.9 } })
+            }),
+            "property_bounds.slip_load.upper",
+        ),
+        (
+            Box::new(|v| {
+                v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "rpi", "statistic": "mean", "max": 1 } ] })
+            }),
+            "suites[0].limits.criteria[0].metric",
+        ),
+        (
+            Box::new(|v| {
+                v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "peak_drift_ratio", "statistic": "mean", "max": -1 } ] })
+            }),
+            "suites[0].limits.criteria[0].max",
+        ),
+        (
+            Box::new(|v| v["suites"][0]["limits"] = serde_json::json!({})),
+            "suites[0].limits.criteria",
+        ),
+        (
+            Box::new(|v| v["devices"] = serde_json::json!({ "brace_angle_deg": 90 })),
+            "devices.brace_angle_deg",
+        ),
+    ];
+    for (patch, field) in cases {
+        let e = study(patch).unwrap_err().to_string();
+        assert!(e.contains(field), "{field}: {e}");
+    }
+}
