@@ -384,6 +384,31 @@ impl DesignSpace {
             .collect()
     }
 
+    /// The scaled point of slip loads `loads` (N per dissipator), when the space holds
+    /// them: `offset + basis z = loads` to round-off (relative 1e-9, the affine map's) at a
+    /// feasible `z`; `None` for loads off the space (another profile, beyond a bound,
+    /// breaking a constraint).
+    pub fn point_of(&self, loads: &[f64]) -> Option<Vec<f64>> {
+        if loads.len() != self.offset.len() {
+            return None;
+        }
+        let rhs = DVector::from_iterator(
+            loads.len(),
+            loads.iter().zip(&self.offset).map(|(s, o)| s - o),
+        );
+        // least squares on the (full column rank) basis: the normal equations
+        let btb = self.basis.transpose() * &self.basis;
+        let z = btb.lu().solve(&(self.basis.transpose() * &rhs))?;
+        let z: Vec<f64> = z.iter().copied().collect();
+        let back = self.slip_loads(&z);
+        let scale = loads.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let close = back
+            .iter()
+            .zip(loads)
+            .all(|(a, b)| (a - b).abs() <= 1e-9 * scale);
+        (close && self.is_feasible(&z)).then(|| z.iter().map(|v| v.clamp(0.0, 1.0)).collect())
+    }
+
     /// Whether `z` is inside [0, 1]^d and satisfies the constraints (relative slack 1e-9).
     pub fn is_feasible(&self, z: &[f64]) -> bool {
         if z.iter().any(|v| !(-FEAS_TOL..=1.0 + FEAS_TOL).contains(v)) {

@@ -138,8 +138,12 @@ pub fn objectives(
 pub struct Refinement {
     /// Refiner used.
     pub method: RefineMethod,
-    /// The sweep's sample points with their objectives (bare and file designs excluded).
+    /// The sweep's sample points with their objectives, then the building file's design
+    /// where the space holds it (the bare frame excluded): every design the sweep
+    /// evaluated is a start and a finalist candidate.
     pub known: Vec<Point>,
+    /// How many of `known` are the sweep's sample.
+    pub sampled: usize,
     /// Best sweep point.
     pub best_sweep: Point,
     /// Refinement evaluations, in order.
@@ -208,7 +212,7 @@ pub fn refine_sweep(
             }
         }
     };
-    let known: Vec<Point> = manifest
+    let mut known: Vec<Point> = manifest
         .designs
         .iter()
         .zip(&obj)
@@ -221,6 +225,19 @@ pub fn refine_sweep(
             })
         })
         .collect();
+    let sampled = known.len();
+    // the building file's design (design 1) is a design the sweep evaluated: where the
+    // space holds it (symmetric slip loads on the space), it competes with the sample
+    if let Some(file) = manifest.designs.get(1).filter(|d| d.friction_n.is_none())
+        && let Some(z) = study.space.point_of(&file.slip_loads_n)
+        && !known.iter().any(|p| p.z == z)
+    {
+        let check = checks.as_ref().map(|c| &c[1]);
+        known.push(Point {
+            z,
+            f: target.value(obj[1].0, check),
+        });
+    }
     let mut order: Vec<usize> = (0..known.len()).collect();
     order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
     let best_sweep = known
@@ -266,6 +283,7 @@ pub fn refine_sweep(
     Ok(Refinement {
         method,
         known,
+        sampled,
         best_sweep,
         log,
         optimum,
@@ -290,6 +308,7 @@ pub fn check_finalists(
     let Refinement {
         method,
         known,
+        sampled,
         best_sweep,
         log,
         optimum,
@@ -299,7 +318,7 @@ pub fn check_finalists(
         target,
     } = refinement;
     let limits = study.checks.has_limits();
-    let sweep_designs = known.len();
+    let sweep_designs = sampled;
     // finalists: the best distinct points of everything evaluated
     // (a design that collapsed at the sweep's fidelity is no finalist)
     let mut all: Vec<Point> = known

@@ -434,6 +434,13 @@ class StudyReport:
             check fidelity.
         pareto_table: the rows of ``pareto-table.json`` (the front's designs with the
             design table's columns and their ±25 % variants).
+        code_check: ``code-check.json`` (``optimize`` of a study with ``limits``): the
+            recommended design, every criterion at every suite and property case, the
+            verdict (``passes``, ``verdict``, ``margin``); :meth:`check_frame` gives its
+            lines as a pandas DataFrame.
+        device_table: ``device-table.json`` (``optimize`` of a study with ``limits``): per
+            damper the slip load's range, force, stroke, velocity, travel, cycles and energy
+            the device must be specified for; :meth:`device_frame` gives a DataFrame.
         details: everything else the call reported (simulations run and reused, …).
     """
 
@@ -457,6 +464,31 @@ class StudyReport:
         self.pareto: Optional[Dict[str, Any]] = load("pareto.json")
         ptable = load("pareto-table.json")
         self.pareto_table: Optional[List[Dict[str, Any]]] = None if ptable is None else ptable["rows"]
+        self.code_check: Optional[Dict[str, Any]] = load("code-check.json")
+        self.device_table: Optional[Dict[str, Any]] = load("device-table.json")
+
+    @property
+    def passes(self) -> Optional[bool]:
+        """Whether the recommended design meets every limit (``None``: the study names none)."""
+        return None if self.code_check is None else bool(self.code_check["passes"])
+
+    def check_frame(self) -> Any:
+        """The code check as a pandas DataFrame: one row per (suite, property case,
+        criterion) with limit, demand, ratio, pass and the study key of the limit (needs
+        pandas)."""
+        import pandas as pd
+
+        if self.code_check is None:
+            raise InputError("this report has no code check (optimize writes one for a study with limits)")
+        return pd.DataFrame(self.code_check["check"]["lines"])
+
+    def device_frame(self) -> Any:
+        """The device table as a pandas DataFrame, one row per damper (needs pandas)."""
+        import pandas as pd
+
+        if self.device_table is None:
+            raise InputError("this report has no device table (optimize writes one for a study with limits)")
+        return pd.DataFrame(self.device_table["dampers"]).set_index("floor")
 
     def design_table_frame(self) -> Any:
         """The design table as a pandas DataFrame, one row per design (needs pandas)."""
