@@ -15,10 +15,11 @@
 //! they print as), [`measure`] (the clock, the timed runs, the bench's state),
 //! [`scenes`] (the bench's buildings and scenes), [`cases`] (the cases of `newmark`, the
 //! reductions, the scaling, memory and the sweep) and [`exact`] (the cases of `exact`
-//! and the equal-accuracy comparison). The cases run and print in the order `run` calls
+//! and the equal-accuracy comparison), [`checked`] (the time to a checked design). The cases run and print in the order `run` calls
 //! them.
 
 mod cases;
+mod checked;
 mod exact;
 mod figure;
 mod measure;
@@ -88,6 +89,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     cases::banded(&mut bench)?;
     cases::memory(&mut bench)?;
     cases::sweep(&mut bench)?;
+    checked::checked_design(&mut bench)?;
 
     let figs = bench.figs;
     if figs.is_empty() && !args.only.is_empty() {

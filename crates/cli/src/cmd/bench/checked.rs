@@ -1,0 +1,115 @@
+//! The time to a checked design: `optimize` of the worked example
+//! `configs/study-ten-story-check.json` (the ten-storey yielding frame, two hazard levels ×
+//! 11 code-scaled records × 3 property cases, limits, free slip loads) into a scratch
+//! folder, on every core, in wall-clock seconds — in all and per phase, with the
+//! simulations of each. One run (it takes tens of seconds): a shared machine's load shows
+//! in it, so it is reported beside the aim, not averaged away.
+
+use super::figure::Figure;
+use super::measure::Bench;
+use anyhow::Context;
+use slipload_opt::Study;
+use slipload_opt::eval::progress::{Phase, Progress};
+use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
+use slipload_opt::store::folder::FolderRequest;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// The example, where a clone of the project holds it.
+const EXAMPLE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../configs/study-ten-story-check.json"
+);
+
+/// Wall-clock seconds and simulations (run or reused) per phase.
+#[derive(Default)]
+struct PhaseClock {
+    started: Mutex<Option<(Phase, Instant)>>,
+    ticks: AtomicUsize,
+    done: Mutex<Vec<(Phase, f64, usize)>>,
+}
+
+impl Progress for PhaseClock {
+    fn start(&self, phase: Phase, _work: usize) {
+        self.ticks.store(0, Ordering::SeqCst);
+        if let Ok(mut s) = self.started.lock() {
+            *s = Some((phase, Instant::now()));
+        }
+    }
+    fn tick(&self) {
+        self.ticks.fetch_add(1, Ordering::SeqCst);
+    }
+    fn finish(&self, phase: Phase) {
+        let since = self
+            .started
+            .lock()
+            .ok()
+            .and_then(|s| *s)
+            .map_or(0.0, |(_, t)| t.elapsed().as_secs_f64());
+        if let Ok(mut d) = self.done.lock() {
+            d.push((phase, since, self.ticks.load(Ordering::SeqCst)));
+        }
+    }
+}
+
+/// `checked design`: the example's `optimize`, in all and per phase.
+pub(super) fn checked_design(bench: &mut Bench) -> anyhow::Result<()> {
+    let case = "checked design: configs/study-ten-story-check.json, 2 hazard levels x 11 records x 3 property cases";
+    if !bench.want(case) {
+        return Ok(());
+    }
+    let study = Study::load(std::path::Path::new(EXAMPLE))
+        .with_context(|| format!("the worked example {EXAMPLE} (run the bench from a clone of the project)"))?;
+    let dir = std::env::temp_dir().join(format!("slipload-bench-checked-{}", std::process::id()));
+    let clock = PhaseClock::default();
+    let t = Instant::now();
+    let run = optimize_study(
+        &study,
+        &OptimizeOptions::default(),
+        FolderRequest {
+            path: &dir,
+            option: "scratch folder",
+            fresh: true,
+        },
+        &clock,
+        &NoFigures,
+    );
+    let wall = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = run?;
+    let threads = rayon::current_num_threads();
+    bench.figs.push(
+        Figure::new(
+            case,
+            &format!("wall-clock seconds to the checked design, {threads} thread(s)"),
+            wall,
+            "s",
+        )
+        .at_most(60.0),
+    );
+    let done = clock.done.lock().map(|d| d.clone()).unwrap_or_default();
+    for (phase, seconds, sims) in done {
+        bench.figs.push(Figure::new(
+            case,
+            &format!("{}: wall-clock seconds ({sims} simulations)", phase.label()),
+            seconds,
+            "s",
+        ));
+    }
+    bench.figs.push(Figure::new(
+        case,
+        &format!(
+            "verdict: {} (1 = every limit met)",
+            run.report
+                .code_check
+                .as_ref()
+                .map_or("no check", |c| if c.passes { "PASS" } else { "FAIL" })
+        ),
+        f64::from(u8::from(
+            run.report.code_check.as_ref().is_some_and(|c| c.passes),
+        )),
+        "",
+    ));
+    Ok(())
+}
