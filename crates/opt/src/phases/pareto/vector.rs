@@ -10,9 +10,12 @@ use slipload_motion::G;
 use std::ops::Range;
 
 /// The objective vector of one design: `loads` its slip loads (N per dissipator),
-/// `records` its responses over every record of the study, `bare` the bare frame's (for
-/// the relative performance index). A design that collapses on a record of the study
-/// gets +∞ in every objective (it is dominated by every design that stands).
+/// `records` its responses over every run of the study (records × property cases), `bare`
+/// the bare frame's (for the relative performance index). A design that collapses on a
+/// record of the study, or (a study with limits) misses a limit at some property case,
+/// gets +∞ in every objective: it is dominated by every design that stands and passes, so
+/// the front is made of passing designs. With the objective reading the worst property
+/// case, each response objective is its largest over the cases.
 pub fn objective_vector(
     study: &Study,
     loads: &[f64],
@@ -21,9 +24,53 @@ pub fn objective_vector(
     suites: &[Range<usize>],
 ) -> Result<Vec<f64>, OptError> {
     let objectives = &study.objectives;
-    if records.iter().any(RecordMetrics::collapsed) {
+    let n = study.records.len();
+    let failed = if study.checks.has_limits() && records.len() == study.runs() {
+        !study.check_design(records)?.passes()
+    } else {
+        false
+    };
+    if failed || records.iter().any(RecordMetrics::collapsed) {
         return Ok(vec![f64::INFINITY; objectives.len()]);
     }
+    let cases = match study.checks.reading() {
+        crate::model::check::BoundReading::Worst if records.len() == study.runs() => {
+            study.checks.cases().len()
+        }
+        _ => 1,
+    };
+    let mut worst = case_vector(
+        study,
+        loads,
+        &records[..n.min(records.len())],
+        bare.map(|b| &b[..n.min(b.len())]),
+        suites,
+    )?;
+    for c in 1..cases {
+        let span = c * n..(c + 1) * n;
+        let v = case_vector(
+            study,
+            loads,
+            &records[span.clone()],
+            bare.map(|b| &b[span]),
+            suites,
+        )?;
+        for (w, x) in worst.iter_mut().zip(v) {
+            *w = w.max(x);
+        }
+    }
+    Ok(worst)
+}
+
+/// [`objective_vector`] at one property case (`records`, `bare`: its runs).
+fn case_vector(
+    study: &Study,
+    loads: &[f64],
+    records: &[RecordMetrics],
+    bare: Option<&[RecordMetrics]>,
+    suites: &[Range<usize>],
+) -> Result<Vec<f64>, OptError> {
+    let objectives = &study.objectives;
     objectives
         .iter()
         .map(|o| match o.metric.response() {
