@@ -213,13 +213,21 @@ impl CodeCheck {
             s.push_str("| case | criterion | limit | demand | ratio | verdict | source |\n");
             s.push_str("|---|---|---:|---:|---:|---|---|\n");
             for l in lines {
+                // a count is a whole number
+                let num = |v: f64| {
+                    if l.source.ends_with("unacceptable") {
+                        format!("{v:.0}")
+                    } else {
+                        short(v)
+                    }
+                };
                 let _ = writeln!(
                     s,
                     "| {} | {} | {} | {} | {:.3} | {} | `{}` |",
                     l.case.as_str(),
                     l.criterion,
-                    short(l.limit),
-                    short(l.demand),
+                    num(l.limit),
+                    num(l.demand),
                     l.ratio,
                     if l.pass { "pass" } else { "**FAIL**" },
                     l.source
