@@ -6,7 +6,8 @@
 //! - the refiners' convergence: best objective so far vs simulations;
 //! - peak drift-ratio profiles over the storeys of the ranked designs (mean and 84th
 //!   percentile over the suite);
-//! - per-record peak drift ratio of the best design vs the bare frame.
+//! - per-record peak drift ratio of the best design vs the bare frame;
+//! - each code-scaled suite's mean spectrum against its target (`code-spectra`).
 
 use crate::FigureError;
 use slipload_opt::base::collapse::objective_text;
@@ -202,5 +203,55 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
         );
         put("records-scatter", scatter_csv(sc), fig)?;
     }
+    if !data.spectra.is_empty() {
+        let mut panel = Panel::new("period (s)", "pseudo-spectral acceleration, 5 % (g)")
+            .title("solid: the scaled suite's mean; dashed: the target; dotted: 90 % of it (ASCE 7-16 §16.2.3)")
+            .x_log()
+            .y_from_zero()
+            .legend(Legend::UpperRight);
+        for (k, (name, c)) in data.spectra.iter().enumerate() {
+            panel = panel
+                .series(
+                    Series::line(
+                        format!("{name} (× {:.3})", c.factor),
+                        c.periods_s.clone(),
+                        c.mean_sa_g.clone(),
+                    )
+                    .color(k),
+                )
+                .series(
+                    Series::line(
+                        format!("{name} target ({})", c.hazard.as_str()),
+                        c.periods_s.clone(),
+                        c.target_sa_g.clone(),
+                    )
+                    .color(k)
+                    .dashed(),
+                )
+                .series(
+                    Series::line(
+                        format!("{name} 90 %"),
+                        c.periods_s.clone(),
+                        c.target_sa_g.iter().map(|v| 0.9 * v).collect(),
+                    )
+                    .color(k)
+                    .dashed()
+                    .no_legend(),
+                );
+        }
+        let fig = Figure::new("Code-scaled suites against their target spectra").panel(panel);
+        put("code-spectra", spectra_csv(&data.spectra), fig)?;
+    }
     Ok(names)
+}
+
+/// `suite,hazard,factor,period_s,mean_sa_g,target_sa_g`, one line per suite and period.
+pub fn spectra_csv(spectra: &[(String, slipload_opt::model::study::CodeScaling)]) -> String {
+    let mut s = String::from("suite,hazard,factor,period_s,mean_sa_g,target_sa_g\n");
+    for (name, c) in spectra {
+        for ((t, m), g) in c.periods_s.iter().zip(&c.mean_sa_g).zip(&c.target_sa_g) {
+            let _ = writeln!(s, "{name},{},{},{t},{m},{g}", c.hazard.as_str(), c.factor);
+        }
+    }
+    s
 }

@@ -62,6 +62,7 @@ fn data() -> FigureData {
             design_values: vec![0.004, 0.008, 0.006],
         }),
         fidelity: "newmark, dt 0.01 s".into(),
+        spectra: vec![],
     }
 }
 
@@ -169,6 +170,7 @@ fn no_figure_data_writes_nothing() {
         profiles: vec![],
         scatter: None,
         fidelity: String::new(),
+        spectra: vec![],
     };
     assert!(study::write(&empty, &dir).unwrap().is_empty());
     assert!(!dir.exists() || files(&dir).is_empty());
@@ -223,4 +225,46 @@ fn an_svg_without_figure_metadata_is_refused() {
     let e = FigureMeta::from_svg("<svg><metadata id=\"slipload-figure\">{}</metadata></svg>")
         .unwrap_err();
     assert!(matches!(e, FigureError::MetadataJson(_)), "{e:?}");
+}
+
+#[test]
+fn a_code_scaled_suite_draws_its_mean_against_the_target() {
+    use slipload_opt::model::config::Hazard;
+    use slipload_opt::model::study::CodeScaling;
+    let dir = scratch("spectra");
+    let c = CodeScaling {
+        hazard: Hazard::MceR,
+        sds_g: 0.5,
+        sd1_g: 0.3,
+        tl_s: 8.0,
+        period_s: 1.2,
+        range_s: [0.24, 2.4],
+        factor: 1.04,
+        controlling_period_s: 0.675,
+        periods_s: vec![0.24, 0.675, 2.4],
+        mean_sa_g: vec![1.1, 0.81, 0.3],
+        target_sa_g: vec![1.2, 0.9, 0.19],
+    };
+    let data = FigureData {
+        map: None,
+        convergence: vec![],
+        profiles: vec![],
+        scatter: None,
+        fidelity: String::new(),
+        spectra: vec![("mce".into(), c)],
+    };
+    assert_eq!(
+        study::write(&data, &dir).unwrap(),
+        vec!["code-spectra".to_string()]
+    );
+    let csv = String::from_utf8(read(&dir.join("code-spectra.csv"))).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "suite,hazard,factor,period_s,mean_sa_g,target_sa_g"
+    );
+    assert_eq!(lines[2], "mce,mce_r,1.04,0.675,0.81,0.9");
+    assert_eq!(lines.len(), 4);
+    assert!(dir.join("code-spectra.svg").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

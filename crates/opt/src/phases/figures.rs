@@ -283,6 +283,9 @@ pub struct FigureData {
     pub scatter: Option<RecordScatter>,
     /// Method and time step of the profiles and the scatter, for the titles.
     pub fidelity: String,
+    /// The suites scaled to a code spectrum: each scaled mean spectrum against its target
+    /// (ASCE 7-16 §16.2.3).
+    pub spectra: Vec<(String, crate::model::study::CodeScaling)>,
 }
 
 impl FigureData {
@@ -325,7 +328,18 @@ impl FigureData {
                 )
             }),
             fidelity: format!("{} (sweep fidelity)", m.method.as_str()),
-        })
+            spectra: Vec::new(),
+        }
+        .with_spectra(&m.suites))
+    }
+
+    /// The figure data with the code scaling of `suites` (those scaled to a code spectrum).
+    pub fn with_spectra(mut self, suites: &[crate::model::study::SuiteInfo]) -> FigureData {
+        self.spectra = suites
+            .iter()
+            .filter_map(|s| s.code_scaling.clone().map(|c| (s.name.clone(), c)))
+            .collect();
+        self
     }
 
     /// An optimisation's figure data: the drift profiles of the design table's designs
@@ -359,6 +373,7 @@ impl FigureData {
                 .first()
                 .map(|(name, _)| RecordScatter::new(name, records, &runs[0], &runs[1])),
             fidelity: table.fidelity.clone(),
+            spectra: Vec::new(),
         }
     }
 }

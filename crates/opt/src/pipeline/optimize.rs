@@ -240,7 +240,8 @@ fn run_phases(
         &table_runs,
         convergence(out, sweep.manifest.tasks(), nr, refined.best_sweep.f)?,
         map,
-    );
+    )
+    .with_spectra(&study.suites);
     let report = StudyReport {
         study: study.name.clone(),
         objective: study.objective.label(),

@@ -81,7 +81,8 @@ const OUTPUT_FILES: [&str; 20] = [
 ];
 
 /// The study figures' names, each written as `.svg`, `.png` and `.csv`.
-pub const FIGURE_STEMS: [&str; 5] = [
+pub const FIGURE_STEMS: [&str; 6] = [
+    "code-spectra",
     "pareto-front",
     "drift-profiles",
     "records-scatter",

@@ -53,7 +53,14 @@ fn details(summary: &str, inner: &str, open: bool) -> String {
 fn table_order(kind: FolderKind) -> &'static [&'static str] {
     match kind {
         FolderKind::Optimize | FolderKind::Sweep => {
-            &["design-table.md", "pareto-table.md", "rank.md", "family.md"]
+            &[
+                "code-check.md",
+                "device-table.md",
+                "design-table.md",
+                "pareto-table.md",
+                "rank.md",
+                "family.md",
+            ]
         }
         _ => &[],
     }
@@ -77,7 +84,10 @@ fn is_summary(e: &Entry) -> bool {
 /// (`design-table.md`, `.csv`), a simulation's responses (the run section).
 fn shown_as_table(kind: FolderKind, e: &Entry) -> bool {
     match kind {
-        FolderKind::Optimize | FolderKind::Sweep => e.name == "design-table.json",
+        FolderKind::Optimize | FolderKind::Sweep => matches!(
+            e.name.as_str(),
+            "design-table.json" | "code-check.json" | "device-table.json"
+        ),
         FolderKind::Simulation => e.stem.starts_with("response"),
         _ => false,
     }
