@@ -225,12 +225,23 @@ pub fn rank(
     let runs = &runs[1..];
     let mut rng = SplitMix::new(seed);
     let mut out = Vec::new();
+    // the records of `idx` at every property case, case after case: the objective reads
+    // the study's case (the nominal, or the worst of the cases)
+    let n = study.records.len();
+    let cases = study.checks.cases().len();
     let value = |idx: &[usize], ranges: &[std::ops::Range<usize>]| -> Result<Vec<f64>, OptError> {
-        let b: Vec<RecordMetrics> = idx.iter().map(|&i| bare[i].clone()).collect();
+        let at = |r: &[RecordMetrics]| -> Vec<RecordMetrics> {
+            (0..cases)
+                .flat_map(|c| idx.iter().map(move |&i| c * n + i))
+                .map(|k| r[k].clone())
+                .collect()
+        };
+        let b = at(bare);
         runs.iter()
             .map(|r| {
-                let rows: Vec<RecordMetrics> = idx.iter().map(|&i| r[i].clone()).collect();
-                study.objective.value(&rows, Some(&b), ranges)
+                study
+                    .checks
+                    .objective(&study.objective, &at(r), Some(&b), ranges, idx.len())
             })
             .collect()
     };
