@@ -4,7 +4,7 @@
 //! benchmark study (`configs/study-benchmark.json`) on the embedded synthetic suite.
 
 use super::study_args::{PhaseBars, load_study};
-use super::study_text::{kn, on_bound_text, runs_text};
+use super::study_text::{kn, loads_text, on_bound_text, runs_text};
 use slipload_figures::StudyFigures;
 use slipload_opt::Study;
 use slipload_opt::base::collapse::{objective_text, reduction, reduction_text};
@@ -207,11 +207,18 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             }
         }
     );
-    outln!(
-        "optimal slip loads, floors {} (kN): {}",
-        floors.join(" / "),
-        kn(&r.optimum_loads)
-    );
+    if r.optimum_loads.len() <= 12 {
+        outln!(
+            "optimal slip loads, floors {} (kN): {}",
+            floors.join(" / "),
+            kn(&r.optimum_loads)
+        );
+    } else {
+        outln!(
+            "optimal slip loads: {}",
+            loads_text(study, &r.optimum_loads)
+        );
+    }
     if !report.on_bound.is_empty() {
         outln!(
             "on a bound of the design space (the optimum may lie beyond it: widen the bound to see): {}",
@@ -241,8 +248,8 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
                 .join(" / ")
         ),
         None => format!(
-            "building file's slip loads {} kN",
-            kn(&study.file_slip_loads())
+            "building file's slip loads {}",
+            loads_text(study, &study.file_slip_loads())
         ),
     };
     if r.target == RefineTarget::Violation {
@@ -274,8 +281,8 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     for f in &r.finalists {
         outln!(
-            "  {} kN: objective {} ({} {}){}",
-            kn(&f.slip_loads_n),
+            "  {}: objective {} ({} {}){}",
+            loads_text(study, &f.slip_loads_n),
             obj(f.f_check),
             if r.target == RefineTarget::Violation {
                 "sum of exceedances at the sweep's fidelity"
@@ -305,7 +312,7 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             }
         }
         None => {
-            if let Some(line) = super::pareto_summary::sweep_trade_off(report) {
+            if let Some(line) = super::pareto_summary::sweep_trade_off(study, report) {
                 outln!("{line}");
             }
         }

@@ -5,7 +5,7 @@
 //! front of drift against floor acceleration over the sweep's designs, which costs no
 //! simulation (and changes no file).
 
-use super::study_text::{kn, on_bound_text};
+use super::study_text::{kn, loads_text, on_bound_text};
 use slipload_opt::model::objectives::{ParetoMetric, ParetoObjective};
 use slipload_opt::phases::pareto::{ParetoReport, first_front, knee};
 use slipload_opt::phases::table::TableRow;
@@ -191,7 +191,7 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
 /// For a one-objective study: the front of (mean peak drift ratio, mean peak floor
 /// acceleration) over the sweep's sampled designs, from the responses the sweep already
 /// has, and its knee. `None` when the sweep's rows are missing or no design stands.
-pub fn sweep_trade_off(report: &StudyReport) -> Option<String> {
+pub fn sweep_trade_off(study: &Study, report: &StudyReport) -> Option<String> {
     let rows = report.sweep.rows.as_ref()?;
     let m = &report.sweep.manifest;
     let nr = m.records.len();
@@ -199,8 +199,10 @@ pub fn sweep_trade_off(report: &StudyReport) -> Option<String> {
     let mut labels = Vec::new();
     let mut loads = Vec::new();
     let mut points = Vec::new();
+    // the nominal properties: the first runs of each design
+    let records = m.record_count();
     for (d, design) in m.designs.iter().enumerate() {
-        let rec = &rows[d * nr..(d + 1) * nr];
+        let rec = &rows[d * nr..d * nr + records];
         if design.z.is_none() || rec.iter().any(RecordMetrics::collapsed) {
             continue;
         }
@@ -217,9 +219,9 @@ pub fn sweep_trade_off(report: &StudyReport) -> Option<String> {
     let k = front[knee(&fv)?];
     let say = |i: usize| {
         format!(
-            "{} ({} kN: drift {:.5}, floor acceleration {:.2} m/s²)",
+            "{} ({}: drift {:.5}, floor acceleration {:.2} m/s²)",
             labels[i],
-            kn(loads[i]),
+            loads_text(study, loads[i]),
             points[i][0],
             points[i][1]
         )

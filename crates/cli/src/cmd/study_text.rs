@@ -11,6 +11,33 @@ pub(crate) fn kn(v: &[f64]) -> String {
         .join(" / ")
 }
 
+/// A design's slip loads for a summary line: every load (`kn`) up to 12 dampers; for a
+/// taller frame a profile as its shape with its floor-1 and top loads, a free design as
+/// its range, with where the per-floor loads are written — never a line of 60 numbers.
+pub(crate) fn loads_text(study: &Study, loads: &[f64]) -> String {
+    if loads.len() <= 12 {
+        return format!("{} kN", kn(loads));
+    }
+    let floors = &study.space.dampers;
+    let (first, last) = (loads[0] / 1e3, loads[loads.len() - 1] / 1e3);
+    let (f0, fl) = (floors[0] + 1, floors[floors.len() - 1] + 1);
+    match &study.space.shape {
+        Some((shape, _)) => format!(
+            "{} profile: {first:.1} kN at floor {f0} … {last:.1} kN at floor {fl} ({} dampers; per floor in optimum.json)",
+            shape.as_str(),
+            loads.len()
+        ),
+        None => {
+            let lo = loads.iter().copied().fold(f64::INFINITY, f64::min) / 1e3;
+            let hi = loads.iter().copied().fold(0.0, f64::max) / 1e3;
+            format!(
+                "{} dampers, {lo:.1} to {hi:.1} kN ({first:.1} kN at floor {f0} … {last:.1} kN at floor {fl}; per floor in optimum.json)",
+                loads.len()
+            )
+        }
+    }
+}
+
 /// The runs of each design, in words: `10 records`, or `11 records × 3 property cases
 /// (nominal, lower, upper)` for a study with property bounds.
 pub(crate) fn runs_text(m: &slipload_opt::phases::sweep::Manifest) -> String {
