@@ -111,3 +111,49 @@ fn a_torn_header_is_a_fresh_journal() {
     std::fs::remove_dir_all(&dir).unwrap();
     std::fs::remove_dir_all(&fresh).unwrap();
 }
+
+/// Issue 40: a line pasted from another study's journal — the same design and record
+/// under another record scaling — is not trusted: each entry's checksum runs over the
+/// study's fingerprint, so the pasted line fails it and its task runs again, giving the
+/// bytes of a run that never saw it.
+#[test]
+fn a_line_pasted_from_another_study_is_run_again() {
+    let (da, db, dc) = (scratch("paste-a"), scratch("paste-b"), scratch("paste-c"));
+    let a = study_with(|_| {});
+    let b = study_with(|v| v["suites"][0]["synthetic"]["pga_g"] = 0.8.into());
+    sweep::run(&a, &open_folder(&da), Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&b, &open_folder(&db), Shard::ALL, false, &|| {}).unwrap();
+    sweep::run(&a, &open_folder(&dc), Shard::ALL, false, &|| {}).unwrap();
+    let ja = std::fs::read_to_string(da.join("journal.jsonl")).unwrap();
+    let jb = std::fs::read_to_string(db.join("journal.jsonl")).unwrap();
+    // the entry of design 2, record 0 in b's journal, in place of a's
+    let key = "\"design\":2,\"record\":0,";
+    let from_b = jb
+        .lines()
+        .find(|l| l.starts_with(&format!("{{{key}")))
+        .unwrap();
+    let pasted: String = ja
+        .lines()
+        .map(|l| {
+            if l.starts_with(&format!("{{{key}")) {
+                format!("{from_b}\n")
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    assert_ne!(pasted, ja, "the line was replaced");
+    std::fs::write(da.join("journal.jsonl"), pasted).unwrap();
+    let r = sweep::run(&a, &open_folder(&da), Shard::ALL, true, &|| {}).unwrap();
+    assert_eq!((r.distrusted, r.ran), (1, 1));
+    for f in ["responses.csv", "designs.csv"] {
+        assert_eq!(
+            std::fs::read(da.join(f)).unwrap(),
+            std::fs::read(dc.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    for d in [da, db, dc] {
+        std::fs::remove_dir_all(d).unwrap();
+    }
+}

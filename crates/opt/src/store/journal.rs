@@ -11,8 +11,12 @@
 //! record's name, checked against the manifest.
 //!
 //! Every line ends with its checksum: the line's JSON object written without it, then
-//! `,"crc32":"xxxxxxxx"}` — the CRC-32 (IEEE) of that object's bytes, in hex. A line
-//! whose checksum fails (a flipped bit, a line spliced from another file) is not
+//! `,"crc32":"xxxxxxxx"}` — the CRC-32 (IEEE) of that object's bytes, in hex; an entry's
+//! CRC runs over the study's fingerprint hash (the header's) before the object's bytes,
+//! so that each line identifies the study that wrote it: a line pasted from another
+//! study's journal (the same design and record under another record scaling, say) fails
+//! its checksum here. A line whose checksum fails (a flipped bit, a line spliced from
+//! another file or another study) is not
 //! trusted: it is skipped and its task runs again (`--resume` recomputes it). A line
 //! without a checksum, as slipload wrote before checksums, is treated the same way: a
 //! journal of an older slipload is continued by recomputing its tasks, never by trusting
@@ -70,13 +74,15 @@ pub struct Appender {
     path: PathBuf,
     writer: Mutex<LineWriter<File>>,
     distrusted: usize,
+    /// The study's fingerprint hash each entry's checksum runs over.
+    seed: String,
 }
 
 impl Appender {
     /// Appends one value as one line with its checksum ([`checked_line`]), written whole
     /// before the call returns.
     pub fn append<T: Serialize>(&self, value: &T) -> Result<(), OptError> {
-        let mut line = checked_line(value).map_err(|source| OptError::Json {
+        let mut line = seeded_line(value, &self.seed).map_err(|source| OptError::Json {
             path: self.path.clone(),
             source,
         })?;
@@ -132,6 +138,18 @@ pub fn checked_line<T: Serialize>(value: &T) -> Result<String, serde_json::Error
     Ok(format!("{open},\"crc32\":\"{crc:08x}\"}}"))
 }
 
+/// An entry of the study of fingerprint hash `seed` as a journal line: as
+/// [`checked_line`], with the CRC-32 over `seed`'s bytes and then the object's, so the
+/// line checks only in a journal of that study.
+pub fn seeded_line<T: Serialize>(value: &T, seed: &str) -> Result<String, serde_json::Error> {
+    let body = serde_json::to_string(value)?;
+    let mut bytes = seed.as_bytes().to_vec();
+    bytes.extend_from_slice(body.as_bytes());
+    let crc = crc32(&bytes);
+    let open = body.strip_suffix('}').unwrap_or(&body);
+    Ok(format!("{open},\"crc32\":\"{crc:08x}\"}}"))
+}
+
 /// What one complete journal line holds.
 enum Line<T> {
     /// Its checksum holds: the value.
@@ -142,7 +160,7 @@ enum Line<T> {
     NotEntry,
 }
 
-fn check_line<T: serde::de::DeserializeOwned>(line: &[u8]) -> Line<T> {
+fn check_line<T: serde::de::DeserializeOwned>(line: &[u8], seed: &str) -> Line<T> {
     let parse = |b: &[u8]| {
         std::str::from_utf8(b)
             .ok()
@@ -163,7 +181,9 @@ fn check_line<T: serde::de::DeserializeOwned>(line: &[u8]) -> Line<T> {
         .and_then(|h| u32::from_str_radix(h, 16).ok());
     let mut body = line[..at].to_vec();
     body.push(b'}');
-    if want != Some(crc32(&body)) {
+    let mut seeded = seed.as_bytes().to_vec();
+    seeded.extend_from_slice(&body);
+    if want != Some(crc32(&seeded)) {
         return Line::Untrusted;
     }
     match parse(&body) {
@@ -249,7 +269,7 @@ fn read_journal_counted<T: serde::de::DeserializeOwned>(
         ));
     };
     let first = &text[..nl];
-    let header: Header = match check_line::<Header>(first) {
+    let header: Header = match check_line::<Header>(first, "") {
         Line::Trusted(h) => h,
         // a header written before line checksums: it names the study all the same
         Line::Untrusted if !first.windows(CRC_TAG.len()).any(|w| w == CRC_TAG) => {
@@ -262,10 +282,20 @@ fn read_journal_counted<T: serde::de::DeserializeOwned>(
             })?
         }
         Line::Untrusted => {
+            // an entry where the header belongs (its checksum runs over a study's
+            // fingerprint, so it fails as a header's): no header at all
+            let header_like = std::str::from_utf8(first)
+                .ok()
+                .and_then(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+                .is_some_and(|v| v.get("journal").is_some());
             return Err(refuse(
                 path,
                 1,
-                "has a damaged first line (its checksum fails)".into(),
+                if header_like {
+                    "has a damaged first line (its checksum fails)".into()
+                } else {
+                    "has no study fingerprint on its first line (written by an older slipload, or not a journal)".into()
+                },
             ));
         }
         Line::NotEntry => {
@@ -276,7 +306,8 @@ fn read_journal_counted<T: serde::de::DeserializeOwned>(
             ));
         }
     };
-    let (entries, good, distrusted) = parse_lines::<T>(&text[nl + 1..], path, 1)?;
+    let (entries, good, distrusted) =
+        parse_lines::<T>(&text[nl + 1..], path, 1, &header.fingerprint.hash)?;
     Ok(Some((header, entries, good + nl as u64 + 1, distrusted)))
 }
 
@@ -293,7 +324,7 @@ pub fn read_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<(Vec<T>
             });
         }
     };
-    parse_lines(&text, path, 0).map(|(e, good, _)| (e, good))
+    parse_lines(&text, path, 0, "").map(|(e, good, _)| (e, good))
 }
 
 /// Entries of a journal with a header (the header skipped); none for a missing file.
@@ -303,11 +334,13 @@ pub fn read_entries<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Vec<T
         .unwrap_or_default())
 }
 
-/// One JSON `T` per line of `text`, whose first line is line `skipped + 1` of the file.
+/// One JSON `T` per line of `text`, whose first line is line `skipped + 1` of the file,
+/// each checked against `seed` ([`seeded_line`]).
 fn parse_lines<T: serde::de::DeserializeOwned>(
     text: &[u8],
     path: &Path,
     skipped: usize,
+    seed: &str,
 ) -> Result<(Vec<T>, u64, usize), OptError> {
     let mut distrusted = 0;
     let mut entries = Vec::new();
@@ -324,7 +357,7 @@ fn parse_lines<T: serde::de::DeserializeOwned>(
             Some(e) => (&text[pos..e], e + 1, true),
             None => (&text[pos..], text.len(), false),
         };
-        match check_line::<T>(line) {
+        match check_line::<T>(line, seed) {
             Line::Trusted(e) if complete => {
                 entries.push(e);
                 good = next as u64;
@@ -414,12 +447,24 @@ pub fn open_journal<T: serde::de::DeserializeOwned>(
         path: path.to_path_buf(),
         writer: Mutex::new(LineWriter::new(file)),
         distrusted,
+        seed: fp.hash.clone(),
     };
     if good == 0 {
-        appender.append(&Header {
+        // the header's own checksum is unseeded: it is what names the study
+        let mut line = checked_line(&Header {
             journal: kind.to_string(),
             fingerprint: fp.clone(),
+        })
+        .map_err(|source| OptError::Json {
+            path: path.to_path_buf(),
+            source,
         })?;
+        line.push('\n');
+        let mut w = appender
+            .writer
+            .lock()
+            .map_err(|_| OptError::Shard("journal lock poisoned by a failed worker".into()))?;
+        w.write_all(line.as_bytes()).map_err(io)?;
     }
     Ok((appender, entries))
 }
@@ -433,7 +478,7 @@ pub fn journal_text<T: Serialize>(kind: &str, fp: &Fingerprint, values: &[T]) ->
     let mut s = checked_line(&header).expect("a header serialises");
     s.push('\n');
     for v in values {
-        s.push_str(&checked_line(v).expect("an entry serialises"));
+        s.push_str(&seeded_line(v, &fp.hash).expect("an entry serialises"));
         s.push('\n');
     }
     s
