@@ -118,3 +118,55 @@ fn a_saved_refiner_state_continues_to_the_same_answer() {
     }
     assert_eq!(c, a);
 }
+
+/// Issue 40: the refiners give the same optimum when the objective is multiplied by a
+/// positive constant (a term weighted 1e-7 instead of 1): their tests are relative to
+/// the objective's scale, and the trust region's model is solved at unit scale.
+#[test]
+fn every_refiner_is_blind_to_the_objective_scale() {
+    let sp = space();
+    let cfg = RefineConfig::default();
+    let starts = [
+        [0.5, 0.1, 0.1],
+        [0.2, 0.2, 0.3],
+        [0.9, 0.4, 0.1],
+        [0.1, 0.05, 0.5],
+    ];
+    for method in [
+        RefineMethod::TrustRegion,
+        RefineMethod::NelderMead,
+        RefineMethod::Random,
+    ] {
+        let at = |scale: f64| {
+            let g = move |z: &[f64]| scale * f(z);
+            let known: Vec<Point> = starts
+                .iter()
+                .map(|z| Point {
+                    z: z.to_vec(),
+                    f: g(z),
+                })
+                .collect();
+            let start = known[0].clone();
+            let oracle = move |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| g(z)).collect());
+            let mut ev = Evaluations::new(Box::new(oracle), known);
+            refine(method, &sp, &start, &mut ev, &cfg, 60).unwrap()
+        };
+        let (one, tiny) = (at(1.0), at(1e-7));
+        // the same path up to the round-off of scaling: the same optimum to well within
+        // the refiner's tolerance (1e-3 of the range)
+        for (a, b) in one.z.iter().zip(&tiny.z) {
+            assert!(
+                (a - b).abs() < 1e-6,
+                "{method:?}: {:?} vs {:?}",
+                one.z,
+                tiny.z
+            );
+        }
+        assert!(
+            (tiny.f / 1e-7 - one.f).abs() <= 1e-9 * one.f.abs().max(1e-3),
+            "{method:?}: {} vs {}",
+            tiny.f / 1e-7,
+            one.f
+        );
+    }
+}

@@ -189,6 +189,13 @@ impl TrustRegion {
             .collect();
         let x = DMatrix::from_fn(rows.len(), p, |i, j| rows[i][j]);
         let y = DVector::from_iterator(pts.len(), pts.iter().map(|q| q.f - c.f));
+        // the model at unit scale: the QP's tolerances are absolute, so an objective
+        // weighted 1e-7 would otherwise be solved to a different point
+        let scale = match y.amax() {
+            s if s > 0.0 && s.is_finite() => s,
+            _ => 1.0,
+        };
+        let y = y / scale;
         let coef = x
             .svd(true, true)
             .solve(&y, 1e-10)
@@ -217,7 +224,7 @@ impl TrustRegion {
             return Ok(());
         };
         let sv = DVector::from_column_slice(&s);
-        let pred = -(DVector::from_column_slice(&g).dot(&sv) + 0.5 * sv.dot(&(&h * &sv)));
+        let pred = -(DVector::from_column_slice(&g).dot(&sv) + 0.5 * sv.dot(&(&h * &sv))) * scale;
         let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + *delta * s).collect();
         clamp01(&mut z);
         let step = dist_inf(&z, &c.z);
