@@ -189,7 +189,7 @@ pub fn synthetic_suite(
     target: SuiteTarget,
 ) -> Result<Vec<Record>, MotionError> {
     use crate::limits;
-    limits::check_count("synthetic records", count, limits::MAX_SUITE_RECORDS)?;
+    limits::check_suite_count(count)?;
     params.validate()?;
     let samples = count as f64 * ((params.duration_s / params.dt_s).round() + 1.0);
     if samples > limits::MAX_SUITE_SAMPLES && !limits::allow_large() {
