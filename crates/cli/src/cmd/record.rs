@@ -464,10 +464,9 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     // the step the readers accept, so that what is written here is read back
     slipload_motion::check_record_dt("--dt", args.dt)?;
     let count = args.count.unwrap_or(1);
-    if count == 0 {
-        bail!("--count must be at least 1");
-    }
     crate::args::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
+    slipload_motion::limits::check_suite_count(count)
+        .with_context(|| format!("--count {count}"))?;
     if args.count.is_some() {
         crate::args::output_folder("--out", &args.out)?;
     }

@@ -85,11 +85,8 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
     })?;
     let a = parse_time(a).map_err(|e| format!("window start: {e}"))?;
     let b = parse_time(b).map_err(|e| format!("window duration: {e}"))?;
-    if !(a >= 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-        return Err(format!(
-            "window needs START >= 0 and DURATION > 0, got {a},{b}"
-        ));
-    }
+    // the library's rule, the Python package's too
+    slipload_sim::scene::check_window(a, b, "window").map_err(|e| e.to_string())?;
     Ok((a, b))
 }
 
