@@ -196,6 +196,7 @@ impl PyScene {
             let (over, given) =
                 overrides(record, units, scale_pga_g, window, method, dt, duration)?;
             PyScene::from_text(text, PathBuf::from(name), over, given)
+                .map_err(|e| crate::json_path::located(e, text, name))
         })
     }
 

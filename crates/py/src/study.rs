@@ -49,7 +49,11 @@ impl PyStudy {
     fn from_json(text: &str, name: &str) -> PyResult<PyStudy> {
         guarded(|| {
             Ok(PyStudy {
-                inner: Arc::new(Study::from_json(text, Path::new(name)).py()?),
+                inner: Arc::new(
+                    Study::from_json(text, Path::new(name))
+                        .py()
+                        .map_err(|e| crate::json_path::located(e, text, name))?,
+                ),
             })
         })
     }

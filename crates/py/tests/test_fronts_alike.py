@@ -105,3 +105,29 @@ def test_collapsed_designs_rank_last():
     # the knee stays a front's, where a collapsed design is no member
     with pytest.raises(slipload.InputError, match="finite"):
         slipload.knee(points)
+
+
+def test_an_error_in_a_dict_names_the_field_path_not_a_position_in_internal_json():
+    import json
+
+    building = json.loads((ROOT / "configs" / "benchmark-3story.json").read_text())
+    building["dissipators"][1]["floor"] = "second"
+    with pytest.raises(slipload.InputError) as e:
+        slipload.load_scene(building, duration=1.0)
+    message = str(e.value)
+    assert "field `dissipators[1].floor`" in message, message
+    assert "line 1 column" not in message, message
+    scene = {"building": building, "excitation": {"record": {"file": 3}}}
+    building["dissipators"][1]["floor"] = 2
+    with pytest.raises(slipload.InputError, match=r"field `excitation\.record\.file`") as e:
+        slipload.load_scene(scene, duration=1.0)
+    assert "column" not in str(e.value)
+    study = json.loads((ROOT / "configs" / "study-slurm-check.json").read_text())
+    study["sweep"]["points"] = "many"
+    with pytest.raises(slipload.InputError, match=r"study \(a dict\): field `sweep\.points`") as e:
+        slipload.load_study(study)
+    assert "column" not in str(e.value)
+    # a JSON text of the caller's keeps its position, with the field beside it
+    with pytest.raises(slipload.InputError) as e:
+        slipload.Scene.from_json('{\n "floor_masses": [1e5],\n "storey_stiffness": ["x"]}')
+    assert "line 3 column" in str(e.value) and "field `storey_stiffness[0]`" in str(e.value)
