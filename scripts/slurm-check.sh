@@ -19,6 +19,15 @@
 # daemons use their own munge socket and key, and the clients find the cluster through
 # SLURM_CONF.
 #
+#   scripts/slurm-check.sh --fake-sbatch        (anyone, no Slurm: only the checks below)
+#
+# Before any of that (and alone with --fake-sbatch) it checks slurm-sweep.sh's job
+# scripts with a fake sbatch that records what it is given and a fake slipload that
+# records its arguments: extra arguments are refused with the usage; paths with spaces,
+# non-ASCII letters and quotes reach slipload intact when /bin/sh runs the job scripts;
+# 1000 shards keep the merge job's submission small (its shard list is a file) and the
+# merge job still names every shard.
+#
 # Environment: SLURM_CHECK_TIMEOUT (seconds the jobs may take, default 300),
 # SLURM_CHECK_PORT (slurmctld's port, default 16817; slurmd takes the next one),
 # SLURM_CHECK_KEEP=1 keeps the temporary folder.
@@ -31,6 +40,87 @@ fail() {
     echo "slurm-check: $*" >&2
     exit 1
 }
+
+# slurm-sweep.sh's job scripts, run by /bin/sh as Slurm runs them, with fake sbatch and
+# slipload programs: no cluster, no build, a few seconds.
+fake_sbatch_checks() {
+    local fake dir study_copy out_dir args n want got wrap merge_wrap i
+    fake=$(mktemp -d /tmp/slurm-fake.XXXXXX)
+    mkdir -p "$fake/bin"
+    # sbatch: each call's arguments (one a line) and its --wrap script, a job id back
+    cat >"$fake/bin/sbatch" <<'EOS'
+#!/usr/bin/env bash
+n=$(($(cat "$FAKE_SBATCH_DIR/count" 2>/dev/null || echo 0) + 1))
+echo "$n" >"$FAKE_SBATCH_DIR/count"
+printf '%s\n' "$@" >"$FAKE_SBATCH_DIR/call-$n.args"
+for a in "$@"; do
+    case $a in --wrap=*) printf '%s' "${a#--wrap=}" >"$FAKE_SBATCH_DIR/call-$n.sh" ;; esac
+done
+echo $((100 + n))
+EOS
+    # slipload: its arguments, one a line
+    cat >"$fake/bin/slipload" <<'EOS'
+#!/usr/bin/env bash
+printf '%s\n' "$@" >"$FAKE_SBATCH_DIR/slipload.args"
+EOS
+    chmod 755 "$fake/bin/sbatch" "$fake/bin/slipload"
+    export FAKE_SBATCH_DIR=$fake
+    run_sweep() {
+        rm -f "$fake"/count "$fake"/call-* "$fake"/slipload.args
+        # the C locale, as on many clusters: there bash's printf %q writes é as $'\303\251',
+        # which /bin/sh cannot read
+        LC_ALL=C PATH=$fake/bin:$PATH SLIPLOAD_BIN=$fake/bin/slipload SLIPLOAD_THREADS=1 \
+            "$repo/scripts/slurm-sweep.sh" "$@"
+    }
+
+    echo "== slurm-check: extra arguments are refused with the usage"
+    if run_sweep a.json out 3 extra 2>"$fake/err"; then
+        fail "slurm-sweep.sh took a fourth argument"
+    fi
+    grep -q 'usage: slurm-sweep.sh STUDY OUT_DIR \[SHARDS\]' "$fake/err" || fail "no usage in: $(cat "$fake/err")"
+    [[ ! -e $fake/count ]] || fail "slurm-sweep.sh submitted a job on bad arguments"
+
+    echo "== slurm-check: paths with spaces, non-ASCII letters and quotes"
+    dir="$fake/répertoire d'essai \$HOME \`x\`"
+    mkdir -p "$dir"
+    study_copy="$dir/étude n°1.json"
+    cp "$repo/configs/study-slurm-check.json" "$study_copy"
+    out_dir="$dir/sortie été"
+    run_sweep "$study_copy" "$out_dir" 3 >/dev/null
+    [[ $(cat "$fake/count") == 2 ]] || fail "expected 2 submissions (array, merge), got $(cat "$fake/count")"
+    SLURM_ARRAY_TASK_ID=2 /bin/sh "$fake/call-1.sh" || fail "/bin/sh refused the array job's script: $(cat "$fake/call-1.sh")"
+    want=$(printf '%s\n' --threads 1 sweep "$study_copy" --out "$out_dir/shard-2" --shard auto --resume --quiet)
+    got=$(cat "$fake/slipload.args")
+    [[ $got == "$want" ]] || fail "the array job ran slipload with"$'\n'"$got"$'\n'"not"$'\n'"$want"
+    /bin/sh "$fake/call-2.sh" || fail "/bin/sh refused the merge job's script: $(cat "$fake/call-2.sh")"
+    want=$(printf '%s\n' merge "$out_dir/shard-0" "$out_dir/shard-1" "$out_dir/shard-2" --out "$out_dir/merged")
+    got=$(cat "$fake/slipload.args")
+    [[ $got == "$want" ]] || fail "the merge job ran slipload with"$'\n'"$got"$'\n'"not"$'\n'"$want"
+
+    echo "== slurm-check: 1000 shards"
+    run_sweep "$study_copy" "$out_dir" 1000 >/dev/null
+    grep -qx -- '--array=0-999' "$fake/call-1.args" || fail "the array is not 0-999: $(cat "$fake/call-1.args")"
+    n=$(wc -c <"$fake/call-2.args")
+    ((n < 4096)) || fail "the merge job's submission takes $n bytes of arguments for 1000 shards"
+    /bin/sh "$fake/call-2.sh" || fail "/bin/sh refused the merge job's script"
+    want=$( (
+        echo merge
+        for i in $(seq 0 999); do echo "$out_dir/shard-$i"; done
+        printf '%s\n' --out "$out_dir/merged"
+    ))
+    got=$(cat "$fake/slipload.args")
+    [[ $got == "$want" ]] || fail "the merge job of 1000 shards did not name every shard in order"
+    unset FAKE_SBATCH_DIR
+    rm -rf "$fake"
+    echo "fake sbatch checks: ok"
+}
+if [[ ${1:-} == --fake-sbatch ]]; then
+    (($# == 1)) || fail "--fake-sbatch takes no other argument"
+    fake_sbatch_checks
+    exit 0
+fi
+(($# <= 2)) || fail "expected at most STUDY and SHARDS, got $# arguments"
+fake_sbatch_checks
 
 study=${1:-configs/study-slurm-check.json}
 shards=${2:-3}

@@ -17,15 +17,15 @@ mod figures;
 mod html;
 mod output;
 
-use clap::Parser;
-
 /// Choose friction-damper slip loads for buildings.
-#[derive(Debug, Parser)]
+#[derive(Debug, clap::Parser)]
 #[command(version, about, long_about = None)]
 struct Cli {
-    /// Worker threads of the parallel sweeps of sweep, optimize, rank and table (default:
-    /// all cores); the other commands run one simulation at a time
-    #[arg(long, global = true)]
+    /// Worker threads: listed in the help of the commands that use them (sweep,
+    /// optimize, rank, table — `args::ThreadsArg`); taken, unlisted, before any command
+    /// and after the others, which run one simulation at a time
+    #[arg(long, global = true, hide = true, value_name = "N",
+          value_parser = args::thread_count, allow_hyphen_values = true)]
     threads: Option<usize>,
     /// No progress: hides progress bars and accuracy's per-scene lines (summaries, results
     /// and errors still print)
@@ -39,11 +39,30 @@ struct Cli {
     command: cmd::Command,
 }
 
-/// Most worker threads without `--allow-large`: 8 per core, at least 256 (more only adds
-/// overhead; 100 000 threads take minutes to start).
-fn max_threads() -> usize {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    (8 * cores).max(256)
+impl Cli {
+    /// The program's arguments as clap sees them: every numeric flag takes a negative
+    /// number as its value (`args::negative_numbers_as_values`), for its check to refuse
+    /// it by name.
+    fn command() -> clap::Command {
+        args::negative_numbers_as_values(<Cli as clap::CommandFactory>::command())
+    }
+
+    /// Parses `args` (the program's name first) with [`Cli::command`].
+    fn try_parse_from<I, T>(args: I) -> Result<Cli, clap::Error>
+    where
+        I: IntoIterator<Item = T>,
+        T: Into<std::ffi::OsString> + Clone,
+    {
+        let mut cmd = Cli::command();
+        let matches = cmd.try_get_matches_from_mut(args).map_err(args::clearer)?;
+        <Cli as clap::FromArgMatches>::from_arg_matches(&matches).map_err(|e| e.format(&mut cmd))
+    }
+
+    /// The worker threads asked for: the command's own `--threads`, else the one given
+    /// before the command's name.
+    fn threads(&self) -> Option<usize> {
+        self.command.threads().or(self.threads)
+    }
 }
 
 /// An error and its causes on one line, each cause once: a cause whose text the message
@@ -65,18 +84,17 @@ fn message(e: &anyhow::Error) -> String {
 }
 
 fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse_from(std::env::args_os()) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
     output::set_quiet(cli.quiet);
     if cli.allow_large {
         slipload_sim::limits::set_allow_large(true);
     }
-    if let Some(n) = cli.threads {
-        let limit = max_threads();
-        if n > limit && !slipload_sim::limits::allow_large() {
-            eprintln!(
-                "error: --threads {n}: more than {limit} worker threads ({} cores here) only adds overhead and takes long to start; give at most {limit}, or pass --allow-large",
-                std::thread::available_parallelism().map_or(1, |c| c.get())
-            );
+    if let Some(n) = cli.threads() {
+        if let Err(e) = slipload_sim::limits::check_threads(n) {
+            eprintln!("error: --threads {n}: {e}");
             return std::process::ExitCode::FAILURE;
         }
         if let Err(e) = rayon::ThreadPoolBuilder::new()
@@ -103,7 +121,6 @@ fn main() -> std::process::ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::CommandFactory;
 
     #[test]
     fn cli_is_well_formed() {

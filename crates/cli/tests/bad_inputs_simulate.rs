@@ -148,7 +148,7 @@ fn negative_numbers_reach_validation() {
         ("--dt", "-0.001", "time step -0.001 s must be positive"),
         ("--duration", "-2", "must be positive, got -2"),
         ("--scale-pga-g", "-0.5", "-0.5"),
-        ("--window", "-1,2", "START >= 0"),
+        ("--window", "-1,2", "a start >= 0 s"),
     ] {
         let mut args = vec!["simulate", B, flag, value];
         match flag {

@@ -80,9 +80,9 @@ fn a_synthetic_record_shorter_than_its_step_names_duration_and_step() {
             "--out",
             s(&out),
             "--dt",
-            "5",
+            "0.5",
             "--duration",
-            "1",
+            "0.1",
         ],
         &["duration / time step", "0.2", "must span one time step"],
     );

@@ -148,7 +148,7 @@ fn a_step_that_does_not_divide_the_duration_is_noted() {
     ]);
     let err = stderr(&o);
     assert!(
-        err.contains("note: dt = 0.003 s does not divide the duration 1 s: the run takes 334 steps and ends at t = 1.002 s, 0.002 s past it"),
+        err.contains("warning: dt = 0.003 s does not divide the duration 1 s: the run takes 334 steps and ends at t = 1.002 s, 0.002 s past it"),
         "{err}"
     );
     // the same in JSON: the note is on stderr, stdout stays the output contract

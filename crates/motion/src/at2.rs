@@ -89,26 +89,7 @@ fn read_at2(text: &str, name: &str, given: Option<Units>) -> Result<Record, Moti
             g
         }
     };
-    if !(header.dt_s.is_finite() && header.dt_s > 0.0) {
-        return Err(MotionError::BadTimeStep {
-            file: name.to_string(),
-            dt_s: header.dt_s,
-        });
-    }
-    if header.dt_s < crate::MIN_RECORD_DT_S {
-        return Err(MotionError::ImplausibleTimeStep {
-            file: name.to_string(),
-            dt_s: header.dt_s,
-            min_s: crate::MIN_RECORD_DT_S,
-        });
-    }
-    if header.dt_s > crate::MAX_RECORD_DT_S {
-        return Err(MotionError::ImplausibleLongTimeStep {
-            file: name.to_string(),
-            dt_s: header.dt_s,
-            max_s: crate::MAX_RECORD_DT_S,
-        });
-    }
+    crate::record::check_record_dt(name, header.dt_s)?;
     if header.npts == 0 {
         return Err(MotionError::Empty {
             file: name.to_string(),

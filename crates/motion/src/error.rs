@@ -82,7 +82,7 @@ pub enum MotionError {
     },
     /// A file's sample interval is longer than any accelerograph's.
     #[error(
-        "{file}: sample interval {} s is longer than any accelerograph's (at most {max_s} s; records are sampled at 50-1000 Hz): check the header's or time column's units", readable(*dt_s)
+        "{file}: sample interval {} s is longer than any accelerograph's (at most {max_s} s; records are sampled at 50-1000 Hz): check the units of the step (a header's, a time column's or one given)", readable(*dt_s)
     )]
     ImplausibleLongTimeStep {
         /// The file or record name.
@@ -177,7 +177,7 @@ pub enum MotionError {
     },
     /// A file's sample interval is shorter than any accelerograph's.
     #[error(
-        "{file}: sample interval {} s is shorter than any accelerograph's ({min_s} s, i.e. more than a megahertz): check the header's or time column's units", readable(*dt_s)
+        "{file}: sample interval {} s is shorter than any accelerograph's ({min_s} s, i.e. more than a megahertz): check the units of the step (a header's, a time column's or one given)", readable(*dt_s)
     )]
     ImplausibleTimeStep {
         /// The file or record name.

@@ -47,7 +47,8 @@ pub use intensity::{
 };
 pub use reader::{RecordFormat, read_record};
 pub use record::{
-    MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, max_abs_accel_m_s2,
+    MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, check_record_dt,
+    max_abs_accel_m_s2,
 };
 pub use scaling::{
     ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,

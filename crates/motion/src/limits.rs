@@ -142,6 +142,21 @@ pub fn check_count(what: &str, count: usize, limit: usize) -> Result<(), MotionE
     })
 }
 
+/// Checks the number of records of a generated suite, the one rule of every front
+/// (`record synth --count`, Python's `synthetic_suite(count=…)`): at least 1
+/// ([`MotionError::InvalidArgument`]: a suite of none is a typo, not a study) and at most
+/// [`MAX_SUITE_RECORDS`] unless the limits are lifted ([`MotionError::TooMany`]).
+pub fn check_suite_count(count: usize) -> Result<(), MotionError> {
+    if count == 0 {
+        return Err(MotionError::InvalidArgument {
+            what: "number of records",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    check_count("synthetic records", count, MAX_SUITE_RECORDS)
+}
+
 /// A number of bytes for people (KiB … EiB).
 pub fn bytes(b: f64) -> String {
     let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];

@@ -28,6 +28,37 @@ pub const MIN_RECORD_DT_S: f64 = 1e-6;
 /// units slip or a corrupt header.
 pub const MAX_RECORD_DT_S: f64 = 1.0;
 
+/// Checks a record's sample interval `dt_s`, s: finite and positive
+/// ([`MotionError::BadTimeStep`]), and within [`MIN_RECORD_DT_S`] …
+/// [`MAX_RECORD_DT_S`] ([`MotionError::ImplausibleTimeStep`],
+/// [`MotionError::ImplausibleLongTimeStep`]). `name` names the record, file or argument in
+/// the error. The one rule for every record whatever its origin — a file's header or time
+/// column, an array, a synthetic record's step — so that what one front writes or builds
+/// the others read.
+pub fn check_record_dt(name: &str, dt_s: f64) -> Result<(), MotionError> {
+    if !(dt_s.is_finite() && dt_s > 0.0) {
+        return Err(MotionError::BadTimeStep {
+            file: name.to_string(),
+            dt_s,
+        });
+    }
+    if dt_s < MIN_RECORD_DT_S {
+        return Err(MotionError::ImplausibleTimeStep {
+            file: name.to_string(),
+            dt_s,
+            min_s: MIN_RECORD_DT_S,
+        });
+    }
+    if dt_s > MAX_RECORD_DT_S {
+        return Err(MotionError::ImplausibleLongTimeStep {
+            file: name.to_string(),
+            dt_s,
+            max_s: MAX_RECORD_DT_S,
+        });
+    }
+    Ok(())
+}
+
 /// [`MAX_ABS_ACCEL_G`] in m/s².
 pub fn max_abs_accel_m_s2() -> f64 {
     MAX_ABS_ACCEL_G * G

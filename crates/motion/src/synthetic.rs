@@ -90,7 +90,8 @@ pub const DEFAULT_SUITE_PGA_G: f64 = 0.4;
 const MAX_SAMPLES: f64 = 1e8;
 
 impl Synthetic {
-    /// Checks every parameter; [`MotionError::InvalidArgument`] names the bad one.
+    /// Checks every parameter; [`MotionError::InvalidArgument`] names the bad one, and the
+    /// time step is held to the readers' band ([`crate::check_record_dt`]).
     pub fn validate(&self) -> Result<(), MotionError> {
         let positive = |what, value: f64| {
             if value.is_finite() && value > 0.0 {
@@ -103,7 +104,8 @@ impl Synthetic {
                 })
             }
         };
-        positive("time step (s)", self.dt_s)?;
+        // the step of every record, whatever made it: what is written here is read back
+        crate::record::check_record_dt("synthetic record", self.dt_s)?;
         positive("duration (s)", self.duration_s)?;
         positive("ground frequency (rad/s)", self.ground_freq_rad_s)?;
         positive("ground damping ratio", self.ground_damping)?;
@@ -187,7 +189,7 @@ pub fn synthetic_suite(
     target: SuiteTarget,
 ) -> Result<Vec<Record>, MotionError> {
     use crate::limits;
-    limits::check_count("synthetic records", count, limits::MAX_SUITE_RECORDS)?;
+    limits::check_suite_count(count)?;
     params.validate()?;
     let samples = count as f64 * ((params.duration_s / params.dt_s).round() + 1.0);
     if samples > limits::MAX_SUITE_SAMPLES && !limits::allow_large() {

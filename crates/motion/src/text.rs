@@ -178,20 +178,7 @@ pub fn parse_text(
         notes.push(format!("two columns, dt = {dt} s"));
         dt
     };
-    if dt.is_finite() && dt > 0.0 && dt < crate::MIN_RECORD_DT_S {
-        return Err(MotionError::ImplausibleTimeStep {
-            file: file(),
-            dt_s: dt,
-            min_s: crate::MIN_RECORD_DT_S,
-        });
-    }
-    if dt > crate::MAX_RECORD_DT_S {
-        return Err(MotionError::ImplausibleLongTimeStep {
-            file: file(),
-            dt_s: dt,
-            max_s: crate::MAX_RECORD_DT_S,
-        });
-    }
+    crate::record::check_record_dt(&file(), dt)?;
     if from_header {
         notes.push(format!(
             "values in {units} (as the header says) converted to m/s2"

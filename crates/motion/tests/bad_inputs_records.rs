@@ -278,3 +278,40 @@ fn spectrum_settings_beyond_any_structure_are_refused_in_readable_numbers() {
     // the band's ends are still answers
     assert!(slipload_motion::Spectrum::compute(&r, 10.0, &[1e4]).is_ok());
 }
+
+/// Issue 40 §4: a synthetic record's step is held to the band the readers hold a file's
+/// step to, so that `record synth` never writes a file `record info` refuses.
+#[test]
+fn a_synthetic_step_outside_the_readers_band_is_refused_as_the_readers_refuse_it() {
+    use slipload_motion::{
+        MAX_RECORD_DT_S, MIN_RECORD_DT_S, Synthetic, check_record_dt, format_csv,
+    };
+    for dt in [5.0, 2.0 * MAX_RECORD_DT_S, MIN_RECORD_DT_S / 2.0] {
+        let p = Synthetic {
+            dt_s: dt,
+            duration_s: 20.0,
+            ..Synthetic::default()
+        };
+        let e = p.validate().unwrap_err();
+        assert_eq!(
+            std::mem::discriminant(&e),
+            std::mem::discriminant(&check_record_dt("synthetic record", dt).unwrap_err()),
+            "{e}"
+        );
+        assert!(e.to_string().contains("accelerograph"), "{e}");
+    }
+    // at the band's ends a synthetic record is written and read back
+    for dt in [MAX_RECORD_DT_S, 1e-3] {
+        let p = Synthetic {
+            dt_s: dt,
+            duration_s: 20.0 * dt,
+            ..Synthetic::default()
+        };
+        let r = p.generate(1, "s").unwrap();
+        let back = parse_text(&format_csv(&r), "s.csv", None, None).unwrap();
+        assert_eq!(back.len(), r.len());
+    }
+    assert!(check_record_dt("x", 0.0).is_err());
+    assert!(check_record_dt("x", f64::NAN).is_err());
+    assert!(check_record_dt("x", MIN_RECORD_DT_S).is_ok());
+}

@@ -77,6 +77,16 @@ pub fn vector(obj: &Bound<'_, PyAny>, what: &str, finite: bool) -> PyResult<Vec<
 /// A 2-D float64 array `what` as (rows, columns, row-major values), row i being `x[i]`
 /// whatever the array's memory order.
 pub fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, Vec<f64>)> {
+    matrix_of(obj, what, false)
+}
+
+/// As [`matrix`], with +∞ taken when `plus_infinity` (the objectives of a design that
+/// collapsed); NaN and −∞ are refused all the same.
+pub fn matrix_of(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    plus_infinity: bool,
+) -> PyResult<(usize, usize, Vec<f64>)> {
     let arr: PyReadonlyArray2<'_, f64> = obj.extract().map_err(|_| {
         input(format!(
             "{what}: expected a 2-D numpy array of float64 (one row per design), got {}: convert it with numpy.asarray(x, dtype=float), and numpy.atleast_2d for one design",
@@ -88,9 +98,15 @@ pub fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(usize, usize, Vec
     if values.is_empty() {
         return Err(input(format!("{what}: the array is empty")));
     }
-    if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+    let taken = |v: f64| v.is_finite() || (plus_infinity && v == f64::INFINITY);
+    if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !taken(**v)) {
+        let rule = if plus_infinity {
+            "every value must be a number or +inf (a collapsed design)"
+        } else {
+            "every value must be a finite number"
+        };
         return Err(input(format!(
-            "{what}[{}, {}] is {v}: every value must be a finite number",
+            "{what}[{}, {}] is {v}: {rule}",
             k / shape[1],
             k % shape[1]
         )));

@@ -53,7 +53,7 @@ pub fn batch(
     scenes: Vec<Bound<'_, PyScene>>,
     outputs: Option<&Bound<'_, PyAny>>,
     progress: Option<&Bound<'_, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Vec<PyOutcome>> {
     let runs: Vec<Arc<Scene>> = guarded(|| {
         scenes
@@ -88,7 +88,7 @@ pub fn batch_designs<'py>(
     dt: Option<f64>,
     outputs: Option<&Bound<'py, PyAny>>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if records.is_empty() {
         return Err(input("records: the list is empty"));

@@ -13,6 +13,7 @@
 mod arrays;
 mod batch;
 mod errors;
+mod json_path;
 mod records;
 mod run;
 mod scene;

@@ -52,11 +52,8 @@ impl PyRecord {
         guarded(|| {
             let u = crate::records::units(Some(units))?.unwrap_or(Units::MPerS2);
             let values = vector(accel, "accel", true)?;
-            if !(dt.is_finite() && dt > 0.0) {
-                return Err(input(format!(
-                    "dt: the time step must be a positive number of seconds, got {dt}"
-                )));
-            }
+            // the step every reader accepts (1 µs … 1 s), as `record info` reads a file
+            slipload_motion::check_record_dt("dt", dt).py()?;
             let f = u.to_m_s2();
             let r = Record::new(name, dt, values.iter().map(|a| a * f).collect()).py()?;
             r.check_plausible().py()?;
@@ -153,7 +150,11 @@ impl PyRecord {
 
     /// The part of the record from `start` lasting `duration`, s.
     fn window(&self, start: f64, duration: f64) -> PyResult<PyRecord> {
-        guarded(|| Ok(PyRecord::of(self.inner.window(start, duration).py()?)))
+        guarded(|| {
+            // a window of no length is refused, as a scene's and `--window` are
+            slipload_sim::scene::check_window(start, duration, "window").py()?;
+            Ok(PyRecord::of(self.inner.window(start, duration).py()?))
+        })
     }
 
     /// Response spectrum: a dict of arrays.
@@ -208,12 +209,29 @@ impl PyRecord {
 #[pyo3(signature = (count=None, seed=None, pga_g=None, duration=None, dt=None))]
 pub fn synthetic_suite(
     py: Python<'_>,
-    count: Option<usize>,
+    count: Option<i64>,
     seed: Option<u64>,
     pga_g: Option<f64>,
     duration: Option<f64>,
     dt: Option<f64>,
 ) -> PyResult<Vec<PyRecord>> {
+    // the command line's rules (`record synth --count`, `--dt`), from the library
+    let count = match count {
+        None => slipload_motion::DEFAULT_SUITE_SIZE,
+        Some(n) => {
+            let c = usize::try_from(n).map_err(|_| {
+                input(format!(
+                    "count={n}: expected a whole number of records, 1 or more"
+                ))
+            })?;
+            slipload_motion::limits::check_suite_count(c)
+                .map_err(|e| input(format!("count={n}: {e}")))?;
+            c
+        }
+    };
+    if let Some(dt) = dt {
+        slipload_motion::check_record_dt("dt", dt).py()?;
+    }
     let pga = pga_g.unwrap_or(slipload_motion::DEFAULT_SUITE_PGA_G);
     if !slipload_sim::scene::target_pga_in_band(pga) {
         let (lo, hi) = slipload_sim::scene::TARGET_PGA_BAND_G;
@@ -228,7 +246,6 @@ pub fn synthetic_suite(
     if let Some(dt) = dt {
         params.dt_s = dt;
     }
-    let count = count.unwrap_or(slipload_motion::DEFAULT_SUITE_SIZE);
     let seed = seed.unwrap_or(slipload_motion::DEFAULT_SUITE_SEED);
     let records = crate::run::detached(py, move || {
         slipload_motion::synthetic_suite(

@@ -81,19 +81,26 @@ impl Progress for Control {
 /// becomes `slipload.InternalError`.
 pub fn watched<T: Send>(
     py: Python<'_>,
-    threads: Option<usize>,
+    threads: Option<i64>,
     progress: Option<&Bound<'_, PyAny>>,
     work: impl FnOnce(&Control) -> PyResult<T> + Send,
 ) -> PyResult<T> {
     let pool = match threads {
         None => None,
-        Some(0) => return Err(crate::errors::input("threads: give at least 1")),
-        Some(n) => Some(
+        Some(n) => Some({
+            // the command line's rule (`--threads`), from the library
+            let n = usize::try_from(n).map_err(|_| {
+                crate::errors::input(format!(
+                    "threads={n}: expected a whole number of worker threads, 1 or more"
+                ))
+            })?;
+            slipload_sim::limits::check_threads(n)
+                .map_err(|e| crate::errors::input(format!("threads={n}: {e}")))?;
             rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()
-                .map_err(|e| crate::errors::input(format!("threads: cannot start {n}: {e}")))?,
-        ),
+                .map_err(|e| crate::errors::input(format!("threads={n}: cannot start them: {e}")))?
+        }),
     };
     let control = Control::default();
     let mut interrupted: Option<PyErr> = None;

@@ -89,12 +89,9 @@ fn overrides(
         duration,
         ..Default::default()
     };
-    if let Some((s, d)) = window
-        && !(s.is_finite() && d.is_finite() && s >= 0.0 && d > 0.0)
-    {
-        return Err(input(format!(
-            "window: needs start >= 0 and duration > 0, in s, got ({s}, {d})"
-        )));
+    if let Some((s, d)) = window {
+        // the command line's rule (`--window`), from the library
+        slipload_sim::scene::check_window(s, d, "window").py()?;
     }
     let mut given = None;
     if let Some(r) = record {
@@ -199,6 +196,7 @@ impl PyScene {
             let (over, given) =
                 overrides(record, units, scale_pga_g, window, method, dt, duration)?;
             PyScene::from_text(text, PathBuf::from(name), over, given)
+                .map_err(|e| crate::json_path::located(e, text, name))
         })
     }
 

@@ -49,7 +49,11 @@ impl PyStudy {
     fn from_json(text: &str, name: &str) -> PyResult<PyStudy> {
         guarded(|| {
             Ok(PyStudy {
-                inner: Arc::new(Study::from_json(text, Path::new(name)).py()?),
+                inner: Arc::new(
+                    Study::from_json(text, Path::new(name))
+                        .py()
+                        .map_err(|e| crate::json_path::located(e, text, name))?,
+                ),
             })
         })
     }
@@ -183,7 +187,7 @@ pub fn optimize<'py>(
     map_grid: usize,
     fresh: bool,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let study = match study {
         Some(s) => s.inner.clone(),
@@ -238,7 +242,7 @@ pub fn sweep<'py>(
     resume: bool,
     fresh: bool,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if resume && fresh {
         return Err(input(
@@ -308,7 +312,7 @@ pub fn rank<'py>(
     bootstrap: usize,
     seed: u64,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !(1..=1_000_000).contains(&bootstrap) {
         return Err(input(format!(
@@ -336,12 +340,23 @@ pub fn table<'py>(
     intensity_scales: Vec<f64>,
     refine: Option<&str>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let study = match study {
         Some(s) => s.inner.clone(),
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
+    // the command line refuses an empty list (`--period-scales ""`) as it parses it
+    for (name, scales) in [
+        ("period_scales", &period_scales),
+        ("intensity_scales", &intensity_scales),
+    ] {
+        if scales.is_empty() {
+            return Err(input(format!(
+                "{name}: an empty list; give one scale or more (each is a row or column of the table)"
+            )));
+        }
+    }
     let method = refine_method(refine)?;
     let report = watched(py, threads, progress, |ctl| {
         family_study(
@@ -368,7 +383,7 @@ pub fn evaluate_objectives<'py>(
     study: &PyStudy,
     slip_loads: &Bound<'py, PyAny>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
     let (nd, nk, loads) = crate::arrays::matrix(slip_loads, "slip_loads")?;
     let designs: Vec<Vec<f64>> = loads.chunks(nk).map(<[f64]>::to_vec).collect();
@@ -389,7 +404,9 @@ fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
 /// Non-dominated ranks (1 = the front) of the rows of `points` (minimisation).
 #[pyfunction]
 pub fn nondominated_ranks(points: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
-    let p = self::points(points, "points")?;
+    // a collapsed design scores +inf (evaluate_objectives): it ranks, behind the others
+    let (_, k, v) = crate::arrays::matrix_of(points, "points", true)?;
+    let p: Vec<Vec<f64>> = v.chunks(k).map(<[f64]>::to_vec).collect();
     Ok(slipload_opt::phases::pareto::nondominated_ranks(&p))
 }
 

@@ -160,6 +160,25 @@ pub enum SimError {
         /// The limit, for people.
         limit: String,
     },
+    /// A number of worker threads no run can use: none, or more than
+    /// [`crate::limits::max_threads`] while the limits are in force. The message leaves the
+    /// number to the front, which names its parameter (`--threads 0`, `threads=0`).
+    #[error("{}", if *threads == 0 {
+        "no worker thread: give at least 1 (or leave it out for one per core)".to_string()
+    } else {
+        format!(
+            "more than {limit} worker threads ({cores} cores here) only adds overhead and takes long to start; give at most {limit}, or {}",
+            slipload_motion::limits::OVERRIDE_HINT
+        )
+    })]
+    Threads {
+        /// The threads asked for.
+        threads: usize,
+        /// The most without the limits lifted.
+        limit: usize,
+        /// The cores of this machine.
+        cores: usize,
+    },
     /// The time step is longer than the span it must resolve (the duration, or the
     /// record's sample interval for a step-by-step method): the answer would be wrong.
     #[error("time step {dt} s is longer than {what} ({span} s): {consequence}")]

@@ -54,11 +54,56 @@ pub fn check(
     })
 }
 
+/// The cores of this machine (1 when unknown).
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// Most worker threads while the limits are in force: 8 per core, at least 256 (more only
+/// adds overhead; 100 000 threads take minutes to start).
+pub fn max_threads() -> usize {
+    (8 * cores()).max(256)
+}
+
+/// Checks a number of worker threads asked for, the one rule of every front (the command
+/// line's `--threads`, the Python package's `threads=`): at least 1, and at most
+/// [`max_threads`] unless the limits are lifted; else [`SimError::Threads`].
+pub fn check_threads(threads: usize) -> Result<(), SimError> {
+    let limit = max_threads();
+    if threads == 0 || (threads > limit && !allow_large()) {
+        return Err(SimError::Threads {
+            threads,
+            limit,
+            cores: cores(),
+        });
+    }
+    Ok(())
+}
+
 /// Steps as a count for people.
 pub fn count(v: f64) -> String {
     if v < 1e6 {
         format!("{v:.0}")
     } else {
         format!("{v:.3e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thread_counts_from_one_to_the_limit_are_taken() {
+        assert!(check_threads(1).is_ok());
+        assert!(check_threads(max_threads()).is_ok());
+        let none = check_threads(0).unwrap_err();
+        assert!(none.to_string().contains("give at least 1"), "{none}");
+        // the lifted limits are process-wide: the upper bound is tested only while they hold
+        if !allow_large() {
+            let many = check_threads(max_threads() + 1).unwrap_err();
+            assert!(many.to_string().contains("at most"), "{many}");
+            assert!(many.to_string().contains("--allow-large"), "{many}");
+        }
     }
 }

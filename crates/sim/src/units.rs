@@ -205,6 +205,25 @@ quantity!(
     Dimension::Angle
 );
 
+/// A number for people: six significant digits, trailing zeros dropped (0.002, not
+/// 0.0020000000000006963); exponent form for very large or small ones.
+pub fn short_number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let magnitude = x.abs().log10().floor();
+    if !(-4.0..9.0).contains(&magnitude) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5.0 - magnitude).max(0.0) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
 /// True for a finite x > 0 (false for NaN and ±∞).
 #[inline]
 pub fn is_positive(x: f64) -> bool {

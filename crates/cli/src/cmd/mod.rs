@@ -50,6 +50,20 @@ pub enum Command {
     Opensees(opensees::OpenSeesArgs),
 }
 
+impl Command {
+    /// The `--threads` given after the name of a command that runs simulations in
+    /// parallel (None for the others, and when not given).
+    pub fn threads(&self) -> Option<usize> {
+        match self {
+            Command::Sweep(a) => a.threads.threads,
+            Command::Optimize(a) => a.threads.threads,
+            Command::Rank(a) => a.threads.threads,
+            Command::Table(a) => a.threads.threads,
+            _ => None,
+        }
+    }
+}
+
 /// Runs one subcommand.
 pub fn run(command: Command) -> anyhow::Result<()> {
     match command {

@@ -43,6 +43,8 @@ pub struct OptimizeArgs {
     /// fingerprint) are continued and those of another study refused
     #[arg(long)]
     pub fresh: bool,
+    #[command(flatten)]
+    pub threads: crate::args::ThreadsArg,
 }
 
 /// What the optimum costs, from the design table: the mean (over the records) peak base

@@ -26,6 +26,8 @@ pub struct RankArgs {
     /// Bootstrap seed
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    #[command(flatten)]
+    pub threads: crate::args::ThreadsArg,
 }
 
 /// Runs `slipload rank`.

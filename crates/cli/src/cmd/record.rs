@@ -183,9 +183,13 @@ struct SynthArgs {
     /// Number of records; with it, --out is a folder that receives one CSV per record
     #[arg(long)]
     count: Option<usize>,
-    /// Output CSV file (or folder with --count)
+    /// Output CSV file (or folder with --count); an existing file is not replaced
+    /// without --force
     #[arg(long)]
     out: PathBuf,
+    /// Replace existing files (--out, or the records of --count in its folder)
+    #[arg(long)]
+    force: bool,
 }
 
 /// Runs `slipload record`.
@@ -457,11 +461,12 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
         duration_s: args.duration,
         ..Synthetic::default()
     };
+    // the step the readers accept, so that what is written here is read back
+    slipload_motion::check_record_dt("--dt", args.dt)?;
     let count = args.count.unwrap_or(1);
-    if count == 0 {
-        bail!("--count must be at least 1");
-    }
     crate::args::count_flag("--count", count, slipload_motion::limits::MAX_SUITE_RECORDS)?;
+    slipload_motion::limits::check_suite_count(count)
+        .with_context(|| format!("--count {count}"))?;
     if args.count.is_some() {
         crate::args::output_folder("--out", &args.out)?;
     }
@@ -476,8 +481,16 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
     let target = SuiteTarget::Pga {
         pga_m_s2: args.pga_g * G,
     };
+    if args.count.is_none() {
+        refuse_existing(&args.out, args.force)?;
+    }
     let records = synthetic_suite(&params, count, args.seed, target)
         .context("generating synthetic records")?;
+    if args.count.is_some() {
+        for r in &records {
+            refuse_existing(&args.out.join(format!("{}.csv", r.name())), args.force)?;
+        }
+    }
     match args.count {
         None => {
             let r = &records[0];
@@ -504,6 +517,19 @@ fn synth(args: &SynthArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Refuses to replace an existing `path` (a file, or a symlink to one, a folder …) unless
+/// `force`: `record synth` writes where it is told, never over a file it was not told
+/// it may replace (a record of the user's own, say).
+fn refuse_existing(path: &Path, force: bool) -> anyhow::Result<()> {
+    if force || std::fs::symlink_metadata(path).is_err() {
+        return Ok(());
+    }
+    bail!(
+        "--out {}: the file exists; record synth does not replace a file without --force (or give another --out)",
+        path.display()
+    )
 }
 
 #[cfg(test)]
@@ -587,6 +613,7 @@ mod tests {
             dt: 0.01,
             count: Some(2),
             out: dir.clone(),
+            force: false,
         };
         synth(&args).unwrap();
         let mut names: Vec<_> = std::fs::read_dir(&dir)

@@ -85,11 +85,8 @@ fn parse_window(s: &str) -> Result<(f64, f64), String> {
     })?;
     let a = parse_time(a).map_err(|e| format!("window start: {e}"))?;
     let b = parse_time(b).map_err(|e| format!("window duration: {e}"))?;
-    if !(a >= 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-        return Err(format!(
-            "window needs START >= 0 and DURATION > 0, got {a},{b}"
-        ));
-    }
+    // the library's rule, the Python package's too
+    slipload_sim::scene::check_window(a, b, "window").map_err(|e| e.to_string())?;
     Ok((a, b))
 }
 
@@ -108,6 +105,36 @@ impl SceneArgs {
     /// duration) is planned over one period instead of refused.
     pub fn load_to_explain(&self) -> anyhow::Result<Scene> {
         self.resolve(false, true)
+    }
+
+    /// The files the scene is read from: the scene or building file, the building file a
+    /// scene names, the record a scene names and `--record`'s (as given, relative paths
+    /// of a scene anchored at its folder). A scene that cannot be read adds only its own
+    /// path: loading it then says what is wrong.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        use slipload_sim::scene::{BuildingRef, SceneConfig};
+        let mut files: Vec<PathBuf> = self.record.iter().cloned().collect();
+        if let Some(path) = &self.scene {
+            files.push(path.clone());
+            let text = slipload_motion::limits::read_input_text(
+                path,
+                "scene",
+                slipload_motion::limits::MAX_CONFIG_BYTES,
+            );
+            if let Ok(cfg) = text
+                .map_err(|_| ())
+                .and_then(|t| SceneConfig::from_json(&t, path).map_err(|_| ()))
+            {
+                let base = path.parent().unwrap_or(Path::new("."));
+                if let BuildingRef::Path(p) = &cfg.building {
+                    files.push(base.join(p));
+                }
+                if let Some(r) = &cfg.excitation.record {
+                    files.push(base.join(&r.file));
+                }
+            }
+        }
+        files
     }
 
     fn resolve(&self, histories: bool, plan_only: bool) -> anyhow::Result<Scene> {

@@ -65,6 +65,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         // refuse a FIFO or device before the run, not after it
         slipload_opt::base::output::write_target(path)
             .with_context(|| format!("--history {}", path.display()))?;
+        refuse_input_as_output("--history", path, &args.scene.input_files())?;
     }
     let mut scene = args
         .scene
@@ -72,8 +73,15 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     for note in scene.record.iter().flat_map(|r| r.notes()) {
         eprintln!("note: {note}");
     }
-    if let Some(note) = past_duration_note(&scene) {
-        eprintln!("note: {note}");
+    // what the inputs make doubtful without making them wrong: a slip load that looks
+    // like kN written as N, a time step that runs past the duration
+    for warning in slipload_sim::building::plausibility(
+        &scene.building,
+        scene.method.dt,
+        scene.duration,
+        scene.steps(),
+    ) {
+        eprintln!("warning: {warning}");
     }
     if args.plot.is_some() {
         scene.outputs.energies = true;
@@ -113,42 +121,32 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// When the time step does not divide the simulated duration, the run takes whole steps
-/// and its last one ends past the duration: the sentence that says so (None when the
-/// last step ends on the duration, within the 1e-9 slack of [`Scene::steps`]).
-pub fn past_duration_note(scene: &Scene) -> Option<String> {
-    let dt = scene.method.dt;
-    let steps = scene.steps();
-    let end = steps as f64 * dt;
-    let duration = scene.duration;
-    (end > duration * (1.0 + 1e-9)).then(|| {
-        format!(
-            "dt = {} s does not divide the duration {} s: the run takes {steps} steps and ends at t = {} s, {} s past it (give a duration or a dt that divides it to end on it)",
-            short(dt),
-            short(duration),
-            short(end),
-            short(end - duration)
-        )
-    })
+/// Refuses an output file `out` (flag `flag`) that is one of the run's `inputs` — the
+/// same file by another name too (a symlink, `./`, `..`): a run never writes over what it
+/// reads. Paths that do not exist yet cannot be inputs.
+pub fn refuse_input_as_output(
+    flag: &str,
+    out: &std::path::Path,
+    inputs: &[PathBuf],
+) -> anyhow::Result<()> {
+    let Ok(target) = std::fs::canonicalize(out) else {
+        return Ok(());
+    };
+    for input in inputs {
+        if std::fs::canonicalize(input).is_ok_and(|i| i == target) {
+            anyhow::bail!(
+                "{flag} {}: that is {}, an input of this run; a run never writes over its inputs: give another {flag} file",
+                out.display(),
+                input.display()
+            );
+        }
+    }
+    Ok(())
 }
 
-/// A number for people: six significant digits, trailing zeros dropped (0.002, not
-/// 0.0020000000000006963); exponent form for very large or small ones.
+/// A number for people (six significant digits), as the library's messages write them.
 fn short(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let magnitude = x.abs().log10().floor();
-    if !(-4.0..9.0).contains(&magnitude) {
-        return format!("{x:.5e}");
-    }
-    let decimals = (5.0 - magnitude).max(0.0) as usize;
-    let text = format!("{x:.decimals$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
-    }
+    slipload_sim::units::short_number(x)
 }
 
 /// The ground motion as the table names it: its PGA in g and m/s², and when it was

@@ -30,6 +30,8 @@ pub struct SweepArgs {
     /// figures, rankings, report; any other file is kept and named) and start afresh
     #[arg(long)]
     pub fresh: bool,
+    #[command(flatten)]
+    pub threads: crate::args::ThreadsArg,
 }
 
 /// Most shards of `--shards` (job arrays of real clusters stop at tens of thousands).

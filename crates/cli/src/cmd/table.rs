@@ -25,6 +25,8 @@ pub struct TableArgs {
     /// Output folder
     #[arg(long, default_value = "out/table")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub threads: crate::args::ThreadsArg,
 }
 
 /// Runs `slipload table`.

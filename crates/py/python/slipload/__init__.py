@@ -118,6 +118,10 @@ def _progress(progress: Progress) -> Tuple[Optional[Callable[[str, int, int], An
         return None, None
     if callable(progress):
         return progress, None
+    if progress is not None and progress is not True:
+        raise InputError(
+            f"progress: expected a callable progress(phase, done, total), True, False or None, got {progress!r}"
+        )
     try:
         bars = _Bars()
     except ImportError:
@@ -684,9 +688,20 @@ def evaluate_objectives(
     return _watched(_slipload.evaluate_objectives, progress, load_study(study), slip_loads, threads=threads)
 
 
+def _is_empty(points: Any) -> bool:
+    """Whether ``points`` holds no point: an array of size 0 or an empty list or tuple."""
+    if isinstance(points, (list, tuple)):
+        return len(points) == 0
+    return getattr(points, "size", None) == 0
+
+
 def nondominated_ranks(points: Any) -> List[int]:
     """Non-dominated ranks of the rows of a 2-D float64 array (minimisation): 1 for the
-    front, 2 for the front of the rest, and so on; equal points share a rank."""
+    front, 2 for the front of the rest, and so on; equal points share a rank. A design
+    that collapsed scores +inf (as :func:`evaluate_objectives` gives it) and ranks behind
+    every design it is worse than; NaN and -inf are refused. No points: an empty list."""
+    if _is_empty(points):
+        return []
     return _slipload.nondominated_ranks(points)
 
 
@@ -700,7 +715,10 @@ def hypervolume(points: Any, reference: Any) -> float:
 def knee(points: Any) -> Optional[int]:
     """The index of the knee of a front (rows of a 2-D float64 array, minimisation) by the
     rule the study reports use: the point of least sum of objectives, each normalised to
-    0 at the front's best and 1 at its worst. ``None`` for an empty front."""
+    0 at the front's best and 1 at its worst. ``None`` for an empty front (an array of
+    size 0, ``[]``)."""
+    if _is_empty(points):
+        return None
     return _slipload.knee(points)
 
 

@@ -1,13 +1,15 @@
 //! The checks a building is held to: the shapes, signs and finiteness of its lists and
 //! matrices, the physical bands of its magnitudes (periods, masses, damping ratios, slip
 //! loads, storey heights), its dissipators and its storeys' yield laws. Each refusal names
-//! the file, the field, the value and what was expected.
+//! the file, the field, the value and what was expected. Beside the refusals,
+//! [`plausibility`]: what a run's inputs make doubtful without making them wrong, as
+//! warnings (data, for a front to print).
 
 use super::config::{BuildingConfig, SlipLoad};
-use super::validated::{Dissipator, StoreyYield};
+use super::validated::{Building, Dissipator, StoreyYield};
 use crate::error::SimError;
 use crate::modes::Modes;
-use crate::units::{is_non_negative, is_positive};
+use crate::units::{is_non_negative, is_positive, short_number};
 use nalgebra::DMatrix;
 use std::path::Path;
 
@@ -672,6 +674,109 @@ pub(super) fn storey_yield(
         });
     }
     Ok(out)
+}
+
+/// A slip load below this fraction of its floor's weight (m·g) is warned about: real ones
+/// are a few per cent of it, and 10⁻³ × is what a slip load in kN written as a bare
+/// number (newtons in a building file) looks like.
+pub const MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT: f64 = 1e-3;
+
+/// What a run's inputs make doubtful without making them wrong: the run goes ahead, and
+/// a front says it (the command line on stderr). `Display` gives the sentence.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Plausibility {
+    /// A slip load below [`MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT`] × its floor's weight:
+    /// likely kN written as a bare number, which a building file reads in N.
+    TinySlipLoad {
+        /// The floor, 1 from the bottom.
+        floor: usize,
+        /// The smaller of the friction bounds' magnitudes, N.
+        slip_load_n: f64,
+        /// The floor's weight m·g, N.
+        floor_weight_n: f64,
+    },
+    /// The time step does not divide the duration: the run takes whole steps and its last
+    /// one ends past the duration.
+    PastDuration {
+        /// The time step, s.
+        dt_s: f64,
+        /// The duration asked for, s.
+        duration_s: f64,
+        /// The steps taken.
+        steps: usize,
+    },
+}
+
+impl std::fmt::Display for Plausibility {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Plausibility::TinySlipLoad {
+                floor,
+                slip_load_n,
+                floor_weight_n,
+            } => write!(
+                f,
+                "floor {floor}: the slip load {} N is below {} % of the floor's weight (m·g = {} N): a bare number in a building file is newtons, where a study's slip loads are kN; did you mean kN (\"{} kN\")?",
+                short_number(slip_load_n),
+                short_number(100.0 * MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT),
+                short_number(floor_weight_n),
+                short_number(slip_load_n),
+            ),
+            Plausibility::PastDuration {
+                dt_s,
+                duration_s,
+                steps,
+            } => {
+                let end = steps as f64 * dt_s;
+                write!(
+                    f,
+                    "dt = {} s does not divide the duration {} s: the run takes {steps} steps and ends at t = {} s, {} s past it (give a duration or a dt that divides it to end on it)",
+                    short_number(dt_s),
+                    short_number(duration_s),
+                    short_number(end),
+                    short_number(end - duration_s)
+                )
+            }
+        }
+    }
+}
+
+/// The warnings of a run of `building` for `duration_s` in `steps` steps of `dt_s`
+/// ([`crate::Scene::steps`]): each slip load below
+/// [`MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT`] × its floor's weight (a free contact,
+/// slip load 0, is the bare frame, and a locked one never slips: neither is warned
+/// about), and a last step that ends past the duration (beyond the relative slack of
+/// 10⁻⁹ the step count allows). Empty for a plausible run.
+pub fn plausibility(
+    building: &Building,
+    dt_s: f64,
+    duration_s: f64,
+    steps: usize,
+) -> Vec<Plausibility> {
+    let mut out = Vec::new();
+    for (i, d) in building.dissipators.iter().enumerate() {
+        let Some(d) = d else { continue };
+        let slip = d.upper.min(-d.lower);
+        let weight = building.mass[(i, i)] * slipload_motion::G;
+        if slip > 0.0
+            && slip.is_finite()
+            && slip < MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT * weight
+        {
+            out.push(Plausibility::TinySlipLoad {
+                floor: i + 1,
+                slip_load_n: slip,
+                floor_weight_n: weight,
+            });
+        }
+    }
+    if steps as f64 * dt_s > duration_s * (1.0 + 1e-9) {
+        out.push(Plausibility::PastDuration {
+            dt_s,
+            duration_s,
+            steps,
+        });
+    }
+    out
 }
 
 #[cfg(test)]

@@ -123,17 +123,26 @@ pub(super) fn check_method_options(
     ))
 }
 
+/// Checks a window `[start, duration]` of a ground motion by itself (before any record is
+/// at hand), the one rule of every front (a scene's `window`, `--window`, Python's
+/// `window=` and `Record.window`): a start ≥ 0 s and a duration > 0 s, both finite — a
+/// window of no length holds no ground motion. `what` names the window in errors.
+pub fn check_window(start: f64, duration: f64, what: &str) -> Result<(), SimError> {
+    if !(start.is_finite() && start >= 0.0 && duration.is_finite() && duration > 0.0) {
+        return Err(SimError::Scene(format!(
+            "{what}: a window needs a start >= 0 s and a duration > 0 s, got [{start}, {duration}]"
+        )));
+    }
+    Ok(())
+}
+
 /// Cuts `window = (start, duration)` out of `r`, refusing a start at or past the record's
 /// end (nothing of it would be left). A window that runs past the end keeps what there is:
 /// the simulated duration then defaults to the window's, with the ground at rest after the
 /// record ([`pad_note`] says so). `what` names the window in errors.
 pub(super) fn apply_window(r: &Record, window: (f64, f64), what: &str) -> Result<Record, SimError> {
     let (start, duration) = window;
-    if !(start.is_finite() && start >= 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err(SimError::Scene(format!(
-            "{what}: a window needs a start >= 0 s and a duration > 0 s, got [{start}, {duration}]"
-        )));
-    }
+    check_window(start, duration, what)?;
     let end = r.duration();
     // at the end to round-off (39.98 against 1999 × 0.02 = 39.980000000000004) is at it
     if start >= end - 1e-9 * r.dt() {

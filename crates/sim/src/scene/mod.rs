@@ -38,7 +38,7 @@ mod resolved;
 
 pub use check::{
     MAX_INITIAL_STATE, MAX_LOOP_ITERATIONS, TARGET_PGA_BAND_G, check_step_against_record,
-    target_pga_in_band,
+    check_window, target_pga_in_band,
 };
 pub use config::{
     BENCHMARK_BUILDING, BENCHMARK_ORIGIN, BuildingRef, ExcitationConfig, HarmonicConfig,
