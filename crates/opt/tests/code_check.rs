@@ -124,7 +124,10 @@ fn the_worst_reading_is_the_largest_case_objective() {
             Statistic::Mean.of(&v)
         })
         .collect();
-    assert_eq!(f, per_case.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    assert_eq!(
+        f,
+        per_case.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    );
     let nominal = study(|v| {
         bounds(v);
         v["property_bounds"]["objective_reads"] = "nominal".into();
@@ -168,16 +171,16 @@ fn the_optimum_meets_every_limit_and_its_check_is_the_resimulated_design() {
             .collect();
         let drift: Vec<f64> = rows.iter().map(RecordMetrics::peak_drift_ratio).collect();
         let mean = Statistic::Mean.of(&drift);
-        let residual = rows
-            .iter()
-            .map(RecordMetrics::residual)
-            .fold(0.0, f64::max);
+        let residual = rows.iter().map(RecordMetrics::residual).fold(0.0, f64::max);
         let lines: Vec<_> = c.case_lines(case).collect();
         assert_eq!(lines.len(), 3);
         // the same numbers summed in the same order: equal to the last bit
         assert_eq!(lines[0].demand, mean, "{case:?}");
         assert_eq!(lines[1].demand, residual, "{case:?}");
-        assert!(mean <= 0.012 && residual <= 0.005, "{case:?}: the claim holds");
+        assert!(
+            mean <= 0.012 && residual <= 0.005,
+            "{case:?}: the claim holds"
+        );
         let unacceptable = drift.iter().filter(|&&d| d > 1.5 * 0.012).count();
         assert_eq!(lines[2].demand, unacceptable as f64);
         assert_eq!(unacceptable, 0);
@@ -211,7 +214,10 @@ fn limits_no_design_meets_end_with_the_closest_design_and_the_governing_limit() 
     assert_eq!(g.source, "suites[0].limits.unacceptable");
     assert_eq!(g.demand, st.records.len() as f64);
     assert!(c.verdict.starts_with("FAIL"), "{}", c.verdict);
-    assert!(c.chosen_as.contains("no evaluated design meets every limit"));
+    assert!(
+        c.chosen_as
+            .contains("no evaluated design meets every limit")
+    );
     // the files are written all the same
     assert!(out.join("code-check.md").is_file());
     let _ = std::fs::remove_dir_all(&out);
@@ -231,26 +237,28 @@ fn bad_bounds_and_limits_are_refused_by_field() {
     let cases: Vec<(Box<dyn Fn(&mut serde_json::Value)>, &str)> = vec![
         (
             Box::new(|v| {
-                v["property_bounds"] = serde_json::json!({ "slip_load": { "lower": 1.2, "upper": 1.3 } })
+                v["property_bounds"] =
+                    serde_json::json!({ "slip_load": { "lower": 1.2, "upper": 1.3 } })
             }),
             "property_bounds.slip_load.lower",
         ),
         (
             Box::new(|v| {
-                v["property_bounds"] = serde_json::json!({ "slip_load": { "lower": 0.8, "upper": 0.9 } })
+                v["property_bounds"] =
+                    serde_json::json!({ "slip_load": { "lower": 0.8, "upper": 0.9 } })
             }),
             "property_bounds.slip_load.upper",
         ),
         (
-            Box::new(|v| {
-                v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "rpi", "statistic": "mean", "max": 1 } ] })
-            }),
+            Box::new(
+                |v| v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "rpi", "statistic": "mean", "max": 1 } ] }),
+            ),
             "suites[0].limits.criteria[0].metric",
         ),
         (
-            Box::new(|v| {
-                v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "peak_drift_ratio", "statistic": "mean", "max": -1 } ] })
-            }),
+            Box::new(
+                |v| v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "peak_drift_ratio", "statistic": "mean", "max": -1 } ] }),
+            ),
             "suites[0].limits.criteria[0].max",
         ),
         (

@@ -59,8 +59,9 @@ pub(super) fn checked_design(bench: &mut Bench) -> anyhow::Result<()> {
     if !bench.want(case) {
         return Ok(());
     }
-    let study = Study::load(std::path::Path::new(EXAMPLE))
-        .with_context(|| format!("the worked example {EXAMPLE} (run the bench from a clone of the project)"))?;
+    let study = Study::load(std::path::Path::new(EXAMPLE)).with_context(|| {
+        format!("the worked example {EXAMPLE} (run the bench from a clone of the project)")
+    })?;
     let dir = std::env::temp_dir().join(format!("slipload-bench-checked-{}", std::process::id()));
     let clock = PhaseClock::default();
     let t = Instant::now();

@@ -52,16 +52,14 @@ fn details(summary: &str, inner: &str, open: bool) -> String {
 /// Markdown files in the order a reader wants them for this kind of folder.
 fn table_order(kind: FolderKind) -> &'static [&'static str] {
     match kind {
-        FolderKind::Optimize | FolderKind::Sweep => {
-            &[
-                "code-check.md",
-                "device-table.md",
-                "design-table.md",
-                "pareto-table.md",
-                "rank.md",
-                "family.md",
-            ]
-        }
+        FolderKind::Optimize | FolderKind::Sweep => &[
+            "code-check.md",
+            "device-table.md",
+            "design-table.md",
+            "pareto-table.md",
+            "rank.md",
+            "family.md",
+        ],
         _ => &[],
     }
 }
