@@ -253,7 +253,8 @@ fn bad_bounds_and_limits_are_refused_by_field() {
             Box::new(
                 |v| v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "rpi", "statistic": "mean", "max": 1 } ] }),
             ),
-            "suites[0].limits.criteria[0].metric",
+            // the parser names the variant and the metrics a limit may read
+            "unknown variant `rpi`, expected one of `peak_drift_ratio`",
         ),
         (
             Box::new(
