@@ -74,6 +74,7 @@ fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
         outputs: OutputsConfig {
             energies: fid.energies,
             histories: false,
+            dampers: false,
         },
         reduce: true,
         notes: Vec::new(),

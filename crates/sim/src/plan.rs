@@ -492,7 +492,7 @@ impl Plan {
             ));
         }
         notes.push(format!(
-            "outputs: peaks{}{}",
+            "outputs: peaks{}{}{}",
             if scene.outputs.energies {
                 ", energies"
             } else {
@@ -502,6 +502,11 @@ impl Plan {
                 ", histories"
             } else {
                 " (no histories: memory independent of duration)"
+            },
+            if scene.outputs.dampers {
+                ", per-damper demands"
+            } else {
+                ""
             }
         ));
         Ok(Plan {

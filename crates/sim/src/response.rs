@@ -94,6 +94,182 @@ pub struct Response {
     /// The collapse that stopped the run, if one did.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collapse: Option<Collapse>,
+    /// Per-damper demands, one entry per storey (all zero for a storey without a sliding
+    /// damper, as in `peak_slip`); present only when the scene's `outputs.dampers` asks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dampers: Option<Vec<DamperDemand>>,
+}
+
+/// What one damper went through in a run: the figures a device is specified and
+/// prototype-tested to (docs/MODEL.md § Per-damper demands). Sampled at the output steps,
+/// as the other peaks are. The slip is the floor's displacement minus the dissipator's
+/// (the slider's position on its brace), taken from its value at the start.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct DamperDemand {
+    /// Largest slip displacement in the positive direction from the start, m (≥ 0).
+    pub slip_max_pos_m: f64,
+    /// Largest slip displacement in the negative direction from the start, as a positive
+    /// magnitude, m (≥ 0).
+    pub slip_max_neg_m: f64,
+    /// Largest |slip rate|, m/s (a massless damper's rate is its mean over a step: its
+    /// slip of the step / Δt).
+    pub peak_slip_velocity_m_s: f64,
+    /// Cumulative slip travel ∫|d(slip)|, m: the sum of |Δslip| over the output steps.
+    pub cumulative_travel_m: f64,
+    /// Slip episodes: each start of slipping from stick, and each reversal of the slip
+    /// direction while slipping, counts one.
+    pub slip_excursions: u64,
+    /// Full cycles: one excursion each way, `slip_excursions / 2`.
+    pub cycles: f64,
+    /// Largest |friction force| of the slider, N.
+    pub peak_force_n: f64,
+    /// Energy the damper dissipated, ∫ F d(slip), J: the trapezoid rule in the slip
+    /// between output steps (≥ 0 to round-off).
+    pub energy_j: f64,
+}
+
+impl DamperDemand {
+    /// The figures by name, in the order of the fields (for checks and tables).
+    pub fn values(&self) -> [(&'static str, f64); 8] {
+        [
+            ("slip_max_pos_m", self.slip_max_pos_m),
+            ("slip_max_neg_m", self.slip_max_neg_m),
+            ("peak_slip_velocity_m_s", self.peak_slip_velocity_m_s),
+            ("cumulative_travel_m", self.cumulative_travel_m),
+            ("slip_excursions", self.slip_excursions as f64),
+            ("cycles", self.cycles),
+            ("peak_force_n", self.peak_force_n),
+            ("energy_j", self.energy_j),
+        ]
+    }
+}
+
+/// One damper's running state in a [`DamperRecorder`].
+#[derive(Debug, Clone, Copy, Default)]
+struct DamperSlot {
+    /// Whether the floor has a sliding damper (a contact of the plan).
+    present: bool,
+    /// Whether the first (initial) state has been observed.
+    started: bool,
+    /// Slip at the start, m.
+    start: f64,
+    /// Slip and friction force at the last observation.
+    last_slip: f64,
+    last_force: f64,
+    /// Time of the last observation, s (a repeated observation of an instant is skipped).
+    last_t: f64,
+    /// Direction of the last step's slip: +1, −1, or 0 (stuck).
+    dir: i8,
+    /// |Δslip| at or below which a step counts as stuck, m: 1e-9 of the damper's elastic
+    /// brace deformation at its slip load, far above the round-off of a stuck slip and far
+    /// below any slip that moves a device.
+    still: f64,
+}
+
+/// Accumulates [`DamperDemand`]s from the state at every output step (every method feeds
+/// it the same way, so every method reports the same quantities under the same
+/// definitions). Present in [`Peaks`] only when the plan's outputs ask for dampers.
+#[derive(Debug, Clone)]
+pub struct DamperRecorder {
+    slots: Vec<DamperSlot>,
+    demand: Vec<DamperDemand>,
+}
+
+impl DamperRecorder {
+    /// A recorder for the damper contacts of `plan` (slots by floor).
+    pub fn for_plan(plan: &crate::plan::Plan) -> Self {
+        let n = plan.floors;
+        let mut slots = vec![DamperSlot::default(); n];
+        for ct in &plan.contacts {
+            if ct.role != crate::plan::ContactRole::Damper {
+                continue;
+            }
+            let load = [ct.upper - ct.lower, ct.upper.abs(), ct.lower.abs()]
+                .into_iter()
+                .filter(|x| x.is_finite())
+                .fold(0.0, f64::max);
+            let still = if ct.brace_stiffness > 0.0 && ct.brace_stiffness.is_finite() {
+                1e-9 * load / ct.brace_stiffness
+            } else {
+                0.0
+            };
+            slots[ct.floor] = DamperSlot {
+                present: true,
+                still,
+                ..DamperSlot::default()
+            };
+        }
+        DamperRecorder {
+            slots,
+            demand: vec![DamperDemand::default(); n],
+        }
+    }
+
+    /// Records the damper of `floor` at time `t` (s): its slip (m), slip rate (m/s) and
+    /// friction force (N). The first call is the initial state; a second call at the
+    /// same instant is skipped.
+    #[inline]
+    pub fn observe(&mut self, floor: usize, t: f64, slip: f64, rate: f64, force: f64) {
+        let (Some(s), Some(d)) = (self.slots.get_mut(floor), self.demand.get_mut(floor)) else {
+            return;
+        };
+        if !s.present {
+            return;
+        }
+        if !s.started {
+            *s = DamperSlot {
+                started: true,
+                start: slip,
+                last_slip: slip,
+                last_force: force,
+                last_t: t,
+                dir: 0,
+                ..*s
+            };
+        } else {
+            if t <= s.last_t {
+                return;
+            }
+            let ds = slip - s.last_slip;
+            d.cumulative_travel_m += ds.abs();
+            d.energy_j += 0.5 * (s.last_force + force) * ds;
+            let dir = if ds > s.still {
+                1
+            } else if ds < -s.still {
+                -1
+            } else {
+                0
+            };
+            if dir != 0 && dir != s.dir {
+                d.slip_excursions += 1;
+            }
+            s.dir = dir;
+            s.last_slip = slip;
+            s.last_force = force;
+            s.last_t = t;
+            let from_start = slip - s.start;
+            if from_start > d.slip_max_pos_m {
+                d.slip_max_pos_m = from_start;
+            }
+            if -from_start > d.slip_max_neg_m {
+                d.slip_max_neg_m = -from_start;
+            }
+        }
+        if rate.abs() > d.peak_slip_velocity_m_s {
+            d.peak_slip_velocity_m_s = rate.abs();
+        }
+        if force.abs() > d.peak_force_n {
+            d.peak_force_n = force.abs();
+        }
+    }
+
+    /// The demands, one per storey.
+    pub fn finish(mut self) -> Vec<DamperDemand> {
+        for d in &mut self.demand {
+            d.cycles = d.slip_excursions as f64 / 2.0;
+        }
+        self.demand
+    }
 }
 
 impl Response {
@@ -130,6 +306,13 @@ impl Response {
             ] {
                 if !v.is_finite() {
                     return Some((format!("energy.{name}"), v));
+                }
+            }
+        }
+        for (i, d) in self.dampers.iter().flatten().enumerate() {
+            for (name, v) in d.values() {
+                if !v.is_finite() {
+                    return Some((format!("dampers[storey {}].{name}", i + 1), v));
                 }
             }
         }
@@ -262,6 +445,8 @@ pub struct Peaks {
     pub collapse_limit: Option<Vec<f64>>,
     /// The first storey past its collapse limit.
     pub collapse: Option<Collapse>,
+    /// Per-damper demands, when the plan's outputs ask for them.
+    pub dampers: Option<DamperRecorder>,
 }
 
 impl Peaks {
@@ -277,6 +462,7 @@ impl Peaks {
             transitions: vec![0; 2 * n],
             collapse_limit: None,
             collapse: None,
+            dampers: None,
         }
     }
 
@@ -284,6 +470,7 @@ impl Peaks {
     pub fn for_plan(plan: &crate::plan::Plan) -> Self {
         Peaks {
             collapse_limit: plan.collapse_drift.clone(),
+            dampers: plan.outputs.dampers.then(|| DamperRecorder::for_plan(plan)),
             ..Peaks::new(plan.floors)
         }
     }
@@ -427,6 +614,7 @@ impl Peaks {
             peak_ductility: None,
             peak_plastic_drift: None,
             collapse: None,
+            dampers: self.dampers.map(DamperRecorder::finish),
         }
     }
 }

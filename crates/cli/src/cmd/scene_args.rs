@@ -148,6 +148,7 @@ impl SceneArgs {
             duration: self.duration,
             histories: Some(histories),
             energies: None,
+            dampers: None,
             plan_only,
         };
         match &self.scene {

@@ -589,6 +589,7 @@ mod tests {
             outputs: OutputsConfig {
                 energies: false,
                 histories: true,
+                dampers: false,
             },
             reduce: false,
         };

@@ -184,6 +184,7 @@ pub fn simulate_design(
         outputs: OutputsConfig {
             energies: fid.energies,
             histories: false,
+            dampers: false,
         },
         reduce: true,
         notes: Vec::new(),

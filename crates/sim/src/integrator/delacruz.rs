@@ -623,6 +623,7 @@ impl Integrator for DelaCruz {
             let fl = plan.contacts[c].floor;
             peaks.observe_slip(fl, slip(plan, c, &u, &epp));
         }
+        state::observe_dampers(plan, &mut peaks, 0.0, &u, &f, &w, &epp);
         let mut history = plan
             .outputs
             .histories
@@ -754,6 +755,7 @@ impl Integrator for DelaCruz {
                 }
                 peaks.observe_slip(ct.floor, slip(plan, c, &u, &epp));
             }
+            state::observe_dampers(plan, &mut peaks, t1, &u, &f_new, &w_new, &epp);
             peaks.observe_floors(&u, &a, ag1);
             peaks.observe_base_shear(base_shear(&a, ag1, p1));
             let mut e_row = None;

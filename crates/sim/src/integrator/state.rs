@@ -6,7 +6,7 @@ use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
 use crate::plan::{ContactKind, ContactRole, Plan};
-use crate::response::{Energy, History};
+use crate::response::{Energy, History, Peaks};
 use nalgebra::{DMatrix, DVector};
 
 /// Per-contact state of elastic–perfectly plastic elements: dissipator displacement,
@@ -38,6 +38,29 @@ pub(crate) fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
     match ct.kind {
         ContactKind::Dof { dof } => u[ct.floor] - u[dof],
         ContactKind::Epp => u[ct.floor] - epp[c].u,
+    }
+}
+
+/// Feeds the damper contacts' slip, slip rate `w` and friction force `f` at time `t` to
+/// the per-damper recorder, when the plan's outputs ask for one (one branch otherwise).
+#[inline]
+#[allow(clippy::too_many_arguments)] // one observation of named quantities
+pub(crate) fn observe_dampers(
+    plan: &Plan,
+    peaks: &mut Peaks,
+    t: f64,
+    u: &[f64],
+    f: &[f64],
+    w: &[f64],
+    epp: &[EppState],
+) {
+    let Some(rec) = peaks.dampers.as_mut() else {
+        return;
+    };
+    for (c, ct) in plan.contacts.iter().enumerate() {
+        if ct.role == ContactRole::Damper {
+            rec.observe(ct.floor, t, slip(plan, c, u, epp), w[c], f[c]);
+        }
     }
 }
 

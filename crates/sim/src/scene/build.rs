@@ -355,6 +355,9 @@ impl Scene {
         if let Some(e) = over.energies {
             outputs.energies = e;
         }
+        if let Some(d) = over.dampers {
+            outputs.dampers = d;
+        }
         Ok(Scene {
             name: cfg.name.clone().unwrap_or_else(|| building.name.clone()),
             building,

@@ -236,6 +236,11 @@ pub struct OutputsConfig {
     /// Store time histories (default false).
     #[serde(default)]
     pub histories: bool,
+    /// Per-damper demands: slip each way, peak slip velocity, cumulative travel, slip
+    /// excursions and cycles, peak friction force and dissipated energy per damper
+    /// (`Response::dampers`; default false: not computed, and not written back).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub dampers: bool,
 }
 
 impl Default for OutputsConfig {
@@ -243,6 +248,7 @@ impl Default for OutputsConfig {
         OutputsConfig {
             energies: true,
             histories: false,
+            dampers: false,
         }
     }
 }
@@ -269,6 +275,8 @@ pub struct SceneOverrides {
     pub histories: Option<bool>,
     /// Accumulate energies.
     pub energies: Option<bool>,
+    /// Per-damper demands.
+    pub dampers: Option<bool>,
     /// The scene is compiled to be explained, not run: with no ground motion and no
     /// duration it is planned over one bare-frame period T₁ (and a note says so) instead
     /// of being refused.

@@ -120,6 +120,7 @@ pub(super) fn scene(building: &BuildingConfig, o: SceneOpts) -> anyhow::Result<S
         outputs: OutputsConfig {
             energies: o.energies,
             histories: false,
+            dampers: false,
         },
         reduce: o.reduce,
     };
@@ -187,6 +188,7 @@ pub(super) fn record_plan(
         outputs: OutputsConfig {
             energies: false,
             histories: false,
+            dampers: false,
         },
         reduce: true,
     };

@@ -159,13 +159,13 @@ pub(super) struct Model<'a> {
 /// frame is one record interval, the span a mode set's grid divides; the output steps
 /// inside it are observed only where a peak can change there (the observed functions'
 /// bounds, [`ModeOps::obs_rows`]), so a fine output step costs no substeps of its own.
-/// Histories and energies need the state at every output step: their frames are the
-/// output steps.
+/// Histories, energies and per-damper demands need the state at every output step: their
+/// frames are the output steps.
 pub(super) fn frame_steps(plan: &Plan) -> usize {
     let Some(r) = plan.record.as_ref() else {
         return 1;
     };
-    if plan.outputs.histories || plan.outputs.energies {
+    if plan.outputs.histories || plan.outputs.energies || plan.outputs.dampers {
         return 1;
     }
     let (rdt, dt) = (r.dt(), plan.method.dt);

@@ -281,7 +281,7 @@ impl Exact {
         let msum: f64 = model.mr.iter().sum();
         let mut acc = DVector::zeros(dim);
         let observe =
-            |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>| {
+            |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>, t: f64| {
                 // Only the accelerations (rows n..2n of A y) are observed.
                 add(n * dim + 4 * nf);
                 for (i, ai) in acc.as_mut_slice()[n..2 * n].iter_mut().enumerate() {
@@ -312,9 +312,16 @@ impl Exact {
                             peaks.observe_plastic(ct.floor, y[ct.floor] - other);
                         }
                     }
+                    if ct.role == ContactRole::Damper
+                        && let Some(rec) = peaks.dampers.as_mut()
+                    {
+                        let force = row_dot(&ops.force, c, y);
+                        let rate = row_dot(&ops.slip_rate, c, y);
+                        rec.observe(ct.floor, t, y[ct.floor] - other, rate, force);
+                    }
                 }
             };
-        observe(&mut peaks, &ops, &y, &mut acc);
+        observe(&mut peaks, &ops, &y, &mut acc, 0.0);
         cont_drift.copy_from_slice(&peaks.drift);
 
         let mut history = plan
@@ -561,7 +568,7 @@ impl Exact {
                                 } else {
                                     eval(&p, tau, &mut yobs);
                                 }
-                                observe(&mut peaks, &ops, &yobs, &mut acc);
+                                observe(&mut peaks, &ops, &yobs, &mut acc, tj);
                                 if peaks.collapsed(tj) {
                                     if !summed {
                                         taylor(&ops.a_rows, &y, &mut p);
@@ -676,7 +683,7 @@ impl Exact {
                         below = y[i];
                     }
                     if let Some(j) = end_out {
-                        observe(&mut peaks, &ops, &y, &mut acc);
+                        observe(&mut peaks, &ops, &y, &mut acc, j as f64 * dt);
                         stop = peaks.collapsed(j as f64 * dt);
                     }
                     if stop {
@@ -823,7 +830,7 @@ impl Exact {
             if ops.proj.is_some() {
                 project_counted(&mut y, &ops, &mut integ);
             }
-            observe(&mut peaks, &ops, &y, &mut acc);
+            observe(&mut peaks, &ops, &y, &mut acc, t_step_end);
             let mut e_row = None;
             if energies {
                 let (ek, es) = model.stored(&y);

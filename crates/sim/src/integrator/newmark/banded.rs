@@ -449,6 +449,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     for (c, l) in links.iter().enumerate() {
         l.observe_start(&u, epp[c].u, &mut peaks);
     }
+    state::observe_dampers(plan, &mut peaks, 0.0, &u, &f_old, &w_old, &epp);
 
     // Floor vectors ground first (index 0).
     let mut ut = vec![0.0; n + 1];
@@ -739,6 +740,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 );
             }
         }
+        state::observe_dampers(plan, &mut peaks, t1, &u, &f_new, &w_new, &epp);
         peaks.observe_floors(&u, &a, ag1);
         peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag1, p1));
         if energies {

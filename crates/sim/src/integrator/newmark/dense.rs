@@ -138,6 +138,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
             ContactRole::Storey => peaks.observe_plastic(fl, slip(plan, c, &start.u, &epp)),
         }
     }
+    state::observe_dampers(plan, &mut peaks, 0.0, &start.u, &f_old, &w_old, &epp);
 
     let mut history = plan
         .outputs
@@ -249,6 +250,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 );
             }
         }
+        state::observe_dampers(plan, &mut peaks, t1, u_now, &f_new, &w_new, &epp);
         peaks.observe_floors(u_now, a_now, ag1);
         peaks.observe_base_shear(base_shear(a_now, ag1, p1));
         let mut e_row = None;

@@ -118,10 +118,12 @@ impl<const N: usize> EnergyMatrices<N> {
     }
 }
 
-/// Whether the fixed loop can run `plan`: no histories, every contact with a finite box of
-/// positive width (the pattern solver's premise).
+/// Whether the fixed loop can run `plan`: no histories and no per-damper demands (its
+/// loop holds no code for either), every contact with a finite box of positive width (the
+/// pattern solver's premise).
 pub(super) fn applies(plan: &Plan) -> bool {
     !plan.outputs.histories
+        && !plan.outputs.dampers
         && plan
             .contacts
             .iter()

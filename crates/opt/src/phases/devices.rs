@@ -1,0 +1,332 @@
+//! The device specification of the recommended design: per damper, what the device must
+//! be bought and prototype-tested for — its slip load and the range the property bounds
+//! give it, the largest friction force, the design stroke each way, the largest slip
+//! velocity, the cumulative travel, the slip cycles and the energy it dissipates, each the
+//! largest over every record and property case of the check — and, when the study gives
+//! the brace angle, the brace's axial force and stiffness. Written as
+//! `device-table.{csv,md,json}` beside the code check.
+//!
+//! The building gives each brace as a storey-level (horizontal) spring k′ in series with
+//! its slider; a diagonal brace at θ to the horizontal of axial stiffness k_axial gives
+//! k′ = k_axial cos²θ, and a horizontal force F is an axial force F / cos θ in it.
+
+use crate::base::error::OptError;
+use crate::base::metrics::RecordMetrics;
+use crate::model::check::short;
+use crate::model::study::Study;
+use crate::store::folder::StudyFolder;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// One suite's stroke of one damper (the larger of the two ways, per record).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SuiteStroke {
+    /// The suite.
+    pub suite: String,
+    /// The mean over the suite's records, the largest over the property cases, mm.
+    pub mean_mm: f64,
+    /// The largest over the records and cases, mm.
+    pub max_mm: f64,
+}
+
+/// What one damper must be specified for.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DeviceRow {
+    /// Floor (from 1).
+    pub floor: usize,
+    /// Nominal slip load, kN.
+    pub slip_load_kn: f64,
+    /// Slip load at the lower and the upper bound, kN.
+    pub slip_load_range_kn: [f64; 2],
+    /// Largest |friction force| over every run, kN.
+    pub peak_force_kn: f64,
+    /// Largest slip displacement each way over every run, mm (positive, negative).
+    pub stroke_mm: [f64; 2],
+    /// The stroke per suite (hazard level).
+    pub stroke_by_suite: Vec<SuiteStroke>,
+    /// Largest |slip velocity| over every run, mm/s.
+    pub peak_velocity_mm_s: f64,
+    /// Largest cumulative slip travel of one run, m.
+    pub cumulative_travel_m: f64,
+    /// Largest number of slip excursions of one run.
+    pub slip_excursions: u64,
+    /// Largest number of full slip cycles of one run.
+    pub cycles: f64,
+    /// Largest energy dissipated in one run, kJ.
+    pub energy_kj: f64,
+    /// The brace's axial force at the largest friction force, kN (with the brace angle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub brace_axial_force_kn: Option<f64>,
+    /// The brace's axial stiffness, k′ / cos²θ, MN/m (with the brace angle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub brace_axial_stiffness_mn_m: Option<f64>,
+    /// Whether the damper never slipped on any record at any case: it acts as a rigid
+    /// brace at this slip load.
+    pub never_slips: bool,
+}
+
+/// The device table of one design.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DeviceTable {
+    /// The study.
+    pub study: String,
+    /// The fidelity the runs were at.
+    pub fidelity: String,
+    /// Runs the maxima are taken over (records × property cases).
+    pub runs: usize,
+    /// The brace angle to the horizontal, degrees, when the study gives it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub brace_angle_deg: Option<f64>,
+    /// One row per damper, bottom to top.
+    pub dampers: Vec<DeviceRow>,
+}
+
+impl DeviceTable {
+    /// The files [`DeviceTable::write_files`] writes.
+    pub const FILES: [&str; 3] = ["device-table.csv", "device-table.md", "device-table.json"];
+
+    /// The table of the design `slip_loads_n` (N per damper) from its runs (every run of
+    /// `study`, with the per-damper demands the check fidelity records).
+    pub fn of(
+        study: &Study,
+        slip_loads_n: &[f64],
+        runs: &[RecordMetrics],
+        fidelity: String,
+    ) -> Result<DeviceTable, OptError> {
+        let cases = study.checks.cases();
+        let (lo, hi) = (
+            cases.iter().map(|c| c.slip_load).fold(1.0, f64::min),
+            cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
+        );
+        let n = study.records.len();
+        let angle = study.config.devices.and_then(|d| d.brace_angle_deg);
+        let cos = angle.map(|t| t.to_radians().cos());
+        let mut rows = Vec::new();
+        for (k, &floor) in study.space.dampers.iter().enumerate() {
+            let demand = |m: &RecordMetrics| {
+                m.dampers
+                    .as_ref()
+                    .and_then(|d| d.get(floor).copied())
+                    .ok_or_else(|| {
+                        OptError::Missing(format!(
+                            "the device table needs the per-damper demands of floor {} (outputs.dampers at the check fidelity)",
+                            floor + 1
+                        ))
+                    })
+            };
+            let all = runs.iter().map(demand).collect::<Result<Vec<_>, _>>()?;
+            let max = |f: &dyn Fn(&slipload_sim::response::DamperDemand) -> f64| {
+                all.iter().map(f).fold(0.0, f64::max)
+            };
+            let peak_force = max(&|d| d.peak_force_n);
+            let stroke_by_suite = study
+                .suites
+                .iter()
+                .map(|s| {
+                    let mut mean = 0.0f64;
+                    let mut top = 0.0f64;
+                    for c in 0..cases.len() {
+                        let strokes: Vec<f64> = s
+                            .range
+                            .clone()
+                            .map(|r| {
+                                let d = &all[c * n + r];
+                                d.slip_max_pos_m.max(d.slip_max_neg_m)
+                            })
+                            .collect();
+                        let m = strokes.iter().sum::<f64>() / strokes.len().max(1) as f64;
+                        mean = mean.max(m);
+                        top = strokes.iter().copied().fold(top, f64::max);
+                    }
+                    SuiteStroke {
+                        suite: s.name.clone(),
+                        mean_mm: 1e3 * mean,
+                        max_mm: 1e3 * top,
+                    }
+                })
+                .collect();
+            let brace = study.building.dissipators[floor]
+                .as_ref()
+                .map(|d| d.brace_stiffness);
+            let travel = max(&|d| d.cumulative_travel_m);
+            let excursions = all.iter().map(|d| d.slip_excursions).max().unwrap_or(0);
+            rows.push(DeviceRow {
+                floor: floor + 1,
+                slip_load_kn: slip_loads_n[k] / 1e3,
+                slip_load_range_kn: [lo * slip_loads_n[k] / 1e3, hi * slip_loads_n[k] / 1e3],
+                peak_force_kn: peak_force / 1e3,
+                stroke_mm: [
+                    1e3 * max(&|d| d.slip_max_pos_m),
+                    1e3 * max(&|d| d.slip_max_neg_m),
+                ],
+                stroke_by_suite,
+                peak_velocity_mm_s: 1e3 * max(&|d| d.peak_slip_velocity_m_s),
+                cumulative_travel_m: travel,
+                slip_excursions: excursions,
+                cycles: max(&|d| d.cycles),
+                energy_kj: max(&|d| d.energy_j) / 1e3,
+                brace_axial_force_kn: cos.map(|c| peak_force / c / 1e3),
+                brace_axial_stiffness_mn_m: cos.zip(brace).map(|(c, k)| k / (c * c) / 1e6),
+                never_slips: excursions == 0,
+            });
+        }
+        Ok(DeviceTable {
+            study: study.name.clone(),
+            fidelity,
+            runs: runs.len(),
+            brace_angle_deg: angle,
+            dampers: rows,
+        })
+    }
+
+    /// The floors whose damper never slipped.
+    pub fn rigid_floors(&self) -> Vec<usize> {
+        self.dampers
+            .iter()
+            .filter(|r| r.never_slips)
+            .map(|r| r.floor)
+            .collect()
+    }
+
+    /// `device-table.csv`: one line per damper (per-suite strokes as columns).
+    pub fn to_csv(&self) -> String {
+        let mut s = String::from(
+            "floor,slip_load_kN,slip_load_lower_kN,slip_load_upper_kN,peak_force_kN,stroke_pos_mm,stroke_neg_mm",
+        );
+        if let Some(r) = self.dampers.first() {
+            for st in &r.stroke_by_suite {
+                let _ = write!(s, ",stroke_mean_mm_{0},stroke_max_mm_{0}", st.suite);
+            }
+        }
+        s.push_str(",peak_velocity_mm_s,cumulative_travel_m,slip_excursions,cycles,energy_kJ");
+        if self.brace_angle_deg.is_some() {
+            s.push_str(",brace_axial_force_kN,brace_axial_stiffness_MN_m");
+        }
+        s.push_str(",never_slips\n");
+        for r in &self.dampers {
+            let _ = write!(
+                s,
+                "{},{},{},{},{},{},{}",
+                r.floor,
+                r.slip_load_kn,
+                r.slip_load_range_kn[0],
+                r.slip_load_range_kn[1],
+                r.peak_force_kn,
+                r.stroke_mm[0],
+                r.stroke_mm[1]
+            );
+            for st in &r.stroke_by_suite {
+                let _ = write!(s, ",{},{}", st.mean_mm, st.max_mm);
+            }
+            let _ = write!(
+                s,
+                ",{},{},{},{},{}",
+                r.peak_velocity_mm_s, r.cumulative_travel_m, r.slip_excursions, r.cycles, r.energy_kj
+            );
+            if let (Some(f), Some(k)) = (r.brace_axial_force_kn, r.brace_axial_stiffness_mn_m) {
+                let _ = write!(s, ",{f},{k}");
+            } else if self.brace_angle_deg.is_some() {
+                s.push_str(",,");
+            }
+            let _ = writeln!(s, ",{}", r.never_slips);
+        }
+        s
+    }
+
+    /// `device-table.json`.
+    pub fn to_json(&self) -> Result<String, OptError> {
+        let mut s = serde_json::to_string_pretty(self).map_err(|source| OptError::Json {
+            path: "device-table.json".into(),
+            source,
+        })?;
+        s.push('\n');
+        Ok(s)
+    }
+
+    /// `device-table.md`.
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "# Device table: {}\n", self.study);
+        let _ = writeln!(
+            s,
+            "What each damper must be specified and prototype-tested for: the largest of each quantity over {} runs (every record at every property case), {}. Stroke: the largest slip displacement each way; per suite, the mean over its records and the largest (the larger way per record).{}\n",
+            self.runs,
+            self.fidelity,
+            match self.brace_angle_deg {
+                Some(t) => format!(
+                    " Brace at {t}° to the horizontal: axial force F / cos θ, axial stiffness k′ / cos²θ."
+                ),
+                None => String::new(),
+            }
+        );
+        let suites: Vec<String> = self
+            .dampers
+            .first()
+            .map(|r| r.stroke_by_suite.iter().map(|s| s.suite.clone()).collect())
+            .unwrap_or_default();
+        s.push_str("| floor | slip load (kN) | range (kN) | peak force (kN) | stroke + / − (mm) |");
+        for su in &suites {
+            let _ = write!(s, " stroke {su} mean / max (mm) |");
+        }
+        s.push_str(" velocity (mm/s) | travel (m) | cycles | energy (kJ) |");
+        if self.brace_angle_deg.is_some() {
+            s.push_str(" brace force (kN) | brace k (MN/m) |");
+        }
+        s.push_str(" note |\n|---:|---:|---:|---:|---:|");
+        for _ in &suites {
+            s.push_str("---:|");
+        }
+        s.push_str("---:|---:|---:|---:|");
+        if self.brace_angle_deg.is_some() {
+            s.push_str("---:|---:|");
+        }
+        s.push_str("---|\n");
+        for r in &self.dampers {
+            let _ = write!(
+                s,
+                "| {} | {:.1} | {:.1}–{:.1} | {:.1} | {:.1} / {:.1} |",
+                r.floor,
+                r.slip_load_kn,
+                r.slip_load_range_kn[0],
+                r.slip_load_range_kn[1],
+                r.peak_force_kn,
+                r.stroke_mm[0],
+                r.stroke_mm[1]
+            );
+            for st in &r.stroke_by_suite {
+                let _ = write!(s, " {:.1} / {:.1} |", st.mean_mm, st.max_mm);
+            }
+            let _ = write!(
+                s,
+                " {} | {} | {} | {} |",
+                short(r.peak_velocity_mm_s),
+                short(r.cumulative_travel_m),
+                r.cycles,
+                short(r.energy_kj)
+            );
+            if let (Some(f), Some(k)) = (r.brace_axial_force_kn, r.brace_axial_stiffness_mn_m) {
+                let _ = write!(s, " {f:.1} | {} |", short(k));
+            } else if self.brace_angle_deg.is_some() {
+                s.push_str(" — | — |");
+            }
+            let _ = writeln!(
+                s,
+                " {} |",
+                if r.never_slips {
+                    "never slips: acts as a rigid brace at this slip load"
+                } else {
+                    ""
+                }
+            );
+        }
+        s
+    }
+
+    /// Writes `device-table.{csv,md,json}` into the study folder.
+    pub fn write_files(&self, folder: &StudyFolder) -> Result<(), OptError> {
+        folder.write("device-table.csv", self.to_csv().as_bytes())?;
+        folder.write("device-table.md", self.to_markdown().as_bytes())?;
+        folder.write("device-table.json", self.to_json()?.as_bytes())?;
+        Ok(())
+    }
+}
