@@ -60,6 +60,7 @@ fn limits(drift: f64) -> impl Fn(&mut serde_json::Value) {
             ],
             "unacceptable": { "max_count": 0, "record_limits": [ { "metric": "peak_drift_ratio", "max": 1.5 * drift } ] }
         });
+        v["devices"] = serde_json::json!({ "brace_angle_deg": 35 });
     }
 }
 
@@ -158,7 +159,13 @@ fn the_optimum_meets_every_limit_and_its_check_is_the_resimulated_design() {
     // scaled design on the building with scaled braces, at the check fidelity
     let optimum = &run.report.refine.optimum_loads;
     let check = Fidelity::check(&st);
+    assert!(
+        check.dampers,
+        "a study with limits records the dampers at the check"
+    );
     let n = st.records.len();
+    let devices = run.report.devices.as_ref().unwrap();
+    let mut all_runs: Vec<RecordMetrics> = Vec::new();
     for (case, lambda, k) in [
         (CaseName::Nominal, 1.0, 1.0),
         (CaseName::Lower, 0.8, 0.9),
@@ -184,6 +191,51 @@ fn the_optimum_meets_every_limit_and_its_check_is_the_resimulated_design() {
         let unacceptable = drift.iter().filter(|&&d| d > 1.5 * 0.012).count();
         assert_eq!(lines[2].demand, unacceptable as f64);
         assert_eq!(unacceptable, 0);
+        all_runs.extend(rows);
+    }
+    // the device table: each damper's figures are the maxima over those simulations
+    for (k, row) in devices.dampers.iter().enumerate() {
+        let floor = st.space.dampers[k];
+        let d: Vec<_> = all_runs
+            .iter()
+            .map(|m| m.dampers.as_ref().unwrap()[floor])
+            .collect();
+        let max = |f: &dyn Fn(&slipload_sim::response::DamperDemand) -> f64| {
+            d.iter().map(f).fold(0.0, f64::max)
+        };
+        assert_eq!(row.floor, floor + 1);
+        assert_eq!(row.peak_force_kn, max(&|x| x.peak_force_n) / 1e3);
+        assert_eq!(row.stroke_mm[0], 1e3 * max(&|x| x.slip_max_pos_m));
+        assert_eq!(row.stroke_mm[1], 1e3 * max(&|x| x.slip_max_neg_m));
+        assert_eq!(
+            row.slip_excursions,
+            d.iter().map(|x| x.slip_excursions).max().unwrap()
+        );
+        assert_eq!(row.cycles, max(&|x| x.cycles));
+        assert_eq!(row.energy_kj, max(&|x| x.energy_j) / 1e3);
+        // a slip load is never passed: the friction force stays within the upper bound's
+        // slip load (1.25 × nominal), to the round-off of the contact solve
+        assert!(row.peak_force_kn <= 1.25 * row.slip_load_kn * (1.0 + 1e-9));
+        // (the products in another order: round-off)
+        for (got, want) in row
+            .slip_load_range_kn
+            .iter()
+            .zip([0.8 * row.slip_load_kn, 1.25 * row.slip_load_kn])
+        {
+            assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
+        }
+        assert!(!row.never_slips, "these dampers slip under 0.4 g");
+        // brace at the study's angle: F / cos θ and k′ / cos²θ
+        let c = 35f64.to_radians().cos();
+        assert_eq!(
+            row.brace_axial_force_kn,
+            Some(row.peak_force_kn * 1e3 / c / 1e3)
+        );
+        let k = 448.12e6;
+        assert!((row.brace_axial_stiffness_mn_m.unwrap() - k / (c * c) / 1e6).abs() < 1e-9);
+    }
+    for f in ["device-table.csv", "device-table.md", "device-table.json"] {
+        assert!(out.join(f).is_file(), "{f}");
     }
     let optimum_json = std::fs::read_to_string(out.join("optimum.json")).unwrap();
     assert!(optimum_json.contains("\"passes\": true"), "{optimum_json}");
@@ -275,4 +327,33 @@ fn bad_bounds_and_limits_are_refused_by_field() {
         let e = study(patch).unwrap_err().to_string();
         assert!(e.contains(field), "{field}: {e}");
     }
+}
+
+#[test]
+fn a_damper_that_never_slips_is_flagged_as_a_rigid_brace() {
+    // slip loads far above any storey force: the friction contact never breaks
+    let st = study(limits(0.05)).unwrap();
+    let fid = Fidelity::check(&st);
+    let design = [3.0e9, 3.0e9, 3.0e9];
+    let runs: Vec<RecordMetrics> = (0..st.runs())
+        .map(|r| run_one(&st, &design, r, &fid, "locked").unwrap())
+        .collect();
+    let t = slipload_opt::phases::devices::DeviceTable::of(&st, &design, &runs, "check".into())
+        .unwrap();
+    assert_eq!(t.rigid_floors(), vec![1, 2, 3]);
+    // a stuck contact's slip is the round-off of the floor's and the damper's
+    // displacements (far below a nanometre), its dissipation as small
+    for r in &t.dampers {
+        assert!(
+            r.stroke_mm[0] < 1e-6 && r.stroke_mm[1] < 1e-6,
+            "{:?}",
+            r.stroke_mm
+        );
+        assert_eq!(r.slip_excursions, 0);
+        assert!(r.energy_kj.abs() < 1e-6, "{}", r.energy_kj);
+    }
+    assert!(
+        t.to_markdown()
+            .contains("acts as a rigid brace at this slip load")
+    );
 }

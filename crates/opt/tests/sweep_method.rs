@@ -52,6 +52,7 @@ fn probe_work(study: &Study) -> (u64, u64) {
             dt_s: None,
             dt_factor: 1.0,
             energies: study.needs_energies(),
+            dampers: false,
         };
         simulate_one(study, &study.file_slip_loads(), 0, &fid, "probe")
             .unwrap()

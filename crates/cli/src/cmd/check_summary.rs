@@ -4,6 +4,7 @@
 
 use slipload_opt::model::check::{CheckLine, short};
 use slipload_opt::phases::check::CodeCheck;
+use slipload_opt::phases::devices::DeviceTable;
 
 /// The exit code of a study that ran to its end but found no design meeting its limits.
 pub const NO_ACCEPTABLE_DESIGN: u8 = 3;
@@ -88,4 +89,53 @@ pub fn outcome(c: Option<&CodeCheck>) -> anyhow::Result<()> {
         }
         _ => Ok(()),
     }
+}
+
+/// The device table for the summary: one line per damper up to 12 (force, stroke each
+/// way, velocity, cycles, energy), else where the table is; and every damper that never
+/// slipped, flagged.
+pub fn device_lines(d: &DeviceTable) -> Vec<String> {
+    let mut out = vec![format!(
+        "devices to specify (largest over {} runs; device-table.md has travel, per-suite strokes{}):",
+        d.runs,
+        if d.brace_angle_deg.is_some() {
+            " and the braces' axial force and stiffness"
+        } else {
+            ""
+        }
+    )];
+    if d.dampers.len() <= 12 {
+        for r in &d.dampers {
+            out.push(format!(
+                "  floor {}: slip load {:.1} kN ({:.1} to {:.1}), force {:.1} kN, stroke +{:.1} / -{:.1} mm, velocity {:.0} mm/s, {} cycles, {:.1} kJ",
+                r.floor,
+                r.slip_load_kn,
+                r.slip_load_range_kn[0],
+                r.slip_load_range_kn[1],
+                r.peak_force_kn,
+                r.stroke_mm[0],
+                r.stroke_mm[1],
+                r.peak_velocity_mm_s,
+                r.cycles,
+                r.energy_kj
+            ));
+        }
+    } else {
+        out.push(format!(
+            "  {} dampers: see device-table.md",
+            d.dampers.len()
+        ));
+    }
+    let rigid = d.rigid_floors();
+    if !rigid.is_empty() {
+        out.push(format!(
+            "  never slips on any record: the damper of floor {} (acts as a rigid brace at this slip load)",
+            rigid
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    out
 }

@@ -307,6 +307,11 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             outln!("{line}");
         }
     }
+    if let Some(d) = &report.devices {
+        for line in super::check_summary::device_lines(d) {
+            outln!("{line}");
+        }
+    }
     match &report.pareto {
         Some(p) => {
             for line in super::pareto_summary::front_lines(study, report, p) {

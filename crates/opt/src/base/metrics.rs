@@ -37,6 +37,10 @@ pub struct RecordMetrics {
     /// this record.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collapse: Option<(usize, f64)>,
+    /// Per-damper demands per storey (zero for a storey without a damper), when the run
+    /// recorded them (a study with limits, at the check fidelity).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dampers: Option<Vec<slipload_sim::response::DamperDemand>>,
 }
 
 impl RecordMetrics {
@@ -71,6 +75,7 @@ impl RecordMetrics {
                 .map(|mu| mu.iter().map(|m| m.unwrap_or(0.0)).collect()),
             energy_plastic: energy.and_then(|e| e.plastic),
             collapse: r.collapse.map(|c| (c.storey, c.time)),
+            dampers: r.dampers.clone(),
         }
     }
 
@@ -131,6 +136,11 @@ impl RecordMetrics {
                 return Some(format!("{name} = {v}"));
             }
         }
+        for (i, d) in self.dampers.iter().flatten().enumerate() {
+            if let Some((name, v)) = d.values().into_iter().find(|(_, v)| !v.is_finite()) {
+                return Some(format!("damper {name}[storey {}] = {v}", i + 1));
+            }
+        }
         None
     }
 
@@ -148,5 +158,10 @@ impl RecordMetrics {
             && opt(self.strain_energy_area)
             && opt(self.energy_plastic)
             && opt(self.peak_ductility())
+            && self
+                .dampers
+                .iter()
+                .flatten()
+                .all(|d| d.values().iter().all(|(_, v)| v.is_finite()))
     }
 }

@@ -184,7 +184,7 @@ pub fn simulate_design(
         outputs: OutputsConfig {
             energies: fid.energies,
             histories: false,
-            dampers: false,
+            dampers: fid.dampers,
         },
         reduce: true,
         notes: Vec::new(),

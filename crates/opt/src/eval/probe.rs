@@ -32,6 +32,7 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             dt_s: study.config.fidelity.dt_s,
             dt_factor: 1.0,
             energies: study.needs_energies(),
+            dampers: false,
         };
         // the building file's design as written (a locked or asymmetric damper as such)
         simulate_design(

@@ -610,6 +610,7 @@ mod tests {
             ductility: None,
             energy_plastic: None,
             collapse: collapsed.then_some((1, 1.0)),
+            dampers: None,
         }
     }
 

@@ -33,6 +33,9 @@ pub struct Fidelity {
     pub dt_factor: f64,
     /// Accumulate energies (E_friction/E_input, strain-energy area).
     pub energies: bool,
+    /// Record the per-damper demands (a study with limits, at the check fidelity: the
+    /// device table reads them).
+    pub dampers: bool,
 }
 
 impl Fidelity {
@@ -47,7 +50,7 @@ impl Fidelity {
             ),
             self.dt_factor.to_bits(),
             self.energies
-        )
+        ) + if self.dampers { " dampers" } else { "" }
     }
 }
 

@@ -331,15 +331,18 @@ impl Fidelity {
             dt_s: study.config.fidelity.dt_s,
             dt_factor: 1.0,
             energies: study.needs_energies(),
+            dampers: false,
         }
     }
-    /// The study's reference check fidelity (energies on).
+    /// The study's reference check fidelity (energies on; the per-damper demands for a
+    /// study with limits, whose device table reads them).
     pub fn check(study: &Study) -> Fidelity {
         Fidelity {
             method: study.config.fidelity.check_method,
             dt_s: study.config.fidelity.dt_s,
             dt_factor: study.config.fidelity.check_dt_factor,
             energies: true,
+            dampers: study.checks.has_limits(),
         }
     }
 }

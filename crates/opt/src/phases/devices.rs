@@ -221,7 +221,11 @@ impl DeviceTable {
             let _ = write!(
                 s,
                 ",{},{},{},{},{}",
-                r.peak_velocity_mm_s, r.cumulative_travel_m, r.slip_excursions, r.cycles, r.energy_kj
+                r.peak_velocity_mm_s,
+                r.cumulative_travel_m,
+                r.slip_excursions,
+                r.cycles,
+                r.energy_kj
             );
             if let (Some(f), Some(k)) = (r.brace_axial_force_kn, r.brace_axial_stiffness_mn_m) {
                 let _ = write!(s, ",{f},{k}");

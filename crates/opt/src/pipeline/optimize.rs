@@ -93,6 +93,9 @@ pub fn optimize_study(
     if report.code_check.is_some() {
         files.extend(crate::phases::check::CodeCheck::FILES);
     }
+    if report.devices.is_some() {
+        files.extend(crate::phases::devices::DeviceTable::FILES);
+    }
     Ok(OptimizeRun {
         report,
         drawn,
@@ -232,6 +235,19 @@ fn run_phases(
         pareto: pareto.as_ref().map(|(_, w)| *w),
     };
     let code_check = crate::phases::check::CodeCheck::of(study, &refined)?;
+    let devices = match (
+        &code_check,
+        &refined.recommended_runs,
+        refined.finalists.first(),
+    ) {
+        (Some(c), Some((runs, _)), Some(first)) => Some(crate::phases::devices::DeviceTable::of(
+            study,
+            &first.slip_loads_n,
+            runs,
+            c.fidelity.clone(),
+        )?),
+        _ => None,
+    };
     let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
     let figures = FigureData::of_design_table(
         &record_names,
@@ -274,6 +290,7 @@ fn run_phases(
         sweep,
         pareto: pareto.map(|(p, _)| p),
         code_check,
+        devices,
     };
     report.write_files(folder)?;
     Ok(report)

@@ -91,6 +91,9 @@ pub struct StudyReport {
     /// The recommended design's code check, when the study names limits
     /// ([`crate::phases::check`]).
     pub code_check: Option<crate::phases::check::CodeCheck>,
+    /// The recommended design's device table, beside its code check
+    /// ([`crate::phases::devices`]).
+    pub devices: Option<crate::phases::devices::DeviceTable>,
 }
 
 /// The check's summary in `optimum.json`.
@@ -263,6 +266,9 @@ impl StudyReport {
         }
         if let Some(c) = &self.code_check {
             c.write_files(folder)?;
+        }
+        if let Some(d) = &self.devices {
+            d.write_files(folder)?;
         }
         Ok(())
     }
