@@ -1,0 +1,105 @@
+//! Contract (issue 38): `slipload optimize` of a study with property bounds and limits
+//! ends its summary with the verdict and writes the code check and the device table; a
+//! study whose limits no design can meet still writes every file, names the governing
+//! limit and the closest design on stderr, and exits with code 3 — not 0 (success), 1
+//! (an error) or 2 (a usage error) — so a script can tell "ran, no acceptable design"
+//! from a crash.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use std::path::{Path, PathBuf};
+mod common;
+use common::{root, slipload_in as run_in};
+
+fn study(dir: &Path, drift: f64) -> PathBuf {
+    let text = format!(
+        r#"{{ "name": "check-cli", "building": "{building}",
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 2007, "pga_g": 0.4, "duration_s": 4.0 }},
+                 "limits": {{ "criteria": [ {{ "metric": "peak_drift_ratio", "statistic": "mean", "max": {drift} }} ],
+                              "unacceptable": {{ "max_count": 0 }} }} }} ],
+  "property_bounds": {{ "slip_load": {{ "lower": 0.8, "upper": 1.25 }} }},
+  "devices": {{ "brace_angle_deg": 40 }},
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark", "check_method": "newmark", "check_dt_factor": 0.5 }},
+  "sweep": {{ "sampler": "halton", "points": 6, "seed": 2007 }},
+  "refine": {{ "method": "trust-region", "starts": 1, "max_evaluations": 4, "finalists": 2 }} }}"#,
+        building = root().join("configs/benchmark-3story.json").display()
+    );
+    std::fs::create_dir_all(dir).unwrap();
+    let p = dir.join("study.json");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+const FILES: [&str; 6] = [
+    "code-check.csv",
+    "code-check.md",
+    "code-check.json",
+    "device-table.csv",
+    "device-table.md",
+    "device-table.json",
+];
+
+#[test]
+fn a_passing_design_ends_with_its_verdict() {
+    let dir = common::scratch("check", "pass");
+    let s = study(&dir, 0.012);
+    let out = run_in(
+        &dir,
+        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let last = text.lines().last().unwrap();
+    assert!(last.starts_with("verdict: PASS (governing: "), "{last}");
+    assert!(text.contains("devices to specify"), "{text}");
+    assert!(
+        text.contains("lower properties (slip loads × 0.8"),
+        "{text}"
+    );
+    for f in FILES {
+        assert!(dir.join("o").join(f).is_file(), "{f}");
+    }
+}
+
+#[test]
+fn no_acceptable_design_exits_3_after_writing_its_files() {
+    let dir = common::scratch("check", "fail");
+    let s = study(&dir, 0.001);
+    let out = run_in(
+        &dir,
+        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no evaluated design meets the study's limits")
+            && err.contains("governing limit")
+            && err.contains("misses by"),
+        "{err}"
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.lines().last().unwrap().starts_with("verdict: FAIL"),
+        "{text}"
+    );
+    for f in FILES {
+        assert!(dir.join("o").join(f).is_file(), "{f}");
+    }
+    // run again: everything from the journals, the same verdict and exit code
+    let again = run_in(
+        &dir,
+        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
+    );
+    assert_eq!(again.status.code(), Some(3));
+}
