@@ -160,9 +160,12 @@ struct DamperSlot {
     last_t: f64,
     /// Direction of the last step's slip: +1, −1, or 0 (stuck).
     dir: i8,
+    /// Largest |Δslip| of one step so far, m.
+    largest_step: f64,
     /// |Δslip| at or below which a step counts as stuck, m: 1e-9 of the damper's elastic
-    /// brace deformation at its slip load, far above the round-off of a stuck slip and far
-    /// below any slip that moves a device.
+    /// brace deformation at its slip load (raised in `observe` to 1e-12 of the slip's
+    /// value and to 1e-5 of the largest step's slip so far), far above the round-off of a
+    /// stuck slip and far below any slip that moves a device.
     still: f64,
 }
 
@@ -233,9 +236,19 @@ impl DamperRecorder {
             let ds = slip - s.last_slip;
             d.cumulative_travel_m += ds.abs();
             d.energy_j += 0.5 * (s.last_force + force) * ds;
-            let dir = if ds > s.still {
+            // the static threshold, the round-off of the slip's value itself, or 1e-5 of
+            // the largest slip of a step so far (the micro-motion of a stuck slider whose
+            // stiff brace rings is not an episode)
+            let still = s
+                .still
+                .max(1e-12 * slip.abs().max(s.last_slip.abs()))
+                .max(1e-5 * s.largest_step);
+            if ds.abs() > s.largest_step {
+                s.largest_step = ds.abs();
+            }
+            let dir = if ds > still {
                 1
-            } else if ds < -s.still {
+            } else if ds < -still {
                 -1
             } else {
                 0
