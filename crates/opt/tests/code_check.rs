@@ -42,6 +42,9 @@ fn study(patch: impl Fn(&mut serde_json::Value)) -> Result<Study, slipload_opt::
     Study::from_json(&v.to_string(), &path)
 }
 
+/// An edit of the study's JSON.
+type Patch = dyn Fn(&mut serde_json::Value);
+
 fn bounds(v: &mut serde_json::Value) {
     v["property_bounds"] = serde_json::json!({
         "slip_load": { "lower": 0.8, "upper": 1.25 },
@@ -286,7 +289,7 @@ fn a_study_without_bounds_or_limits_has_one_case_and_no_check() {
 
 #[test]
 fn bad_bounds_and_limits_are_refused_by_field() {
-    let cases: Vec<(Box<dyn Fn(&mut serde_json::Value)>, &str)> = vec![
+    let cases: Vec<(Box<Patch>, &str)> = vec![
         (
             Box::new(|v| {
                 v["property_bounds"] =

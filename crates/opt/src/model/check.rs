@@ -698,6 +698,7 @@ mod tests {
 
     #[test]
     fn the_worst_reading_takes_the_largest_case_objective() {
+        let one_suite = [std::ops::Range { start: 0, end: 1 }];
         let obj = Objective {
             terms: vec![crate::model::objective::Term {
                 metric: Metric::PeakDriftRatio,
@@ -711,16 +712,16 @@ mod tests {
             metrics(0.005, false),
         ];
         let ch = checks(1);
-        let f = ch.objective(&obj, &rows, None, &[0..1], 1).unwrap();
+        let f = ch.objective(&obj, &rows, None, &one_suite, 1).unwrap();
         assert_eq!(f, 0.030);
         assert_eq!(
-            ch.terms(&obj, &rows, None, &[0..1], 1).unwrap(),
+            ch.terms(&obj, &rows, None, &one_suite, 1).unwrap(),
             vec![0.030]
         );
         let mut nominal = ch.clone();
         nominal.property_bounds.as_mut().unwrap().objective_reads = BoundReading::Nominal;
         assert_eq!(
-            nominal.objective(&obj, &rows, None, &[0..1], 1).unwrap(),
+            nominal.objective(&obj, &rows, None, &one_suite, 1).unwrap(),
             0.010
         );
     }
