@@ -246,7 +246,7 @@ fn without_the_key_nothing_changes() {
         let off = scene_file(name, &over);
         assert!(!off.outputs.dampers);
         let on = with_dampers(off.clone());
-        let mut a = simulate(&off).unwrap().response;
+        let a = simulate(&off).unwrap().response;
         let mut b = simulate(&on).unwrap().response;
         assert!(a.dampers.is_none() && b.dampers.is_some());
         let json = serde_json::to_string(&a).unwrap();
