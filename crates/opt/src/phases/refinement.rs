@@ -248,9 +248,16 @@ pub fn refine_sweep(
         )
         .cloned()
         .expect("index from the list");
-    if !best_sweep.f.is_finite() && target != RefineTarget::PassingObjective {
+    if !best_sweep.f.is_finite() {
+        // (with limits: the designs that meet them collapse on a record the count allows,
+        // and a collapse makes the objective +inf)
         return Err(OptError::Missing(format!(
-            "every sampled design collapses on some record of the study (the drift limit of the building): widen the slip-load range or lower the suites' intensity ({} designs)",
+            "every sampled design{} collapses on some record of the study (the drift limit of the building): widen the slip-load range or lower the suites' intensity ({} designs)",
+            if target == RefineTarget::PassingObjective {
+                " that meets the limits"
+            } else {
+                ""
+            },
             known.len()
         )));
     }
