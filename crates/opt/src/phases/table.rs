@@ -365,10 +365,18 @@ impl DesignTable {
         self.write_files_as(folder, "design-table")
     }
 
-    /// Writes `STEM.csv`, `STEM.md` and `STEM.json` into the study folder.
+    /// Writes `STEM.csv`, `STEM.md` and `STEM.json` into the study folder; the Markdown's
+    /// title says which table it is (the front's for `pareto-table`).
     pub fn write_files_as(&self, folder: &StudyFolder, stem: &str) -> Result<(), OptError> {
+        let title = match stem {
+            "pareto-table" => "Design table of the front",
+            _ => "Design table",
+        };
         folder.write(&format!("{stem}.csv"), self.to_csv().as_bytes())?;
-        folder.write(&format!("{stem}.md"), self.to_markdown().as_bytes())?;
+        folder.write(
+            &format!("{stem}.md"),
+            self.to_markdown_titled(title).as_bytes(),
+        )?;
         folder.write(&format!("{stem}.json"), self.to_json().as_bytes())
     }
 
@@ -459,8 +467,13 @@ impl DesignTable {
 
     /// Markdown for people: two tables (slip loads and drifts per floor; responses).
     pub fn to_markdown(&self) -> String {
+        self.to_markdown_titled("Design table")
+    }
+
+    /// [`DesignTable::to_markdown`] under the title `title` (`# TITLE: STUDY`).
+    pub fn to_markdown_titled(&self, title: &str) -> String {
         let mut s = String::new();
-        let _ = writeln!(s, "# Design table: {}\n", self.study);
+        let _ = writeln!(s, "# {title}: {}\n", self.study);
         let _ = writeln!(
             s,
             "Objective: {} ({} records, {}). Drift ratios in %, slip loads in kN; \"/W\" = slip load over the floor weight, \"/ΣW\" = over the weight above the storey (its gravity shear).\n",
