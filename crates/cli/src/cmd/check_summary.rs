@@ -2,7 +2,7 @@
 //! then the verdict; and the outcome a script can tell from a crash (exit code 3: the
 //! study ran and wrote its files, but no evaluated design meets its limits).
 
-use slipload_opt::model::check::{CheckLine, short};
+use slipload_opt::model::check::{CheckLine, governing, short};
 use slipload_opt::phases::check::CodeCheck;
 use slipload_opt::phases::devices::DeviceTable;
 
@@ -44,13 +44,7 @@ pub fn lines(c: &CodeCheck) -> Vec<String> {
     for case in &c.cases {
         let lines: Vec<&CheckLine> = c.case_lines(case.name).collect();
         let pass = lines.iter().filter(|l| l.pass).count();
-        let gov = lines
-            .iter()
-            .copied()
-            .fold(None, |b: Option<&CheckLine>, l| match b {
-                Some(b) if b.ratio >= l.ratio => Some(b),
-                _ => Some(l),
-            });
+        let gov = governing(lines.iter().copied());
         out.push(format!(
             "  {} properties (slip loads × {}, braces × {}): {pass} of {} criteria pass{}",
             case.name.as_str(),

@@ -347,12 +347,7 @@ impl DesignCheck {
 
     /// The governing line: the largest ratio (the first of equals).
     pub fn governing(&self) -> Option<&CheckLine> {
-        self.lines
-            .iter()
-            .fold(None, |best: Option<&CheckLine>, l| match best {
-                Some(b) if b.ratio >= l.ratio => Some(b),
-                _ => Some(l),
-            })
+        governing(&self.lines)
     }
 
     /// The margin of the governing line, 1 − ratio (negative: the limit is exceeded).
@@ -383,6 +378,16 @@ impl DesignCheck {
             None => format!("{head} (no limits)"),
         }
     }
+}
+
+/// The governing line of `lines`: the largest ratio (the first of equals).
+pub fn governing<'a>(lines: impl IntoIterator<Item = &'a CheckLine>) -> Option<&'a CheckLine> {
+    lines
+        .into_iter()
+        .fold(None, |best: Option<&CheckLine>, l| match best {
+            Some(b) if b.ratio >= l.ratio => Some(b),
+            _ => Some(l),
+        })
 }
 
 /// A number in 4 significant figures.
@@ -451,6 +456,33 @@ impl Checks {
             .map_or(BoundReading::Nominal, |b| b.objective_reads)
     }
 
+    /// The case the objective reads for one design (`rows`: the cases × `records` runs,
+    /// nominal first; `bare`: the bare frame's runs) and its objective there: the
+    /// nominal case, or the case of the largest objective (the first of equals).
+    fn read_case(
+        &self,
+        objective: &Objective,
+        rows: &[RecordMetrics],
+        bare: Option<&[RecordMetrics]>,
+        suites: &[Range<usize>],
+        records: usize,
+    ) -> Result<(usize, f64), OptError> {
+        let value = |c: usize| {
+            let span = c * records..(c + 1) * records;
+            objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)
+        };
+        let mut read = (0, value(0)?);
+        if self.reading() == BoundReading::Worst {
+            for c in 1..self.cases().len() {
+                let f = value(c)?;
+                if f > read.1 {
+                    read = (c, f);
+                }
+            }
+        }
+        Ok(read)
+    }
+
     /// The objective of one design over its runs (`rows`: the cases × `records` runs,
     /// nominal first; `bare`: the bare frame's runs): the nominal case's, or the worst of
     /// the cases'.
@@ -462,20 +494,7 @@ impl Checks {
         suites: &[Range<usize>],
         records: usize,
     ) -> Result<f64, OptError> {
-        let case = |c: usize| {
-            let span = c * records..(c + 1) * records;
-            objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)
-        };
-        match self.reading() {
-            BoundReading::Nominal => case(0),
-            BoundReading::Worst => {
-                let mut worst = f64::NEG_INFINITY;
-                for c in 0..self.cases().len() {
-                    worst = worst.max(case(c)?);
-                }
-                Ok(worst)
-            }
-        }
+        Ok(self.read_case(objective, rows, bare, suites, records)?.1)
     }
 
     /// Each term's value at the case the objective reads (for the worst reading: at the
@@ -488,17 +507,7 @@ impl Checks {
         suites: &[Range<usize>],
         records: usize,
     ) -> Result<Vec<f64>, OptError> {
-        let mut at = 0;
-        if self.reading() == BoundReading::Worst {
-            let mut worst = f64::NEG_INFINITY;
-            for c in 0..self.cases().len() {
-                let span = c * records..(c + 1) * records;
-                let f = objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)?;
-                if f > worst {
-                    (worst, at) = (f, c);
-                }
-            }
-        }
+        let (at, _) = self.read_case(objective, rows, bare, suites, records)?;
         let span = at * records..(at + 1) * records;
         objective
             .terms

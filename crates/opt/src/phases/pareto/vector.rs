@@ -25,27 +25,15 @@ pub fn objective_vector(
 ) -> Result<Vec<f64>, OptError> {
     let objectives = &study.objectives;
     let n = study.records.len();
-    let failed = if study.checks.has_limits() && records.len() == study.runs() {
-        !study.check_design(records)?.passes()
-    } else {
-        false
-    };
+    let failed = study.checks.has_limits() && !study.check_design(records)?.passes();
     if failed || records.iter().any(RecordMetrics::collapsed) {
         return Ok(vec![f64::INFINITY; objectives.len()]);
     }
     let cases = match study.checks.reading() {
-        crate::model::check::BoundReading::Worst if records.len() == study.runs() => {
-            study.checks.cases().len()
-        }
-        _ => 1,
+        crate::model::check::BoundReading::Worst => study.checks.cases().len(),
+        crate::model::check::BoundReading::Nominal => 1,
     };
-    let mut worst = case_vector(
-        study,
-        loads,
-        &records[..n.min(records.len())],
-        bare.map(|b| &b[..n.min(b.len())]),
-        suites,
-    )?;
+    let mut worst = case_vector(study, loads, &records[..n], bare.map(|b| &b[..n]), suites)?;
     for c in 1..cases {
         let span = c * n..(c + 1) * n;
         let v = case_vector(
