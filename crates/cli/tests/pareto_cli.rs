@@ -51,7 +51,8 @@ fn optimize_names_the_trade_off_and_writes_the_front() {
     let text = String::from_utf8_lossy(&out.stdout);
     for needle in [
         "front of mean peak_drift_ratio vs mean peak_floor_acceleration: ",
-        "of 12 evaluated (",
+        "(28 simulations at the sweep fidelity: sweep 16, search 12; 12 run now); ",
+        " more candidates from the building file and the refinement",
         "  mean peak_drift_ratio optimum ",
         "    what it costs against the building file's design (834.1 / 740.8 / 437.5 kN)",
         "base shear ",
@@ -60,6 +61,7 @@ fn optimize_names_the_trade_off_and_writes_the_front() {
         " along the front by mean peak_drift_ratio",
         "  mean peak_floor_acceleration optimum ",
         "  on a bound of the design space — the peak_drift_ratio optimum: ",
+        "  the study's optimum (",
         "  front at reference accuracy (exact at 1 x the sweep time step): ",
         "pareto.csv,pareto.json,pareto-table.csv,pareto-table.md,pareto-table.json}",
         "pareto-front}",

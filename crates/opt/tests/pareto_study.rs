@@ -3,11 +3,14 @@
 //! as `pareto.csv`, `pareto.json` and `pareto-table.*`; a second run over the folder
 //! runs nothing and writes the same bytes; one and two threads write the same bytes; a
 //! study without the key keeps its fingerprint components and files; bad `objectives`
-//! are refused naming the field; [`evaluate_objectives`] gives the search's vectors.
+//! are refused naming the field; [`evaluate_objectives`] gives the search's vectors;
+//! every design the study evaluated (sweep, search, file, refinement) is a candidate for
+//! the front, and the optimum is no worse than any design the search evaluated.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_opt::Study;
 use slipload_opt::eval::progress::NoProgress;
+use slipload_opt::phases::pareto::search::Source;
 use slipload_opt::phases::pareto::{ParetoReport, dominates, evaluate_objectives};
 use slipload_opt::phases::sweep::Manifest;
 use slipload_opt::pipeline::{NoFigures, OptimizeOptions, StudyReport, optimize_study};
@@ -78,8 +81,33 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let p = r.pareto.as_ref().unwrap();
     let ev = &p.search.evaluated;
     assert_eq!(p.search.sweep_designs, 6);
-    assert_eq!(ev.len(), 12, "6 sweep designs and 6 searched");
+    assert_eq!(p.search.search_designs, 6);
     assert_eq!(p.search.simulations(nr), 14 * nr, "bare, file, 12 designs");
+    // one study, one best design: every design it evaluated at the sweep fidelity is a
+    // candidate for the front — the 6 sweep and 6 search designs, the file's (where the
+    // space holds it) and each distinct refinement evaluation
+    let of = |source: Source| ev.iter().filter(|e| e.source == source).count();
+    assert_eq!((of(Source::Sweep), of(Source::Search)), (6, 6));
+    let file_z = st.space.point_of(&st.file_slip_loads());
+    assert_eq!(of(Source::File), usize::from(file_z.is_some()));
+    for q in &r.refine.log {
+        assert!(ev.iter().any(|e| e.z == q.z), "refinement point {:?}", q.z);
+    }
+    let refined = of(Source::Refine);
+    assert!(refined > 0, "the refinement's designs join the front");
+    assert_eq!(ev.len(), 12 + of(Source::File) + of(Source::Refine));
+    // ...and for the optimum: no design the search evaluated has a lower objective
+    // (the study has no limits, so the refiners read the objective itself)
+    for e in &ev[6..12] {
+        let (f, check) = e.scalar.as_ref().unwrap();
+        assert!(check.is_none());
+        assert!(*f >= r.refine.optimum.f, "{} below the optimum", e.label);
+    }
+    assert!(
+        ev.iter().any(|e| e.z == r.refine.optimum.z),
+        "the optimum is a candidate"
+    );
+    // the fresh run computed the refinement's runs: the front runs nothing more
     let w = r.work.pareto.unwrap();
     assert_eq!((w[0].run, w[0].reused), (6 * nr, 0));
     // the front: non-dominated, and every other design dominated by a front design
@@ -145,7 +173,8 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let r2 = optimized(&st, &out).unwrap();
     assert_eq!(r2.work.run(), 0, "nothing simulated again");
     let w2 = r2.work.pareto.unwrap();
-    assert_eq!((w2[0].run, w2[0].reused), (0, 6 * nr));
+    // (the refinement's designs, replayed, take their runs from pareto.jsonl)
+    assert_eq!((w2[0].run, w2[0].reused), (0, (6 + refined) * nr));
     assert!(bytes(&out, &files) == before, "the same files");
     assert!(bytes(&out, &JOURNALS) == journals, "no journal grew");
 
@@ -154,9 +183,11 @@ fn the_front_is_searched_checked_written_and_resumed_to_the_same_bytes() {
     let text = std::fs::read_to_string(&pj).unwrap();
     let keep: Vec<&str> = text.lines().take(1 + 3 * nr).collect();
     std::fs::write(&pj, keep.join("\n") + "\n").unwrap();
+    // (the refinement, replayed from its own journal, has no runs in memory: its
+    // designs, whose runs were cut from pareto.jsonl too, run again for the front)
     let r3 = optimized(&st, &out).unwrap();
     let w3 = r3.work.pareto.unwrap();
-    assert_eq!((w3[0].run, w3[0].reused), (3 * nr, 3 * nr));
+    assert_eq!((w3[0].run, w3[0].reused), ((3 + refined) * nr, 3 * nr));
     assert!(
         bytes(&out, &files) == before,
         "the same files after the resume"

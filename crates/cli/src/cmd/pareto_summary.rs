@@ -72,16 +72,22 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
     let front = &p.certified.front;
     let nr = report.sweep.manifest.records.len();
     let names: Vec<String> = p.objectives.iter().map(ParetoObjective::label).collect();
-    let searched = ev.len() - p.search.sweep_designs;
+    let searched = p.search.search_designs;
+    let others = ev.len() - p.search.sweep_designs - searched;
     out.push(format!(
-        "front of {}: {} non-dominated designs of {} evaluated ({} simulations at the sweep fidelity: sweep {}, search {}; {} run now)",
+        "front of {}: {} non-dominated designs of {} evaluated ({} simulations at the sweep fidelity: sweep {}, search {}; {} run now){}",
         names.join(" vs "),
         front.len(),
         ev.len(),
         p.search.simulations(nr),
         (p.search.sweep_designs + 2) * nr,
         searched * nr,
-        report.work.pareto.map_or(0, |w| w[0].run)
+        report.work.pareto.map_or(0, |w| w[0].run),
+        if others > 0 {
+            format!("; {others} more candidates from the building file and the refinement")
+        } else {
+            String::new()
+        }
     ));
     if front.is_empty() {
         out.push("  every design collapsed on some record: no front".into());
@@ -157,6 +163,7 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
         "  on a bound of the design space — {}",
         bounds.join("; ")
     ));
+    out.extend(optimum_on_front(report, p));
     let c = &p.certified;
     let (worst, largest) =
         c.moved.iter().enumerate().fold(
@@ -186,6 +193,45 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
         ev[front[worst]].label
     ));
     out
+}
+
+/// Where the study's optimum (the refinement's, which minimises the study's objective)
+/// stands among the front's candidates at the sweep fidelity: on the front, or
+/// dominated by a design named with why it is not the optimum. `None` when the optimum
+/// is not among them (it always is: every design the study evaluated is a candidate).
+fn optimum_on_front(report: &StudyReport, p: &ParetoReport) -> Option<String> {
+    let ev = &p.search.evaluated;
+    let i = ev.iter().position(|e| e.z == report.refine.optimum.z)?;
+    let o = &ev[i];
+    let head = format!(
+        "  the study's optimum ({} kN, minimising {}) is {}",
+        kn(&o.slip_loads_n),
+        report.objective,
+        o.label
+    );
+    if p.ranks[i] == 1 {
+        return Some(format!(
+            "{head}, on the front at the sweep fidelity: {}",
+            values(&p.objectives, &o.objectives)
+        ));
+    }
+    let by = p
+        .certified
+        .front
+        .iter()
+        .copied()
+        .find(|&j| slipload_opt::phases::pareto::dominates(&ev[j].objectives, &o.objectives))?;
+    Some(format!(
+        "{head}, dominated at the sweep fidelity by {} ({} against {}): the optimum is the least of the study's objective over every design the study evaluated{}, and the front's objectives do not measure it alike",
+        ev[by].label,
+        values(&p.objectives, &ev[by].objectives),
+        values(&p.objectives, &o.objectives),
+        if report.code_check.is_some() {
+            " that meets the limits at the check fidelity"
+        } else {
+            ""
+        }
+    ))
 }
 
 /// For a one-objective study: the front of (mean peak drift ratio, mean peak floor

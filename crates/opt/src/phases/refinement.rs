@@ -12,6 +12,8 @@ use crate::model::study::Study;
 use crate::phases::refine::{Evaluations, Point, refine};
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
+use std::cell::RefCell;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// Finalists differ by at least this much in some scaled variable (5 % of its range), so
@@ -108,6 +110,8 @@ pub struct OptimizeReport {
     pub simulations: usize,
     /// Refinement evaluations replayed from the journal of an earlier run.
     pub replayed: usize,
+    /// The runs of the refinement's evaluations made now ([`Refinement::runs`]).
+    pub refined_runs: RefinedRuns,
 }
 
 /// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same
@@ -120,8 +124,22 @@ pub fn objectives(
     target: RefineTarget,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<f64>, OptError> {
-    run_designs(study, designs, fid, tick)?
-        .iter()
+    values_of(
+        study,
+        &run_designs(study, designs, fid, tick)?,
+        bare,
+        target,
+    )
+}
+
+/// What `target` minimises of each design's `runs` (`bare`: the bare frame's).
+fn values_of(
+    study: &Study,
+    runs: &[Vec<RecordMetrics>],
+    bare: &[RecordMetrics],
+    target: RefineTarget,
+) -> Result<Vec<f64>, OptError> {
+    runs.iter()
         .map(|rows| {
             let f = study.objective_value(rows, bare)?;
             let check = match target {
@@ -131,6 +149,39 @@ pub fn objectives(
             Ok(target.value(f, check.as_ref()))
         })
         .collect()
+}
+
+/// A design evaluated at the sweep fidelity by another phase (the front's search): its
+/// scaled variables, its objective, and its check (a study with limits).
+pub type Scored = (Vec<f64>, f64, Option<DesignCheck>);
+
+/// What a study with a front shares with its refinement: the search's designs (starts
+/// and finalist candidates beside the sweep's), and the front's task journal
+/// (`pareto.jsonl`), where the refinement's runs are journalled so that the front takes
+/// them as candidates after a resumed run too. Empty for a study without a front.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FromFront<'a> {
+    /// The search's designs.
+    pub designs: &'a [Scored],
+    /// The front's task journal.
+    pub journal: Option<&'a TaskJournal>,
+}
+
+/// The runs of refinement evaluations, keyed by the bits of their scaled variables
+/// ([`RefinedRuns::get`]).
+#[derive(Debug, Clone, Default)]
+pub struct RefinedRuns(HashMap<Vec<u64>, Vec<RecordMetrics>>);
+
+impl RefinedRuns {
+    fn key(z: &[f64]) -> Vec<u64> {
+        z.iter().map(|v| v.to_bits()).collect()
+    }
+
+    /// The runs of the evaluation at `z` (sweep fidelity), when this run computed them
+    /// (not for an evaluation replayed from the journal).
+    pub fn get(&self, z: &[f64]) -> Option<&[RecordMetrics]> {
+        self.0.get(&Self::key(z)).map(Vec::as_slice)
+    }
 }
 
 /// A refinement of a sweep whose finalists are not yet checked ([`refine_sweep`]).
@@ -158,6 +209,9 @@ pub struct Refinement {
     pub file_objective: f64,
     /// What the refiners minimised.
     pub target: RefineTarget,
+    /// The runs of the evaluations made now, kept for a study with a front (whose
+    /// candidates they are); empty otherwise.
+    pub runs: RefinedRuns,
 }
 
 /// Refines from the sweep (`manifest`, its complete `rows`) with `method`, then checks
@@ -176,18 +230,29 @@ pub fn optimize(
     check_journal: Option<&TaskJournal>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<OptimizeReport, OptError> {
-    let refinement = refine_sweep(study, manifest, rows, method, journal, tick)?;
+    let refinement = refine_sweep(
+        study,
+        manifest,
+        rows,
+        method,
+        journal,
+        FromFront::default(),
+        tick,
+    )?;
     check_finalists(study, refinement, check_journal, tick)
 }
 
 /// The refinement phase of [`optimize`]: from the study's best sweep points, at the
-/// sweep fidelity, journalled in `journal` (when given) and replayed from it.
+/// sweep fidelity, journalled in `journal` (when given) and replayed from it. `front`:
+/// what a study with a front shares ([`FromFront`]), so the optimum is the best design
+/// the study evaluated.
 pub fn refine_sweep(
     study: &Study,
     manifest: &Manifest,
     rows: &[RecordMetrics],
     method: RefineMethod,
     journal: Option<&Path>,
+    front: FromFront<'_>,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Refinement, OptError> {
     let cfg = study.config.refine;
@@ -238,16 +303,29 @@ pub fn refine_sweep(
             f: target.value(obj[1].0, check),
         });
     }
-    let mut order: Vec<usize> = (0..known.len()).collect();
-    order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
+    let by_value = |known: &[Point]| {
+        let mut order: Vec<usize> = (0..known.len()).collect();
+        order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
+        order
+    };
     let best_sweep = known
         .get(
-            *order
+            *by_value(&known)
                 .first()
                 .ok_or_else(|| OptError::Missing("the sweep sampled no feasible design".into()))?,
         )
         .cloned()
         .expect("index from the list");
+    // the front search's designs compete too (after the sweep's, in their order)
+    for (z, f, check) in front.designs {
+        if !known.iter().any(|p| p.z == *z) {
+            known.push(Point {
+                z: z.clone(),
+                f: target.value(*f, check.as_ref()),
+            });
+        }
+    }
+    let order = by_value(&known);
     if !best_sweep.f.is_finite() {
         // (with limits: the designs that meet them collapse on a record the count allows,
         // and a collapse makes the objective +inf)
@@ -261,11 +339,23 @@ pub fn refine_sweep(
             known.len()
         )));
     }
+    // a study with a front keeps the runs of the evaluations: they are its candidates
+    let keep_runs = !study.objectives.is_empty();
+    let kept = RefCell::new(RefinedRuns::default());
     let oracle = {
         let bare = bare.clone();
+        let kept = &kept;
         move |zs: &[Vec<f64>]| -> Result<Vec<f64>, OptError> {
             let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
-            objectives(study, &designs, &bare, &sweep_fid, target, tick)
+            let runs = run_designs_journalled(study, &designs, &sweep_fid, front.journal, tick)?;
+            let values = values_of(study, &runs, &bare, target)?;
+            if keep_runs {
+                let mut k = kept.borrow_mut();
+                for (z, r) in zs.iter().zip(runs) {
+                    k.0.insert(RefinedRuns::key(z), r);
+                }
+            }
+            Ok(values)
         }
     };
     let mut ev = Evaluations::new(Box::new(oracle), known.clone());
@@ -287,7 +377,9 @@ pub fn refine_sweep(
     let log = ev.log.clone();
     let replayed = ev.replayed;
     drop(ev);
+    let runs = kept.into_inner();
     Ok(Refinement {
+        runs,
         method,
         known,
         sampled,
@@ -323,6 +415,7 @@ pub fn check_finalists(
         bare_objective,
         file_objective,
         target,
+        runs: refined_runs,
     } = refinement;
     let limits = study.checks.has_limits();
     let sweep_designs = sampled;
@@ -451,5 +544,6 @@ pub fn check_finalists(
         file_objective,
         simulations,
         replayed,
+        refined_runs,
     })
 }

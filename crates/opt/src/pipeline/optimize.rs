@@ -11,8 +11,9 @@ use crate::eval::progress::{Phase, Progress, phase};
 use crate::model::config::RefineMethod;
 use crate::model::study::Study;
 use crate::phases::figures::{FigureData, MapRequest, convergence, objective_map};
+use crate::phases::pareto::Search;
 use crate::phases::rank::NamedDesign;
-use crate::phases::refinement::{check_finalists, refine_sweep};
+use crate::phases::refinement::{FromFront, OptimizeReport, Scored, check_finalists, refine_sweep};
 use crate::phases::sweep::{self, Manifest};
 use crate::phases::table::{DesignTable, standard_designs};
 use crate::store::folder::{Discarded, FolderRequest, StudyFolder};
@@ -139,6 +140,25 @@ fn run_phases(
         &folder.journal("check.jsonl")?,
         &manifest.fingerprint,
     )?;
+    // a study with a front searches it before refining: the refiners start from, and
+    // pick their optimum among, the search's designs too
+    let front_search = if study.objectives.is_empty() {
+        None
+    } else {
+        Some(search_front(
+            study,
+            folder,
+            &sweep.manifest,
+            rows,
+            progress,
+        )?)
+    };
+    let front_designs: Vec<Scored> = front_search.as_ref().map_or(Vec::new(), |(s, _)| {
+        s.evaluated
+            .iter()
+            .filter_map(|e| e.scalar.as_ref().map(|(f, c)| (e.z.clone(), *f, c.clone())))
+            .collect()
+    });
     let rc = study.config.refine;
     let refinement = phase(
         progress,
@@ -146,8 +166,19 @@ fn run_phases(
         rc.starts * rc.max_evaluations * nr,
         |tick| {
             let journal = folder.journal(&format!("refine-{}.jsonl", method.as_str()))?;
-            refine_sweep(study, &sweep.manifest, rows, method, Some(&journal), tick)
-                .map_err(|e| e.context("refining"))
+            refine_sweep(
+                study,
+                &sweep.manifest,
+                rows,
+                method,
+                Some(&journal),
+                FromFront {
+                    designs: &front_designs,
+                    journal: front_search.as_ref().map(|(_, j)| j),
+                },
+                tick,
+            )
+            .map_err(|e| e.context("refining"))
         },
     )?;
 
@@ -190,17 +221,18 @@ fn run_phases(
     };
     let map_reused = check_journal.reused() - before_map;
 
-    let pareto = if study.objectives.is_empty() {
-        None
-    } else {
-        Some(pareto_phases(
+    let pareto = match front_search {
+        None => None,
+        Some((search, journal)) => Some(finish_front(
             study,
-            folder,
             &sweep.manifest,
             rows,
+            search,
+            &refined,
+            &journal,
             &check_journal,
             progress,
-        )?)
+        )?),
     };
 
     let refine_run = (refined.log.len() - refined.replayed) * nr;
@@ -296,19 +328,15 @@ fn run_phases(
     Ok(report)
 }
 
-/// The front's phases ([`Phase::Pareto`], [`Phase::ParetoCheck`], [`Phase::ParetoTable`]):
-/// the search from the sweep (`pareto.jsonl`), its front at the check fidelity and the
-/// design table of a few front designs (`check.jsonl`), and the simulations of each.
-fn pareto_phases(
+/// The front's search ([`Phase::Pareto`]) from the sweep, journalled in `pareto.jsonl`
+/// (the journal is returned for the front's other runs).
+fn search_front(
     study: &Study,
     folder: &StudyFolder,
     manifest: &Manifest,
     rows: &[crate::base::metrics::RecordMetrics],
-    check_journal: &TaskJournal,
     progress: &dyn Progress,
-) -> Result<(crate::phases::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
-    use crate::phases::pareto::report::{build, knee_and_extremes, table_designs};
-    let nr = study.runs();
+) -> Result<(Search, TaskJournal), OptError> {
     let cfg = study.config.pareto.unwrap_or_default();
     let journal = TaskJournal::open_kind(
         study,
@@ -316,10 +344,69 @@ fn pareto_phases(
         "pareto",
         &manifest.fingerprint,
     )?;
-    let search = phase(progress, Phase::Pareto, cfg.designs * nr, |tick| {
-        crate::phases::pareto::search(study, manifest, rows, Some(&journal), tick)
-            .map_err(|e| e.context("searching the front"))
-    })?;
+    let search = phase(
+        progress,
+        Phase::Pareto,
+        cfg.designs * study.runs(),
+        |tick| {
+            crate::phases::pareto::search(study, manifest, rows, Some(&journal), tick)
+                .map_err(|e| e.context("searching the front"))
+        },
+    )?;
+    Ok((search, journal))
+}
+
+/// The rest of the front's phases, after the refinement: the file's and the
+/// refinement's designs join the search's as candidates (the runs of replayed refinement
+/// evaluations from `journal`, `pareto.jsonl`), the front at the check fidelity
+/// ([`Phase::ParetoCheck`]) and the design table of a few front designs
+/// ([`Phase::ParetoTable`], both `check.jsonl`), and the simulations of each.
+#[allow(clippy::too_many_arguments)]
+fn finish_front(
+    study: &Study,
+    manifest: &Manifest,
+    rows: &[crate::base::metrics::RecordMetrics],
+    mut search: Search,
+    refined: &OptimizeReport,
+    journal: &TaskJournal,
+    check_journal: &TaskJournal,
+    progress: &dyn Progress,
+) -> Result<(crate::phases::pareto::ParetoReport, [PhaseWork; 3]), OptError> {
+    use crate::phases::pareto::candidates::{RefinedDesign, add_candidates, missing_runs};
+    use crate::phases::pareto::report::{build, knee_and_extremes, table_designs};
+    let nr = study.runs();
+    let offered: Vec<RefinedDesign<'_>> = refined
+        .log
+        .iter()
+        .map(|p| (p.z.as_slice(), refined.refined_runs.get(&p.z)))
+        .collect();
+    // replayed refinement evaluations have no runs in memory: the only runs here
+    let missing = missing_runs(study, &search, &offered);
+    let (ran, reused) = if missing > 0 {
+        phase(progress, Phase::Pareto, missing, |tick| {
+            add_candidates(
+                study,
+                manifest,
+                rows,
+                &mut search,
+                &offered,
+                Some(journal),
+                tick,
+            )
+        })?
+    } else {
+        add_candidates(
+            study,
+            manifest,
+            rows,
+            &mut search,
+            &offered,
+            Some(journal),
+            &|| {},
+        )?
+    };
+    search.ran += ran;
+    search.reused += reused;
     let front_size = crate::phases::pareto::first_front(
         &search
             .evaluated

@@ -6,12 +6,15 @@
 //! - [`vector`]: the objective vector of one design (what each objective measures is
 //!   [`crate::model::objectives`]);
 //! - [`mod@search`]: the search of the front from the sweep's designs, journalled;
+//! - [`candidates`]: the file's and the refinement's designs, which join the search's as
+//!   candidates for the front;
 //! - [`report`]: the certified front (its designs at the check fidelity) and its files,
 //!   `pareto.csv`, `pareto.json` and the design table `pareto-table.{csv,md,json}`.
 //!
 //! [`evaluate_objectives`] and [`hypervolume`] are the entry points for other front ends
 //! (a Python binding comparing searches at equal numbers of simulations).
 
+pub mod candidates;
 pub mod front;
 pub mod report;
 pub mod search;

@@ -3,7 +3,7 @@
 //! designs, and the files `pareto.csv`, `pareto.json`, `pareto-table.{csv,md,json}`.
 
 use super::front::{crowding_distance, hypervolume, knee, nondominated_ranks};
-use super::search::Search;
+use super::search::{Search, Source};
 use super::vector::objective_vector;
 use crate::base::collapse::objective_text;
 use crate::base::error::OptError;
@@ -249,6 +249,10 @@ pub fn table_designs(
     out
 }
 
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 #[derive(Serialize)]
 struct FrontEntry {
     label: String,
@@ -270,6 +274,10 @@ struct ParetoFile<'a> {
     damper_floors: &'a [usize],
     sweep_designs: usize,
     search_designs: usize,
+    #[serde(skip_serializing_if = "is_zero")]
+    refine_designs: usize,
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    file_design: bool,
     sweep_fidelity_simulations: usize,
     front: Vec<FrontEntry>,
     knee: String,
@@ -303,7 +311,8 @@ impl ParetoReport {
             .collect()
     }
 
-    /// `pareto.csv`: every evaluated design (the sweep's, then the search's) with its
+    /// `pareto.csv`: every evaluated design (the sweep's, the search's, the file's, then
+    /// the refinement's: its `source`) with its
     /// slip loads (kN), each objective at the sweep fidelity, its rank and crowding
     /// distance, whether it is on the front or the knee, and, for the front, each
     /// objective at the check fidelity and its rank there.
@@ -322,12 +331,7 @@ impl ParetoReport {
         s.push_str(",check_rank\n");
         let knee = self.certified.front.get(self.knee).copied();
         for (i, e) in self.search.evaluated.iter().enumerate() {
-            let source = if i < self.search.sweep_designs {
-                "sweep"
-            } else {
-                "search"
-            };
-            let _ = write!(s, "{},{source}", e.label);
+            let _ = write!(s, "{},{}", e.label, e.source.as_str());
             for v in &e.slip_loads_n {
                 let _ = write!(s, ",{}", v / 1e3);
             }
@@ -387,7 +391,9 @@ impl ParetoReport {
             units: self.objectives.iter().map(ParetoObjective::unit).collect(),
             damper_floors: &self.damper_floors,
             sweep_designs: self.search.sweep_designs,
-            search_designs: ev.len() - self.search.sweep_designs,
+            search_designs: self.search.search_designs,
+            refine_designs: ev.iter().filter(|e| e.source == Source::Refine).count(),
+            file_design: ev.iter().any(|e| e.source == Source::File),
             sweep_fidelity_simulations: self.search.simulations(self.table.records),
             front,
             knee: self

@@ -37,21 +37,55 @@ use super::vector::objective_vector;
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::eval::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::model::check::DesignCheck;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
 use crate::phases::sweep::Manifest;
 
+/// Where a design of a front came from: every design a study evaluated at the sweep
+/// fidelity is a candidate for its front.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// The sweep's sample (`s0001`…).
+    Sweep,
+    /// The front's search (`p0001`…).
+    Search,
+    /// The building file's design (`file`), where the space holds it.
+    File,
+    /// The refinement's evaluations (`r0001`…, in the order it made them).
+    Refine,
+}
+
+impl Source {
+    /// The word `pareto.csv` writes in its `source` column.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Source::Sweep => "sweep",
+            Source::Search => "search",
+            Source::File => "file",
+            Source::Refine => "refine",
+        }
+    }
+}
+
 /// One evaluated design of a front's search.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluated {
-    /// `s0001`… (a sweep design) or `p0001`… (the search's).
+    /// `s0001`… (a sweep design), `p0001`… (the search's), `file`, or `r0001`… (the
+    /// refinement's).
     pub label: String,
+    /// Where it came from.
+    pub source: Source,
     /// Scaled variables.
     pub z: Vec<f64>,
     /// Slip loads, N per dissipator.
     pub slip_loads_n: Vec<f64>,
     /// The objective vector at the sweep fidelity (+∞ where the design collapses).
     pub objectives: Vec<f64>,
+    /// The study's objective at the sweep fidelity, and its check against the limits
+    /// (a study with limits): what the refiners read, so every design the search
+    /// evaluated is a start and a finalist candidate of the refinement too.
+    pub scalar: Option<(f64, Option<DesignCheck>)>,
 }
 
 /// What a front's search evaluated.
@@ -61,6 +95,9 @@ pub struct Search {
     pub evaluated: Vec<Evaluated>,
     /// How many of them the sweep sampled.
     pub sweep_designs: usize,
+    /// How many the search itself evaluated (after the sweep's; the file's and the
+    /// refinement's designs, added as candidates of the front, come after these).
+    pub search_designs: usize,
     /// The bare frame's objective vector (sweep fidelity).
     pub bare: Vec<f64>,
     /// The building file's design's (sweep fidelity).
@@ -74,7 +111,7 @@ pub struct Search {
 impl Search {
     /// Simulations at the sweep fidelity behind the front: the sweep's and the search's.
     pub fn simulations(&self, records: usize) -> usize {
-        (self.evaluated.len() + 2) * records
+        (self.sweep_designs + self.search_designs + 2) * records
     }
 }
 
@@ -103,9 +140,11 @@ pub fn sweep_vectors(
             (_, 1) => file_v = v,
             (Some(z), _) => out.push(Evaluated {
                 label: design.label.clone(),
+                source: Source::Sweep,
                 z: z.clone(),
                 slip_loads_n: design.slip_loads_n.clone(),
                 objectives: v,
+                scalar: None,
             }),
             (None, _) => {}
         }
@@ -149,11 +188,14 @@ pub fn search(
         for (z, (l, r)) in zs.into_iter().zip(loads.into_iter().zip(runs)) {
             added += 1;
             let objectives = objective_vector(study, &l, &r, Some(bare_rows), &ranges)?;
+            let scalar = scalar_of(study, &r, bare_rows)?;
             evaluated.push(Evaluated {
                 label: format!("p{added:04}"),
+                source: Source::Search,
                 z,
                 slip_loads_n: l,
                 objectives,
+                scalar: Some(scalar),
             });
         }
         // a point whose polls found nothing on the front halves its step; a design
@@ -180,6 +222,7 @@ pub fn search(
     }
     let reused = journal.map_or(0, TaskJournal::reused) - before;
     Ok(Search {
+        search_designs: evaluated.len() - sweep_designs,
         evaluated,
         sweep_designs,
         bare,
@@ -187,6 +230,22 @@ pub fn search(
         ran: ran - reused,
         reused,
     })
+}
+
+/// The study's objective of a design's `rows` (sweep fidelity) and, with limits, its
+/// check: what a refiner reads of it.
+pub fn scalar_of(
+    study: &Study,
+    rows: &[RecordMetrics],
+    bare: &[RecordMetrics],
+) -> Result<(f64, Option<DesignCheck>), OptError> {
+    let f = study.objective_value(rows, bare)?;
+    let check = if study.checks.has_limits() {
+        Some(study.check_design(rows)?)
+    } else {
+        None
+    };
+    Ok((f, check))
 }
 
 /// Gaps of the front a generation's surrogate proposals aim at (after each objective's
