@@ -1,7 +1,8 @@
 //! Contract: the README's examples run as written on a plain clone, after its install
 //! line. Every command line of its code blocks that starts with `slipload` or
 //! `cargo run --release --` names only files that are in the repository (configs/,
-//! records/, results/) or that an earlier example wrote (out/); the examples that run in
+//! records/, results/, examples/) or that an earlier example wrote (out/); the same for
+//! docs/ACCURACY.md, where the long accuracy and OpenSees sections live; the examples that run in
 //! seconds are run — in a scratch folder where configs/ and records/ are the repository's
 //! and out/ is fresh — and must exit 0. The study commands (optimize, sweep, rank, table)
 //! and the accuracy studies are held to their files only here: the main job runs in
@@ -67,15 +68,20 @@ fn is_synopsis(args: &[String]) -> bool {
 
 #[test]
 fn readme_examples_name_files_of_the_repository_and_run() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let all = examples(&readme);
+    // the README and the page its long accuracy and OpenSees sections moved to
+    let mut all = Vec::new();
+    for page in ["README.md", "docs/ACCURACY.md"] {
+        all.extend(examples(
+            &std::fs::read_to_string(root().join(page)).unwrap(),
+        ));
+    }
     assert!(
         all.len() >= 15,
         "found only {} examples: {all:?}",
         all.len()
     );
     let dir = scratch("readme-examples", "run");
-    for sub in ["configs", "records", "results"] {
+    for sub in ["configs", "records", "results", "examples"] {
         std::os::unix::fs::symlink(root().join(sub), dir.join(sub)).unwrap();
     }
     let mut ran = 0;
@@ -83,7 +89,10 @@ fn readme_examples_name_files_of_the_repository_and_run() {
         let shown = format!("slipload {}", args.join(" "));
         // every file it names is there (what a plain clone has, or an output folder)
         for a in args.iter().filter(|a| !a.starts_with('-')) {
-            if a.starts_with("configs/") || a.starts_with("records/") || a.starts_with("results/") {
+            if ["configs/", "records/", "results/", "examples/"]
+                .iter()
+                .any(|t| a.starts_with(t))
+            {
                 assert!(
                     root().join(a).exists(),
                     "README example `{shown}` names {a}, which is not in the repository"

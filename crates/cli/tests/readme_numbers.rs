@@ -19,6 +19,9 @@ use std::process::Command;
 const PRINTED: &str = "<!-- printed by: slipload ";
 const COPIED: &str = "<!-- copied from: ";
 
+/// The pages whose quoted result tables are held to their files.
+const QUOTING_PAGES: [&str; 2] = ["README.md", "docs/ACCURACY.md"];
+
 /// The blocks of the README that follow a line starting with `mark`: (the rest of that
 /// line, split on white space; the non-empty lines of the fenced block after it, or of the
 /// Markdown table after it, up to the next blank line).
@@ -182,12 +185,17 @@ fn readme_quotes_what_the_commands_print() {
 
 #[test]
 fn readme_quotes_the_committed_results_verbatim() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let quoted = quoted_blocks(&readme, COPIED);
-    assert!(
-        !quoted.is_empty(),
-        "the README quotes its result tables from results/"
-    );
+    // the README and the page its long accuracy and OpenSees sections moved to
+    let mut quoted = Vec::new();
+    for page in QUOTING_PAGES {
+        let text = std::fs::read_to_string(root().join(page)).unwrap();
+        let blocks = quoted_blocks(&text, COPIED);
+        assert!(
+            !blocks.is_empty(),
+            "{page} quotes its result tables from results/"
+        );
+        quoted.extend(blocks);
+    }
     for (path, block) in quoted {
         assert_eq!(path.len(), 1, "one file per mark: {path:?}");
         assert!(
@@ -202,7 +210,7 @@ fn readme_quotes_the_committed_results_verbatim() {
         for l in &block {
             assert!(
                 lines.contains(&l.as_str()),
-                "README quotes {} as holding\n  {l}\nbut it does not (regenerate results/ and copy the block again)",
+                "the docs quote {} as holding\n  {l}\nbut it does not (regenerate results/ and copy the block again)",
                 path[0]
             );
         }
