@@ -254,3 +254,42 @@ fn the_quick_start_record_is_read_in_the_unit_its_header_states() {
     );
     assert!(!stderr(&o).contains("did you mean kN"), "{}", stderr(&o));
 }
+
+/// A building file whose slip loads are bare numbers (newtons) where the user meant kN:
+/// a study warns about the file's design before it runs, naming the floor and "kN".
+#[test]
+fn a_study_warns_about_bare_number_slip_loads_in_its_building_file() {
+    let dir = scratch("newcomer", "bare-kn");
+    let qs = root().join("examples/quick-start");
+    let mut b: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(qs.join("building.json")).unwrap()).unwrap();
+    for (d, v) in b["dissipators"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .zip([600, 500, 400, 250])
+    {
+        d["slip_load"] = v.into();
+    }
+    std::fs::write(dir.join("building.json"), b.to_string()).unwrap();
+    let mut st: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(qs.join("study.json")).unwrap()).unwrap();
+    st["suites"] = serde_json::json!([
+        {"name": "one", "synthetic": {"count": 1, "seed": 2007, "pga_g": 0.4, "duration_s": 2.0}}
+    ]);
+    st["sweep"] = serde_json::json!({"sampler": "halton", "points": 2, "seed": 2007});
+    std::fs::write(dir.join("study.json"), st.to_string()).unwrap();
+    let o = slipload_in(&dir, &["sweep", "study.json", "--out", "res", "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("warning: study study.json, the building file's slip loads: floor 1:")
+            && err.contains("did you mean kN"),
+        "{err}"
+    );
+    // the file with units says nothing
+    std::fs::copy(qs.join("building.json"), dir.join("building.json")).unwrap();
+    let o = slipload_in(&dir, &["sweep", "study.json", "--out", "res2", "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("did you mean kN"), "{}", stderr(&o));
+}

@@ -14,7 +14,18 @@ use std::sync::Mutex;
 /// simulation.
 pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
     match path {
-        Some(p) => Study::load(p).with_context(|| format!("loading study {}", p.display())),
+        Some(p) => {
+            let study = Study::load(p).with_context(|| format!("loading study {}", p.display()))?;
+            // the building file's design as a study reads it: a slip load that looks
+            // like kN written as N is said before anything runs
+            for w in slipload_sim::building::slip_load_plausibility(&study.building) {
+                eprintln!(
+                    "warning: study {}, the building file's slip loads: {w}",
+                    p.display()
+                );
+            }
+            Ok(study)
+        }
         None => Ok(Study::benchmark()?),
     }
 }

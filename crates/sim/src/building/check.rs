@@ -753,6 +753,22 @@ pub fn plausibility(
     duration_s: f64,
     steps: usize,
 ) -> Vec<Plausibility> {
+    let mut out = slip_load_plausibility(building);
+    if steps as f64 * dt_s > duration_s * (1.0 + 1e-9) {
+        out.push(Plausibility::PastDuration {
+            dt_s,
+            duration_s,
+            steps,
+        });
+    }
+    out
+}
+
+/// The part of [`plausibility`] that reads the building alone: each slip load below
+/// [`MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT`] of its floor's weight (a bare number in a
+/// building file is newtons; a study's slip loads are kN). A study reads it of the
+/// building file's design.
+pub fn slip_load_plausibility(building: &Building) -> Vec<Plausibility> {
     let mut out = Vec::new();
     for (i, d) in building.dissipators.iter().enumerate() {
         let Some(d) = d else { continue };
@@ -768,13 +784,6 @@ pub fn plausibility(
                 floor_weight_n: weight,
             });
         }
-    }
-    if steps as f64 * dt_s > duration_s * (1.0 + 1e-9) {
-        out.push(Plausibility::PastDuration {
-            dt_s,
-            duration_s,
-            steps,
-        });
     }
     out
 }

@@ -22,7 +22,7 @@ pub use build::{DEFAULT_COLLAPSE_DRIFT_RATIO, STANDARD_GRAVITY};
 pub use check::{
     DISSIPATOR_PERIOD_BAND_S, FLOOR_MASS_BAND_KG, MAX_DAMPING_RATIO, MAX_HARMONIC_FORCE_PER_WEIGHT,
     MAX_SLIP_LOAD_PER_WEIGHT, MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT, PERIOD_BAND_S,
-    Plausibility, STOREY_HEIGHT_BAND_M, plausibility, storey_stiffness,
+    Plausibility, STOREY_HEIGHT_BAND_M, plausibility, slip_load_plausibility, storey_stiffness,
 };
 pub use config::{
     BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, SlipLoad, StoreyYieldConfig,
