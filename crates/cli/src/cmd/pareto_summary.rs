@@ -164,6 +164,7 @@ pub fn front_lines(study: &Study, report: &StudyReport, p: &ParetoReport) -> Vec
         bounds.join("; ")
     ));
     out.extend(optimum_on_front(report, p));
+    out.extend(file_outside_the_space(p));
     let c = &p.certified;
     let (worst, largest) =
         c.moved.iter().enumerate().fold(
@@ -232,6 +233,30 @@ fn optimum_on_front(report: &StudyReport, p: &ParetoReport) -> Option<String> {
             ""
         }
     ))
+}
+
+/// The building file's design, when the space cannot hold it (so it is no candidate of
+/// the front) and it dominates front designs at the sweep fidelity: said, with how many.
+fn file_outside_the_space(p: &ParetoReport) -> Option<String> {
+    use slipload_opt::phases::pareto::search::Source;
+    let ev = &p.search.evaluated;
+    let file = &p.search.file;
+    if ev.iter().any(|e| e.source == Source::File) || file.is_empty() {
+        return None;
+    }
+    let beaten = p
+        .certified
+        .front
+        .iter()
+        .filter(|&&i| slipload_opt::phases::pareto::dominates(file, &ev[i].objectives))
+        .count();
+    (beaten > 0).then(|| {
+        format!(
+            "  the building file's design ({}) is outside the design space, so no candidate of the front, and dominates {beaten} of its {} designs: widen the space to hold it",
+            values(&p.objectives, file),
+            p.certified.front.len()
+        )
+    })
 }
 
 /// For a one-objective study: the front of (mean peak drift ratio, mean peak floor
