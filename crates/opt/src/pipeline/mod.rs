@@ -17,12 +17,12 @@
 //! | phase | runs | journal |
 //! |---|---|---|
 //! | [`Phase::Sweep`] | sample × every record, sweep fidelity | `journal.jsonl` |
-//! | [`Phase::Refine`] | the refiner from the best sweep points | `refine-METHOD.jsonl` |
+//! | [`Phase::Pareto`] | (a study with `objectives`) the front's search, sweep fidelity | `pareto.jsonl` |
+//! | [`Phase::Refine`] | the refiner from the best sweep (and search) points | `refine-METHOD.jsonl` (with a front, its runs in `pareto.jsonl` too) |
 //! | [`Phase::Check`] | the finalists at the check fidelity | `check.jsonl` |
 //! | [`Phase::DesignTable`] | the standard designs and their ±25 % variants, check fidelity | `check.jsonl` |
 //! | [`Phase::ObjectiveMap`] | (when asked) a grid over two floors' slip loads, sweep fidelity | — |
-//! | [`Phase::Pareto`] | (a study with `objectives`) the front's search, sweep fidelity | `pareto.jsonl` |
-//! | [`Phase::ParetoCheck`] | the front's designs at the check fidelity | `check.jsonl` |
+//! | [`Phase::ParetoCheck`] | the front's designs (search, file, refinement) at the check fidelity | `check.jsonl` |
 //! | [`Phase::ParetoTable`] | the design table of the front's optima and knee | `check.jsonl` |
 //!
 //! then the candidates (the design table's designs), the figure data
