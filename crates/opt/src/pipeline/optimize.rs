@@ -54,8 +54,10 @@ pub struct OptimizeRun {
 /// `slipload optimize`: optimises `study` into the folder of `request`. Checks the
 /// figures can be drawn and the options, opens the folder (its lock; `fresh`), refuses it
 /// if a journal of another study is there, then runs the phases of
-/// [`crate::eval::progress::Phase`] in order — sweep, refine, check, design table,
-/// objective map (when asked), the front's phases (a study with `objectives`) — each
+/// [`crate::eval::progress::Phase`] — sweep, the front's search (a study with
+/// `objectives`: before the refinement, whose starts and finalist candidates its designs
+/// join), refine, check, design table, objective map (when asked), the front's check and
+/// table (the file's and the refinement's designs its candidates too) — each
 /// reporting to `progress`, writes `refine.csv`, `optimum.json`,
 /// `design-table.{csv,md,json}` and `candidates.json` ([`StudyReport::write_files`])
 /// beside the sweep's files, draws the figures with `figures`, and returns the run.
