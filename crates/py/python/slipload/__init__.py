@@ -446,6 +446,10 @@ def load_study(study: Union[None, PathLike, Dict[str, Any], Study] = None) -> St
     raise InputError(f"study: expected a file path, a dict, a slipload.Study or None, got a {type(study).__name__}")
 
 
+# the design table's quantities given per dissipator (the others are per storey)
+_PER_DISSIPATOR = ("slip_load_kn", "ratio_to_floor_weight", "ratio_to_weight_above", "friction_kn")
+
+
 class StudyReport:
     """What a study call wrote and found.
 
@@ -522,12 +526,35 @@ class StudyReport:
         return pd.DataFrame(self.device_table["dampers"]).set_index("floor")
 
     def design_table_frame(self) -> Any:
-        """The design table as a pandas DataFrame, one row per design (needs pandas)."""
+        """The design table as a pandas DataFrame, one row per design, indexed by the
+        design's name, one number per cell (needs pandas).
+
+        A quantity given per dissipator takes one column per floor that carries one,
+        named by that floor (from 1): ``slip_load_kn_floor_1``, …,
+        ``ratio_to_floor_weight_floor_1``, ``ratio_to_weight_above_floor_1`` (and
+        ``friction_kn_floor_1`` for a design whose friction law a slip load cannot say).
+        A quantity given per storey takes one column per storey (from 1):
+        ``drift_ratio_mean_storey_1``, ``drift_ratio_p84_storey_1``,
+        ``drift_ratio_max_storey_1``, ``stroke_max_storey_1``. The other columns are
+        those of ``design-table.json``'s rows (``objective``, ``peak_drift_ratio_mean``,
+        ``base_shear_mean``, …)."""
         import pandas as pd
 
         if self.design_table is None:
             raise InputError("this report has no design table (optimize writes one)")
-        return pd.DataFrame(self.design_table).set_index("design")
+        floors = list((self.design_table_meta or {}).get("damper_floors") or [])
+        rows = []
+        for row in self.design_table:
+            flat: Dict[str, Any] = {}
+            for key, value in row.items():
+                if not isinstance(value, list):
+                    flat[key] = value
+                elif key in _PER_DISSIPATOR and len(value) == len(floors):
+                    flat.update((f"{key}_floor_{f}", v) for f, v in zip(floors, value))
+                else:
+                    flat.update((f"{key}_storey_{i}", v) for i, v in enumerate(value, start=1))
+            rows.append(flat)
+        return pd.DataFrame(rows).set_index("design")
 
     def __repr__(self) -> str:
         what = ", ".join(sorted(self.files))
