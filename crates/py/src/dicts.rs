@@ -63,8 +63,15 @@ impl Writer<'_> {
 
     /// Appends `text`, refusing the input once its text passes the limit.
     fn push(&mut self, text: &str) -> PyResult<()> {
+        self.room(text.len())?;
         self.out.push_str(text);
-        if self.out.len() as u64 > self.limit {
+        Ok(())
+    }
+
+    /// Refuses the input when `more` bytes would take its text past the limit (checked
+    /// before a long string is escaped, so nothing past the limit is ever written).
+    fn room(&mut self, more: usize) -> PyResult<()> {
+        if (self.out.len() as u64).saturating_add(more as u64) > self.limit {
             let limit = slipload_motion::limits::bytes(self.limit as f64);
             let what = self.what;
             self.path.clear();
@@ -99,7 +106,10 @@ impl Writer<'_> {
             return self.push(&text);
         }
         if let Ok(s) = v.cast::<PyString>() {
-            let text = serde_json::to_string(&*s.to_cow()?).map_err(|e| self.refuse(e))?;
+            let raw = s.to_cow()?;
+            // its text is at least the string and its quotes
+            self.room(raw.len().saturating_add(2))?;
+            let text = serde_json::to_string(&*raw).map_err(|e| self.refuse(e))?;
             return self.push(&text);
         }
         if let Ok(d) = v.cast::<PyDict>() {
