@@ -75,6 +75,45 @@ pub fn scatter_csv(sc: &RecordScatter) -> String {
     s
 }
 
+/// The palette colour of each design of a figure by what the design is, not where it
+/// ranks: the designs the study tables name keep one colour each in every figure
+/// (`optimum` blue, `file` vermillion, `uniform` green, `storey-shear` purple, `stiffness`
+/// orange, `bare` black); every other design (a sweep's sample, `s0012`) takes the palette
+/// colours no named design of this figure holds, in the order of the designs' names. The
+/// colours depend on the set of designs only, so reordering them (another ranking) keeps
+/// each design's colour.
+pub fn design_colors(names: &[&str]) -> Vec<plotters::style::RGBColor> {
+    use crate::plot::style::{PALETTE, color};
+    const ROLES: [(&str, usize); 6] = [
+        ("optimum", 0),
+        ("file", 1),
+        ("uniform", 2),
+        ("storey-shear", 3),
+        ("stiffness", 4),
+        ("bare", 6),
+    ];
+    let role = |name: &str| ROLES.iter().find(|(r, _)| *r == name).map(|&(_, i)| i);
+    let taken: Vec<usize> = names.iter().filter_map(|n| role(n)).collect();
+    let free: Vec<usize> = (0..PALETTE.len()).filter(|i| !taken.contains(i)).collect();
+    let mut others: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| role(n).is_none())
+        .collect();
+    others.sort_unstable();
+    others.dedup();
+    names
+        .iter()
+        .map(|n| match role(n) {
+            Some(i) => color(i),
+            None => {
+                let k = others.iter().position(|o| o == n).unwrap_or(0);
+                color(free.get(k % free.len().max(1)).copied().unwrap_or(k))
+            }
+        })
+        .collect()
+}
+
 /// A CSV field, quoted when it holds a comma, a quote or a line break.
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) {
@@ -113,7 +152,9 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
                 format!("slip load, floor {b} (kN)"),
             )
             .title("other floors at the optimum")
-            .legend(Legend::UpperRight)
+            // outside the axes: the heat map fills them, and the optimum may sit in any
+            // corner, where a legend inside would hide its marker
+            .legend(Legend::Right)
             .heatmap(HeatMap {
                 x: m.loads_a_kn.clone(),
                 y: m.loads_b_kn.clone(),
@@ -162,18 +203,20 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
             // outside the axes: the profiles span the whole height, and the bare frame's
             // reaches the right edge, so no corner inside is free
             .legend(Legend::Right);
-        for (k, p) in data.profiles.iter().enumerate() {
+        let names: Vec<&str> = data.profiles.iter().map(|p| p.design.as_str()).collect();
+        let colors = design_colors(&names);
+        for (p, &color) in data.profiles.iter().zip(&colors) {
             let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();
             let pct = |v: &[f64]| v.iter().map(|x| 100.0 * x).collect::<Vec<_>>();
             panel = panel
                 .series(
                     Series::line(p.design.clone(), pct(&p.mean), storeys.clone())
-                        .color(k)
+                        .rgb(color)
                         .marker(Marker::Circle),
                 )
                 .series(
                     Series::line(format!("{} p84", p.design), pct(&p.p84), storeys)
-                        .color(k)
+                        .rgb(color)
                         .dashed()
                         .no_legend(),
                 );

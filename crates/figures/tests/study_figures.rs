@@ -268,3 +268,120 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
     assert!(dir.join("code-spectra.svg").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The pixel of the data point (`x`, `y`) in a panel whose axes are linear.
+fn pixel(p: &slipload_figures::plot::meta::PanelMeta, x: f64, y: f64) -> (f64, f64) {
+    let [l, t, r, b] = p.plot_area.unwrap().map(f64::from);
+    (
+        l + (x - p.x.min) / (p.x.max - p.x.min) * (r - l),
+        b - (y - p.y.min) / (p.y.max - p.y.min) * (b - t),
+    )
+}
+
+#[test]
+fn the_objective_maps_legend_never_covers_the_optimum_marker() {
+    // the optimum in each corner of the grid and inside it: a legend inside the axes
+    // covers the marker in one corner or another
+    let radius = f64::from(slipload_figures::plot::style::MARKER_RADIUS);
+    // an 11 × 11 grid (optimize's default): its corner cells are smaller than a legend
+    let grid = |top: f64| {
+        (0..11)
+            .map(|i| top * f64::from(i) / 10.0)
+            .collect::<Vec<_>>()
+    };
+    for (k, optimum) in [
+        [1000.0, 400.0],
+        [0.0, 400.0],
+        [0.0, 0.0],
+        [1000.0, 0.0],
+        [500.0, 200.0],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut d = data();
+        d.convergence.clear();
+        d.profiles.clear();
+        d.scatter = None;
+        if let Some(m) = d.map.as_mut() {
+            m.loads_a_kn = grid(1000.0);
+            m.loads_b_kn = grid(400.0);
+            m.objective = (0..121).map(|i| 1.0 + f64::from(i % 7) / 10.0).collect();
+            m.optimum_kn = optimum;
+        }
+        let dir = scratch(&format!("map-legend-{k}"));
+        study::write(&d, &dir).unwrap();
+        let svg = String::from_utf8(read(&dir.join("objective-map.svg"))).unwrap();
+        let p = &FigureMeta::from_svg(&svg).unwrap().panels[0];
+        let [l, t, r, b] = p.legend.expect("the map has a legend").map(f64::from);
+        let (x, y) = pixel(p, optimum[0], optimum[1]);
+        let apart = x + radius < l || x - radius > r || y + radius < t || y - radius > b;
+        assert!(
+            apart,
+            "optimum {optimum:?} at ({x:.1}, {y:.1}) px, legend {:?}",
+            [l, t, r, b]
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[test]
+fn each_design_keeps_its_colour_whatever_its_rank() {
+    let ranked = ["optimum", "storey-shear", "uniform", "file", "bare"];
+    let colours = study::design_colors(&ranked);
+    for (i, c) in colours.iter().enumerate() {
+        assert!(!colours[..i].contains(c), "{} shares a colour", ranked[i]);
+    }
+    // every other order of the same designs gives each the same colour
+    for shift in 1..ranked.len() {
+        let mut order = ranked;
+        order.rotate_left(shift);
+        let again = study::design_colors(&order);
+        for (n, c) in order.iter().zip(&again) {
+            let k = ranked.iter().position(|r| r == n).unwrap();
+            assert_eq!(*c, colours[k], "{n} in {order:?}");
+        }
+    }
+    // a sweep's designs (sample labels) are as stable, and distinct from the named ones
+    let sweep = ["s0012", "file", "s0003", "bare", "s0040"];
+    let a = study::design_colors(&sweep);
+    let b = study::design_colors(&["bare", "s0040", "s0003", "file", "s0012"]);
+    let of = |names: &[&str], c: &[plotters::style::RGBColor], n: &str| {
+        c[names.iter().position(|x| *x == n).unwrap()]
+    };
+    for n in sweep {
+        assert_eq!(
+            of(&sweep, &a, n),
+            of(&["bare", "s0040", "s0003", "file", "s0012"], &b, n),
+            "{n}"
+        );
+        let same = sweep
+            .iter()
+            .filter(|m| of(&sweep, &a, m) == of(&sweep, &a, n));
+        assert_eq!(same.count(), 1, "{n} shares a colour");
+    }
+
+    // the figure draws them so: the bare frame is black wherever it ranks
+    for profiles in [data().profiles, data().profiles.into_iter().rev().collect()] {
+        let mut d = data();
+        d.map = None;
+        d.profiles = profiles
+            .into_iter()
+            .map(|mut p| {
+                if p.design == "best" {
+                    p.design = "optimum".into();
+                }
+                p
+            })
+            .collect();
+        let dir = scratch("profile-colours");
+        study::write(&d, &dir).unwrap();
+        let svg = String::from_utf8(read(&dir.join("drift-profiles.svg"))).unwrap();
+        assert!(
+            svg.contains("stroke=\"#000000\""),
+            "the bare frame is black"
+        );
+        assert!(svg.contains("stroke=\"#0072B2\""), "the optimum is blue");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -140,3 +140,19 @@ fn bad_settings_are_rejected() {
     let e = err(|v| v["refine"]["tolerance"] = 0.0.into());
     assert!(e.contains("`refine.tolerance`"), "{e}");
 }
+
+#[test]
+fn an_empty_list_of_table_scales_is_refused_naming_it() {
+    use slipload_opt::phases::family::check_scales;
+    let study = study_with(|_| {}).unwrap();
+    let one = [1.0];
+    for (p, i, name) in [
+        (&[][..], &one[..], "--period-scales"),
+        (&one[..], &[][..], "--intensity-scales"),
+    ] {
+        let e = check_scales(&study, p, i).unwrap_err().to_string();
+        assert!(e.starts_with(name), "names the list: {e}");
+        assert!(e.contains("empty list"), "{e}");
+    }
+    assert!(check_scales(&study, &one, &one).is_ok());
+}

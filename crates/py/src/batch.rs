@@ -53,7 +53,7 @@ pub fn batch(
     scenes: Vec<Bound<'_, PyScene>>,
     outputs: Option<&Bound<'_, PyAny>>,
     progress: Option<&Bound<'_, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<PyOutcome>> {
     let runs: Vec<Arc<Scene>> = guarded(|| {
         scenes
@@ -72,7 +72,11 @@ pub fn batch(
             &|k| format!("scenes[{k}] ({})", runs[k].name),
         )
     })?;
-    Ok(outs.into_iter().map(PyOutcome::of).collect())
+    Ok(outs
+        .into_iter()
+        .zip(&runs)
+        .map(|(o, run)| PyOutcome::of(o).warned(crate::scene::plausibility(run)))
+        .collect())
 }
 
 /// Runs one building under every record of a suite for every row of `slip_loads`.
@@ -88,7 +92,7 @@ pub fn batch_designs<'py>(
     dt: Option<f64>,
     outputs: Option<&Bound<'py, PyAny>>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if records.is_empty() {
         return Err(input("records: the list is empty"));

@@ -10,8 +10,10 @@
 //! The Python half (`crates/py/python/slipload/`) holds the documented public API, the
 //! exception classes and the type stubs.
 
+mod args;
 mod arrays;
 mod batch;
+mod dicts;
 mod errors;
 mod json_path;
 mod records;
@@ -45,6 +47,11 @@ fn _slipload(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::hypervolume, m)?)?;
     m.add_function(wrap_pyfunction!(study::knee, m)?)?;
     m.add_function(wrap_pyfunction!(allow_large, m)?)?;
+    m.add_function(wrap_pyfunction!(dicts::dict_json, m)?)?;
+    m.add(
+        "MAX_CONFIG_BYTES",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )?;
     Ok(())
 }
 

@@ -209,26 +209,22 @@ impl PyRecord {
 #[pyo3(signature = (count=None, seed=None, pga_g=None, duration=None, dt=None))]
 pub fn synthetic_suite(
     py: Python<'_>,
-    count: Option<i64>,
-    seed: Option<u64>,
+    count: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
     pga_g: Option<f64>,
     duration: Option<f64>,
     dt: Option<f64>,
 ) -> PyResult<Vec<PyRecord>> {
     // the command line's rules (`record synth --count`, `--dt`), from the library
-    let count = match count {
+    let count = match crate::args::count(count, "count", "a whole number of records, 1 or more")? {
         None => slipload_motion::DEFAULT_SUITE_SIZE,
-        Some(n) => {
-            let c = usize::try_from(n).map_err(|_| {
-                input(format!(
-                    "count={n}: expected a whole number of records, 1 or more"
-                ))
-            })?;
+        Some((c, text)) => {
             slipload_motion::limits::check_suite_count(c)
-                .map_err(|e| input(format!("count={n}: {e}")))?;
+                .map_err(|e| input(format!("count={text}: {e}")))?;
             c
         }
     };
+    let seed = crate::args::seed(seed, "seed")?;
     if let Some(dt) = dt {
         slipload_motion::check_record_dt("dt", dt).py()?;
     }

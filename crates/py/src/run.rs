@@ -81,25 +81,23 @@ impl Progress for Control {
 /// becomes `slipload.InternalError`.
 pub fn watched<T: Send>(
     py: Python<'_>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
     progress: Option<&Bound<'_, PyAny>>,
     work: impl FnOnce(&Control) -> PyResult<T> + Send,
 ) -> PyResult<T> {
-    let pool = match threads {
+    const EXPECTS: &str = "a whole number of worker threads, 1 or more";
+    let pool = match crate::args::count(threads, "threads", EXPECTS)? {
         None => None,
-        Some(n) => Some({
+        Some((n, text)) => Some({
             // the command line's rule (`--threads`), from the library
-            let n = usize::try_from(n).map_err(|_| {
-                crate::errors::input(format!(
-                    "threads={n}: expected a whole number of worker threads, 1 or more"
-                ))
-            })?;
             slipload_sim::limits::check_threads(n)
-                .map_err(|e| crate::errors::input(format!("threads={n}: {e}")))?;
+                .map_err(|e| crate::errors::input(format!("threads={text}: {e}")))?;
             rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()
-                .map_err(|e| crate::errors::input(format!("threads={n}: cannot start them: {e}")))?
+                .map_err(|e| {
+                    crate::errors::input(format!("threads={text}: cannot start them: {e}"))
+                })?
         }),
     };
     let control = Control::default();

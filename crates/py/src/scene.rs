@@ -484,8 +484,24 @@ pub fn simulate(
     outputs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyOutcome> {
     let run = guarded(|| for_call(scene, method, dt, duration, outputs))?;
+    let warnings = plausibility(&run);
     let out = crate::run::detached(py, move || slipload_sim::simulate(&run).py())?;
-    Ok(PyOutcome::of(out))
+    Ok(PyOutcome::of(out).warned(warnings))
+}
+
+/// What the scene's inputs make doubtful without making them wrong (a slip load that
+/// looks like kN written as N, a step that runs past the duration), in the words
+/// `slipload simulate` prints after "warning: ".
+pub fn plausibility(scene: &Scene) -> Vec<String> {
+    slipload_sim::building::plausibility(
+        &scene.building,
+        scene.method.dt,
+        scene.duration,
+        scene.steps(),
+    )
+    .iter()
+    .map(ToString::to_string)
+    .collect()
 }
 
 /// One simulation's responses (SI units), as `slipload simulate` reports them.
@@ -495,12 +511,23 @@ pub struct PyOutcome {
     out: Outcome,
     // taken out of `out`: shared with the History objects handed out, never copied
     history: Option<Arc<slipload_sim::History>>,
+    warnings: Vec<String>,
 }
 
 impl PyOutcome {
     pub(crate) fn of(mut out: Outcome) -> PyOutcome {
         let history = out.history.take().map(Arc::new);
-        PyOutcome { out, history }
+        PyOutcome {
+            out,
+            history,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The result with the warnings of its scene ([`plausibility`]).
+    pub(crate) fn warned(mut self, warnings: Vec<String>) -> PyOutcome {
+        self.warnings = warnings;
+        self
     }
 }
 
@@ -510,6 +537,13 @@ impl PyOutcome {
     #[getter]
     fn method(&self) -> String {
         self.out.response.method.clone()
+    }
+    /// What the run's inputs make doubtful without making them wrong, as `slipload
+    /// simulate` prints them (`slipload.simulate` and `batch` also warn them as
+    /// `UserWarning`s).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
     }
     /// Time step, s.
     #[getter]

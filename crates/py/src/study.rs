@@ -176,29 +176,48 @@ fn fresh_items(d: &Bound<'_, PyDict>, discarded: Option<&Discarded>) -> PyResult
 
 /// Optimises a study into `out`, as `slipload optimize` does.
 #[pyfunction]
-#[pyo3(signature = (study=None, out="out/optimize".into(), *, refine=None, map_floors=None, map_grid=11, fresh=false, progress=None, threads=None))]
+#[pyo3(signature = (study=None, out="out/optimize".into(), *, refine=None, map_floors=None, map_grid=None, fresh=false, progress=None, threads=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn optimize<'py>(
     py: Python<'py>,
     study: Option<&PyStudy>,
     out: PathBuf,
     refine: Option<&str>,
-    map_floors: Option<(usize, usize)>,
-    map_grid: usize,
+    map_floors: Option<&Bound<'py, PyAny>>,
+    map_grid: Option<&Bound<'py, PyAny>>,
     fresh: bool,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let study = match study {
         Some(s) => s.inner.clone(),
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
+    let grid = crate::args::count(
+        map_grid,
+        "map_grid",
+        "a whole number of grid points per axis",
+    )?
+    .map_or(11, |(n, _)| n);
+    let floors = match map_floors.filter(|f| !f.is_none()) {
+        None => None,
+        Some(f) => {
+            let pair: Vec<Bound<'py, PyAny>> = f
+                .try_iter()
+                .and_then(|i| i.collect::<PyResult<Vec<_>>>())
+                .ok()
+                .filter(|v| v.len() == 2)
+                .ok_or_else(|| input("map_floors: expected two floors (from 1), as (a, b)"))?;
+            let floor = |o: &Bound<'py, PyAny>| {
+                crate::args::Whole::of(o, "map_floors", "two floors (from 1)")?
+                    .count("map_floors", "two floors (from 1)")
+            };
+            Some([floor(&pair[0])?, floor(&pair[1])?])
+        }
+    };
     let options = OptimizeOptions {
         refine: refine_method(refine)?,
-        map: map_floors.map(|(a, b)| MapRequest {
-            floors: [a, b],
-            grid: map_grid,
-        }),
+        map: floors.map(|floors| MapRequest { floors, grid }),
     };
     let run = watched(py, threads, progress, |ctl| {
         optimize_study(&study, &options, folder(&out, fresh), ctl, &StudyFigures).py()
@@ -242,7 +261,7 @@ pub fn sweep<'py>(
     resume: bool,
     fresh: bool,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if resume && fresh {
         return Err(input(
@@ -302,23 +321,32 @@ pub fn merge<'py>(
 /// Ranks candidate designs over every suite of a study, as `slipload rank` does.
 /// `designs` is a candidates file (as `optimize` writes `candidates.json`).
 #[pyfunction]
-#[pyo3(signature = (study, designs, out="out/rank".into(), *, bootstrap=200, seed=1, progress=None, threads=None))]
+#[pyo3(signature = (study, designs, out="out/rank".into(), *, bootstrap=None, seed=None, progress=None, threads=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn rank<'py>(
     py: Python<'py>,
     study: &PyStudy,
     designs: PathBuf,
     out: PathBuf,
-    bootstrap: usize,
-    seed: u64,
+    bootstrap: Option<&Bound<'py, PyAny>>,
+    seed: Option<&Bound<'py, PyAny>>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if !(1..=1_000_000).contains(&bootstrap) {
-        return Err(input(format!(
-            "bootstrap: {bootstrap} is not in 1..=1000000 (resamples of the records)"
-        )));
-    }
+    let bootstrap = match bootstrap.filter(|b| !b.is_none()) {
+        None => 200,
+        Some(b) => {
+            let b = crate::args::Whole::of(b, "bootstrap", "a whole number of resamples")?;
+            if !(1..=1_000_000).contains(&b.value) {
+                return Err(input(format!(
+                    "bootstrap: {} is not in 1..=1000000 (resamples of the records)",
+                    b.text
+                )));
+            }
+            usize::try_from(b.value).unwrap_or(1)
+        }
+    };
+    let seed = crate::args::seed(seed, "seed")?.unwrap_or(1);
     let study = study.inner.clone();
     let ranking = watched(py, threads, progress, |ctl| {
         rank_study(&study, &designs, bootstrap, seed, folder(&out, false), ctl).py()
@@ -340,23 +368,13 @@ pub fn table<'py>(
     intensity_scales: Vec<f64>,
     refine: Option<&str>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let study = match study {
         Some(s) => s.inner.clone(),
         None => Arc::new(guarded(|| Study::benchmark().py())?),
     };
-    // the command line refuses an empty list (`--period-scales ""`) as it parses it
-    for (name, scales) in [
-        ("period_scales", &period_scales),
-        ("intensity_scales", &intensity_scales),
-    ] {
-        if scales.is_empty() {
-            return Err(input(format!(
-                "{name}: an empty list; give one scale or more (each is a row or column of the table)"
-            )));
-        }
-    }
+    // an empty list is refused by the library (`check_scales`), in the command line's words
     let method = refine_method(refine)?;
     let report = watched(py, threads, progress, |ctl| {
         family_study(
@@ -383,7 +401,7 @@ pub fn evaluate_objectives<'py>(
     study: &PyStudy,
     slip_loads: &Bound<'py, PyAny>,
     progress: Option<&Bound<'py, PyAny>>,
-    threads: Option<i64>,
+    threads: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
     let (nd, nk, loads) = crate::arrays::matrix(slip_loads, "slip_loads")?;
     let designs: Vec<Vec<f64>> = loads.chunks(nk).map(<[f64]>::to_vec).collect();

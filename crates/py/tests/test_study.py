@@ -240,3 +240,33 @@ def test_fresh_keeps_the_users_files_and_names_them(tmp_path):
     with pytest.raises(slipload.FileError, match="did not write"):
         slipload.sweep(str(STUDY), out, fresh=True, progress=False)
     assert (out / "rank.md").read_text() == "my ranking"
+
+
+def test_the_design_table_frame_has_one_number_per_cell(cli_optimized):
+    pd = pytest.importorskip("pandas")
+    text = (cli_optimized / "design-table.json").read_text()
+    report = slipload.StudyReport({"out": str(cli_optimized), "files": {"design-table.json": text}})
+    frame = report.design_table_frame()
+    table = json.loads(text)
+    floors, rows = table["damper_floors"], table["rows"]
+    storeys = len(rows[0]["drift_ratio_mean"])
+    assert list(frame.index) == [r["design"] for r in rows]
+    for column in frame.columns:
+        assert not any(isinstance(v, (list, tuple, dict)) for v in frame[column]), column
+    # per dissipator: one column per floor that carries one, named by that floor
+    for key in ("slip_load_kn", "ratio_to_floor_weight", "ratio_to_weight_above"):
+        assert [c for c in frame.columns if c.startswith(key + "_")] == [f"{key}_floor_{f}" for f in floors]
+    # per storey: one column per storey
+    for key in ("drift_ratio_mean", "drift_ratio_p84", "drift_ratio_max", "stroke_max"):
+        assert [c for c in frame.columns if c.startswith(key + "_")] == [f"{key}_storey_{i}" for i in range(1, storeys + 1)]
+    for r in rows:
+        for k, f in enumerate(floors):
+            assert frame.loc[r["design"], f"slip_load_kn_floor_{f}"] == r["slip_load_kn"][k]
+        assert frame.loc[r["design"], f"drift_ratio_mean_storey_{storeys}"] == r["drift_ratio_mean"][-1]
+        assert frame.loc[r["design"], "objective"] == r["objective"]
+    # the same numbers as the CSV the command line wrote, column by column
+    csv = pd.read_csv(cli_optimized / "design-table.csv").set_index("design")
+    for f in floors:
+        assert list(frame[f"slip_load_kn_floor_{f}"]) == list(csv[f"slip_load_kN_{f}"])
+    for i in range(1, storeys + 1):
+        assert list(frame[f"stroke_max_storey_{i}"]) == list(csv[f"stroke_max_m_{i}"])

@@ -206,14 +206,26 @@ impl FamilyReport {
     }
 }
 
-/// Checks the scales of a family table before anything runs: every period scale keeps the
-/// frame's periods within the physical band, every intensity scale keeps the records'
-/// PGA within the study's band, and no scale is given twice.
+/// Checks the scales of a family table before anything runs: each list holds one scale
+/// or more (an empty list is a table of nothing, refused here so that every front says
+/// the same), every period scale keeps the frame's periods within the physical band,
+/// every intensity scale keeps the records' PGA within the study's band, and no scale is
+/// given twice.
 pub fn check_scales(
     study: &Study,
     period_scales: &[f64],
     intensity_scales: &[f64],
 ) -> Result<(), OptError> {
+    for (name, scales) in [
+        ("--period-scales", period_scales),
+        ("--intensity-scales", intensity_scales),
+    ] {
+        if scales.is_empty() {
+            return Err(OptError::Argument(format!(
+                "{name}: an empty list; give one scale or more (each is a row or column of the table)"
+            )));
+        }
+    }
     // every scaled frame must stay a building: its periods within the physical band
     let (lo, hi) = slipload_sim::building::PERIOD_BAND_S;
     let periods = study.building.modes.periods();

@@ -215,11 +215,26 @@ def synthetic_suite(
 # ------------------------------------------------------------------------------- scenes
 
 
-def _json_text(value: Dict[str, Any], what: str) -> str:
-    try:
-        return json.dumps(value, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise InputError(f"{what}: cannot be written as JSON ({e}); give numbers, strings, lists and dicts, every number finite") from None
+def _json_text(value: Any, name: str, what: str) -> str:
+    """``value`` (a dict or list given for a ``what`` file) as the JSON text the loaders
+    read, refused as the command line refuses the same file: larger than
+    ``MAX_CONFIG_BYTES`` of text, nested deeper than the JSON reader goes, or holding NaN,
+    ±inf or a value no JSON file holds; numpy numbers and arrays are taken as the numbers
+    and lists they show. Every refusal is an :class:`InputError` naming ``name`` and the
+    field path (``dissipators[0].slip_load``)."""
+    return _slipload.dict_json(value, name, what)
+
+
+def _warn(results: Iterable[Result], stacklevel: int = 3) -> None:
+    """The plausibility warnings of ``results`` (``Result.warnings``: a slip load that
+    looks like kN written as N, a step past the duration), as ``UserWarning``\ s in the
+    words ``slipload simulate`` prints after "warning: "."""
+    seen = set()
+    for r in results:
+        for text in r.warnings:
+            if text not in seen:
+                seen.add(text)
+                warnings.warn(text, UserWarning, stacklevel=stacklevel)
 
 
 def load_scene(
@@ -237,7 +252,10 @@ def load_scene(
 
     Args:
         scene: a scene or building file (JSON), a dict with a scene's or building's
-            fields (relative paths resolve from the current folder), an existing
+            fields (relative paths resolve from the current folder; held to a file's
+            rules — at most ``MAX_CONFIG_BYTES`` as JSON, nested at most 128 deep, every
+            number finite — with numpy numbers and arrays taken as the numbers they
+            show; an error names the field path), an existing
             :class:`Scene` (re-resolved with the overrides), or ``None`` for the embedded
             benchmark building under the first record of the embedded synthetic suite.
         record: a :class:`Record` or a record file, replacing the scene's ground motion.
@@ -261,7 +279,7 @@ def load_scene(
     if isinstance(scene, Scene):
         return scene.replace(**kw)
     if isinstance(scene, dict):
-        return Scene.from_json(_json_text(scene, "scene"), "scene (a dict)", **kw)
+        return Scene.from_json(_json_text(scene, "scene (a dict)", "scene"), "scene (a dict)", **kw)
     if isinstance(scene, (str, os.PathLike)):
         return Scene.load(os.fspath(scene), **kw)
     raise InputError(f"scene: expected a file path, a dict, a slipload.Scene or None, got a {type(scene).__name__}")
@@ -302,8 +320,15 @@ def simulate(
     Raises:
         InputError: bad scene or argument. SimulationError: the run failed (a response
             that is not finite, a solver that did not converge).
+
+    Warns:
+        UserWarning: what ``slipload simulate`` warns about, in its words (also in
+        ``Result.warnings``): a slip load below 0.1 % of its floor's weight ("did you
+        mean kN?"), a time step that does not divide the duration.
     """
-    return _slipload.simulate(_scene(scene), method=method, dt=dt, duration=duration, outputs=_outputs(outputs))
+    result = _slipload.simulate(_scene(scene), method=method, dt=dt, duration=duration, outputs=_outputs(outputs))
+    _warn([result])
+    return result
 
 
 def _outputs(outputs: Optional[Iterable[str]]) -> Optional[List[str]]:
@@ -336,7 +361,9 @@ def batch(
             returned).
     """
     loaded = [_scene(s) for s in scenes]
-    return _watched(_slipload.batch, progress, loaded, outputs=_outputs(outputs), threads=threads)
+    results = _watched(_slipload.batch, progress, loaded, outputs=_outputs(outputs), threads=threads)
+    _warn(results)
+    return results
 
 
 def batch_designs(
@@ -413,10 +440,14 @@ def load_study(study: Union[None, PathLike, Dict[str, Any], Study] = None) -> St
     if isinstance(study, Study):
         return study
     if isinstance(study, dict):
-        return Study.from_json(_json_text(study, "study"), "study (a dict)")
+        return Study.from_json(_json_text(study, "study (a dict)", "study"), "study (a dict)")
     if isinstance(study, (str, os.PathLike)):
         return Study.load(os.fspath(study))
     raise InputError(f"study: expected a file path, a dict, a slipload.Study or None, got a {type(study).__name__}")
+
+
+# the design table's quantities given per dissipator (the others are per storey)
+_PER_DISSIPATOR = ("slip_load_kn", "ratio_to_floor_weight", "ratio_to_weight_above", "friction_kn")
 
 
 class StudyReport:
@@ -495,12 +526,35 @@ class StudyReport:
         return pd.DataFrame(self.device_table["dampers"]).set_index("floor")
 
     def design_table_frame(self) -> Any:
-        """The design table as a pandas DataFrame, one row per design (needs pandas)."""
+        """The design table as a pandas DataFrame, one row per design, indexed by the
+        design's name, one number per cell (needs pandas).
+
+        A quantity given per dissipator takes one column per floor that carries one,
+        named by that floor (from 1): ``slip_load_kn_floor_1``, …,
+        ``ratio_to_floor_weight_floor_1``, ``ratio_to_weight_above_floor_1`` (and
+        ``friction_kn_floor_1`` for a design whose friction law a slip load cannot say).
+        A quantity given per storey takes one column per storey (from 1):
+        ``drift_ratio_mean_storey_1``, ``drift_ratio_p84_storey_1``,
+        ``drift_ratio_max_storey_1``, ``stroke_max_storey_1``. The other columns are
+        those of ``design-table.json``'s rows (``objective``, ``peak_drift_ratio_mean``,
+        ``base_shear_mean``, …)."""
         import pandas as pd
 
         if self.design_table is None:
             raise InputError("this report has no design table (optimize writes one)")
-        return pd.DataFrame(self.design_table).set_index("design")
+        floors = list((self.design_table_meta or {}).get("damper_floors") or [])
+        rows = []
+        for row in self.design_table:
+            flat: Dict[str, Any] = {}
+            for key, value in row.items():
+                if not isinstance(value, list):
+                    flat[key] = value
+                elif key in _PER_DISSIPATOR and len(value) == len(floors):
+                    flat.update((f"{key}_floor_{f}", v) for f, v in zip(floors, value))
+                else:
+                    flat.update((f"{key}_storey_{i}", v) for i, v in enumerate(value, start=1))
+            rows.append(flat)
+        return pd.DataFrame(rows).set_index("design")
 
     def __repr__(self) -> str:
         what = ", ".join(sorted(self.files))
@@ -623,7 +677,7 @@ def rank(
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "designs.json")
             with open(path, "w", encoding="utf-8") as f:
-                f.write(_json_text(designs, "designs"))  # type: ignore[arg-type]
+                f.write(_json_text(designs, "designs (a list)", "designs"))
             return rank(study, path, out, bootstrap=bootstrap, seed=seed, progress=progress, threads=threads)
     raw = _watched(
         _slipload.rank,

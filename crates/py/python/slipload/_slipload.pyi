@@ -11,6 +11,7 @@ import numpy.typing as npt
 
 __version__: str
 NUMERICS_VERSION: int
+MAX_CONFIG_BYTES: int
 
 FloatArray = npt.NDArray[np.float64]
 ProgressCallback = Optional[Callable[[str, int, int], Any]]
@@ -186,6 +187,11 @@ class Result:
     def method(self) -> str:
         """The method that ran."""
     @property
+    def warnings(self) -> List[str]:
+        """What the run's inputs make doubtful without making them wrong (a slip load
+        below 0.1 % of its floor's weight, a step past the duration), as ``slipload
+        simulate`` prints them; ``simulate`` and ``batch`` warn them as ``UserWarning``."""
+    @property
     def dt(self) -> float:
         """Time step, s."""
     @property
@@ -320,7 +326,7 @@ def optimize(
     *,
     refine: Optional[str] = None,
     map_floors: Optional[Tuple[int, int]] = None,
-    map_grid: int = 11,
+    map_grid: Optional[int] = None,
     fresh: bool = False,
     progress: ProgressCallback = None,
     threads: Optional[int] = None,
@@ -347,8 +353,8 @@ def rank(
     designs: str,
     out: str = "out/rank",
     *,
-    bootstrap: int = 200,
-    seed: int = 1,
+    bootstrap: Optional[int] = None,
+    seed: Optional[int] = None,
     progress: ProgressCallback = None,
     threads: Optional[int] = None,
 ) -> Dict[str, Any]:
@@ -386,3 +392,7 @@ def knee(points: npt.NDArray[np.float64]) -> Optional[int]:
 
 def allow_large(on: bool) -> None:
     """Lifts or restores the size limits on inputs."""
+
+def dict_json(value: Any, name: str, what: str) -> str:
+    """A dict or list given for a ``what`` file as JSON text, refused by field path as the
+    command line refuses the same file (size, depth, NaN/inf, values JSON has none of)."""
