@@ -50,11 +50,16 @@ def main(responses, pareto_csv, pareto_json):
         rs = rows[d]
         grid.append((sum(r[0] for r in rs) / len(rs), sum(r[1] for r in rs) / len(rs)))
     grid_front = front(grid)
+    # the search's own front: the sweep's and the search's designs (the file's and the
+    # refinement's, candidates of the study's front too, cost simulations the search's
+    # count does not hold)
     search = []
     with open(pareto_csv, newline="") as f:
         for r in csv.DictReader(f):
-            if r["front"] == "1":
-                search.append((float(r["mean_peak_drift_ratio"]), float(r["mean_peak_floor_acceleration"])))
+            if r["source"] in ("sweep", "search"):
+                v = (r["mean_peak_drift_ratio"], r["mean_peak_floor_acceleration"])
+                if "collapsed" not in v:  # a design that collapsed has no point
+                    search.append((float(v[0]), float(v[1])))
     search_front = front(search)
     ref = []
     for m in range(2):

@@ -61,21 +61,27 @@ fn the_committed_grid_check_holds_its_arithmetic() {
         assert_eq!(reference[m], hi + 0.1 * (hi - lo));
     }
 
-    // the search front is the committed study's: its front rows, at most 1,500
-    // sweep-fidelity simulations
+    // the search front is the committed study's: the front of its sweep's and search's
+    // rows (the file's and the refinement's designs, candidates of the study's front
+    // too, are not the search's), at most 1,500 sweep-fidelity simulations
     let csv = std::fs::read_to_string(dir.join("front-2/pareto.csv")).unwrap();
     let mut lines = csv.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
-    let (d, a, f) = (
+    let (d, a, source) = (
         col("mean_peak_drift_ratio"),
         col("mean_peak_floor_acceleration"),
-        col("front"),
+        col("source"),
     );
-    let mut rows: Vec<Vec<f64>> = lines
+    let searched: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').collect::<Vec<_>>())
-        .filter(|c| c[f] == "1")
+        .filter(|c| c[source] == "sweep" || c[source] == "search")
+        .filter(|c| c[d] != "collapsed" && c[a] != "collapsed")
         .map(|c| vec![c[d].parse().unwrap(), c[a].parse().unwrap()])
+        .collect();
+    let mut rows: Vec<Vec<f64>> = first_front(&searched)
+        .into_iter()
+        .map(|i| searched[i].clone())
         .collect();
     rows.sort_by(|x, y| x[0].total_cmp(&y[0]).then(x[1].total_cmp(&y[1])));
     rows.dedup();
