@@ -161,6 +161,7 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         report.sweep.manifest.method.as_str(),
         report.sweep.manifest.method_reason
     );
+    outln!("memory: {}", study.memory.text());
     // What ran now, and what was taken from the journals of an earlier run.
     outln!(
         "sweep: {} designs × {}, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",

@@ -3,7 +3,8 @@
 //! is loaded, checked, and its sweep method chosen before anything else runs.
 
 use crate::base::error::OptError;
-use crate::eval::evaluate::{DesignLoads, simulate_design};
+use crate::eval::evaluate::{DesignLoads, design_plan, simulate_design};
+use crate::eval::memory;
 use crate::model::config::StudyConfig;
 use crate::model::fidelity::{EXACT_SWEEP_COST, Fidelity, SweepMethod};
 use crate::model::study::Study;
@@ -45,6 +46,37 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
     };
     let record = study.records[0].name();
     let newmark = probe(MethodName::Newmark)?.diagnostics.work;
+    // Nothing runs unbounded: exact's probe runs only where a sweep of it, on every
+    // thread, would fit the study's memory limit (each run's mode sets are bounded by
+    // its budget, `MemoryBudget::for_plan`).
+    let exact_fid = Fidelity {
+        method: MethodName::Exact,
+        dt_s: study.config.fidelity.dt_s,
+        dt_factor: 1.0,
+        energies: study.needs_energies(),
+        dampers: false,
+    };
+    let exact_plan = design_plan(
+        study,
+        &DesignLoads::file(study),
+        0,
+        &exact_fid,
+        "file (the sweep-method probe)",
+    )?;
+    let threads = rayon::current_num_threads().max(1);
+    let sweep_bytes = memory::run_bytes(&exact_plan).saturating_mul(threads as u64);
+    if sweep_bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES {
+        let b = |v: f64| slipload_sim::limits::bytes(v);
+        return Ok(SweepMethod {
+            method: MethodName::Newmark,
+            reason: format!(
+                "chosen: exact was not probed: a sweep of it would hold {} ({threads} thread(s) x {} per run), more than the study's limit of {}",
+                b(sweep_bytes as f64),
+                b(memory::run_bytes(&exact_plan) as f64),
+                b(memory::MAX_STUDY_MEMORY_BYTES)
+            ),
+        });
+    }
     let (method, reason) = match probe(MethodName::Exact) {
         Ok(exact) => {
             let ratio = exact.diagnostics.work as f64 / newmark.max(1) as f64;
@@ -94,11 +126,15 @@ impl Study {
         Study::from_config(cfg, path)
     }
 
-    /// Validates and resolves a config — building, space, constraints, then records — and
-    /// chooses the sweep's method ([`choose_sweep_method`]).
+    /// Validates and resolves a config — building, space, constraints, then records —,
+    /// chooses the sweep's method ([`choose_sweep_method`]) and estimates the memory the
+    /// study holds at once, refusing it beyond [`memory::MAX_STUDY_MEMORY_BYTES`]
+    /// ([`memory::estimate`]).
     pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         let mut study = Study::described(cfg, path)?;
         study.sweep_method = choose_sweep_method(&study)?;
+        study.memory = memory::estimate(&study, rayon::current_num_threads())?;
+        study.memory.check(&study, memory::MAX_STUDY_MEMORY_BYTES)?;
         Ok(study)
     }
 }

@@ -91,6 +91,9 @@ pub struct Study {
     pub objectives: Vec<crate::model::objectives::ParetoObjective>,
     /// The property bounds and acceptance limits (empty: none, as before).
     pub checks: Checks,
+    /// What the study holds at once, estimated when it is loaded
+    /// ([`crate::eval::memory::estimate`]).
+    pub memory: crate::eval::memory::MemoryEstimate,
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
@@ -503,6 +506,12 @@ impl Study {
             sweep_method: SweepMethod {
                 method: MethodName::Newmark,
                 reason: String::new(),
+            },
+            memory: crate::eval::memory::MemoryEstimate {
+                threads: 1,
+                sweep_run_bytes: 0,
+                check_run_bytes: 0,
+                records_bytes: 0,
             },
         };
         Ok(study)
