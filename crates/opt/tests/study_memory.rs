@@ -12,6 +12,7 @@ use slipload_opt::eval::memory::{MAX_STUDY_MEMORY_BYTES, run_bytes};
 use slipload_opt::model::fidelity::Fidelity;
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::integrator::exact::MemoryBudget;
+use slipload_sim::scene::MethodName;
 use std::path::Path;
 
 /// A profile study of the bench's `storeys`-storey shear frame (a massless damper on every
@@ -81,4 +82,45 @@ fn a_newmark_check_needs_no_exact_budget() {
     let msg = m.check(&study, 0.0).unwrap_err().to_string();
     assert!(!msg.contains("check_method"), "{msg}");
     assert!(msg.contains("fewer threads"), "{msg}");
+}
+
+/// Issue 39's fidelity choice never runs what it has not bounded: where `exact` refuses the
+/// check (600 storeys: two mode sets exceed its 1.5 GiB cap), the check runs `newmark` at
+/// the check's step and says so, with that check's measured step-halving error; where it
+/// fits, the study's `exact` check is kept and its bound is named.
+#[test]
+fn a_check_exact_refuses_runs_newmark_and_says_its_step_halving_error() {
+    let kept = tall_study(60, "exact");
+    assert_eq!(kept.check_method.method, MethodName::Exact);
+    assert!(
+        kept.check_method.reason.contains("within its bounds"),
+        "{}",
+        kept.check_method.reason
+    );
+
+    let study = tall_study(600, "exact");
+    let c = &study.check_method;
+    assert_eq!(c.method, MethodName::Newmark, "{}", c.reason);
+    assert!(
+        c.reason.starts_with("exact refused the check: "),
+        "{}",
+        c.reason
+    );
+    assert!(
+        c.reason.contains("the check runs newmark at dt = "),
+        "{}",
+        c.reason
+    );
+    // the error is measured: a number, small at a quarter of newmark's default step
+    let error: f64 = c
+        .reason
+        .rsplit(" is ")
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|e| panic!("{e}: {}", c.reason));
+    assert!(error > 0.0 && error < 0.05, "{}", c.reason);
+    // the check that runs is newmark's, and the memory estimate is newmark's too
+    assert_eq!(Fidelity::check(&study).method, MethodName::Newmark);
+    assert_eq!(study.memory.check_run_bytes, study.memory.sweep_run_bytes);
 }

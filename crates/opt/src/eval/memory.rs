@@ -69,7 +69,7 @@ impl MemoryEstimate {
         if total <= limit || slipload_sim::limits::allow_large() {
             return Ok(());
         }
-        let exact_check = study.config.fidelity.check_method == MethodName::Exact
+        let exact_check = study.check_method.method == MethodName::Exact
             && self.check_run_bytes >= self.sweep_run_bytes;
         let hint = if exact_check {
             "; the check's `exact` holds most of it: fewer threads (RAYON_NUM_THREADS) or `fidelity.check_method: newmark` need less"

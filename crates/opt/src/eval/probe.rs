@@ -100,6 +100,75 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
     Ok(SweepMethod { method, reason })
 }
 
+/// The method of the finalists' check: the study's `fidelity.check_method`, except where
+/// that is `exact` and `exact` cannot run the study's check within its bounds (its checks
+/// refuse the check's plan, e.g. `SimError::ExactMemory`, or a check on every thread would
+/// not fit [`memory::MAX_STUDY_MEMORY_BYTES`]): the check then runs `newmark` at the
+/// check's step, and the reason says so with that check's measured error — the largest
+/// difference of peak drifts between the check's step and half of it over the largest
+/// peak drift (its step-halving error), on the building file's design under the first record. Nothing
+/// unbounded runs to decide: only the plan's checks, the estimate, and two `newmark` runs.
+pub fn choose_check_method(study: &Study) -> Result<SweepMethod, OptError> {
+    let named = study.config.fidelity.check_method;
+    let kept = |why: &str| SweepMethod {
+        method: named,
+        reason: why.to_string(),
+    };
+    if named != MethodName::Exact {
+        return Ok(kept("named by the study (fidelity.check_method)"));
+    }
+    let fid = Fidelity::check(study);
+    let design = DesignLoads::file(study);
+    let plan = design_plan(study, &design, 0, &fid, "file (the check-method probe)")?;
+    let threads = rayon::current_num_threads().max(1) as u64;
+    let bytes = memory::run_bytes(&plan).saturating_mul(threads);
+    let b = |v: f64| slipload_sim::limits::bytes(v);
+    let refused = match slipload_sim::simulate::check(&plan) {
+        Err(e) => Some(format!("exact refused the check: {e}")),
+        Ok(()) if bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES => Some(format!(
+            "exact's check would hold {} on {threads} thread(s), more than the study's limit of {}",
+            b(bytes as f64),
+            b(memory::MAX_STUDY_MEMORY_BYTES)
+        )),
+        Ok(()) => None,
+    };
+    let Some(why) = refused else {
+        return Ok(kept(&format!(
+            "the study's fidelity.check_method (exact by default), within its bounds: {} per run on {threads} thread(s)",
+            b(memory::run_bytes(&plan) as f64)
+        )));
+    };
+    let newmark = Fidelity {
+        method: MethodName::Newmark,
+        ..fid
+    };
+    let half = Fidelity {
+        dt_factor: newmark.dt_factor / 2.0,
+        ..newmark
+    };
+    let label = "file (the check-method probe)";
+    let a = simulate_design(study, &design, 0, &newmark, label)?;
+    let h = simulate_design(study, &design, 0, &half, label)?;
+    // relative to the largest peak drift: a floor that barely moves (the top of a tall
+    // frame under a short record) has no relative error worth the name
+    let (drift, halved) = (&a.response.peak_drift, &h.response.peak_drift);
+    let largest = halved.iter().fold(0.0, |m: f64, y| m.max(y.abs()));
+    let error = drift
+        .iter()
+        .zip(halved)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / largest.max(f64::MIN_POSITIVE);
+    Ok(SweepMethod {
+        method: MethodName::Newmark,
+        reason: format!(
+            "{why}; the check runs newmark at dt = {:e} s instead, whose step-halving error (the largest peak-drift difference against dt/2, over the largest peak drift; record {}, the building's own slip loads) is {error:.2e}",
+            plan.method.dt,
+            study.records[0].name()
+        ),
+    })
+}
+
 impl Study {
     /// The embedded benchmark study (`configs/study-benchmark.json` with the embedded
     /// benchmark building inlined): what every front optimises when no study is named.
@@ -133,6 +202,7 @@ impl Study {
     pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         let mut study = Study::described(cfg, path)?;
         study.sweep_method = choose_sweep_method(&study)?;
+        study.check_method = choose_check_method(&study)?;
         study.memory = memory::estimate(&study, rayon::current_num_threads())?;
         study.memory.check(&study, memory::MAX_STUDY_MEMORY_BYTES)?;
         Ok(study)
