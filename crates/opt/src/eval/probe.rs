@@ -77,7 +77,11 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             ),
         });
     }
-    let (method, reason) = match probe(MethodName::Exact) {
+    let exact = probe(MethodName::Exact);
+    // this thread will not run exact again: the study's runs go to the pool's threads,
+    // whose budgets the memory estimate counts
+    slipload_sim::integrator::exact::release_thread_cache();
+    let (method, reason) = match exact {
         Ok(exact) => {
             let ratio = exact.diagnostics.work as f64 / newmark.max(1) as f64;
             let method = if ratio <= EXACT_SWEEP_COST {

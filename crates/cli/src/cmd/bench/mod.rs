@@ -16,7 +16,7 @@
 //! [`scenes`] (the bench's buildings and scenes), [`cases`] (the cases of `newmark`, the
 //! reductions, the scaling, memory and the sweep) and [`exact`] (the cases of `exact`
 //! and the equal-accuracy comparison), [`checked`] (the time to a checked design), [`tall`] (tall frames: set-up, stepping
-//! and memory against storeys, `exact` at 60 and 120 storeys). The cases run and print in the order `run` calls
+//! and memory against storeys, `exact` at 60 and 120 storeys, a 100-storey study). The cases run and print in the order `run` calls
 //! them.
 
 mod cases;
@@ -103,6 +103,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     tall::setup_and_stepping(&mut bench)?;
     tall::memory(&mut bench)?;
     tall::exact(&mut bench)?;
+    tall::study(&mut bench)?;
     checked::checked_design(&mut bench)?;
 
     let figs = bench.figs;

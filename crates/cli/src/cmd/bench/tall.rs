@@ -9,8 +9,13 @@
 //! - `exact` at 60 and 120 storeys beside `newmark`: peak resident memory (targets ≤ 256 MiB
 //!   and ≤ 2 GiB), its memory budget and the bytes its cache held, and its time.
 //!
+//! - a study of the 100-storey frame (a `storey_shear` profile, 10 synthetic records of
+//!   20 s, the default sweep, refinement and check) through `optimize`, on every core:
+//!   wall-clock time and peak resident memory beside the targets (≤ 10 min, ≤ 2 GiB).
+//!
 //! Memory is measured in a child process per run ([`tall_probe`], the hidden flag
-//! `--tall-probe METHOD:STOREYS`), so each figure is that run's own peak, not the bench's.
+//! `--tall-probe METHOD:STOREYS`, or `study:STOREYS`), so each figure is that run's own
+//! peak, not the bench's.
 
 use super::figure::Figure;
 use super::measure::{Bench, Budget, Clock, peak_rss_kb, slope};
@@ -178,6 +183,12 @@ pub(super) fn tall_probe(spec: &str) -> anyhow::Result<()> {
     let (method, n) = spec
         .split_once(':')
         .context("--tall-probe takes METHOD:STOREYS, e.g. exact:60")?;
+    if method == "study" {
+        let n: usize = n
+            .parse()
+            .with_context(|| format!("--tall-probe {spec}: storeys"))?;
+        return study_probe(n);
+    }
     let method: MethodName = method
         .parse()
         .map_err(|e| anyhow::anyhow!("--tall-probe {spec}: {e}"))?;
@@ -281,5 +292,108 @@ pub(super) fn exact(bench: &mut Bench) -> anyhow::Result<()> {
             "x",
         ));
     }
+    Ok(())
+}
+
+/// The tall-frame study of `n` storeys: the bench's frame, a `storey_shear` profile over a
+/// floor-1 slip load of 1 to 60 MN (the frame's own is 5 % of the weight above floor 1),
+/// the embedded synthetic suite's 10 records of 20 s at 0.4 g, every other key at its
+/// default (sweep, refinement, check).
+fn tall_study_json(n: usize) -> String {
+    let building = shear_building_damped(n, ShearDamping::Rayleigh);
+    format!(
+        r#"{{ "name": "tall-{n}", "building": {building},
+             "suites": [ {{ "name": "synthetic-0.4g", "synthetic": {{ "count": 10, "seed": 2007, "pga_g": 0.4, "duration_s": 20 }} }} ],
+             "space": {{ "profile": {{ "shape": "storey_shear", "scale_kn": [1000, 60000] }} }},
+             "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }} }}"#
+    )
+}
+
+/// The study probe's child: `optimize` of [`tall_study_json`] into a scratch folder on
+/// every core, then `peak-RSS-kB wall-seconds simulations threads` on one line.
+fn study_probe(n: usize) -> anyhow::Result<()> {
+    use slipload_opt::Study;
+    use slipload_opt::eval::progress::{Phase, Progress};
+    use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
+    use slipload_opt::store::folder::FolderRequest;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    /// Counts the simulations (run or reused).
+    #[derive(Default)]
+    struct Count(AtomicUsize);
+    impl Progress for Count {
+        fn start(&self, _: Phase, _: usize) {}
+        fn tick(&self) {
+            self.0.fetch_add(1, Ordering::SeqCst);
+        }
+        fn finish(&self, _: Phase) {}
+    }
+    let dir = std::env::temp_dir().join(format!("slipload-bench-tall-{}", std::process::id()));
+    let t = std::time::Instant::now();
+    let study = Study::from_json(
+        &tall_study_json(n),
+        std::path::Path::new("slipload bench (tall-frame study)"),
+    )?;
+    let count = Count::default();
+    let run = optimize_study(
+        &study,
+        &OptimizeOptions::default(),
+        FolderRequest {
+            path: &dir,
+            option: "scratch folder",
+            fresh: true,
+        },
+        &count,
+        &NoFigures,
+    );
+    let wall = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    run?;
+    let kb = peak_rss_kb().context("reading VmHWM from /proc/self/status")?;
+    outln!(
+        "{kb} {wall} {} {}",
+        count.0.load(Ordering::SeqCst),
+        rayon::current_num_threads()
+    );
+    Ok(())
+}
+
+/// `tall frames: 100-storey study`: wall-clock time and peak RSS of the study, in a child.
+pub(super) fn study(bench: &mut Bench) -> anyhow::Result<()> {
+    let case = "tall frames: 100-storey study, storey_shear profile, 10 synthetic records of 20 s, default sweep, refinement and check, every core, one process";
+    if !bench.want(case) {
+        return Ok(());
+    }
+    let exe = std::env::current_exe().context("locating the slipload executable")?;
+    let out = std::process::Command::new(&exe)
+        .args(["bench", "--tall-probe", "study:100"])
+        .output()
+        .with_context(|| format!("running {} bench --tall-probe study:100", exe.display()))?;
+    if !out.status.success() {
+        bail!(
+            "the 100-storey study failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let v: Vec<f64> = text
+        .split_whitespace()
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("reading the study probe's answer {text:?}"))?;
+    let [kb, wall, sims, threads] = v[..] else {
+        bail!("the study probe answered {text:?}, not four numbers");
+    };
+    bench.figs.push(
+        Figure::new(
+            case,
+            &format!("wall-clock seconds ({sims} simulations, {threads} thread(s))"),
+            wall,
+            "s",
+        )
+        .at_most(600.0),
+    );
+    bench
+        .figs
+        .push(Figure::new(case, "peak RSS", kb / 1024.0, "MiB").at_most(2048.0));
     Ok(())
 }
