@@ -9,6 +9,7 @@ use slipload_opt::Study;
 use slipload_opt::base::error::OptError;
 use slipload_opt::eval::evaluate::{DesignLoads, design_plan};
 use slipload_opt::eval::memory::{MAX_STUDY_MEMORY_BYTES, run_bytes};
+use slipload_opt::eval::probe::EXACT_CHECK_COST;
 use slipload_opt::model::fidelity::Fidelity;
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::integrator::exact::MemoryBudget;
@@ -64,8 +65,10 @@ fn the_estimate_holds_exacts_budget_on_every_thread_and_the_records_once() {
         "{text}"
     );
     // within the limit it is accepted; below the estimate it is refused with what needs less
-    m.check(&study, MAX_STUDY_MEMORY_BYTES).unwrap();
-    let err = m.check(&study, m.total_bytes() as f64 - 1.0).unwrap_err();
+    m.check(&study.path, true, MAX_STUDY_MEMORY_BYTES).unwrap();
+    let err = m
+        .check(&study.path, true, m.total_bytes() as f64 - 1.0)
+        .unwrap_err();
     assert!(matches!(err, OptError::TooLarge { .. }), "{err}");
     let msg = err.to_string();
     assert!(msg.contains(&text), "{msg}");
@@ -79,7 +82,7 @@ fn a_newmark_check_needs_no_exact_budget() {
     // both runs step by step: only the dense matrices, under 1 MiB per run at 60 storeys
     assert!(m.check_run_bytes < 1 << 20, "{m:?}");
     assert_eq!(m.check_run_bytes, m.sweep_run_bytes, "{m:?}");
-    let msg = m.check(&study, 0.0).unwrap_err().to_string();
+    let msg = m.check(&study.path, false, 0.0).unwrap_err().to_string();
     assert!(!msg.contains("check_method"), "{msg}");
     assert!(msg.contains("fewer threads"), "{msg}");
 }
@@ -123,4 +126,39 @@ fn a_check_exact_refuses_runs_newmark_and_says_its_step_halving_error() {
     // the check that runs is newmark's, and the memory estimate is newmark's too
     assert_eq!(Fidelity::check(&study).method, MethodName::Newmark);
     assert_eq!(study.memory.check_run_bytes, study.memory.sweep_run_bytes);
+}
+
+/// Where the sweep-method probe measured `exact` at more than `EXACT_CHECK_COST` times
+/// `newmark`'s work (a 60-storey frame whose every floor slips), the check does not run
+/// `exact`: it runs `newmark` at the check's step and says why, with its error.
+#[test]
+fn a_check_exact_would_take_too_long_runs_newmark_and_says_why() {
+    let building: serde_json::Value =
+        serde_json::from_str(&shear_building_damped(60, ShearDamping::Rayleigh)).unwrap();
+    let v = serde_json::json!({
+        "name": "tall",
+        "building": building,
+        "suites": [ { "name": "syn", "synthetic": { "count": 1, "seed": 7, "pga_g": 0.3, "duration_s": 2.0 } } ],
+        "space": { "profile": { "shape": "storey_shear", "scale_kn": [100, 20000] } },
+        "objective": { "terms": [ { "metric": "peak_drift_ratio", "statistic": "mean" } ] }
+    });
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/inline-study.json");
+    let study = Study::from_json(&v.to_string(), &path).unwrap();
+    assert_eq!(study.sweep_method.method, MethodName::Newmark);
+    let c = &study.check_method;
+    assert_eq!(c.method, MethodName::Newmark, "{}", c.reason);
+    assert!(c.reason.starts_with("exact costs "), "{}", c.reason);
+    assert!(
+        c.reason.contains(&format!("more than {EXACT_CHECK_COST}")),
+        "{}",
+        c.reason
+    );
+    assert!(c.reason.contains("step-halving error"), "{}", c.reason);
+    let ratio: f64 = c.reason["exact costs ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(ratio > EXACT_CHECK_COST, "{}", c.reason);
 }

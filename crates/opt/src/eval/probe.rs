@@ -21,11 +21,20 @@ use std::path::Path;
 /// refuses the probe (a chattering or too-stiff dissipator exceeds its budget), the sweep
 /// is `newmark` and the reason says so.
 pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
+    Ok(probe_sweep(study)?.0)
+}
+
+/// [`choose_sweep_method`], with `exact`'s counted work over `newmark`'s on the probe
+/// where the probe ran both.
+fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
     if let Some(method) = study.config.fidelity.method {
-        return Ok(SweepMethod {
-            method,
-            reason: "named by the study (fidelity.method)".into(),
-        });
+        return Ok((
+            SweepMethod {
+                method,
+                reason: "named by the study (fidelity.method)".into(),
+            },
+            None,
+        ));
     }
     let probe = |method: MethodName| {
         let fid = Fidelity {
@@ -67,23 +76,28 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
     let sweep_bytes = memory::run_bytes(&exact_plan).saturating_mul(threads as u64);
     if sweep_bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES {
         let b = |v: f64| slipload_sim::limits::bytes(v);
-        return Ok(SweepMethod {
-            method: MethodName::Newmark,
-            reason: format!(
-                "chosen: exact was not probed: a sweep of it would hold {} ({threads} thread(s) x {} per run), more than the study's limit of {}",
-                b(sweep_bytes as f64),
-                b(memory::run_bytes(&exact_plan) as f64),
-                b(memory::MAX_STUDY_MEMORY_BYTES)
-            ),
-        });
+        return Ok((
+            SweepMethod {
+                method: MethodName::Newmark,
+                reason: format!(
+                    "chosen: exact was not probed: a sweep of it would hold {} ({threads} thread(s) x {} per run), more than the study's limit of {}",
+                    b(sweep_bytes as f64),
+                    b(memory::run_bytes(&exact_plan) as f64),
+                    b(memory::MAX_STUDY_MEMORY_BYTES)
+                ),
+            },
+            None,
+        ));
     }
     let exact = probe(MethodName::Exact);
     // this thread will not run exact again: the study's runs go to the pool's threads,
     // whose budgets the memory estimate counts
     slipload_sim::integrator::exact::release_thread_cache();
+    let mut measured = None;
     let (method, reason) = match exact {
         Ok(exact) => {
             let ratio = exact.diagnostics.work as f64 / newmark.max(1) as f64;
+            measured = Some(ratio);
             let method = if ratio <= EXACT_SWEEP_COST {
                 MethodName::Exact
             } else {
@@ -101,18 +115,29 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             format!("chosen: exact refused the probe (record {record}): {e}"),
         ),
     };
-    Ok(SweepMethod { method, reason })
+    Ok((SweepMethod { method, reason }, measured))
 }
+
+/// Largest cost of `exact` on a study's building, in `newmark`'s counted work on the
+/// sweep-method probe, at which the finalists' check runs `exact`: beyond it (a tall frame
+/// whose every floor slips: about 940 at 100 storeys, against 7-27 on the shipped
+/// studies) the check's runs would outweigh the whole study, and the check runs
+/// `newmark` at the check's step instead, with its step-halving error.
+pub const EXACT_CHECK_COST: f64 = 200.0;
 
 /// The method of the finalists' check: the study's `fidelity.check_method`, except where
 /// that is `exact` and `exact` cannot run the study's check within its bounds (its checks
-/// refuse the check's plan, e.g. `SimError::ExactMemory`, or a check on every thread would
-/// not fit [`memory::MAX_STUDY_MEMORY_BYTES`]): the check then runs `newmark` at the
+/// refuse the check's plan, e.g. `SimError::ExactMemory`; a check on every thread would
+/// not fit [`memory::MAX_STUDY_MEMORY_BYTES`]; or its counted work on the sweep-method
+/// probe, `exact_work_ratio`, exceeds [`EXACT_CHECK_COST`] times `newmark`'s): the check then runs `newmark` at the
 /// check's step, and the reason says so with that check's measured error — the largest
 /// difference of peak drifts between the check's step and half of it over the largest
 /// peak drift (its step-halving error), on the building file's design under the first record. Nothing
 /// unbounded runs to decide: only the plan's checks, the estimate, and two `newmark` runs.
-pub fn choose_check_method(study: &Study) -> Result<SweepMethod, OptError> {
+pub fn choose_check_method(
+    study: &Study,
+    exact_work_ratio: Option<f64>,
+) -> Result<SweepMethod, OptError> {
     let named = study.config.fidelity.check_method;
     let kept = |why: &str| SweepMethod {
         method: named,
@@ -134,7 +159,11 @@ pub fn choose_check_method(study: &Study) -> Result<SweepMethod, OptError> {
             b(bytes as f64),
             b(memory::MAX_STUDY_MEMORY_BYTES)
         )),
-        Ok(()) => None,
+        Ok(()) => exact_work_ratio
+            .filter(|&r| r > EXACT_CHECK_COST)
+            .map(|r| format!(
+                "exact costs {r:.0} x newmark's work on the sweep-method probe, more than {EXACT_CHECK_COST} at which the check runs it"
+            )),
     };
     let Some(why) = refused else {
         return Ok(kept(&format!(
@@ -205,10 +234,15 @@ impl Study {
     /// ([`memory::estimate`]).
     pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         let mut study = Study::described(cfg, path)?;
-        study.sweep_method = choose_sweep_method(&study)?;
-        study.check_method = choose_check_method(&study)?;
+        let (sweep, exact_work_ratio) = probe_sweep(&study)?;
+        study.sweep_method = sweep;
+        study.check_method = choose_check_method(&study, exact_work_ratio)?;
         study.memory = memory::estimate(&study, rayon::current_num_threads())?;
-        study.memory.check(&study, memory::MAX_STUDY_MEMORY_BYTES)?;
+        study.memory.check(
+            &study.path,
+            study.check_method.method == MethodName::Exact,
+            memory::MAX_STUDY_MEMORY_BYTES,
+        )?;
         Ok(study)
     }
 }

@@ -93,7 +93,7 @@ pub struct Study {
     pub checks: Checks,
     /// What the study holds at once, estimated when it is loaded
     /// ([`crate::eval::memory::estimate`]).
-    pub memory: crate::eval::memory::MemoryEstimate,
+    pub memory: crate::model::memory::MemoryEstimate,
     /// The method of the finalists' check, and why
     /// ([`crate::eval::probe::choose_check_method`]).
     pub check_method: SweepMethod,
@@ -515,7 +515,7 @@ impl Study {
                 method: cfg_check_method,
                 reason: String::new(),
             },
-            memory: crate::eval::memory::MemoryEstimate {
+            memory: crate::model::memory::MemoryEstimate {
                 threads: 1,
                 sweep_run_bytes: 0,
                 check_run_bytes: 0,
