@@ -229,3 +229,84 @@ fn equal_accuracy_figures_are_reported() {
         "{v:#}"
     );
 }
+
+/// The tall frames' rows (issue 39): set-up and stepping at 10, 20, 50, 100 and 200
+/// storeys with their log-log slopes, the set-up at 200 storeys judged against 0.3 s, and
+/// one peak-memory row per size from a child process; the child's answer is four numbers
+/// and a bad `METHOD:STOREYS` is refused naming the flag.
+#[test]
+fn tall_frame_rows_are_reported_beside_their_targets() {
+    let v = bench_json(&[
+        "--only",
+        "tall frames: set-up",
+        "--only",
+        "tall frames: peak",
+    ]);
+    let figs = v.as_array().unwrap();
+    for f in figs {
+        check_status(f);
+        assert!(
+            f["case"].as_str().unwrap().starts_with("tall frames: "),
+            "{f}"
+        );
+        assert!(f["value"].as_f64().unwrap().is_finite(), "{f}");
+    }
+    let find = |metric: &str| {
+        figs.iter()
+            .find(|f| f["metric"].as_str().unwrap().starts_with(metric))
+            .unwrap_or_else(|| panic!("{metric}: {v:#}"))
+    };
+    for n in [10, 20, 50, 100, 200] {
+        let setup = find(&format!("set-up, {n} storeys"));
+        assert_eq!(setup["unit"], "ms", "{setup}");
+        // only the 200-storey set-up carries the issue's target
+        assert_eq!(
+            setup["target"].as_str(),
+            (n == 200).then_some("<= 300"),
+            "{setup}"
+        );
+        let stepping = find(&format!("stepping (6000 steps), {n} storeys"));
+        assert!(stepping["value"].as_f64().unwrap() > 0.0, "{stepping}");
+        let rss = find(&format!("peak RSS, {n} storeys"));
+        assert_eq!(rss["unit"], "MiB", "{rss}");
+        // a process that ran a simulation holds at least a MiB and far below a GiB
+        let mib = rss["value"].as_f64().unwrap();
+        assert!((1.0..1024.0).contains(&mib), "{rss}");
+    }
+    assert_eq!(
+        find("exponent of set-up vs storeys, 10-200")["target"],
+        "<= 3"
+    );
+    for slope in [
+        "exponent of set-up vs storeys, 50-200",
+        "exponent of stepping vs storeys, 10-200",
+        "exponent of peak RSS vs storeys, 10-200",
+    ] {
+        assert!(
+            find(slope)["value"].as_f64().unwrap().is_finite(),
+            "{slope}"
+        );
+    }
+
+    let out = slipload(&["bench", "--tall-probe", "newmark:10"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let answer: Vec<f64> = String::from_utf8_lossy(&out.stdout)
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    // peak RSS kB, run seconds, then exact's budget and cache peak: none for newmark
+    assert_eq!(answer.len(), 4, "{answer:?}");
+    assert!(answer[0] > 0.0 && answer[1] > 0.0, "{answer:?}");
+    assert_eq!(&answer[2..], &[0.0, 0.0]);
+    let bad = slipload(&["bench", "--tall-probe", "newmark"]);
+    assert!(!bad.status.success());
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("--tall-probe takes METHOD:STOREYS"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
+}

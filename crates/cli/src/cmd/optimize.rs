@@ -161,6 +161,16 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         report.sweep.manifest.method.as_str(),
         report.sweep.manifest.method_reason
     );
+    // where the study's check method could not run within its bounds, what ran instead
+    if study.check_method.method != study.config.fidelity.check_method {
+        outln!(
+            "the check runs {} ({})",
+            study.check_method.method.as_str(),
+            study.check_method.reason
+        );
+    }
+    // on stderr with the progress: the summary on stdout stays what results/ commits
+    eprintln!("memory: {}", study.memory.text());
     // What ran now, and what was taken from the journals of an earlier run.
     outln!(
         "sweep: {} designs × {}, {} simulations run ({} reused from journal.jsonl); refine ({}): {} designs, {} run ({} replayed from refine-{}.jsonl)",

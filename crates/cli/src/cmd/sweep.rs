@@ -98,6 +98,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<()> {
         report.manifest.method.as_str(),
         report.manifest.method_reason
     );
+    eprintln!("memory: {}", study.memory.text());
     if run.figures.is_some() {
         eprintln!(
             "wrote {}/{{{}}}",

@@ -148,6 +148,23 @@ pub fn simulate_design(
     fid: &Fidelity,
     label: &str,
 ) -> Result<slipload_sim::Outcome, OptError> {
+    let plan = design_plan(study, design, run, fid, label)?;
+    run_plan(&plan).map_err(|source| OptError::Simulation {
+        design: label.to_string(),
+        record: study.run_name(run),
+        source: Box::new(source),
+    })
+}
+
+/// The compiled plan [`simulate_design`] runs (what its memory and its refusals are
+/// judged on before it runs).
+pub fn design_plan(
+    study: &Study,
+    design: &DesignLoads,
+    run: usize,
+    fid: &Fidelity,
+    label: &str,
+) -> Result<Plan, OptError> {
     let (case, record) = study.run(run);
     let rec = &study.records[record];
     let n = study.building.floors();
@@ -194,8 +211,7 @@ pub fn simulate_design(
         record: study.run_name(run),
         source: Box::new(source),
     };
-    let plan = Plan::compile(&scene).map_err(wrap)?;
-    run_plan(&plan).map_err(wrap)
+    Plan::compile(&scene).map_err(wrap)
 }
 
 /// One task: slip loads (N per dissipator) and a record index.

@@ -3,5 +3,6 @@
 //! the sweep's method (a probe run); the progress a study run reports.
 
 pub mod evaluate;
+pub mod memory;
 pub mod probe;
 pub mod progress;

@@ -3,7 +3,8 @@
 //! is loaded, checked, and its sweep method chosen before anything else runs.
 
 use crate::base::error::OptError;
-use crate::eval::evaluate::{DesignLoads, simulate_design};
+use crate::eval::evaluate::{DesignLoads, design_plan, simulate_design};
+use crate::eval::memory;
 use crate::model::config::StudyConfig;
 use crate::model::fidelity::{EXACT_SWEEP_COST, Fidelity, SweepMethod};
 use crate::model::study::Study;
@@ -20,11 +21,20 @@ use std::path::Path;
 /// refuses the probe (a chattering or too-stiff dissipator exceeds its budget), the sweep
 /// is `newmark` and the reason says so.
 pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
+    Ok(probe_sweep(study)?.0)
+}
+
+/// [`choose_sweep_method`], with `exact`'s counted work over `newmark`'s on the probe
+/// where the probe ran both.
+fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
     if let Some(method) = study.config.fidelity.method {
-        return Ok(SweepMethod {
-            method,
-            reason: "named by the study (fidelity.method)".into(),
-        });
+        return Ok((
+            SweepMethod {
+                method,
+                reason: "named by the study (fidelity.method)".into(),
+            },
+            None,
+        ));
     }
     let probe = |method: MethodName| {
         let fid = Fidelity {
@@ -45,9 +55,49 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
     };
     let record = study.records[0].name();
     let newmark = probe(MethodName::Newmark)?.diagnostics.work;
-    let (method, reason) = match probe(MethodName::Exact) {
+    // Nothing runs unbounded: exact's probe runs only where a sweep of it, on every
+    // thread, would fit the study's memory limit (each run's mode sets are bounded by
+    // its budget, `MemoryBudget::for_plan`).
+    let exact_fid = Fidelity {
+        method: MethodName::Exact,
+        dt_s: study.config.fidelity.dt_s,
+        dt_factor: 1.0,
+        energies: study.needs_energies(),
+        dampers: false,
+    };
+    let exact_plan = design_plan(
+        study,
+        &DesignLoads::file(study),
+        0,
+        &exact_fid,
+        "file (the sweep-method probe)",
+    )?;
+    let threads = rayon::current_num_threads().max(1);
+    let sweep_bytes = memory::run_bytes(&exact_plan).saturating_mul(threads as u64);
+    if sweep_bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES {
+        let b = |v: f64| slipload_sim::limits::bytes(v);
+        return Ok((
+            SweepMethod {
+                method: MethodName::Newmark,
+                reason: format!(
+                    "chosen: exact was not probed: a sweep of it would hold {} ({threads} thread(s) x {} per run), more than the study's limit of {}",
+                    b(sweep_bytes as f64),
+                    b(memory::run_bytes(&exact_plan) as f64),
+                    b(memory::MAX_STUDY_MEMORY_BYTES)
+                ),
+            },
+            None,
+        ));
+    }
+    let exact = probe(MethodName::Exact);
+    // this thread will not run exact again: the study's runs go to the pool's threads,
+    // whose budgets the memory estimate counts
+    slipload_sim::integrator::exact::release_thread_cache();
+    let mut measured = None;
+    let (method, reason) = match exact {
         Ok(exact) => {
             let ratio = exact.diagnostics.work as f64 / newmark.max(1) as f64;
+            measured = Some(ratio);
             let method = if ratio <= EXACT_SWEEP_COST {
                 MethodName::Exact
             } else {
@@ -65,7 +115,91 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
             format!("chosen: exact refused the probe (record {record}): {e}"),
         ),
     };
-    Ok(SweepMethod { method, reason })
+    Ok((SweepMethod { method, reason }, measured))
+}
+
+/// Largest cost of `exact` on a study's building, in `newmark`'s counted work on the
+/// sweep-method probe, at which the finalists' check runs `exact`: beyond it (a tall frame
+/// whose every floor slips: about 940 at 100 storeys, against 7-27 on the shipped
+/// studies) the check's runs would outweigh the whole study, and the check runs
+/// `newmark` at the check's step instead, with its step-halving error.
+pub const EXACT_CHECK_COST: f64 = 200.0;
+
+/// The method of the finalists' check: the study's `fidelity.check_method`, except where
+/// that is `exact` and `exact` cannot run the study's check within its bounds (its checks
+/// refuse the check's plan, e.g. `SimError::ExactMemory`; a check on every thread would
+/// not fit [`memory::MAX_STUDY_MEMORY_BYTES`]; or its counted work on the sweep-method
+/// probe, `exact_work_ratio`, exceeds [`EXACT_CHECK_COST`] times `newmark`'s): the check then runs `newmark` at the
+/// check's step, and the reason says so with that check's measured error — the largest
+/// difference of peak drifts between the check's step and half of it over the largest
+/// peak drift (its step-halving error), on the building file's design under the first record. Nothing
+/// unbounded runs to decide: only the plan's checks, the estimate, and two `newmark` runs.
+pub fn choose_check_method(
+    study: &Study,
+    exact_work_ratio: Option<f64>,
+) -> Result<SweepMethod, OptError> {
+    let named = study.config.fidelity.check_method;
+    let kept = |why: &str| SweepMethod {
+        method: named,
+        reason: why.to_string(),
+    };
+    if named != MethodName::Exact {
+        return Ok(kept("named by the study (fidelity.check_method)"));
+    }
+    let fid = Fidelity::check(study);
+    let design = DesignLoads::file(study);
+    let plan = design_plan(study, &design, 0, &fid, "file (the check-method probe)")?;
+    let threads = rayon::current_num_threads().max(1) as u64;
+    let bytes = memory::run_bytes(&plan).saturating_mul(threads);
+    let b = |v: f64| slipload_sim::limits::bytes(v);
+    let refused = match slipload_sim::simulate::check(&plan) {
+        Err(e) => Some(format!("exact refused the check: {e}")),
+        Ok(()) if bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES => Some(format!(
+            "exact's check would hold {} on {threads} thread(s), more than the study's limit of {}",
+            b(bytes as f64),
+            b(memory::MAX_STUDY_MEMORY_BYTES)
+        )),
+        Ok(()) => exact_work_ratio
+            .filter(|&r| r > EXACT_CHECK_COST)
+            .map(|r| format!(
+                "exact costs {r:.0} x newmark's work on the sweep-method probe, more than {EXACT_CHECK_COST} at which the check runs it"
+            )),
+    };
+    let Some(why) = refused else {
+        return Ok(kept(&format!(
+            "the study's fidelity.check_method (exact by default), within its bounds: {} per run on {threads} thread(s)",
+            b(memory::run_bytes(&plan) as f64)
+        )));
+    };
+    let newmark = Fidelity {
+        method: MethodName::Newmark,
+        ..fid
+    };
+    let half = Fidelity {
+        dt_factor: newmark.dt_factor / 2.0,
+        ..newmark
+    };
+    let label = "file (the check-method probe)";
+    let a = simulate_design(study, &design, 0, &newmark, label)?;
+    let h = simulate_design(study, &design, 0, &half, label)?;
+    // relative to the largest peak drift: a floor that barely moves (the top of a tall
+    // frame under a short record) has no relative error worth the name
+    let (drift, halved) = (&a.response.peak_drift, &h.response.peak_drift);
+    let largest = halved.iter().fold(0.0, |m: f64, y| m.max(y.abs()));
+    let error = drift
+        .iter()
+        .zip(halved)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / largest.max(f64::MIN_POSITIVE);
+    Ok(SweepMethod {
+        method: MethodName::Newmark,
+        reason: format!(
+            "{why}; the check runs newmark at dt = {:e} s instead, whose step-halving error (the largest peak-drift difference against dt/2, over the largest peak drift; record {}, the building's own slip loads) is {error:.2e}",
+            plan.method.dt,
+            study.records[0].name()
+        ),
+    })
 }
 
 impl Study {
@@ -94,11 +228,21 @@ impl Study {
         Study::from_config(cfg, path)
     }
 
-    /// Validates and resolves a config — building, space, constraints, then records — and
-    /// chooses the sweep's method ([`choose_sweep_method`]).
+    /// Validates and resolves a config — building, space, constraints, then records —,
+    /// chooses the sweep's method ([`choose_sweep_method`]) and estimates the memory the
+    /// study holds at once, refusing it beyond [`memory::MAX_STUDY_MEMORY_BYTES`]
+    /// ([`memory::estimate`]).
     pub fn from_config(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         let mut study = Study::described(cfg, path)?;
-        study.sweep_method = choose_sweep_method(&study)?;
+        let (sweep, exact_work_ratio) = probe_sweep(&study)?;
+        study.sweep_method = sweep;
+        study.check_method = choose_check_method(&study, exact_work_ratio)?;
+        study.memory = memory::estimate(&study, rayon::current_num_threads())?;
+        study.memory.check(
+            &study.path,
+            study.check_method.method == MethodName::Exact,
+            memory::MAX_STUDY_MEMORY_BYTES,
+        )?;
         Ok(study)
     }
 }

@@ -7,6 +7,7 @@ pub mod check;
 pub mod config;
 pub mod fidelity;
 pub mod fingerprint;
+pub mod memory;
 pub mod objective;
 pub mod objectives;
 pub mod sampler;

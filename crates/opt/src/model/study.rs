@@ -91,6 +91,12 @@ pub struct Study {
     pub objectives: Vec<crate::model::objectives::ParetoObjective>,
     /// The property bounds and acceptance limits (empty: none, as before).
     pub checks: Checks,
+    /// What the study holds at once, estimated when it is loaded
+    /// ([`crate::eval::memory::estimate`]).
+    pub memory: crate::model::memory::MemoryEstimate,
+    /// The method of the finalists' check, and why
+    /// ([`crate::eval::probe::choose_check_method`]).
+    pub check_method: SweepMethod,
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
@@ -338,7 +344,7 @@ impl Fidelity {
     /// study with limits, whose device table reads them).
     pub fn check(study: &Study) -> Fidelity {
         Fidelity {
-            method: study.config.fidelity.check_method,
+            method: study.check_method.method,
             dt_s: study.config.fidelity.dt_s,
             dt_factor: study.config.fidelity.check_dt_factor,
             energies: true,
@@ -489,6 +495,7 @@ impl Study {
             cfg.property_bounds,
             cfg.suites.iter().map(|s| s.limits.clone()).collect(),
         );
+        let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {
             name,
             path: path.to_path_buf(),
@@ -503,6 +510,16 @@ impl Study {
             sweep_method: SweepMethod {
                 method: MethodName::Newmark,
                 reason: String::new(),
+            },
+            check_method: SweepMethod {
+                method: cfg_check_method,
+                reason: String::new(),
+            },
+            memory: crate::model::memory::MemoryEstimate {
+                threads: 1,
+                sweep_run_bytes: 0,
+                check_run_bytes: 0,
+                records_bytes: 0,
             },
         };
         Ok(study)

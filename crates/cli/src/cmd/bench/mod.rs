@@ -15,7 +15,8 @@
 //! they print as), [`measure`] (the clock, the timed runs, the bench's state),
 //! [`scenes`] (the bench's buildings and scenes), [`cases`] (the cases of `newmark`, the
 //! reductions, the scaling, memory and the sweep) and [`exact`] (the cases of `exact`
-//! and the equal-accuracy comparison), [`checked`] (the time to a checked design). The cases run and print in the order `run` calls
+//! and the equal-accuracy comparison), [`checked`] (the time to a checked design), [`tall`] (tall frames: set-up, stepping
+//! and memory against storeys, `exact` at 60 and 120 storeys, a 100-storey study). The cases run and print in the order `run` calls
 //! them.
 
 mod cases;
@@ -24,6 +25,7 @@ mod exact;
 mod figure;
 mod measure;
 mod scenes;
+mod tall;
 
 use anyhow::bail;
 use figure::print_table;
@@ -45,6 +47,12 @@ pub struct BenchArgs {
     /// the process's peak resident memory (kB); used by the memory case
     #[arg(long, hide = true)]
     pub memory_probe: Option<f64>,
+    /// Internal: run one peaks-only tall-frame simulation, METHOD:STOREYS (e.g.
+    /// `exact:60`), and print the process's peak resident memory (kB), the run's CPU
+    /// seconds, `exact`'s memory budget and its cache's peak (bytes); used by the tall
+    /// frames' cases
+    #[arg(long, hide = true)]
+    pub tall_probe: Option<String>,
 }
 
 /// Output formats.
@@ -60,6 +68,9 @@ pub enum Format {
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(seconds) = args.memory_probe {
         return cases::memory_probe(seconds);
+    }
+    if let Some(spec) = &args.tall_probe {
+        return tall::tall_probe(spec);
     }
     let budget = if args.quick {
         Budget {
@@ -89,6 +100,10 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     cases::banded(&mut bench)?;
     cases::memory(&mut bench)?;
     cases::sweep(&mut bench)?;
+    tall::setup_and_stepping(&mut bench)?;
+    tall::memory(&mut bench)?;
+    tall::exact(&mut bench)?;
+    tall::study(&mut bench)?;
     checked::checked_design(&mut bench)?;
 
     let figs = bench.figs;

@@ -115,6 +115,14 @@ thread_local! {
     static SHARED: RefCell<Store> = RefCell::new(Store::default());
 }
 
+/// Drops the mode sets this thread keeps between runs: for a thread that ran `exact` once
+/// and will not run it again soon (a study's sweep-method probe, on the thread that loads
+/// the study, while the study's runs go to other threads), so that what it kept is not
+/// held beside every worker's budget.
+pub fn release_thread_cache() {
+    SHARED.with(|s| *s.borrow_mut() = Store::default());
+}
+
 /// Buildings whose mode sets a thread keeps.
 const SHARED_PLANS: usize = 2;
 

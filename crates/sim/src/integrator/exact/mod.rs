@@ -149,6 +149,7 @@ mod propagate;
 mod run;
 mod search;
 
+pub use cache::release_thread_cache;
 pub use memory::{MemoryBudget, working_set_bytes};
 pub use params::{
     GRAZE_REL, LEAD_TERMS, MAX_EVENTS, MAX_SUBSTEPS, MEMORY_CAP, MEMORY_FLOOR, MODE_CACHE,
