@@ -72,17 +72,18 @@ fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
         &exact_fid,
         "file (the sweep-method probe)",
     )?;
-    let threads = rayon::current_num_threads().max(1);
-    let sweep_bytes = memory::run_bytes(&exact_plan).saturating_mul(threads as u64);
-    if sweep_bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES {
+    // (one run against the limit, whatever the thread count: the choice, and with it
+    // every result, must not depend on the threads; the study's memory estimate then
+    // refuses a pool too large for the limit)
+    let run_bytes = memory::run_bytes(&exact_plan);
+    if run_bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES {
         let b = |v: f64| slipload_sim::limits::bytes(v);
         return Ok((
             SweepMethod {
                 method: MethodName::Newmark,
                 reason: format!(
-                    "chosen: exact was not probed: a sweep of it would hold {} ({threads} thread(s) x {} per run), more than the study's limit of {}",
-                    b(sweep_bytes as f64),
-                    b(memory::run_bytes(&exact_plan) as f64),
+                    "chosen: exact was not probed: one run of it would hold {}, more than the study's limit of {}",
+                    b(run_bytes as f64),
                     b(memory::MAX_STUDY_MEMORY_BYTES)
                 ),
             },
@@ -127,8 +128,9 @@ pub const EXACT_CHECK_COST: f64 = 200.0;
 
 /// The method of the finalists' check: the study's `fidelity.check_method`, except where
 /// that is `exact` and `exact` cannot run the study's check within its bounds (its checks
-/// refuse the check's plan, e.g. `SimError::ExactMemory`; a check on every thread would
-/// not fit [`memory::MAX_STUDY_MEMORY_BYTES`]; or its counted work on the sweep-method
+/// refuse the check's plan, e.g. `SimError::ExactMemory`; one run of it would not fit
+/// [`memory::MAX_STUDY_MEMORY_BYTES`], whatever the thread count, so the choice is the
+/// same on every machine; or its counted work on the sweep-method
 /// probe, `exact_work_ratio`, exceeds [`EXACT_CHECK_COST`] times `newmark`'s): the check then runs `newmark` at the
 /// check's step, and the reason says so with that check's measured error — the largest
 /// difference of peak drifts between the check's step and half of it over the largest
@@ -149,13 +151,14 @@ pub fn choose_check_method(
     let fid = Fidelity::check(study);
     let design = DesignLoads::file(study);
     let plan = design_plan(study, &design, 0, &fid, "file (the check-method probe)")?;
-    let threads = rayon::current_num_threads().max(1) as u64;
-    let bytes = memory::run_bytes(&plan).saturating_mul(threads);
+    // one run against the limit, whatever the thread count (the choice must not depend
+    // on the threads; the study's memory estimate refuses a pool too large)
+    let bytes = memory::run_bytes(&plan);
     let b = |v: f64| slipload_sim::limits::bytes(v);
     let refused = match slipload_sim::simulate::check(&plan) {
         Err(e) => Some(format!("exact refused the check: {e}")),
         Ok(()) if bytes as f64 > memory::MAX_STUDY_MEMORY_BYTES => Some(format!(
-            "exact's check would hold {} on {threads} thread(s), more than the study's limit of {}",
+            "one run of exact's check would hold {}, more than the study's limit of {}",
             b(bytes as f64),
             b(memory::MAX_STUDY_MEMORY_BYTES)
         )),
@@ -167,7 +170,7 @@ pub fn choose_check_method(
     };
     let Some(why) = refused else {
         return Ok(kept(&format!(
-            "the study's fidelity.check_method (exact by default), within its bounds: {} per run on {threads} thread(s)",
+            "the study's fidelity.check_method (exact by default), within its bounds: {} per run",
             b(memory::run_bytes(&plan) as f64)
         )));
     };
