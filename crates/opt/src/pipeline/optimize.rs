@@ -384,19 +384,7 @@ fn finish_front(
         .collect();
     // replayed refinement evaluations have no runs in memory: the only runs here
     let missing = missing_runs(study, &search, &offered);
-    let (ran, reused) = if missing > 0 {
-        phase(progress, Phase::Pareto, missing, |tick| {
-            add_candidates(
-                study,
-                manifest,
-                rows,
-                &mut search,
-                &offered,
-                Some(journal),
-                tick,
-            )
-        })?
-    } else {
+    let mut add = |tick: &(dyn Fn() + Sync)| {
         add_candidates(
             study,
             manifest,
@@ -404,8 +392,13 @@ fn finish_front(
             &mut search,
             &offered,
             Some(journal),
-            &|| {},
-        )?
+            tick,
+        )
+    };
+    let (ran, reused) = if missing > 0 {
+        phase(progress, Phase::Pareto, missing, |tick| add(tick))?
+    } else {
+        add(&|| {})?
     };
     search.ran += ran;
     search.reused += reused;

@@ -147,27 +147,9 @@ struct Probe {
 
 /// Runs `slipload bench --tall-probe METHOD:STOREYS` in a fresh process.
 fn probe(method: MethodName, n: usize) -> anyhow::Result<Probe> {
-    let exe = std::env::current_exe().context("locating the slipload executable")?;
     let arg = format!("{}:{n}", method.as_str());
-    let out = std::process::Command::new(&exe)
-        .args(["bench", "--tall-probe", &arg])
-        .output()
-        .with_context(|| format!("running {} bench --tall-probe {arg}", exe.display()))?;
-    if !out.status.success() {
-        bail!(
-            "tall-frame probe {arg} failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
-    let v: Vec<f64> = text
-        .split_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .with_context(|| format!("reading the tall-frame probe's answer {text:?}"))?;
-    let [kb, seconds, budget, cache] = v[..] else {
-        bail!("the tall-frame probe {arg} answered {text:?}, not four numbers");
-    };
+    let v = probe_child(&arg)?;
+    let [kb, seconds, budget, cache] = v;
     const MIB: f64 = 1024.0 * 1024.0;
     Ok(Probe {
         rss_mib: kb / 1024.0,
@@ -363,26 +345,7 @@ pub(super) fn study(bench: &mut Bench) -> anyhow::Result<()> {
     if !bench.want(case) {
         return Ok(());
     }
-    let exe = std::env::current_exe().context("locating the slipload executable")?;
-    let out = std::process::Command::new(&exe)
-        .args(["bench", "--tall-probe", "study:100"])
-        .output()
-        .with_context(|| format!("running {} bench --tall-probe study:100", exe.display()))?;
-    if !out.status.success() {
-        bail!(
-            "the 100-storey study failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
-    let v: Vec<f64> = text
-        .split_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .with_context(|| format!("reading the study probe's answer {text:?}"))?;
-    let [kb, wall, sims, threads] = v[..] else {
-        bail!("the study probe answered {text:?}, not four numbers");
-    };
+    let [kb, wall, sims, threads] = probe_child("study:100")?;
     bench.figs.push(
         Figure::new(
             case,
@@ -396,4 +359,30 @@ pub(super) fn study(bench: &mut Bench) -> anyhow::Result<()> {
         .figs
         .push(Figure::new(case, "peak RSS", kb / 1024.0, "MiB").at_most(2048.0));
     Ok(())
+}
+
+/// Runs `slipload bench --tall-probe ARG` in a child process (its peak RSS is its own)
+/// and reads the four numbers it answers.
+fn probe_child(arg: &str) -> anyhow::Result<[f64; 4]> {
+    let exe = std::env::current_exe().context("locating the slipload executable")?;
+    let out = std::process::Command::new(&exe)
+        .args(["bench", "--tall-probe", arg])
+        .output()
+        .with_context(|| format!("running {} bench --tall-probe {arg}", exe.display()))?;
+    if !out.status.success() {
+        bail!(
+            "the tall-frame probe {arg} failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let v: Vec<f64> = text
+        .split_whitespace()
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("reading the tall-frame probe's answer {text:?}"))?;
+    match v[..] {
+        [a, b, c, d] => Ok([a, b, c, d]),
+        _ => bail!("the tall-frame probe {arg} answered {text:?}, not four numbers"),
+    }
 }
