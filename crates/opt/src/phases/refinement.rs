@@ -326,7 +326,8 @@ pub fn refine_sweep(
         }
     }
     let order = by_value(&known);
-    if !best_sweep.f.is_finite() {
+    // (the best of every design evaluated, the search's included)
+    if !order.first().is_some_and(|&i| known[i].f.is_finite()) {
         // (with limits: the designs that meet them collapse on a record the count allows,
         // and a collapse makes the objective +inf)
         return Err(OptError::Missing(format!(
