@@ -6,12 +6,10 @@
 //! in it, so it is reported beside the aim, not averaged away.
 
 use super::figure::Figure;
-use super::measure::Bench;
+use super::measure::{Bench, timed_study};
 use anyhow::Context;
 use slipload_opt::Study;
 use slipload_opt::eval::progress::{Phase, Progress};
-use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
-use slipload_opt::store::folder::FolderRequest;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -62,22 +60,8 @@ pub(super) fn checked_design(bench: &mut Bench) -> anyhow::Result<()> {
     let study = Study::load(std::path::Path::new(EXAMPLE)).with_context(|| {
         format!("the worked example {EXAMPLE} (run the bench from a clone of the project)")
     })?;
-    let dir = std::env::temp_dir().join(format!("slipload-bench-checked-{}", std::process::id()));
     let clock = PhaseClock::default();
-    let t = Instant::now();
-    let run = optimize_study(
-        &study,
-        &OptimizeOptions::default(),
-        FolderRequest {
-            path: &dir,
-            option: "scratch folder",
-            fresh: true,
-        },
-        &clock,
-        &NoFigures,
-    );
-    let wall = t.elapsed().as_secs_f64();
-    let _ = std::fs::remove_dir_all(&dir);
+    let (run, wall) = timed_study(&study, "checked", &clock);
     let run = run?;
     let threads = rayon::current_num_threads();
     bench.figs.push(

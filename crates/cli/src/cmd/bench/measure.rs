@@ -109,21 +109,65 @@ pub(super) fn seconds_banded_dense(
     Ok((median(&mut banded), median(&mut dense)))
 }
 
-/// Median CPU seconds per run of `plan` (one warm-up run first).
-pub(super) fn seconds_per_run(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<f64> {
+/// Median CPU seconds of `f` (one warm-up call, then batches long enough for the clock).
+pub(super) fn median_seconds(
+    clock: &Clock,
+    b: Budget,
+    mut f: impl FnMut() -> anyhow::Result<()>,
+) -> anyhow::Result<f64> {
     let t0 = clock.now();
-    run_plan(plan).with_context(|| format!("running {}", plan.name))?;
+    f()?;
     let first = (clock.now() - t0).max(1e-6);
     let batch = ((b.seconds / first).ceil() as usize).max(1);
     let mut times = Vec::with_capacity(b.repeats);
     for _ in 0..b.repeats {
         let t = clock.now();
         for _ in 0..batch {
-            std::hint::black_box(run_plan(std::hint::black_box(plan))?);
+            f()?;
         }
         times.push((clock.now() - t) / batch as f64);
     }
     Ok(median(&mut times))
+}
+
+/// Median CPU seconds per run of `plan` (one warm-up run first).
+pub(super) fn seconds_per_run(plan: &Plan, clock: &Clock, b: Budget) -> anyhow::Result<f64> {
+    median_seconds(clock, b, || {
+        std::hint::black_box(
+            run_plan(std::hint::black_box(plan))
+                .with_context(|| format!("running {}", plan.name))?,
+        );
+        Ok(())
+    })
+}
+
+/// `slipload optimize` of `study` into a fresh scratch folder named after `name` (removed
+/// after), reporting to `progress`, without figures: the run and its wall-clock seconds.
+pub(super) fn timed_study(
+    study: &slipload_opt::Study,
+    name: &str,
+    progress: &dyn slipload_opt::eval::progress::Progress,
+) -> (
+    Result<slipload_opt::pipeline::OptimizeRun, slipload_opt::OptError>,
+    f64,
+) {
+    use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
+    let dir = std::env::temp_dir().join(format!("slipload-bench-{name}-{}", std::process::id()));
+    let t = std::time::Instant::now();
+    let run = optimize_study(
+        study,
+        &OptimizeOptions::default(),
+        slipload_opt::store::folder::FolderRequest {
+            path: &dir,
+            option: "scratch folder",
+            fresh: true,
+        },
+        progress,
+        &NoFigures,
+    );
+    let wall = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    (run, wall)
 }
 
 /// Max relative difference of two peak-drift vectors.

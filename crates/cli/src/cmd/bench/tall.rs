@@ -18,7 +18,7 @@
 //! peak, not the bench's.
 
 use super::figure::Figure;
-use super::measure::{Bench, Budget, Clock, peak_rss_kb, slope};
+use super::measure::{Bench, Clock, median_seconds, peak_rss_kb, slope, timed_study};
 use super::scenes::{SceneOpts, config, scene};
 use anyhow::{Context, bail};
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
@@ -52,27 +52,6 @@ fn set_up(b: &BuildingConfig, method: MethodName, dt: Option<f64>) -> anyhow::Re
     )?)?;
     slipload_sim::simulate::check(&plan)?;
     Ok(plan)
-}
-
-/// Median CPU seconds of `f` (one warm-up call, then batches long enough for the clock).
-fn median_seconds(
-    clock: &Clock,
-    b: Budget,
-    mut f: impl FnMut() -> anyhow::Result<()>,
-) -> anyhow::Result<f64> {
-    let t0 = clock.now();
-    f()?;
-    let first = (clock.now() - t0).max(1e-6);
-    let batch = ((b.seconds / first).ceil() as usize).max(1);
-    let mut times = Vec::with_capacity(b.repeats);
-    for _ in 0..b.repeats {
-        let t = clock.now();
-        for _ in 0..batch {
-            f()?;
-        }
-        times.push((clock.now() - t) / batch as f64);
-    }
-    Ok(slipload_sim::accuracy::median(&mut times))
 }
 
 /// `tall frames: set-up and stepping`: `newmark`'s set-up and run against storeys.
@@ -296,8 +275,6 @@ fn tall_study_json(n: usize) -> String {
 fn study_probe(n: usize) -> anyhow::Result<()> {
     use slipload_opt::Study;
     use slipload_opt::eval::progress::{Phase, Progress};
-    use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
-    use slipload_opt::store::folder::FolderRequest;
     use std::sync::atomic::{AtomicUsize, Ordering};
     /// Counts the simulations (run or reused).
     #[derive(Default)]
@@ -309,26 +286,15 @@ fn study_probe(n: usize) -> anyhow::Result<()> {
         }
         fn finish(&self, _: Phase) {}
     }
-    let dir = std::env::temp_dir().join(format!("slipload-bench-tall-{}", std::process::id()));
     let t = std::time::Instant::now();
     let study = Study::from_json(
         &tall_study_json(n),
         std::path::Path::new("slipload bench (tall-frame study)"),
     )?;
     let count = Count::default();
-    let run = optimize_study(
-        &study,
-        &OptimizeOptions::default(),
-        FolderRequest {
-            path: &dir,
-            option: "scratch folder",
-            fresh: true,
-        },
-        &count,
-        &NoFigures,
-    );
+    let (run, _) = timed_study(&study, "tall", &count);
+    // (the wall clock from loading the study: its probes are part of the study's time)
     let wall = t.elapsed().as_secs_f64();
-    let _ = std::fs::remove_dir_all(&dir);
     run?;
     let kb = peak_rss_kb().context("reading VmHWM from /proc/self/status")?;
     outln!(
