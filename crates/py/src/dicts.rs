@@ -36,19 +36,10 @@ struct Writer<'a> {
 impl Writer<'_> {
     /// The field path as the loaders name it (`dissipators[0].slip_load`).
     fn path(&self) -> String {
-        let mut s = String::new();
-        for step in &self.path {
-            match step {
-                Step::Key(k) => {
-                    if !s.is_empty() {
-                        s.push('.');
-                    }
-                    s.push_str(k);
-                }
-                Step::Index(i) => s.push_str(&format!("[{i}]")),
-            }
-        }
-        s
+        crate::json_path::render(self.path.iter().map(|step| match step {
+            Step::Key(k) => crate::json_path::Step::Key(k),
+            Step::Index(i) => crate::json_path::Step::Index(*i),
+        }))
     }
 
     /// An `InputError` naming the input and the field.

@@ -60,17 +60,33 @@ pub fn path_at(text: &str, offset: usize) -> String {
         }
         i += 1;
     }
+    render(stack.iter().filter_map(|f| match f {
+        Frame::Object { key: Some(k), .. } => Some(Step::Key(k)),
+        Frame::Object { key: None, .. } => None,
+        Frame::Array { index } => Some(Step::Index(*index)),
+    }))
+}
+
+/// One step of a field path: a key of an object or an index of a list.
+pub enum Step<'a> {
+    /// A key (`slip_load`).
+    Key(&'a str),
+    /// An index (`[0]`).
+    Index(usize),
+}
+
+/// A field path as the loaders name it (`dissipators[0].slip_load`).
+pub fn render<'a>(steps: impl IntoIterator<Item = Step<'a>>) -> String {
     let mut path = String::new();
-    for f in &stack {
-        match f {
-            Frame::Object { key: Some(k), .. } => {
+    for step in steps {
+        match step {
+            Step::Key(k) => {
                 if !path.is_empty() {
                     path.push('.');
                 }
                 path.push_str(k);
             }
-            Frame::Object { key: None, .. } => {}
-            Frame::Array { index } => path.push_str(&format!("[{index}]")),
+            Step::Index(i) => path.push_str(&format!("[{i}]")),
         }
     }
     path
