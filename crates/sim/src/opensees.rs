@@ -249,23 +249,59 @@ fn links(a: &DMatrix<f64>) -> Vec<Link> {
     out
 }
 
-/// `text` fit for a `#` comment line: control characters (a newline would end the
-/// comment) become spaces.
+/// `text` fit for a `#` comment line: the body of [`py_str`]'s literal, so the comment is
+/// ASCII, one line, and shows every character of the name (a newline as `\n`, a
+/// non-ASCII letter as `\u00e9`).
 fn comment(text: &str) -> String {
-    text.chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
-        .collect()
+    let mut out = String::with_capacity(text.len());
+    escape_into(&mut out, text);
+    out
 }
 
-/// A Python string literal of `text` (JSON's escapes are Python's).
+/// A Python string literal of `text`, written in printable ASCII alone: quotes and
+/// backslashes escaped, control characters as `\n`, `\r`, `\t` or `\xNN`, every other
+/// character past ASCII as `\uXXXX` or `\UXXXXXXXX`. Whatever a user wrote, it reads back
+/// as the same text and can never end the literal, start a line of code or, being
+/// ASCII, change how Python decodes the file.
 fn py_str(text: &str) -> String {
-    serde_json::to_string(text).expect("a string always serialises to JSON")
+    let mut out = String::with_capacity(text.len() + 2);
+    out.push('"');
+    escape_into(&mut out, text);
+    out.push('"');
+    out
+}
+
+/// Appends `text` escaped as the inside of a double-quoted Python literal, ASCII only.
+fn escape_into(out: &mut String, text: &str) {
+    for c in text.chars() {
+        let code = u32::from(c);
+        match c {
+            '\\' => out.push_str("\\\\"),
+            '"' => out.push_str("\\\""),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            ' '..='~' => out.push(c),
+            _ if code < 0x100 => {
+                let _ = write!(out, "\\x{code:02x}");
+            }
+            _ if code < 0x10000 => {
+                let _ = write!(out, "\\u{code:04x}");
+            }
+            _ => {
+                let _ = write!(out, "\\U{code:08x}");
+            }
+        }
+    }
 }
 
 fn header(s: &mut String, scene: &Scene, plan: &Plan, m: &Model) {
     let b = &scene.building;
     let dt = plan.method.dt;
     let _ = writeln!(s, "#!/usr/bin/env python3");
+    // Python reads an encoding declaration from the first two lines only (PEP 263): both
+    // are fixed text, and the script is ASCII throughout, so no name can declare one.
+    let _ = writeln!(s, "# -*- coding: utf-8 -*-");
     let _ = writeln!(
         s,
         "# {} in OpenSees: written by slipload {} (`slipload opensees`).",
@@ -391,7 +427,21 @@ fn data(s: &mut String, scene: &Scene, plan: &Plan, m: &Model) {
     let b = &scene.building;
     let dt = plan.method.dt;
     s.push_str("import ctypes\nimport importlib.util\nimport itertools\nimport json\nimport pathlib\nimport sys\n\n");
+    let _ = writeln!(
+        s,
+        "# The names the script was written from, as ASCII literals (printed back in its JSON)"
+    );
     let _ = writeln!(s, "SCENE = {}", py_str(&scene.name));
+    let _ = writeln!(s, "BUILDING = {}", py_str(&b.name));
+    match &plan.record {
+        Some(r) => {
+            let _ = writeln!(s, "RECORD = {}", py_str(r.name()));
+            let _ = writeln!(s, "RECORD_PROVENANCE = {}", py_str(r.provenance()));
+        }
+        None => {
+            let _ = writeln!(s, "RECORD = None\nRECORD_PROVENANCE = None");
+        }
+    }
     let _ = writeln!(s, "# Newmark time step, s, and number of steps");
     let _ = writeln!(s, "DT = {dt:?}");
     let _ = writeln!(s, "STEPS = {}", plan.steps);
@@ -662,6 +712,9 @@ def run(ops):
     result = {
         "program": f"OpenSees {version} (openseespy)" if version else "OpenSees (openseespy)",
         "scene": SCENE,
+        "building": BUILDING,
+        "record": RECORD,
+        "record_provenance": RECORD_PROVENANCE,
         "dt": DT,
         "steps": k,
         "peak_drift": peak_drift,
@@ -936,5 +989,26 @@ mod tests {
                 .all(|l| !l.starts_with("name") && !l.starts_with(" quotes"))
         );
         assert!(script.contains(r#"SCENE = "a\nname \"\"\" with\r quotes""#));
+    }
+
+    /// Names are written as ASCII literals and comments: an encoding declaration in a
+    /// name (PEP 263 reads one from the first two lines) never reaches those lines, and no
+    /// character of a name can end its line or its literal.
+    #[test]
+    fn hostile_names_stay_ascii_data_below_the_fixed_first_lines() {
+        let mut sc = scene("benchmark-3story-massless.json", None);
+        let hostile = "# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\0\u{7f}\u{85}\u{2028}é地震😀";
+        sc.name = hostile.into();
+        sc.building.name = format!("b {hostile}");
+        let script = opensees_script(&sc).unwrap();
+        assert!(script.is_ascii());
+        let lines: Vec<&str> = script.lines().collect();
+        assert_eq!(lines[0], "#!/usr/bin/env python3");
+        assert_eq!(lines[1], "# -*- coding: utf-8 -*-");
+        assert!(script.lines().all(|l| !l.starts_with("import os")));
+        let escaped = r#"# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\x00\x7f\x85\u2028\u00e9\u5730\u9707\U0001f600"#;
+        assert!(script.contains(&format!("SCENE = \"{escaped}\"\n")));
+        assert!(script.contains(&format!("BUILDING = \"b {escaped}\"\n")));
+        assert!(script.contains(&format!("# Building: b {escaped} (3 floors")));
     }
 }

@@ -23,8 +23,8 @@ pub fn run(args: OpenSeesArgs) -> anyhow::Result<()> {
     slipload_opt::base::output::write_target(&args.out)
         .with_context(|| format!("--out {}", args.out.display()))?;
     let scene = args.scene.load(false)?;
-    let mut inputs: Vec<PathBuf> = args.scene.scene.iter().cloned().collect();
-    inputs.extend(args.scene.record.iter().cloned());
+    // the scene (or building) file, the building file a scene names, the records
+    let mut inputs: Vec<PathBuf> = args.scene.input_files();
     if let Some(r) = &scene.record {
         inputs.push(PathBuf::from(r.name()));
     }
