@@ -17,6 +17,7 @@ pub mod limits;
 pub mod modes;
 pub mod opensees;
 pub mod plan;
+mod py_literal;
 pub mod response;
 pub mod scene;
 pub mod simulate;

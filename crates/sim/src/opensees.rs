@@ -33,6 +33,7 @@ use crate::error::{OpenSeesGap, SimError};
 use crate::plan::Plan;
 use crate::scene::{MethodName, Scene};
 use nalgebra::DMatrix;
+use crate::py_literal::{comment, py_str};
 use std::fmt::Write as _;
 
 /// Newton's convergence test of the script: the norm of the last displacement correction,
@@ -247,52 +248,6 @@ fn links(a: &DMatrix<f64>) -> Vec<Link> {
         }
     }
     out
-}
-
-/// `text` fit for a `#` comment line: the body of [`py_str`]'s literal, so the comment is
-/// ASCII, one line, and shows every character of the name (a newline as `\n`, a
-/// non-ASCII letter as `\u00e9`).
-fn comment(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    escape_into(&mut out, text);
-    out
-}
-
-/// A Python string literal of `text`, written in printable ASCII alone: quotes and
-/// backslashes escaped, control characters as `\n`, `\r`, `\t` or `\xNN`, every other
-/// character past ASCII as `\uXXXX` or `\UXXXXXXXX`. Whatever a user wrote, it reads back
-/// as the same text and can never end the literal, start a line of code or, being
-/// ASCII, change how Python decodes the file.
-fn py_str(text: &str) -> String {
-    let mut out = String::with_capacity(text.len() + 2);
-    out.push('"');
-    escape_into(&mut out, text);
-    out.push('"');
-    out
-}
-
-/// Appends `text` escaped as the inside of a double-quoted Python literal, ASCII only.
-fn escape_into(out: &mut String, text: &str) {
-    for c in text.chars() {
-        let code = u32::from(c);
-        match c {
-            '\\' => out.push_str("\\\\"),
-            '"' => out.push_str("\\\""),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            ' '..='~' => out.push(c),
-            _ if code < 0x100 => {
-                let _ = write!(out, "\\x{code:02x}");
-            }
-            _ if code < 0x10000 => {
-                let _ = write!(out, "\\u{code:04x}");
-            }
-            _ => {
-                let _ = write!(out, "\\U{code:08x}");
-            }
-        }
-    }
 }
 
 fn header(s: &mut String, scene: &Scene, plan: &Plan, m: &Model) {
@@ -1006,7 +961,7 @@ mod tests {
         assert_eq!(lines[0], "#!/usr/bin/env python3");
         assert_eq!(lines[1], "# -*- coding: utf-8 -*-");
         assert!(script.lines().all(|l| !l.starts_with("import os")));
-        let escaped = r#"# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\x00\x7f\x85\u2028\u00e9\u5730\u9707\U0001f600"#;
+        let escaped = r#"# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\x00\x7f\x85\u2028\xe9\u5730\u9707\U0001f600"#;
         assert!(script.contains(&format!("SCENE = \"{escaped}\"\n")));
         assert!(script.contains(&format!("BUILDING = \"b {escaped}\"\n")));
         assert!(script.contains(&format!("# Building: b {escaped} (3 floors")));
