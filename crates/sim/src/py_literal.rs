@@ -16,9 +16,9 @@ pub(crate) fn comment(text: &str) -> String {
 
 /// A Python string literal of `text`, written in printable ASCII alone: quotes and
 /// backslashes escaped, control characters as `\n`, `\r`, `\t` or `\xNN`, every other
-/// character past ASCII as `\xNN` (to U+00FF), `\uXXXX` or `\UXXXXXXXX`. Whatever a user wrote, it reads back
-/// as the same text and can never end the literal, start a line of code or, being
-/// ASCII, change how Python decodes the file.
+/// character past ASCII as `\xNN` (to U+00FF), `\uXXXX` or `\UXXXXXXXX`. Whatever a user
+/// wrote, it reads back as the same text and can never end the literal, start a line of
+/// code or, being ASCII, change how Python decodes the file.
 pub(crate) fn py_str(text: &str) -> String {
     let mut out = String::with_capacity(text.len() + 2);
     out.push('"');
