@@ -26,6 +26,7 @@ fn space() -> DesignSpace {
         b: vec![0.6],
         names: vec!["a".into(), "b".into(), "c".into()],
         shape: None,
+            profile: vec![1.0; 3],
     }
 }
 
@@ -47,7 +48,7 @@ fn run(method: RefineMethod) -> (Point, usize, Point) {
     let start = known[0].clone();
     let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| f(z)).collect());
     let mut ev = Evaluations::new(Box::new(oracle), known);
-    let best = refine(method, &sp, &start, &mut ev, &cfg, 60).unwrap();
+    let best = refine(method, &sp, &start, &mut ev, &cfg, 60).unwrap().best;
     assert!(sp.is_feasible(&best.z), "{method:?}: {:?}", best.z);
     (best, ev.count(), start)
 }
@@ -149,7 +150,7 @@ fn every_refiner_is_blind_to_the_objective_scale() {
             let start = known[0].clone();
             let oracle = move |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| g(z)).collect());
             let mut ev = Evaluations::new(Box::new(oracle), known);
-            refine(method, &sp, &start, &mut ev, &cfg, 60).unwrap()
+            refine(method, &sp, &start, &mut ev, &cfg, 60).unwrap().best
         };
         let (one, tiny) = (at(1.0), at(1e-7));
         // the same path up to the round-off of scaling: the same optimum to well within

@@ -315,6 +315,9 @@ impl Default for SweepConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RefineMethod {
+    /// Profile line searches, then a trust region on a least-change quadratic
+    /// interpolation model (the refiner for many slip loads; `phases::refine::ModelSearch`).
+    Model,
     /// Trust region on a fitted quadratic model, subproblem solved by clarabel.
     TrustRegion,
     /// Nelder–Mead simplex.
@@ -327,11 +330,12 @@ impl std::str::FromStr for RefineMethod {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
+            "model" => Ok(RefineMethod::Model),
             "trust-region" => Ok(RefineMethod::TrustRegion),
             "nelder-mead" => Ok(RefineMethod::NelderMead),
             "random" => Ok(RefineMethod::Random),
             o => Err(format!(
-                "unknown refiner {o:?}: expected trust-region, nelder-mead or random"
+                "unknown refiner {o:?}: expected model, trust-region, nelder-mead or random"
             )),
         }
     }
@@ -341,6 +345,7 @@ impl RefineMethod {
     /// The name as written.
     pub fn as_str(self) -> &'static str {
         match self {
+            RefineMethod::Model => "model",
             RefineMethod::TrustRegion => "trust-region",
             RefineMethod::NelderMead => "nelder-mead",
             RefineMethod::Random => "random",

@@ -127,6 +127,11 @@ pub struct DesignSpace {
     pub names: Vec<String>,
     /// Profile shape on the dampers, when the space is a profile.
     pub shape: Option<(Shape, Vec<f64>)>,
+    /// The storey-shear profile of the building on the dampers ([`Shape::StoreyShear`]:
+    /// the shear of a triangular load pattern, first damper's storey = 1): what an
+    /// engineer knows of the slip loads' shape before a study, the refiners' first
+    /// search direction.
+    pub profile: Vec<f64>,
 }
 
 /// Relative slack on constraint checks (round-off of the affine map).
@@ -357,6 +362,8 @@ impl DesignSpace {
         }
         let a = DMatrix::from_fn(rows.len(), d, |i, j| rows[i].0[j]);
         let b = rows.iter().map(|r| r.1).collect();
+        let shear = Shape::StoreyShear.on_floors(building);
+        let profile = dampers.iter().map(|&f| shear[f]).collect();
         Ok(DesignSpace {
             dampers,
             offset,
@@ -365,6 +372,7 @@ impl DesignSpace {
             b,
             names,
             shape,
+            profile,
         })
     }
 

@@ -9,7 +9,7 @@ use crate::model::check::DesignCheck;
 use crate::model::config::RefineMethod;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
-use crate::phases::refine::{Evaluations, Point, refine};
+use crate::phases::refine::{Evaluations, Point, Stationarity, StopReason, post_check, refine};
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
 use std::cell::RefCell;
@@ -112,6 +112,11 @@ pub struct OptimizeReport {
     pub replayed: usize,
     /// The runs of the refinement's evaluations made now ([`Refinement::runs`]).
     pub refined_runs: RefinedRuns,
+    /// Why each start's refiner stopped, in the order of the starts.
+    pub stops: Vec<StopReason>,
+    /// The post-check of the optimum (the `model` refiner): no single-floor or profile
+    /// move improves it by more than [`crate::phases::refine::STATIONARY_GAIN`].
+    pub stationarity: Option<Stationarity>,
 }
 
 /// Objective of designs (slip loads, N) at `fid`; `bare`: the bare frame at the same
@@ -212,6 +217,10 @@ pub struct Refinement {
     /// The runs of the evaluations made now, kept for a study with a front (whose
     /// candidates they are); empty otherwise.
     pub runs: RefinedRuns,
+    /// Why each start's refiner stopped, in the order of the starts.
+    pub stops: Vec<StopReason>,
+    /// The post-check of the optimum (the `model` refiner).
+    pub stationarity: Option<Stationarity>,
 }
 
 /// Refines from the sweep (`manifest`, its complete `rows`) with `method`, then checks
@@ -370,10 +379,19 @@ pub fn refine_sweep(
         ev = ev.with_journal(replay, Box::new(move |p: &Point| appender.append(p)));
     }
     let mut budget = 0;
+    let mut stops = Vec::new();
     for &s in order.iter().take(cfg.starts) {
         budget += cfg.max_evaluations;
-        refine(method, &study.space, &known[s], &mut ev, &cfg, budget)?;
+        stops.push(refine(method, &study.space, &known[s], &mut ev, &cfg, budget)?.stop);
     }
+    // the model refiner shows its optimum is stationary: single-floor and profile moves
+    // of max(tolerance, 1 %) of the range, a batch of at most 2d + 2 evaluations
+    let stationarity = if method == RefineMethod::Model {
+        let at = ev.best().expect("the sweep gave points");
+        post_check(&study.space, &at, &mut ev, cfg.tolerance.max(0.01))?
+    } else {
+        None
+    };
     let optimum = ev.best().expect("the sweep gave points");
     let log = ev.log.clone();
     let replayed = ev.replayed;
@@ -381,6 +399,8 @@ pub fn refine_sweep(
     let runs = kept.into_inner();
     Ok(Refinement {
         runs,
+        stops,
+        stationarity,
         method,
         known,
         sampled,
@@ -417,6 +437,8 @@ pub fn check_finalists(
         file_objective,
         target,
         runs: refined_runs,
+        stops,
+        stationarity,
     } = refinement;
     let limits = study.checks.has_limits();
     let sweep_designs = sampled;
@@ -546,5 +568,7 @@ pub fn check_finalists(
         simulations,
         replayed,
         refined_runs,
+        stops,
+        stationarity,
     })
 }

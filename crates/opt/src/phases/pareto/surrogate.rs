@@ -238,6 +238,7 @@ mod tests {
             b: vec![0.0, 0.0],
             names: vec!["floor1".into(), "floor2".into(), "floor3".into()],
             shape: None,
+            profile: vec![1.0; 3],
         }
     }
 

@@ -24,6 +24,35 @@ pub trait Refiner {
     fn terminate(&self) -> bool;
     /// The best point of the state.
     fn best(&self) -> &Point;
+    /// Why `terminate` said stop (asked only when it did): by default the step fell
+    /// below the tolerance.
+    fn stop_reason(&self) -> StopReason {
+        StopReason::Tolerance
+    }
+}
+
+/// Why a refiner stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The step (trust radius, simplex size) fell below the tolerance: converged.
+    Tolerance,
+    /// The evaluation budget was spent.
+    Budget,
+    /// No progress could be made: no model could be fitted (too few designs near the
+    /// centre that pass and stand).
+    NoProgress,
+}
+
+impl StopReason {
+    /// As the summary and optimum.json say it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StopReason::Tolerance => "tolerance",
+            StopReason::Budget => "budget",
+            StopReason::NoProgress => "no_progress",
+        }
+    }
 }
 
 /// One evaluated design.
@@ -163,6 +192,11 @@ impl<'a> Evaluations<'a> {
     /// Objective at one point.
     pub fn eval_one(&mut self, z: &[f64]) -> Result<f64, OptError> {
         Ok(self.eval(&[z.to_vec()])?[0])
+    }
+
+    /// The objective at `z` when it is known (evaluated, or known before refining).
+    pub fn cached(&self, z: &[f64]) -> Option<f64> {
+        self.cache.get(&key(z)).copied()
     }
 
     /// Number of new evaluations.

@@ -9,11 +9,13 @@
 //! [`DesignSpace`]: crate::DesignSpace
 
 mod evaluations;
+mod model;
 mod nelder_mead;
 mod random;
 mod trust_region;
 
-pub use evaluations::{Evaluations, Hook, Oracle, Point, Refiner};
+pub use evaluations::{Evaluations, Hook, Oracle, Point, Refiner, StopReason};
+pub use model::{LINE_EVALUATIONS, ModelSearch};
 pub use nelder_mead::NelderMead;
 pub use random::RandomSearch;
 pub use trust_region::TrustRegion;
@@ -21,6 +23,15 @@ pub use trust_region::TrustRegion;
 use crate::base::error::OptError;
 use crate::model::config::{RefineConfig, RefineMethod};
 use crate::model::space::DesignSpace;
+
+/// A refiner's answer and why it stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refined {
+    /// The best point of the refiner's state.
+    pub best: Point,
+    /// Why it stopped: its own test, or the budget.
+    pub stop: StopReason,
+}
 
 /// Drives a refiner: `init`, then `next_iter` while the budget of new evaluations
 /// (counted over the whole [`Evaluations`]) lasts and `terminate` is false.
@@ -30,12 +41,20 @@ pub fn run(
     start: &Point,
     ev: &mut Evaluations<'_>,
     budget: usize,
-) -> Result<Point, OptError> {
+) -> Result<Refined, OptError> {
     refiner.init(space, start, ev)?;
     while ev.count() < budget && !refiner.terminate() {
         refiner.next_iter(space, ev)?;
     }
-    Ok(refiner.best().clone())
+    let stop = if refiner.terminate() {
+        refiner.stop_reason()
+    } else {
+        StopReason::Budget
+    };
+    Ok(Refined {
+        best: refiner.best().clone(),
+        stop,
+    })
 }
 
 /// Runs `method` from `start` until `budget` new evaluations have been made in total
@@ -47,11 +66,86 @@ pub fn refine(
     ev: &mut Evaluations<'_>,
     cfg: &RefineConfig,
     budget: usize,
-) -> Result<Point, OptError> {
+) -> Result<Refined, OptError> {
     let mut r: Box<dyn Refiner> = match method {
+        RefineMethod::Model => Box::new(ModelSearch::new(cfg, budget)),
         RefineMethod::TrustRegion => Box::new(TrustRegion::new(cfg, budget)),
         RefineMethod::NelderMead => Box::new(NelderMead::new(cfg)),
         RefineMethod::Random => Box::new(RandomSearch::new(cfg)),
     };
     run(r.as_mut(), space, start, ev, budget)
+}
+
+/// A design counts as stationary when no poll move lowers its objective by more than
+/// this fraction of it (0.1 %: a tenth of the 1 % within which a study should find the
+/// best design).
+pub const STATIONARY_GAIN: f64 = 1e-3;
+
+/// The post-check of a refined design: every single-variable move ±h and the profile move
+/// (every slip load × (1 ± h)), evaluated in one batch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stationarity {
+    /// The move, scaled variables (and relative, for the profile move).
+    pub step: f64,
+    /// Moves evaluated (those inside the space).
+    pub moves: usize,
+    /// The largest relative decrease of the objective among them (≤ 0: none improves).
+    pub best_gain: f64,
+    /// What the best move was: `floor N +`, `floor N -`, `profile +`, `profile -`.
+    pub best_move: String,
+    /// Whether no move gains more than [`STATIONARY_GAIN`].
+    pub stationary: bool,
+}
+
+/// Polls the moves of [`Stationarity`] around `at` (their evaluations join `ev`, so a
+/// better move becomes the refinement's best point). `None` when `at` is not finite or
+/// no move fits in the space.
+pub fn post_check(
+    space: &DesignSpace,
+    at: &Point,
+    ev: &mut Evaluations<'_>,
+    step: f64,
+) -> Result<Option<Stationarity>, OptError> {
+    if !at.f.is_finite() {
+        return Ok(None);
+    }
+    let d = space.dim();
+    let mut moves: Vec<(String, Vec<f64>)> = Vec::new();
+    for i in 0..d {
+        for (sign, name) in [(1.0, "+"), (-1.0, "-")] {
+            let mut z = at.z.clone();
+            z[i] = (z[i] + sign * step).clamp(0.0, 1.0);
+            if z != at.z && space.is_feasible(&z) {
+                moves.push((format!("{} {name}", space.names[i]), z));
+            }
+        }
+    }
+    let loads = space.slip_loads(&at.z);
+    for (factor, name) in [(1.0 + step, "profile +"), (1.0 - step, "profile -")] {
+        let scaled: Vec<f64> = loads.iter().map(|l| l * factor).collect();
+        if let Some(z) = space.point_of(&scaled)
+            && z != at.z
+        {
+            moves.push((name.to_string(), z));
+        }
+    }
+    if moves.is_empty() {
+        return Ok(None);
+    }
+    let zs: Vec<Vec<f64>> = moves.iter().map(|(_, z)| z.clone()).collect();
+    let values = ev.eval(&zs)?;
+    let scale = at.f.abs().max(f64::MIN_POSITIVE);
+    let (k, gain) = values
+        .iter()
+        .map(|f| (at.f - f) / scale)
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("at least one move");
+    Ok(Some(Stationarity {
+        step,
+        moves: moves.len(),
+        best_gain: gain,
+        best_move: moves[k].0.clone(),
+        stationary: gain <= STATIONARY_GAIN,
+    }))
 }

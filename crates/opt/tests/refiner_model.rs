@@ -1,0 +1,184 @@
+//! Contract of the `model` refiner (`phases::refine::ModelSearch`) on narrow valleys with
+//! known minima, in 10 and 40 variables: from a neutral start it reaches the valley's
+//! floor, better than the quadratic-fit trust region at the same budget; it never makes
+//! more evaluations than its budget; the same start gives the same bits; the stop reason
+//! and the stationarity post-check say what happened.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use nalgebra::{DMatrix, DVector};
+use slipload_opt::DesignSpace;
+use slipload_opt::model::config::{RefineConfig, RefineMethod};
+use slipload_opt::phases::refine::{Evaluations, Point, StopReason, post_check, refine};
+
+/// The minimum: a profile falling from 0.62 at the first variable to 0.26 at the last
+/// (slip loads that fall with height), so a start along the storey-shear-like profile
+/// below is near but not at it.
+fn minimum(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| 0.62 - 0.36 * i as f64 / (n - 1) as f64)
+        .collect()
+}
+
+/// A narrow valley: f(z) = Σ λₖ (qₖᵀu)² + (uᵀu)², u = z − z*, where q₀ is the profile
+/// direction (every variable together, the valley's floor: λ₀ = 0.01) and the other
+/// qₖ an orthonormal basis of the rest with λₖ from 1 to 30 (moving one variable
+/// against the others is steep). f* = 0 at z*. Not a quadratic (the quartic term), so no
+/// model is exact.
+struct Valley {
+    q: DMatrix<f64>,
+    lambda: Vec<f64>,
+    star: Vec<f64>,
+}
+
+impl Valley {
+    fn new(n: usize) -> Valley {
+        // Gram–Schmidt on the profile direction, then a fixed set of dense vectors
+        let mut cols: Vec<DVector<f64>> = vec![DVector::from_element(n, 1.0).normalize()];
+        let mut k = 1usize;
+        while cols.len() < n {
+            let mut v = DVector::from_fn(n, |i, _| ((i * 7 + k * 13) as f64 * 0.37).sin());
+            for c in &cols {
+                v -= c * c.dot(&v);
+            }
+            if v.norm() > 1e-6 {
+                cols.push(v.normalize());
+            }
+            k += 1;
+        }
+        let q = DMatrix::from_columns(&cols);
+        let lambda = (0..n)
+            .map(|k| {
+                if k == 0 {
+                    0.01
+                } else {
+                    1.0 + 29.0 * (k - 1) as f64 / (n - 1).max(2) as f64
+                }
+            })
+            .collect();
+        Valley {
+            q,
+            lambda,
+            star: minimum(n),
+        }
+    }
+
+    fn f(&self, z: &[f64]) -> f64 {
+        let u = DVector::from_iterator(z.len(), z.iter().zip(&self.star).map(|(a, b)| a - b));
+        let w = self.q.transpose() * &u;
+        let quad: f64 = w.iter().zip(&self.lambda).map(|(w, l)| l * w * w).sum();
+        quad + u.dot(&u).powi(2)
+    }
+}
+
+/// [0, 1]^n as slip loads 0–3000 kN, with a storey-shear-like profile (1 at the first
+/// variable falling to 0.3 at the last: not the minimum's shape).
+fn space(n: usize) -> DesignSpace {
+    DesignSpace {
+        dampers: (0..n).collect(),
+        offset: vec![0.0; n],
+        basis: DMatrix::from_diagonal_element(n, n, 3.0e6),
+        a: DMatrix::zeros(0, n),
+        b: vec![],
+        names: (0..n).map(|i| format!("floor{}", i + 1)).collect(),
+        shape: None,
+        profile: (0..n).map(|i| 1.0 - 0.7 * i as f64 / (n - 1) as f64).collect(),
+    }
+}
+
+/// Runs `method` from the neutral start (every variable 0.5) with `budget` evaluations;
+/// returns the best point and the evaluations made.
+fn run(method: RefineMethod, n: usize, budget: usize) -> (Point, usize, StopReason, Vec<Point>) {
+    let valley = Valley::new(n);
+    let sp = space(n);
+    let cfg = RefineConfig::default();
+    let z0 = vec![0.5; n];
+    let start = Point {
+        f: valley.f(&z0),
+        z: z0,
+    };
+    let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| valley.f(z)).collect());
+    let mut ev = Evaluations::new(Box::new(oracle), vec![start.clone()]);
+    let r = refine(method, &sp, &start, &mut ev, &cfg, budget).unwrap();
+    assert!(sp.is_feasible(&r.best.z));
+    (r.best, ev.count(), r.stop, ev.log.clone())
+}
+
+#[test]
+fn ten_variables_from_a_neutral_start_reach_the_valley_floor() {
+    let start = Valley::new(10).f(&[0.5; 10]);
+    for budget in [40, 80] {
+        let (best, evals, _, _) = run(RefineMethod::Model, 10, budget);
+        let (tr, _, _, _) = run(RefineMethod::TrustRegion, 10, budget);
+        println!("10 variables, budget {budget}: model {:.3e}, trust-region {:.3e} (start {start:.3e}, {evals} evaluations)", best.f, tr.f);
+        assert!(evals <= budget);
+        assert!(best.f < tr.f, "model {} vs trust region {}", best.f, tr.f);
+    }
+    let (best, _, _, _) = run(RefineMethod::Model, 10, 80);
+    assert!(best.f < 1e-3 * start, "{} vs start {start}", best.f);
+}
+
+#[test]
+fn forty_variables_from_a_neutral_start_reach_the_valley_floor() {
+    let start = Valley::new(40).f(&[0.5; 40]);
+    let (best, evals, _, _) = run(RefineMethod::Model, 40, 160);
+    let (tr, _, _, _) = run(RefineMethod::TrustRegion, 40, 160);
+    println!("40 variables, budget 160: model {:.3e}, trust-region {:.3e} (start {start:.3e})", best.f, tr.f);
+    assert!(evals <= 160);
+    assert!(best.f < tr.f);
+    assert!(best.f < 1e-2 * start, "{} vs start {start}", best.f);
+}
+
+#[test]
+fn the_budget_is_never_exceeded_and_the_stop_is_said() {
+    for method in [
+        RefineMethod::Model,
+        RefineMethod::TrustRegion,
+        RefineMethod::NelderMead,
+        RefineMethod::Random,
+    ] {
+        for budget in [1, 2, 5, 11, 19, 23, 37] {
+            let (_, evals, stop, _) = run(method, 10, budget);
+            assert!(evals <= budget, "{method:?}: {evals} evaluations for a budget of {budget}");
+            if evals < budget {
+                assert_ne!(stop, StopReason::Budget, "{method:?} stopped early");
+            }
+        }
+    }
+    // a generous budget ends on the tolerance
+    let (_, evals, stop, _) = run(RefineMethod::Model, 10, 2000);
+    assert_eq!(stop, StopReason::Tolerance, "after {evals} evaluations");
+}
+
+#[test]
+fn the_same_start_gives_the_same_bits() {
+    let (a, _, _, la) = run(RefineMethod::Model, 10, 60);
+    let (b, _, _, lb) = run(RefineMethod::Model, 10, 60);
+    assert_eq!(a.f.to_bits(), b.f.to_bits());
+    assert_eq!(la, lb);
+}
+
+#[test]
+fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
+    let n = 10;
+    let valley = Valley::new(n);
+    let sp = space(n);
+    let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| valley.f(z)).collect());
+    let at_min = Point {
+        z: valley.star.clone(),
+        f: valley.f(&valley.star),
+    };
+    let mut ev = Evaluations::new(Box::new(oracle), vec![]);
+    // at the minimum (f = 0) every move is worse
+    let s = post_check(&sp, &at_min, &mut ev, 0.01).unwrap().unwrap();
+    assert!(s.stationary && s.best_gain < 0.0, "{s:?}");
+    assert_eq!(s.moves, 2 * n + 2);
+    // a point off the floor on a steep side is not stationary
+    let mut z = valley.star.clone();
+    z[3] += 0.05;
+    let off = Point {
+        f: valley.f(&z),
+        z,
+    };
+    let s = post_check(&sp, &off, &mut ev, 0.01).unwrap().unwrap();
+    assert!(!s.stationary && s.best_gain > 0.05, "{s:?}");
+}
