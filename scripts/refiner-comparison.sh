@@ -27,7 +27,7 @@ grid_designs=$(awk 'END { print NR - 3 }' "$tmp/grid/designs.csv")
     echo "| refiner | optimum | vs grid best | designs to within 1 % | to within 0.25 % | designs in all | share of the grid |"
     echo "|---|---:|---:|---:|---:|---:|---:|"
 } > "$out/summary.md"
-for r in trust-region nelder-mead random; do
+for r in model trust-region nelder-mead random; do
     "$bin" optimize configs/study-benchmark.json --refine "$r" --out "$tmp/$r" --quiet > "$tmp/$r.txt"
     sweep=$(awk 'END { print NR - 3 }' "$tmp/$r/designs.csv")
     awk -F, -v g="$grid_best" -v s="$sweep" -v r="$r" -v n="$grid_designs" -v sw="$tmp/$r/designs.csv" '

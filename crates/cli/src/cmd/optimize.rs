@@ -24,7 +24,7 @@ pub struct OptimizeArgs {
     /// finished sweep in it is reused, journalled refinement points are replayed
     #[arg(long, default_value = "out/optimize")]
     pub out: PathBuf,
-    /// Refiner: trust-region, nelder-mead or random (default: the study's)
+    /// Refiner: model, trust-region, nelder-mead or random (default: the study's)
     #[arg(long)]
     pub refine: Option<RefineMethod>,
     /// Also draw the objective map over two floors' slip loads (the others at the
@@ -143,6 +143,46 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     super::check_summary::outcome(run.report.code_check.as_ref())
 }
 
+/// Why the refiners stopped and, for the `model` refiner, whether the optimum is
+/// stationary (its post-check of single-floor and profile moves).
+fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> String {
+    let stops: Vec<&str> = r.stops.iter().map(|s| s.as_str()).collect();
+    let mut text = format!(
+        "refine stopped on: {}",
+        if stops.is_empty() {
+            "nothing to refine".to_string()
+        } else {
+            stops.join(", ")
+        }
+    );
+    if let Some(s) = &r.stationarity {
+        let pct = |v: f64| 100.0 * v;
+        let _ = std::fmt::Write::write_fmt(
+            &mut text,
+            format_args!(
+                "; post-check of {} single-floor and profile moves of ±{:.1} % of the range: {}",
+                s.moves,
+                pct(s.step),
+                if s.stationary {
+                    format!(
+                        "stationary (the best, {}, changes the objective by {:+.3} %; threshold {:.1} %)",
+                        s.best_move,
+                        -pct(s.best_gain),
+                        pct(slipload_opt::phases::refine::STATIONARY_GAIN)
+                    )
+                } else {
+                    format!(
+                        "not stationary: {} lowers the objective by {:.3} % and is taken",
+                        s.best_move,
+                        pct(s.best_gain)
+                    )
+                }
+            ),
+        );
+    }
+    text
+}
+
 /// The summary: what ran and what was reused, the optimum against the bare frame and the
 /// building file's slip loads, the finalists at reference accuracy.
 fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
@@ -184,6 +224,7 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         r.replayed,
         method
     );
+    outln!("{}", refine_outcome(r));
     outln!(
         "{} simulations run in {:.1} s: sweep {}, refine {}, check {}, design table {}{}{}",
         w.run(),

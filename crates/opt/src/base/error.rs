@@ -157,6 +157,13 @@ pub enum OptError {
     /// A response the objective needs is missing (e.g. drift ratios without storey heights).
     #[error("{0}")]
     Missing(String),
+    /// A refiner asked for more evaluations than its budget has left: the refiners'
+    /// executor (`phases::refine::run`) stops it there, so this never reaches a user.
+    #[error("the refinement's budget of {budget} evaluations is spent")]
+    BudgetSpent {
+        /// The budget, evaluations.
+        budget: usize,
+    },
 }
 
 impl From<slipload_sim::SimError> for OptError {

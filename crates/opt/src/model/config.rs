@@ -357,7 +357,7 @@ impl RefineMethod {
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RefineConfig {
-    /// Refiner (default trust-region).
+    /// Refiner (default model: profile searches, then a least-change model trust region).
     #[serde(default = "default_refiner")]
     pub method: RefineMethod,
     /// Refine from this many of the best sweep points (default 2).
@@ -382,7 +382,7 @@ pub struct RefineConfig {
 }
 
 fn default_refiner() -> RefineMethod {
-    RefineMethod::TrustRegion
+    RefineMethod::Model
 }
 fn default_starts() -> usize {
     2

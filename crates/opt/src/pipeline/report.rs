@@ -117,6 +117,23 @@ struct FinalistEntry {
     check: Option<CheckEntry>,
 }
 
+/// The stationarity post-check in `optimum.json`.
+#[derive(Debug, Clone, Serialize)]
+struct StationarityEntry<'a> {
+    /// The move, scaled variables (relative for the profile move).
+    step: f64,
+    /// Moves evaluated.
+    moves: usize,
+    /// The largest relative decrease of the objective among them (≤ 0: none improves).
+    best_gain: f64,
+    /// The move that gave it.
+    best_move: &'a str,
+    /// Whether no move gains more than the threshold.
+    stationary: bool,
+    /// The threshold, relative.
+    threshold: f64,
+}
+
 /// `optimum.json`.
 #[derive(Debug, Clone, Serialize)]
 struct OptimumFile<'a> {
@@ -135,6 +152,11 @@ struct OptimumFile<'a> {
     file_objective: f64,
     sweep_designs: usize,
     refine_evaluations: usize,
+    /// Why each start's refiner stopped (`tolerance`, `budget`, `no_progress`).
+    refine_stops: Vec<&'static str>,
+    /// The optimum's post-check (the `model` refiner).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stationarity: Option<StationarityEntry<'a>>,
     finalists: Vec<FinalistEntry>,
     ranking_held: bool,
     /// Whether the finalists were run again at the check fidelity (not when the sweep
@@ -216,6 +238,15 @@ impl StudyReport {
                 file_objective: r.file_objective,
                 sweep_designs: r.sweep_designs,
                 refine_evaluations: r.log.len(),
+                refine_stops: r.stops.iter().map(|s| s.as_str()).collect(),
+                stationarity: r.stationarity.as_ref().map(|s| StationarityEntry {
+                    step: s.step,
+                    moves: s.moves,
+                    best_gain: s.best_gain,
+                    best_move: &s.best_move,
+                    stationary: s.stationary,
+                    threshold: crate::phases::refine::STATIONARY_GAIN,
+                }),
                 finalists: r
                     .finalists
                     .iter()

@@ -116,6 +116,10 @@ pub struct Evaluations<'a> {
     pub known: Vec<Point>,
     /// New evaluations, in order.
     pub log: Vec<Point>,
+    /// Most new evaluations in all (set by the executor, [`super::run`]): a batch that
+    /// would pass it evaluates the points that fit and answers
+    /// [`OptError::BudgetSpent`].
+    limit: Option<usize>,
 }
 
 fn key(z: &[f64]) -> Vec<u64> {
@@ -134,6 +138,7 @@ impl<'a> Evaluations<'a> {
             replayed: 0,
             known,
             log: Vec::new(),
+            limit: None,
         }
     }
 
@@ -145,7 +150,14 @@ impl<'a> Evaluations<'a> {
         self
     }
 
+    /// Sets the most new evaluations in all (`None`: no limit).
+    pub fn set_limit(&mut self, limit: Option<usize>) {
+        self.limit = limit;
+    }
+
     /// Objective at each point; only points never seen are evaluated (in one batch).
+    /// Past the limit ([`Evaluations::set_limit`]) only the first points that fit are
+    /// evaluated and the answer is [`OptError::BudgetSpent`].
     pub fn eval(&mut self, zs: &[Vec<f64>]) -> Result<Vec<f64>, OptError> {
         let mut fresh: Vec<Vec<f64>> = Vec::new();
         for z in zs {
@@ -153,6 +165,23 @@ impl<'a> Evaluations<'a> {
                 fresh.push(z.clone());
             }
         }
+        let over = self
+            .limit
+            .filter(|&l| self.log.len() + fresh.len() > l);
+        if let Some(l) = over {
+            fresh.truncate(l.saturating_sub(self.log.len()));
+            self.compute(fresh)?;
+            return Err(OptError::BudgetSpent { budget: l });
+        }
+        self.compute(fresh)?;
+        Ok(zs
+            .iter()
+            .map(|z| *self.cache.get(&key(z)).expect("evaluated above"))
+            .collect())
+    }
+
+    /// Evaluates `fresh` (points never seen), in one batch, taking replayed values.
+    fn compute(&mut self, fresh: Vec<Vec<f64>>) -> Result<(), OptError> {
         if !fresh.is_empty() {
             let compute: Vec<Vec<f64>> = fresh
                 .iter()
@@ -183,10 +212,7 @@ impl<'a> Evaluations<'a> {
                 self.log.push(Point { z, f });
             }
         }
-        Ok(zs
-            .iter()
-            .map(|z| *self.cache.get(&key(z)).expect("evaluated above"))
-            .collect())
+        Ok(())
     }
 
     /// Objective at one point.

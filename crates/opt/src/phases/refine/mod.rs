@@ -42,19 +42,43 @@ pub fn run(
     ev: &mut Evaluations<'_>,
     budget: usize,
 ) -> Result<Refined, OptError> {
-    refiner.init(space, start, ev)?;
-    while ev.count() < budget && !refiner.terminate() {
-        refiner.next_iter(space, ev)?;
-    }
-    let stop = if refiner.terminate() {
+    // the executor owns the budget: no batch of any refiner passes it
+    let before = ev.count();
+    ev.set_limit(Some(budget));
+    let mut initialised = false;
+    let mut steps = || -> Result<(), OptError> {
+        refiner.init(space, start, ev)?;
+        initialised = true;
+        while ev.count() < budget && !refiner.terminate() {
+            refiner.next_iter(space, ev)?;
+        }
+        Ok(())
+    };
+    let outcome = steps();
+    ev.set_limit(None);
+    let spent = match outcome {
+        Ok(()) => false,
+        Err(OptError::BudgetSpent { .. }) => true,
+        Err(e) => return Err(e),
+    };
+    let stop = if !spent && refiner.terminate() {
         refiner.stop_reason()
     } else {
         StopReason::Budget
     };
-    Ok(Refined {
-        best: refiner.best().clone(),
-        stop,
-    })
+    let best = if initialised {
+        refiner.best().clone()
+    } else {
+        // stopped inside its first batch: the best of the start and what it evaluated
+        let mut best = start.clone();
+        for p in &ev.log[before.min(ev.log.len())..] {
+            if p.f < best.f {
+                best = p.clone();
+            }
+        }
+        best
+    };
+    Ok(Refined { best, stop })
 }
 
 /// Runs `method` from `start` until `budget` new evaluations have been made in total

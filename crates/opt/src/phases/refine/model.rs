@@ -15,7 +15,7 @@
 //! **Then every floor.** From the best point of those searches, a derivative-free trust
 //! region in the scaled variables (after Powell's NEWUOA and BOBYQA, Powell 2006 and
 //! 2009): the model q(s) = f_c + gᵀs + ½sᵀHs interpolates up to 2d + 1 points (the
-//! centre and c ± Δeᵢ at first) and, where those points do not determine H, takes the H
+//! centre and c ± Δeᵢ at first, Δ a third of the study's `initial_radius`) and, where those points do not determine H, takes the H
 //! of least change ‖H − H_old‖_F from the previous model (the KKT system of the least
 //! Frobenius norm update, solved in the coordinates s = (z − c)/Δ). So each iteration
 //! costs one evaluation once the first 2d are made, and the model learns the valley's
@@ -47,6 +47,12 @@ pub const LINE_EVALUATIONS: usize = 6;
 
 /// Ratio between neighbouring points of a line search (1.4: a bracket of ±40 %).
 const LINE_FACTOR: f64 = 1.4;
+
+/// The model's first radius as a fraction of the study's `initial_radius` (on the
+/// ten-storey check example from a uniform start: 0.006344 after 46 evaluations with a
+/// third, 0.006356 with the whole radius, whose first ±450 kN probes of single floors
+/// cost up to 50 % more than the centre).
+const MODEL_RADIUS_FRACTION: f64 = 1.0 / 3.0;
 
 /// Largest trust radius, scaled variables.
 const MAX_RADIUS: f64 = 0.5;
@@ -494,6 +500,9 @@ impl Refiner for ModelSearch {
             self.stop = Some(StopReason::Budget);
             return Ok(());
         }
+        // the profile searches placed the overall scale; one floor against the others is
+        // the valley's steep side, so the model starts at a third of the initial radius
+        self.radius *= MODEL_RADIUS_FRACTION;
         self.first_set(space, ev)
     }
 
