@@ -195,3 +195,61 @@ fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
     let s = post_check(&sp, &off, &mut ev, 0.01).unwrap().unwrap();
     assert!(!s.stationary && s.best_gain > 10.0 * STATIONARY_GAIN, "{s:?}");
 }
+
+/// A study refined by the model refiner (profile searches, model steps, post-check)
+/// writes the same optimum.json and refine.csv bytes on pools of one and two threads:
+/// the refiner is sequential and every batch keeps its order.
+#[test]
+fn a_model_study_gives_the_same_bytes_on_one_and_two_threads() {
+    use slipload_opt::Study;
+    use slipload_opt::eval::progress::NoProgress;
+    use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
+    use slipload_opt::store::folder::FolderRequest;
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    v["suites"][0]["synthetic"]["count"] = 2.into();
+    v["suites"][0]["synthetic"]["duration_s"] = 3.0.into();
+    v["sweep"]["points"] = 6.into();
+    v["fidelity"] = serde_json::json!({ "method": "newmark", "check_method": "newmark" });
+    v["refine"] = serde_json::json!({ "method": "model", "starts": 1, "max_evaluations": 14, "finalists": 2 });
+    let study = Study::from_json(&v.to_string(), &path).unwrap();
+    let mut outs = Vec::new();
+    for threads in [1, 2] {
+        let dir = std::env::temp_dir().join(format!(
+            "slipload-model-threads-{}-{threads}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&dir);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let run = pool
+            .install(|| {
+                optimize_study(
+                    &study,
+                    &OptimizeOptions::default(),
+                    FolderRequest {
+                        path: &dir,
+                        option: "--out",
+                        fresh: true,
+                    },
+                    &NoProgress,
+                    &NoFigures,
+                )
+            })
+            .unwrap();
+        let r = &run.report.refine;
+        // the budget, then the post-check's 2d + 2 moves
+        assert!(r.log.len() <= 14 + 2 * 3 + 2, "{} evaluations", r.log.len());
+        assert!(r.stationarity.is_some());
+        outs.push((
+            std::fs::read(dir.join("optimum.json")).unwrap(),
+            std::fs::read(dir.join("refine.csv")).unwrap(),
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    assert!(outs[0] == outs[1]);
+}
