@@ -11,7 +11,11 @@ use common::{refused, root, scratch, slipload, stderr, utf8};
 fn out_onto_any_input_is_refused_and_the_input_kept() {
     let dir = scratch("opensees-out", "inputs");
     let building = dir.join("building.json");
-    std::fs::copy(root().join("configs/benchmark-3story-massless.json"), &building).unwrap();
+    std::fs::copy(
+        root().join("configs/benchmark-3story-massless.json"),
+        &building,
+    )
+    .unwrap();
     let record = dir.join("record.AT2");
     std::fs::copy(root().join("records/I-ELC180.AT2"), &record).unwrap();
     let other = dir.join("other.AT2");
@@ -34,7 +38,14 @@ fn out_onto_any_input_is_refused_and_the_input_kept() {
         );
     }
     refused(
-        &["opensees", utf8(&scene), "--record", utf8(&other), "--out", utf8(&other)],
+        &[
+            "opensees",
+            utf8(&scene),
+            "--record",
+            utf8(&other),
+            "--out",
+            utf8(&other),
+        ],
         &["--out", "which this command reads"],
     );
     let after: Vec<Vec<u8>> = [&scene, &building, &record, &other]

@@ -26,7 +26,7 @@ fn space() -> DesignSpace {
         b: vec![0.6],
         names: vec!["a".into(), "b".into(), "c".into()],
         shape: None,
-            profile: vec![1.0; 3],
+        profile: vec![1.0; 3],
     }
 }
 

@@ -31,9 +31,9 @@
 
 use crate::error::{OpenSeesGap, SimError};
 use crate::plan::Plan;
+use crate::py_literal::{comment, py_str};
 use crate::scene::{MethodName, Scene};
 use nalgebra::DMatrix;
-use crate::py_literal::{comment, py_str};
 use std::fmt::Write as _;
 
 /// Newton's convergence test of the script: the norm of the last displacement correction,
@@ -952,7 +952,8 @@ mod tests {
     #[test]
     fn hostile_names_stay_ascii_data_below_the_fixed_first_lines() {
         let mut sc = scene("benchmark-3story-massless.json", None);
-        let hostile = "# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\0\u{7f}\u{85}\u{2028}é地震😀";
+        let hostile =
+            "# -*- coding: unicode_escape -*-\\nimport os\n\"\"\"'''\0\u{7f}\u{85}\u{2028}é地震😀";
         sc.name = hostile.into();
         sc.building.name = format!("b {hostile}");
         let script = opensees_script(&sc).unwrap();

@@ -51,7 +51,6 @@ fn escape_into(out: &mut String, text: &str) {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

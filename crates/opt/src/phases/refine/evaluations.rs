@@ -165,9 +165,7 @@ impl<'a> Evaluations<'a> {
                 fresh.push(z.clone());
             }
         }
-        let over = self
-            .limit
-            .filter(|&l| self.log.len() + fresh.len() > l);
+        let over = self.limit.filter(|&l| self.log.len() + fresh.len() > l);
         if let Some(l) = over {
             fresh.truncate(l.saturating_sub(self.log.len()));
             self.compute(fresh)?;

@@ -173,9 +173,9 @@ impl ModelSearch {
         // (log α, value) of every point tried
         let mut tried: Vec<(f64, f64)> = Vec::new();
         let probe = |me: &mut Self,
-                         ev: &mut Evaluations<'_>,
-                         tried: &mut Vec<(f64, f64)>,
-                         la: f64|
+                     ev: &mut Evaluations<'_>,
+                     tried: &mut Vec<(f64, f64)>,
+                     la: f64|
          -> Result<Option<f64>, OptError> {
             if let Some(&(_, f)) = tried.iter().find(|(l, _)| (l - la).abs() < 1e-12) {
                 return Ok(Some(f));
@@ -340,7 +340,11 @@ impl ModelSearch {
     }
 
     /// One model step (see the module doc).
-    fn model_step(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
+    fn model_step(
+        &mut self,
+        space: &DesignSpace,
+        ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError> {
         let d = space.dim();
         let delta = self.radius;
         let Some((g, h, scale)) = self.model(d) else {
@@ -392,7 +396,7 @@ impl ModelSearch {
         self.admit(Point { z, f });
         if rho >= 0.7 && len >= 0.9 * delta {
             self.radius = (2.0 * delta).min(MAX_RADIUS);
-        } else if !(rho >= 0.1) {
+        } else if rho < 0.1 || rho.is_nan() {
             if far > 2.0 * delta {
                 return self.geometry_step(space, ev);
             }
@@ -403,7 +407,11 @@ impl ModelSearch {
 
     /// Replaces the set's farthest point by one at the radius along the coordinate the
     /// remaining points cover least (one evaluation).
-    fn geometry_step(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
+    fn geometry_step(
+        &mut self,
+        space: &DesignSpace,
+        ev: &mut Evaluations<'_>,
+    ) -> Result<(), OptError> {
         let c = self.centre.z.clone();
         let d = c.len();
         let delta = self.radius;
@@ -478,10 +486,14 @@ impl Refiner for ModelSearch {
         self.line_search(space, ev, &own, 1.0)?;
         let profile = &space.profile;
         let cos = {
-            let (a, b) = (DVector::from_column_slice(&own), DVector::from_column_slice(profile));
+            let (a, b) = (
+                DVector::from_column_slice(&own),
+                DVector::from_column_slice(profile),
+            );
             a.dot(&b) / (a.norm() * b.norm())
         };
-        if !(cos > 0.999) {
+        // (a start without slip load has no direction: cos is NaN)
+        if cos.is_nan() || cos <= 0.999 {
             let upper = space.slip_loads(&vec![1.0; space.dim()]);
             let full = profile
                 .iter()
