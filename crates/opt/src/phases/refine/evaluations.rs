@@ -245,6 +245,35 @@ impl<'a> Evaluations<'a> {
     }
 }
 
+/// The ∞-norm distance between two scaled points.
+pub(crate) fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The step s = (z − c)/Δ that minimises the model gᵀs + ½sᵀHs (H positive
+/// semidefinite) over the box [0, 1]^d, the space's constraints and ‖s‖∞ ≤ 1, around `c`
+/// at radius `delta`: a convex QP solved by clarabel. `None` when clarabel cannot solve
+/// it (a numerically hard model).
+pub(crate) fn trust_step(
+    space: &DesignSpace,
+    c: &[f64],
+    delta: f64,
+    h: &nalgebra::DMatrix<f64>,
+    g: &[f64],
+) -> Option<Vec<f64>> {
+    let d = c.len();
+    let lo: Vec<f64> = c.iter().map(|z| (-1.0f64).max(-z / delta)).collect();
+    let hi: Vec<f64> = c.iter().map(|z| 1.0f64.min((1.0 - z) / delta)).collect();
+    let a = &space.a * delta;
+    let b: Vec<f64> = (0..space.a.nrows())
+        .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c[j]).sum::<f64>())
+        .collect();
+    crate::base::qp::solve(h, g, &lo, &hi, &a, &b).ok()
+}
+
 /// z clamped into [0, 1]^d.
 pub(crate) fn clamp01(z: &mut [f64]) {
     for v in z {

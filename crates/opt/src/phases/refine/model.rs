@@ -34,7 +34,7 @@
 //! ([`StopReason::Budget`]), or no model can be built (too few finite points,
 //! [`StopReason::NoProgress`]).
 
-use super::evaluations::{Evaluations, Point, Refiner, StopReason, clamp01};
+use super::evaluations::{Evaluations, Point, Refiner, StopReason, clamp01, dist_inf, trust_step};
 use crate::base::error::OptError;
 use crate::base::qp;
 use crate::model::config::RefineConfig;
@@ -56,13 +56,6 @@ const MODEL_RADIUS_FRACTION: f64 = 1.0 / 3.0;
 
 /// Largest trust radius, scaled variables.
 const MAX_RADIUS: f64 = 0.5;
-
-fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
 
 /// The model refiner's state (see the module doc); plain data, so a refinement can be
 /// saved between iterations and continued.
@@ -356,13 +349,7 @@ impl ModelSearch {
         // (nalgebra is column-major; H is symmetric, so rows = columns)
         let c = self.centre.clone();
         let hp = qp::clip_to_psd(&h, 0.0);
-        let lo: Vec<f64> = c.z.iter().map(|z| (-1.0f64).max(-z / delta)).collect();
-        let hi: Vec<f64> = c.z.iter().map(|z| 1.0f64.min((1.0 - z) / delta)).collect();
-        let a = &space.a * delta;
-        let b: Vec<f64> = (0..space.a.nrows())
-            .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c.z[j]).sum::<f64>())
-            .collect();
-        let step = qp::solve(&hp, g.as_slice(), &lo, &hi, &a, &b).ok();
+        let step = trust_step(space, &c.z, delta, &hp, g.as_slice());
         let trial = step.and_then(|s| {
             let sv = DVector::from_column_slice(&s);
             let pred = -(g.dot(&sv) + 0.5 * sv.dot(&(&h * &sv))) * scale;

@@ -11,7 +11,7 @@
 //! model predicts no decrease (or the QP is not solved). Stops when Δ < tolerance or the
 //! budget is spent; the model step counts in the budget like the stencil's points.
 
-use super::evaluations::{Evaluations, Point, Refiner, clamp01};
+use super::evaluations::{Evaluations, Point, Refiner, clamp01, dist_inf, trust_step};
 use crate::base::error::OptError;
 use crate::base::qp;
 use crate::model::config::RefineConfig;
@@ -60,13 +60,6 @@ fn stencil(c: &[f64], delta: f64) -> Vec<Vec<f64>> {
         }
     }
     out
-}
-
-fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
 }
 
 /// The trust-region refiner's state (see the module doc); serialisable, so a refinement
@@ -211,15 +204,9 @@ impl TrustRegion {
             }
         }
         let h = qp::clip_to_psd(&h, 0.0);
-        let lo: Vec<f64> = c.z.iter().map(|z| (-1.0f64).max(-z / *delta)).collect();
-        let hi: Vec<f64> = c.z.iter().map(|z| 1.0f64.min((1.0 - z) / *delta)).collect();
-        let a = &space.a * *delta;
-        let b: Vec<f64> = (0..space.a.nrows())
-            .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c.z[j]).sum::<f64>())
-            .collect();
         // a subproblem clarabel cannot solve (numerically hard model) is treated like a
         // model that predicts no decrease: shrink and refit
-        let Ok(s) = qp::solve(&h, &g, &lo, &hi, &a, &b) else {
+        let Some(s) = trust_step(space, &c.z, *delta, &h, &g) else {
             *delta *= 0.5;
             return Ok(());
         };
