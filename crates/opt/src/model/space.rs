@@ -397,17 +397,7 @@ impl DesignSpace {
     /// feasible `z`; `None` for loads off the space (another profile, beyond a bound,
     /// breaking a constraint).
     pub fn point_of(&self, loads: &[f64]) -> Option<Vec<f64>> {
-        if loads.len() != self.offset.len() {
-            return None;
-        }
-        let rhs = DVector::from_iterator(
-            loads.len(),
-            loads.iter().zip(&self.offset).map(|(s, o)| s - o),
-        );
-        // least squares on the (full column rank) basis: the normal equations
-        let btb = self.basis.transpose() * &self.basis;
-        let z = btb.lu().solve(&(self.basis.transpose() * &rhs))?;
-        let z: Vec<f64> = z.iter().copied().collect();
+        let z = self.least_squares_point(loads)?;
         let back = self.slip_loads(&z);
         let scale = loads.iter().fold(1.0f64, |m, v| m.max(v.abs()));
         let close = back
@@ -415,6 +405,23 @@ impl DesignSpace {
             .zip(loads)
             .all(|(a, b)| (a - b).abs() <= 1e-9 * scale);
         (close && self.is_feasible(&z)).then(|| z.iter().map(|v| v.clamp(0.0, 1.0)).collect())
+    }
+
+    /// The scaled point whose slip loads are closest to `loads` (N per dissipator) in least
+    /// squares on the (full column rank) basis, by the normal equations: exact for loads
+    /// the space holds, unclamped and unchecked otherwise. `None` for loads of another
+    /// length or a singular solve.
+    pub fn least_squares_point(&self, loads: &[f64]) -> Option<Vec<f64>> {
+        if loads.len() != self.offset.len() {
+            return None;
+        }
+        let rhs = DVector::from_iterator(
+            loads.len(),
+            loads.iter().zip(&self.offset).map(|(s, o)| s - o),
+        );
+        let btb = self.basis.transpose() * &self.basis;
+        let z = btb.lu().solve(&(self.basis.transpose() * &rhs))?;
+        Some(z.iter().copied().collect())
     }
 
     /// Whether `z` is inside [0, 1]^d and satisfies the constraints (relative slack 1e-9).

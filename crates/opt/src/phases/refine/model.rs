@@ -135,13 +135,7 @@ impl ModelSearch {
     /// The scaled point of slip loads `loads`, clamped into the box (least squares on the
     /// space's basis: exact for a free space).
     fn z_of(space: &DesignSpace, loads: &[f64]) -> Option<Vec<f64>> {
-        let rhs = DVector::from_iterator(
-            loads.len(),
-            loads.iter().zip(&space.offset).map(|(s, o)| s - o),
-        );
-        let btb = space.basis.transpose() * &space.basis;
-        let z = btb.lu().solve(&(space.basis.transpose() * rhs))?;
-        let mut z: Vec<f64> = z.iter().copied().collect();
+        let mut z = space.least_squares_point(loads)?;
         if z.iter().any(|v| !v.is_finite()) {
             return None;
         }

@@ -9,7 +9,8 @@
 //! when it lowers the objective; the radius grows after a good prediction
 //! (ρ ≥ 0.75 at the region's edge) and halves after a poor one (ρ < 0.25) or when the
 //! model predicts no decrease (or the QP is not solved). Stops when Δ < tolerance or the
-//! budget is spent; the model step counts in the budget like the stencil's points.
+//! budget is spent; the model step counts in the budget like the stencil's points (the
+//! executor, [`super::run`], stops a refiner at its budget).
 
 use super::evaluations::{Evaluations, Point, Refiner, clamp01, dist_inf, trust_step};
 use crate::base::error::OptError;
@@ -217,10 +218,6 @@ impl TrustRegion {
         let step = dist_inf(&z, &c.z);
         if pred <= 1e-12 * c.f.abs() || step < 1e-3 * *delta || !space.is_feasible(&z) {
             *delta *= 0.5;
-            return Ok(());
-        }
-        // the model step is an evaluation like the stencil's: none past the budget
-        if ev.count() >= self.budget && ev.cached(&z).is_none() {
             return Ok(());
         }
         let f = ev.eval_one(&z)?;
