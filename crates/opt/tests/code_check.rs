@@ -117,7 +117,9 @@ fn the_worst_reading_is_the_largest_case_objective() {
     };
     let bare = runs(&worst, &[0.0; 3]);
     let rows = runs(&worst, &[900e3, 700e3, 400e3]);
-    let f = worst.objective_value(&rows, &bare).unwrap();
+    let f = worst
+        .objective_value(&rows, &bare, &[900e3, 700e3, 400e3])
+        .unwrap();
     let n = worst.records.len();
     let per_case: Vec<f64> = (0..3)
         .map(|c| {
@@ -137,7 +139,12 @@ fn the_worst_reading_is_the_largest_case_objective() {
         v["property_bounds"]["objective_reads"] = "nominal".into();
     })
     .unwrap();
-    assert_eq!(nominal.objective_value(&rows, &bare).unwrap(), per_case[0]);
+    assert_eq!(
+        nominal
+            .objective_value(&rows, &bare, &[900e3, 700e3, 400e3])
+            .unwrap(),
+        per_case[0]
+    );
 }
 
 #[test]

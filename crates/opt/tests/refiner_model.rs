@@ -107,6 +107,7 @@ fn run(method: RefineMethod, n: usize, budget: usize) -> (Point, usize, StopReas
     let start = Point {
         f: valley.f(&z0),
         z: z0,
+        limits: None,
     };
     let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| valley.f(z)).collect());
     let mut ev = Evaluations::new(Box::new(oracle), vec![start.clone()]);
@@ -190,6 +191,7 @@ fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
     let at_min = Point {
         z: valley.star.clone(),
         f: valley.f(&valley.star),
+        limits: None,
     };
     let mut ev = Evaluations::new(Box::new(oracle), vec![]);
     // at the minimum (f = 0) every move is worse
@@ -199,7 +201,7 @@ fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
     // a point off the floor on a steep side is not stationary
     let mut z = valley.star.clone();
     z[3] += 0.05;
-    let off = Point { f: valley.f(&z), z };
+    let off = Point::new(z.clone(), valley.f(&z));
     let s = post_check(&sp, &off, &mut ev, 0.01).unwrap().unwrap();
     assert!(
         !s.stationary && s.best_gain > 10.0 * STATIONARY_GAIN,

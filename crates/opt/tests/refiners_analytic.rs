@@ -43,6 +43,7 @@ fn run(method: RefineMethod) -> (Point, usize, Point) {
     .map(|z| Point {
         z: z.to_vec(),
         f: f(z),
+        limits: None,
     })
     .collect();
     let start = known[0].clone();
@@ -94,6 +95,7 @@ fn a_saved_refiner_state_continues_to_the_same_answer() {
     let start = Point {
         z: vec![0.5, 0.1, 0.1],
         f: f(&[0.5, 0.1, 0.1]),
+        limits: None,
     };
     let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| f(z)).collect());
     // uninterrupted
@@ -145,6 +147,7 @@ fn every_refiner_is_blind_to_the_objective_scale() {
                 .map(|z| Point {
                     z: z.to_vec(),
                     f: g(z),
+                    limits: None,
                 })
                 .collect();
             let start = known[0].clone();

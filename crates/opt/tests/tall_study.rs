@@ -93,7 +93,7 @@ fn a_120_storey_study_finishes_within_2_gib_and_its_optimum_is_its_table() {
         &|| {},
     )
     .unwrap();
-    let again = study.objective_value(&rows[1], &rows[0]).unwrap();
+    let again = study.objective_value(&rows[1], &rows[0], &optimum).unwrap();
     let table = &run.report.table;
     let row = table
         .rows

@@ -119,6 +119,7 @@ fn a_design_that_collapses_on_a_record_fails_it() {
             statistic: Statistic::Mean,
             weight: 1.0,
         }],
+        cost: None,
     };
     let stands = vec![metrics(false, None), metrics(false, None)];
     let f = objective.value(&stands, None, &[0..2]).unwrap();
@@ -134,6 +135,7 @@ fn a_design_that_collapses_on_a_record_fails_it() {
     let p = Point {
         z: vec![0.5],
         f: f64::INFINITY,
+        limits: None,
     };
     let line = serde_json::to_string(&p).unwrap();
     assert_eq!(line, r#"{"z":[0.5],"f":"inf"}"#);
@@ -141,6 +143,7 @@ fn a_design_that_collapses_on_a_record_fails_it() {
     let finite = Point {
         z: vec![0.5],
         f: 0.25,
+        limits: None,
     };
     assert_eq!(
         serde_json::to_string(&finite).unwrap(),

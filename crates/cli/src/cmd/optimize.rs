@@ -278,8 +278,10 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             on_bound_text(study, &r.optimum_loads, &report.on_bound)
         );
     }
-    // a collapse is said in words, never as a number or a "100 % lower"
-    let obj = |f: f64| objective_text(f, Some(6));
+    // a collapse is said in words, never as a number or a "100 % lower"; a cost (kN,
+    // prices) to a tenth
+    let digits = if study.objective.cost.is_some() { 1 } else { 6 };
+    let obj = |f: f64| objective_text(f, Some(digits));
     // "collapsed", or the value and how much lower the optimum is
     let against = |g: f64| {
         if g.is_finite() {
@@ -308,6 +310,19 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     if r.target == RefineTarget::Violation {
         outln!(
             "no design of the sweep meets the study's limits: the refiners looked for the closest (the smallest sum of exceedances)"
+        );
+    } else if study.objective.cost.is_some() {
+        // the least dampers that meet the limits: the bare frame is the design without
+        // any, which either meets them (no damper needed) or is why dampers are needed
+        outln!(
+            "objective: {} {} — the bare frame {}; {file_design}: {}",
+            study.objective.label(),
+            obj(r.optimum.f),
+            match r.bare_passes {
+                Some(true) => "meets every limit already: no damper is needed",
+                _ => "misses the limits",
+            },
+            against(r.file_objective)
         );
     } else {
         outln!(

@@ -361,6 +361,17 @@ impl DesignCheck {
         self.lines.iter().map(|l| (l.ratio - 1.0).max(0.0)).sum()
     }
 
+    /// The ratio of each criterion line (`suites[i].limits.criteria[j]` at each case), in
+    /// order: the smooth functions of the design a refiner can model. The counts of
+    /// unacceptable responses are left out (steps, not smooth functions).
+    pub fn smooth_ratios(&self) -> Vec<f64> {
+        self.lines
+            .iter()
+            .filter(|l| l.source.contains(".limits.criteria["))
+            .map(|l| l.ratio)
+            .collect()
+    }
+
     /// A one-line verdict: `PASS (governing: …, ratio 0.93)` or `FAIL (…)`.
     pub fn verdict(&self) -> String {
         let head = if self.passes() { "PASS" } else { "FAIL" };
@@ -483,9 +494,9 @@ impl Checks {
         Ok(read)
     }
 
-    /// The objective of one design over its runs (`rows`: the cases × `records` runs,
-    /// nominal first; `bare`: the bare frame's runs): the nominal case's, or the worst of
-    /// the cases'.
+    /// The objective of one design (slip loads `loads_n`, N) over its runs (`rows`: the
+    /// cases × `records` runs, nominal first; `bare`: the bare frame's runs): the nominal
+    /// case's, or the worst of the cases', plus the design's cost (a cost objective).
     pub fn objective(
         &self,
         objective: &Objective,
@@ -493,8 +504,10 @@ impl Checks {
         bare: Option<&[RecordMetrics]>,
         suites: &[Range<usize>],
         records: usize,
+        loads_n: &[f64],
     ) -> Result<f64, OptError> {
-        Ok(self.read_case(objective, rows, bare, suites, records)?.1)
+        let response = self.read_case(objective, rows, bare, suites, records)?.1;
+        Ok(response + objective.cost_value(loads_n))
     }
 
     /// Each term's value at the case the objective reads (for the worst reading: at the
@@ -714,6 +727,7 @@ mod tests {
                 statistic: Statistic::Mean,
                 weight: 1.0,
             }],
+            cost: None,
         };
         let rows = vec![
             metrics(0.010, false),
@@ -721,7 +735,7 @@ mod tests {
             metrics(0.005, false),
         ];
         let ch = checks(1);
-        let f = ch.objective(&obj, &rows, None, &one_suite, 1).unwrap();
+        let f = ch.objective(&obj, &rows, None, &one_suite, 1, &[]).unwrap();
         assert_eq!(f, 0.030);
         assert_eq!(
             ch.terms(&obj, &rows, None, &one_suite, 1).unwrap(),
@@ -730,7 +744,9 @@ mod tests {
         let mut nominal = ch.clone();
         nominal.property_bounds.as_mut().unwrap().objective_reads = BoundReading::Nominal;
         assert_eq!(
-            nominal.objective(&obj, &rows, None, &one_suite, 1).unwrap(),
+            nominal
+                .objective(&obj, &rows, None, &one_suite, 1, &[])
+                .unwrap(),
             0.010
         );
     }

@@ -210,12 +210,18 @@ fn default_duration() -> f64 {
     20.0
 }
 
-/// The objective: a weighted sum of suite statistics of response metrics.
+/// The objective: a weighted sum of suite statistics of response metrics, or the
+/// dampers' cost subject to the study's limits.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectiveConfig {
-    /// The terms (at least one).
+    /// The terms (at least one, unless `cost` is given).
+    #[serde(default)]
     pub terms: Vec<Term>,
+    /// The dampers' cost ([`crate::model::objective::Cost`]): the objective becomes the
+    /// least cost that meets the limits (the study must have some).
+    #[serde(default)]
+    pub cost: Option<crate::model::objective::Cost>,
 }
 
 /// Methods and time steps.
@@ -698,12 +704,47 @@ impl StudyConfig {
                 format!("must be in [0, 90) degrees from the horizontal, got {t}"),
             ));
         }
-        if self.objective.terms.is_empty() {
-            return Err(OptError::invalid(
-                path,
-                "objective.terms",
-                "must have at least one term",
-            ));
+        match (&self.objective.cost, self.objective.terms.is_empty()) {
+            (None, true) => {
+                return Err(OptError::invalid(
+                    path,
+                    "objective.terms",
+                    "must have at least one term (or give `objective.cost` for the least dampers that meet the limits)",
+                ));
+            }
+            (Some(_), false) => {
+                return Err(OptError::invalid(
+                    path,
+                    "objective.cost",
+                    "is an objective of its own: give `terms` (a response to minimise) or `cost` (the least dampers that meet the limits), not both",
+                ));
+            }
+            (Some(c), true) => {
+                for (key, v) in [("per_kn", c.per_kn), ("per_device", c.per_device)] {
+                    if !(v.is_finite() && v >= 0.0) {
+                        return Err(OptError::invalid(
+                            path,
+                            format!("objective.cost.{key}"),
+                            format!("must be a finite price >= 0, got {v}"),
+                        ));
+                    }
+                }
+                if c.per_kn == 0.0 && c.per_device == 0.0 {
+                    return Err(OptError::invalid(
+                        path,
+                        "objective.cost",
+                        "prices nothing: give per_kn > 0 (per kN of slip load) or per_device > 0",
+                    ));
+                }
+                if !self.suites.iter().any(|s| s.limits.is_some()) {
+                    return Err(OptError::invalid(
+                        path,
+                        "objective.cost",
+                        "minimises the dampers' cost subject to the limits, but no suite has `limits`: without limits to meet, the least cost is no damper at all",
+                    ));
+                }
+            }
+            (None, false) => {}
         }
         for (i, t) in self.objective.terms.iter().enumerate() {
             if !(t.weight.is_finite() && t.weight > 0.0) {

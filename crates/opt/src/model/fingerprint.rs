@@ -244,6 +244,10 @@ pub fn of_study(study: &crate::Study, designs: &[crate::model::sampler::Design])
             .str(t.statistic.as_str())
             .f64(t.weight);
     }
+    // (only a cost objective adds its prices: a response objective keeps its fingerprint)
+    if let Some(c) = &study.objective.cost {
+        h.str("cost").f64(c.per_kn).f64(c.per_device);
+    }
     part("objective", "objective".into(), &h);
 
     // property bounds and limits, only when the study names them: a study without keeps

@@ -168,11 +168,54 @@ fn one() -> f64 {
     1.0
 }
 
-/// A weighted sum of terms.
+/// The dampers' cost: a price per kN of slip load and per device (a damper whose slip
+/// load is above zero). As an objective it asks for the least dampers that meet the
+/// study's limits: the sum Σ per_kn · Fᵢ/kN + per_device · #{Fᵢ > 0} over the design's
+/// dampers.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cost {
+    /// Price per kN of slip load (default 1: the objective is the total slip load in kN).
+    #[serde(default = "one")]
+    pub per_kn: f64,
+    /// Price per device (default 0).
+    #[serde(default)]
+    pub per_device: f64,
+}
+
+impl Cost {
+    /// The cost of slip loads `loads_n` (N).
+    pub fn of(&self, loads_n: &[f64]) -> f64 {
+        let kn: f64 = loads_n.iter().map(|f| f / 1e3).sum();
+        let devices = loads_n.iter().filter(|f| **f > 0.0).count() as f64;
+        self.per_kn * kn + self.per_device * devices
+    }
+
+    /// A short label: `total slip load (kN)`, or the prices.
+    pub fn label(&self) -> String {
+        if self.per_kn == 1.0 && self.per_device == 0.0 {
+            return "total slip load (kN)".into();
+        }
+        let mut parts = Vec::new();
+        if self.per_kn != 0.0 {
+            parts.push(format!("{} per kN of slip load", self.per_kn));
+        }
+        if self.per_device != 0.0 {
+            parts.push(format!("{} per device", self.per_device));
+        }
+        format!("cost ({})", parts.join(" + "))
+    }
+}
+
+/// A weighted sum of terms, or the dampers' cost.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Objective {
-    /// The terms.
+    /// The terms (none for a cost objective).
     pub terms: Vec<Term>,
+    /// The dampers' cost, for the objective "least dampers that meet the limits" (absent
+    /// for a response objective).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cost: Option<Cost>,
 }
 
 impl Objective {
@@ -225,8 +268,16 @@ impl Objective {
         Ok(f)
     }
 
+    /// The cost part of the objective for slip loads `loads_n` (N): 0 without a cost.
+    pub fn cost_value(&self, loads_n: &[f64]) -> f64 {
+        self.cost.map_or(0.0, |c| c.of(loads_n))
+    }
+
     /// A short label, e.g. `mean peak_drift_ratio`.
     pub fn label(&self) -> String {
+        if let Some(c) = &self.cost {
+            return c.label();
+        }
         self.terms
             .iter()
             .map(|t| {

@@ -389,6 +389,7 @@ impl Study {
         }
         let objective = Objective {
             terms: cfg.objective.terms.clone(),
+            cost: cfg.objective.cost,
         };
         let t1 = building.t1();
         let mut records = Vec::new();
@@ -554,12 +555,15 @@ impl Study {
         (0..self.runs()).map(|i| self.run_name(i)).collect()
     }
 
-    /// The objective of one design from its runs (`rows`, [`Study::runs`] long) and the
-    /// bare frame's: at the case the study's objective reads.
+    /// The objective of one design (slip loads `loads_n`, N, per damper of the space)
+    /// from its runs (`rows`, [`Study::runs`] long) and the bare frame's: at the case the
+    /// study's objective reads (with a cost objective, the design's cost; +∞ when it
+    /// collapses).
     pub fn objective_value(
         &self,
         rows: &[RecordMetrics],
         bare: &[RecordMetrics],
+        loads_n: &[f64],
     ) -> Result<f64, OptError> {
         let ranges: Vec<Range<usize>> = self.suites.iter().map(|s| s.range.clone()).collect();
         self.checks.objective(
@@ -568,6 +572,7 @@ impl Study {
             Some(bare),
             &ranges,
             self.records.len(),
+            loads_n,
         )
     }
 

@@ -111,7 +111,7 @@ impl CodeCheck {
                 study.objective.label(),
                 reading.as_str()
             ),
-            objective_value: study.objective_value(runs, bare)?,
+            objective_value: study.objective_value(runs, bare, slip_loads_n)?,
             fidelity: format!(
                 "{} at {} x the sweep time step",
                 fid.method.as_str(),

@@ -238,10 +238,16 @@ pub fn rank(
         };
         let b = at(bare);
         runs.iter()
-            .map(|r| {
-                study
-                    .checks
-                    .objective(&study.objective, &at(r), Some(&b), ranges, idx.len())
+            .zip(&all[1..])
+            .map(|(r, d)| {
+                study.checks.objective(
+                    &study.objective,
+                    &at(r),
+                    Some(&b),
+                    ranges,
+                    idx.len(),
+                    &d.slip_loads_n,
+                )
             })
             .collect()
     };

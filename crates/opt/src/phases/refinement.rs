@@ -9,7 +9,9 @@ use crate::model::check::DesignCheck;
 use crate::model::config::RefineMethod;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
-use crate::phases::refine::{Evaluations, Point, Stationarity, StopReason, post_check, refine};
+use crate::phases::refine::{
+    Evaluations, LimitValues, Point, Stationarity, StopReason, post_check, refine,
+};
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
 use std::cell::RefCell;
@@ -71,6 +73,19 @@ impl RefineTarget {
             (RefineTarget::Violation, Some(c)) => c.violation(),
         }
     }
+
+    /// The limit values the model refiner keeps to ([`LimitValues`]): for the objective
+    /// of passing designs, the objective and the smooth ratios of the check; none for
+    /// the other targets.
+    pub fn limit_values(self, f: f64, check: Option<&DesignCheck>) -> Option<LimitValues> {
+        match (self, check) {
+            (RefineTarget::PassingObjective, Some(c)) => Some(LimitValues {
+                objective: f,
+                ratios: c.smooth_ratios(),
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// What `optimize` found.
@@ -98,6 +113,10 @@ pub struct OptimizeReport {
     pub check_reran: bool,
     /// Objective of the bare frame and of the building file's design (sweep fidelity).
     pub bare_objective: f64,
+    /// Whether the bare frame meets the study's limits at the sweep fidelity (`None`: the
+    /// study has no limits). With a cost objective, a bare frame that meets them needs
+    /// no damper.
+    pub bare_passes: Option<bool>,
     /// Objective of the building file's slip loads.
     pub file_objective: f64,
     /// What the refiners minimised.
@@ -129,29 +148,40 @@ pub fn objectives(
     target: RefineTarget,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<f64>, OptError> {
-    values_of(
+    Ok(values_of(
         study,
+        designs,
         &run_designs(study, designs, fid, tick)?,
         bare,
         target,
-    )
+    )?
+    .into_iter()
+    .map(|(f, _)| f)
+    .collect())
 }
 
-/// What `target` minimises of each design's `runs` (`bare`: the bare frame's).
+/// What `target` minimises of each design (slip loads `designs`, N) from its `runs`
+/// (`bare`: the bare frame's), with its limit values where the refiners keep to the
+/// limits ([`RefineTarget::limit_values`]).
 fn values_of(
     study: &Study,
+    designs: &[Vec<f64>],
     runs: &[Vec<RecordMetrics>],
     bare: &[RecordMetrics],
     target: RefineTarget,
-) -> Result<Vec<f64>, OptError> {
+) -> Result<Vec<(f64, Option<LimitValues>)>, OptError> {
     runs.iter()
-        .map(|rows| {
-            let f = study.objective_value(rows, bare)?;
+        .zip(designs)
+        .map(|(rows, loads)| {
+            let f = study.objective_value(rows, bare, loads)?;
             let check = match target {
                 RefineTarget::Objective => None,
                 _ => Some(study.check_design(rows)?),
             };
-            Ok(target.value(f, check.as_ref()))
+            Ok((
+                target.value(f, check.as_ref()),
+                target.limit_values(f, check.as_ref()),
+            ))
         })
         .collect()
 }
@@ -210,6 +240,8 @@ pub struct Refinement {
     pub replayed: usize,
     /// Objective of the bare frame (sweep fidelity).
     pub bare_objective: f64,
+    /// Whether the bare frame meets the study's limits (`None`: no limits).
+    pub bare_passes: Option<bool>,
     /// Objective of the building file's slip loads (sweep fidelity).
     pub file_objective: f64,
     /// What the refiners minimised.
@@ -296,6 +328,7 @@ pub fn refine_sweep(
             d.z.clone().map(|z| Point {
                 z,
                 f: target.value(*f, check),
+                limits: target.limit_values(*f, check),
             })
         })
         .collect();
@@ -310,6 +343,21 @@ pub fn refine_sweep(
         known.push(Point {
             z,
             f: target.value(obj[1].0, check),
+            limits: target.limit_values(obj[1].0, check),
+        });
+    }
+    // with a cost objective the bare frame is the design without dampers: where the
+    // space holds it (every lower bound 0) it competes too, and wins when it meets the
+    // limits (no damper is needed)
+    if study.objective.cost.is_some()
+        && let Some(z) = study.space.point_of(&vec![0.0; study.space.dampers.len()])
+        && !known.iter().any(|p| p.z == z)
+    {
+        let check = checks.as_ref().map(|c| &c[0]);
+        known.push(Point {
+            z,
+            f: target.value(obj[0].0, check),
+            limits: target.limit_values(obj[0].0, check),
         });
     }
     let by_value = |known: &[Point]| {
@@ -331,6 +379,7 @@ pub fn refine_sweep(
             known.push(Point {
                 z: z.clone(),
                 f: target.value(*f, check.as_ref()),
+                limits: target.limit_values(*f, check.as_ref()),
             });
         }
     }
@@ -355,10 +404,10 @@ pub fn refine_sweep(
     let oracle = {
         let bare = bare.clone();
         let kept = &kept;
-        move |zs: &[Vec<f64>]| -> Result<Vec<f64>, OptError> {
+        move |zs: &[Vec<f64>]| -> Result<Vec<(f64, Option<LimitValues>)>, OptError> {
             let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
             let runs = run_designs_journalled(study, &designs, &sweep_fid, front.journal, tick)?;
-            let values = values_of(study, &runs, &bare, target)?;
+            let values = values_of(study, &designs, &runs, &bare, target)?;
             if keep_runs {
                 let mut k = kept.borrow_mut();
                 for (z, r) in zs.iter().zip(runs) {
@@ -368,7 +417,7 @@ pub fn refine_sweep(
             Ok(values)
         }
     };
-    let mut ev = Evaluations::new(Box::new(oracle), known.clone());
+    let mut ev = Evaluations::with_limits(Box::new(oracle), known.clone());
     if let Some(path) = journal {
         let (appender, replay) = crate::store::journal::open_journal::<Point>(
             path,
@@ -409,6 +458,7 @@ pub fn refine_sweep(
         optimum,
         replayed,
         bare_objective: obj[0].0,
+        bare_passes: checks.as_ref().map(|c| c[0].passes()),
         file_objective: obj[1].0,
         target,
     })
@@ -434,6 +484,7 @@ pub fn check_finalists(
         optimum,
         replayed,
         bare_objective,
+        bare_passes,
         file_objective,
         target,
         runs: refined_runs,
@@ -485,7 +536,8 @@ pub fn check_finalists(
         let bare_check = runs.remove(0);
         let fc = runs
             .iter()
-            .map(|rows| study.objective_value(rows, &bare_check))
+            .zip(&loads)
+            .map(|(rows, l)| study.objective_value(rows, &bare_check, l))
             .collect::<Result<Vec<f64>, OptError>>()?;
         runs_check = runs;
         runs_check.push(bare_check);
@@ -545,10 +597,7 @@ pub fn check_finalists(
     // with limits the optimum is the recommended design: the best finalist that passes
     // (or, none passing, the closest)
     let optimum = match (limits, finalists.first()) {
-        (true, Some(f)) => Point {
-            z: f.z.clone(),
-            f: f.f_sweep,
-        },
+        (true, Some(f)) => Point::new(f.z.clone(), f.f_sweep),
         _ => optimum,
     };
     Ok(OptimizeReport {
@@ -564,6 +613,7 @@ pub fn check_finalists(
         ranking_held,
         check_reran,
         bare_objective,
+        bare_passes,
         file_objective,
         simulations,
         replayed,

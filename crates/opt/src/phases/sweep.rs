@@ -272,7 +272,14 @@ impl Manifest {
                         .terms(&self.objective, rec, Some(bare), &ranges, records)?;
                 let f = self
                     .checks
-                    .objective(&self.objective, rec, Some(bare), &ranges, records)
+                    .objective(
+                        &self.objective,
+                        rec,
+                        Some(bare),
+                        &ranges,
+                        records,
+                        &self.designs[d].slip_loads_n,
+                    )
                     .map_err(|e| match e {
                         OptError::NonFinite { quantity, .. } => OptError::NonFinite {
                             design: format!("{d} ({})", self.designs[d].label),

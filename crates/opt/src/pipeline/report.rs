@@ -150,6 +150,9 @@ struct OptimumFile<'a> {
     bare_objective: f64,
     #[serde(with = "crate::base::collapse::objective_serde")]
     file_objective: f64,
+    /// Whether the bare frame meets the limits (a study with limits).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bare_passes: Option<bool>,
     sweep_designs: usize,
     refine_evaluations: usize,
     /// Why each start's refiner stopped (`tolerance`, `budget`, `no_progress`).
@@ -204,12 +207,19 @@ impl StudyReport {
         let mut best = self.refine.best_sweep.f;
         for (i, (p, loads)) in self.refine.log.iter().zip(&self.refine_loads_n).enumerate() {
             best = best.min(p.f);
+            // a design that stands but misses a limit is said so, not "collapsed"
+            let value = match &p.limits {
+                Some(l) if p.f == f64::INFINITY && l.objective.is_finite() => {
+                    "misses a limit".to_string()
+                }
+                _ => crate::base::collapse::objective_text(p.f, None),
+            };
             let _ = write!(
                 s,
                 "{},{},{},{}",
                 i + 1,
                 self.method.as_str(),
-                crate::base::collapse::objective_text(p.f, None),
+                value,
                 crate::base::collapse::objective_text(best, None)
             );
             for v in loads {
@@ -236,6 +246,7 @@ impl StudyReport {
                 objective_value: r.optimum.f,
                 bare_objective: r.bare_objective,
                 file_objective: r.file_objective,
+                bare_passes: r.bare_passes,
                 sweep_designs: r.sweep_designs,
                 refine_evaluations: r.log.len(),
                 refine_stops: r.stops.iter().map(|s| s.as_str()).collect(),

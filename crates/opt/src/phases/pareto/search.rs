@@ -188,7 +188,7 @@ pub fn search(
         for (z, (l, r)) in zs.into_iter().zip(loads.into_iter().zip(runs)) {
             added += 1;
             let objectives = objective_vector(study, &l, &r, Some(bare_rows), &ranges)?;
-            let scalar = scalar_of(study, &r, bare_rows)?;
+            let scalar = scalar_of(study, &l, &r, bare_rows)?;
             evaluated.push(Evaluated {
                 label: format!("p{added:04}"),
                 source: Source::Search,
@@ -232,14 +232,15 @@ pub fn search(
     })
 }
 
-/// The study's objective of a design's `rows` (sweep fidelity) and, with limits, its
-/// check: what a refiner reads of it.
+/// The study's objective of a design (slip loads `loads_n`, N) from its `rows` (sweep
+/// fidelity) and, with limits, its check: what a refiner reads of it.
 pub fn scalar_of(
     study: &Study,
+    loads_n: &[f64],
     rows: &[RecordMetrics],
     bare: &[RecordMetrics],
 ) -> Result<(f64, Option<DesignCheck>), OptError> {
-    let f = study.objective_value(rows, bare)?;
+    let f = study.objective_value(rows, bare, loads_n)?;
     let check = if study.checks.has_limits() {
         Some(study.check_design(rows)?)
     } else {

@@ -60,9 +60,40 @@ impl StopReason {
 pub struct Point {
     /// Scaled variables.
     pub z: Vec<f64>,
-    /// Objective (+∞, written `"inf"`, for a design that collapses on a record).
+    /// What the refiners minimise: the objective (+∞, written `"inf"`, for a design that
+    /// collapses on a record or, in a study with limits, misses one).
     #[serde(with = "objective_value")]
     pub f: f64,
+    /// In a study with limits: the objective and the limits' ratios, also where `f` is
+    /// +∞ because a limit is missed (what the model refiner models the limits from).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limits: Option<LimitValues>,
+}
+
+impl Point {
+    /// A point without limit values.
+    pub fn new(z: Vec<f64>, f: f64) -> Point {
+        Point { z, f, limits: None }
+    }
+
+    /// The objective the model refiner fits: the objective ignoring the limits where the
+    /// point carries it, else `f`.
+    pub fn objective(&self) -> f64 {
+        self.limits.as_ref().map_or(self.f, |l| l.objective)
+    }
+}
+
+/// A design's objective and the ratios of the study's limits, as the model refiner
+/// models the limits ([`crate::model::check::DesignCheck::smooth_ratios`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LimitValues {
+    /// The objective whether the limits pass or not (+∞, written `"inf"`: collapsed).
+    #[serde(with = "objective_value")]
+    pub objective: f64,
+    /// demand / limit of each criterion at each case, in the check's order (counts of
+    /// unacceptable responses left out: they are steps, not smooth functions); ≤ 1
+    /// passes.
+    pub ratios: Vec<f64>,
 }
 
 /// An objective value in a journal: a JSON number, or `"inf"` for +∞ (a collapsed
@@ -98,16 +129,20 @@ mod objective_value {
 /// The batch objective: objective values of several scaled points.
 pub type Oracle<'a> = dyn FnMut(&[Vec<f64>]) -> Result<Vec<f64>, OptError> + 'a;
 
+/// The batch objective of a study with limits: each point's value and its limit values.
+pub type LimitOracle<'a> =
+    dyn FnMut(&[Vec<f64>]) -> Result<Vec<(f64, Option<LimitValues>)>, OptError> + 'a;
+
 /// Called with each newly computed point.
 pub type Hook<'a> = dyn FnMut(&Point) -> Result<(), OptError> + 'a;
 
 /// Every evaluation so far, with a cache keyed by the exact bits of z.
 pub struct Evaluations<'a> {
-    oracle: Box<Oracle<'a>>,
-    cache: HashMap<Vec<u64>, f64>,
+    oracle: Box<LimitOracle<'a>>,
+    cache: HashMap<Vec<u64>, (f64, Option<LimitValues>)>,
     /// Values from an earlier, interrupted run: counted as new evaluations when asked
     /// for (so the refiners take the same path) but not computed again.
-    replay: HashMap<Vec<u64>, f64>,
+    replay: HashMap<Vec<u64>, (f64, Option<LimitValues>)>,
     /// Called with every point the oracle computed (journal append).
     hook: Option<Box<Hook<'a>>>,
     /// Evaluations taken from the replay.
@@ -128,8 +163,22 @@ fn key(z: &[f64]) -> Vec<u64> {
 
 impl<'a> Evaluations<'a> {
     /// Starts with points already evaluated (the sweep's).
-    pub fn new(oracle: Box<Oracle<'a>>, known: Vec<Point>) -> Self {
-        let cache = known.iter().map(|p| (key(&p.z), p.f)).collect();
+    pub fn new(mut oracle: Box<Oracle<'a>>, known: Vec<Point>) -> Self {
+        Self::with_limits(
+            Box::new(move |zs: &[Vec<f64>]| {
+                Ok(oracle(zs)?.into_iter().map(|f| (f, None)).collect())
+            }),
+            known,
+        )
+    }
+
+    /// Starts with points already evaluated (the sweep's), for an oracle that gives the
+    /// limit values of each point beside its value.
+    pub fn with_limits(oracle: Box<LimitOracle<'a>>, known: Vec<Point>) -> Self {
+        let cache = known
+            .iter()
+            .map(|p| (key(&p.z), (p.f, p.limits.clone())))
+            .collect();
         Evaluations {
             oracle,
             cache,
@@ -145,7 +194,10 @@ impl<'a> Evaluations<'a> {
     /// Points evaluated by an earlier run of the same refinement (its journal), and a
     /// hook called with every point computed from now on.
     pub fn with_journal(mut self, replay: Vec<Point>, hook: Box<Hook<'a>>) -> Self {
-        self.replay = replay.into_iter().map(|p| (key(&p.z), p.f)).collect();
+        self.replay = replay
+            .into_iter()
+            .map(|p| (key(&p.z), (p.f, p.limits)))
+            .collect();
         self.hook = Some(hook);
         self
     }
@@ -174,7 +226,7 @@ impl<'a> Evaluations<'a> {
         self.compute(fresh)?;
         Ok(zs
             .iter()
-            .map(|z| *self.cache.get(&key(z)).expect("evaluated above"))
+            .map(|z| self.cache.get(&key(z)).expect("evaluated above").0)
             .collect())
     }
 
@@ -193,21 +245,25 @@ impl<'a> Evaluations<'a> {
             }
             .into_iter();
             for z in fresh {
-                let f = match self.replay.get(&key(&z)) {
-                    Some(&f) => {
+                let (f, limits) = match self.replay.get(&key(&z)) {
+                    Some(v) => {
                         self.replayed += 1;
-                        f
+                        v.clone()
                     }
                     None => {
-                        let f = computed.next().expect("one value per computed point");
+                        let (f, limits) = computed.next().expect("one value per computed point");
                         if let Some(h) = self.hook.as_mut() {
-                            h(&Point { z: z.clone(), f })?;
+                            h(&Point {
+                                z: z.clone(),
+                                f,
+                                limits: limits.clone(),
+                            })?;
                         }
-                        f
+                        (f, limits)
                     }
                 };
-                self.cache.insert(key(&z), f);
-                self.log.push(Point { z, f });
+                self.cache.insert(key(&z), (f, limits.clone()));
+                self.log.push(Point { z, f, limits });
             }
         }
         Ok(())
@@ -220,7 +276,16 @@ impl<'a> Evaluations<'a> {
 
     /// The objective at `z` when it is known (evaluated, or known before refining).
     pub fn cached(&self, z: &[f64]) -> Option<f64> {
-        self.cache.get(&key(z)).copied()
+        self.cache.get(&key(z)).map(|v| v.0)
+    }
+
+    /// The point at `z` with its limit values, when it is known.
+    pub fn point(&self, z: &[f64]) -> Option<Point> {
+        self.cache.get(&key(z)).map(|(f, limits)| Point {
+            z: z.to_vec(),
+            f: *f,
+            limits: limits.clone(),
+        })
     }
 
     /// Number of new evaluations.
@@ -254,7 +319,8 @@ pub(crate) fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The step s = (z − c)/Δ that minimises the model gᵀs + ½sᵀHs (H positive
-/// semidefinite) over the box [0, 1]^d, the space's constraints and ‖s‖∞ ≤ 1, around `c`
+/// semidefinite) over the box [0, 1]^d, the space's constraints, the rows `cuts`
+/// (aᵀs ≤ b, in s: the linearised limits of the model refiner) and ‖s‖∞ ≤ 1, around `c`
 /// at radius `delta`: a convex QP solved by clarabel. `None` when clarabel cannot solve
 /// it (a numerically hard model).
 pub(crate) fn trust_step(
@@ -263,13 +329,22 @@ pub(crate) fn trust_step(
     delta: f64,
     h: &nalgebra::DMatrix<f64>,
     g: &[f64],
+    cuts: &[(Vec<f64>, f64)],
 ) -> Option<Vec<f64>> {
     let d = c.len();
     let lo: Vec<f64> = c.iter().map(|z| (-1.0f64).max(-z / delta)).collect();
     let hi: Vec<f64> = c.iter().map(|z| 1.0f64.min((1.0 - z) / delta)).collect();
-    let a = &space.a * delta;
-    let b: Vec<f64> = (0..space.a.nrows())
+    let rows = space.a.nrows();
+    let a = nalgebra::DMatrix::from_fn(rows + cuts.len(), d, |i, j| {
+        if i < rows {
+            space.a[(i, j)] * delta
+        } else {
+            cuts[i - rows].0[j]
+        }
+    });
+    let b: Vec<f64> = (0..rows)
         .map(|i| space.b[i] - (0..d).map(|j| space.a[(i, j)] * c[j]).sum::<f64>())
+        .chain(cuts.iter().map(|(_, b)| *b))
         .collect();
     crate::base::qp::solve(h, g, &lo, &hi, &a, &b).ok()
 }

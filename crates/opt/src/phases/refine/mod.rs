@@ -14,7 +14,9 @@ mod nelder_mead;
 mod random;
 mod trust_region;
 
-pub use evaluations::{Evaluations, Hook, Oracle, Point, Refiner, StopReason};
+pub use evaluations::{
+    Evaluations, Hook, LimitOracle, LimitValues, Oracle, Point, Refiner, StopReason,
+};
 pub use model::{LINE_EVALUATIONS, ModelSearch};
 pub use nelder_mead::NelderMead;
 pub use random::RandomSearch;

@@ -28,6 +28,22 @@
 //! first replaced by a point at the radius (a geometry step). A design that fails the
 //! limits or collapses (+∞) is no sample of the model: it is a rejected step.
 //!
+//! **Limits as constraints.** In a study with limits every evaluation carries, beside
+//! the value the refiners minimise (+∞ for a design that misses a limit), the objective
+//! itself and the ratio demand/limit of each criterion at each property case
+//! ([`super::LimitValues`]). A design that misses a limit is then no lost evaluation:
+//! its objective and ratios join the interpolation set. Each ratio gets a least-norm
+//! quadratic model from the same interpolation system as the objective, and every ratio
+//! whose linear model can reach 1 inside the trust box enters the step's QP as the row
+//! r(c) + gᵀs ≤ 1 − [`LIMIT_MARGIN`] (one that cannot reach it is left out, so a study
+//! whose limits are far from binding steps exactly as without them); the most binding
+//! one adds its curvature times its least-squares multiplier to the model's Hessian
+//! (the Lagrangian of an SQP step). The centre always meets the limits, so s = 0 is
+//! feasible and every step a decrease of a passing design. A line search whose best
+//! point has a neighbour that misses a limit at a lower objective walks to the limit
+//! (the secant of log ratio in log α, up to [`LIMIT_EVALUATIONS`] more points): the
+//! least dampers that meet the limits (`objective.cost`) lie where a limit binds.
+//!
 //! **Counted.** Every evaluation goes through [`Evaluations`] and no batch is larger than
 //! the budget left, so the refiner never exceeds it. It stops when the radius falls below
 //! the tolerance ([`StopReason::Tolerance`]), the budget is spent
@@ -45,6 +61,9 @@ use serde::{Deserialize, Serialize};
 /// Most evaluations of one profile's line search.
 pub const LINE_EVALUATIONS: usize = 6;
 
+/// Evaluations a line search may add to walk to a limit ([`ModelSearch::walk_to_limit`]).
+pub const LIMIT_EVALUATIONS: usize = 3;
+
 /// Ratio between neighbouring points of a line search (1.4: a bracket of ±40 %).
 const LINE_FACTOR: f64 = 1.4;
 
@@ -56,6 +75,11 @@ const MODEL_RADIUS_FRACTION: f64 = 1.0 / 3.0;
 
 /// Largest trust radius, scaled variables.
 const MAX_RADIUS: f64 = 0.5;
+
+/// How far inside its limits the refiner aims a design it moves toward them: a ratio of
+/// 1 − 0.1 % (the linearised limits are first-order; a step aimed at exactly 1 lands
+/// outside as often as inside).
+pub const LIMIT_MARGIN: f64 = 1e-3;
 
 /// The model refiner's state (see the module doc); plain data, so a refinement can be
 /// saved between iterations and continued.
@@ -83,10 +107,7 @@ impl ModelSearch {
     /// [`Evaluations`]).
     pub fn new(cfg: &RefineConfig, budget: usize) -> Self {
         ModelSearch {
-            centre: Point {
-                z: Vec::new(),
-                f: f64::INFINITY,
-            },
+            centre: Point::new(Vec::new(), f64::INFINITY),
             radius: cfg.initial_radius,
             tolerance: cfg.tolerance,
             budget,
@@ -100,22 +121,23 @@ impl ModelSearch {
         self.budget.saturating_sub(ev.count())
     }
 
-    /// Objective values of `zs`, the ones the budget has no room for left out (`None`);
-    /// a point off the space's constraints is +∞ without a simulation.
+    /// The evaluated points of `zs` (with their limit values), the ones the budget has no
+    /// room for left out (`None`); a point off the space's constraints is +∞ without a
+    /// simulation.
     fn values(
         &self,
         space: &DesignSpace,
         ev: &mut Evaluations<'_>,
         zs: &[Vec<f64>],
-    ) -> Result<Vec<Option<f64>>, OptError> {
+    ) -> Result<Vec<Option<Point>>, OptError> {
         let mut room = self.room(ev);
         let mut ask: Vec<Vec<f64>> = Vec::new();
         let mut out = vec![None; zs.len()];
         for (i, z) in zs.iter().enumerate() {
             if !space.is_feasible(z) {
-                out[i] = Some(f64::INFINITY);
-            } else if let Some(f) = ev.cached(z) {
-                out[i] = Some(f);
+                out[i] = Some(Point::new(z.clone(), f64::INFINITY));
+            } else if let Some(p) = ev.point(z) {
+                out[i] = Some(p);
             } else if ask.contains(z) {
                 // asked already in this batch: filled below
             } else if room > 0 {
@@ -126,7 +148,7 @@ impl ModelSearch {
         ev.eval(&ask)?;
         for (i, z) in zs.iter().enumerate() {
             if out[i].is_none() {
-                out[i] = ev.cached(z);
+                out[i] = ev.point(z);
             }
         }
         Ok(out)
@@ -157,62 +179,130 @@ impl ModelSearch {
         }
         let at = |a: f64| Self::z_of(space, &profile.iter().map(|p| a * p).collect::<Vec<_>>());
         let start = ev.count();
-        // (log α, value) of every point tried
-        let mut tried: Vec<(f64, f64)> = Vec::new();
+        // every point tried, by log α
+        let mut tried: Vec<Tried> = Vec::new();
         let probe = |me: &mut Self,
                      ev: &mut Evaluations<'_>,
-                     tried: &mut Vec<(f64, f64)>,
-                     la: f64|
+                     tried: &mut Vec<Tried>,
+                     la: f64,
+                     cap: usize|
          -> Result<Option<f64>, OptError> {
-            if let Some(&(_, f)) = tried.iter().find(|(l, _)| (l - la).abs() < 1e-12) {
-                return Ok(Some(f));
+            if let Some(t) = tried.iter().find(|t| (t.la - la).abs() < 1e-12) {
+                return Ok(Some(t.f));
             }
-            if ev.count() - start >= LINE_EVALUATIONS {
+            if ev.count() - start >= cap {
                 return Ok(None);
             }
             let Some(z) = at(la.exp()) else {
                 return Ok(None);
             };
-            let Some(f) = me.values(space, ev, std::slice::from_ref(&z))?[0] else {
+            let Some(p) = me.values(space, ev, std::slice::from_ref(&z))?.remove(0) else {
                 return Ok(None);
             };
-            tried.push((la, f));
+            let f = p.f;
+            tried.push(Tried {
+                la,
+                f,
+                raw: p.objective(),
+                governing: governing_ratio(&p),
+            });
             if f < me.centre.f {
-                me.centre = Point { z, f };
+                me.centre = p;
             }
             Ok(Some(f))
         };
         let step = LINE_FACTOR.ln();
         let l0 = alpha0.ln();
         for la in [l0 - step, l0, l0 + step] {
-            if probe(self, ev, &mut tried, la)?.is_none() {
+            if probe(self, ev, &mut tried, la, LINE_EVALUATIONS)?.is_none() {
                 return Ok(());
             }
         }
         // move the bracket outward until its middle point is the best
         loop {
-            tried.sort_by(|a, b| a.0.total_cmp(&b.0));
+            tried.sort_by(|a, b| a.la.total_cmp(&b.la));
             let best = (0..tried.len())
-                .min_by(|&a, &b| tried[a].1.total_cmp(&tried[b].1))
+                .min_by(|&a, &b| tried[a].f.total_cmp(&tried[b].f))
                 .expect("three points tried");
             if best > 0 && best + 1 < tried.len() {
-                let (a, b, c) = (tried[best - 1], tried[best], tried[best + 1]);
-                if let Some(v) = parabola_vertex(a, b, c) {
-                    probe(self, ev, &mut tried, v)?;
+                let (a, b, c) = (&tried[best - 1], &tried[best], &tried[best + 1]);
+                // a neighbour that misses a limit with a lower objective: the best point
+                // of the ray lies at the limit
+                let missed = [a, c]
+                    .into_iter()
+                    .find(|t| t.f == f64::INFINITY && t.governing.is_some() && t.raw < b.f);
+                if let (Some(m), Some(gb)) = (missed, b.governing) {
+                    let (fail, pass) = ((m.la, m.governing.expect("found above")), (b.la, gb));
+                    return self.walk_to_limit(ev, fail, pass, &mut tried, &probe);
+                }
+                // (the objective whether the limits pass or not: smooth across them)
+                if let Some(v) = parabola_vertex((a.la, a.raw), (b.la, b.raw), (c.la, c.raw)) {
+                    probe(self, ev, &mut tried, v, LINE_EVALUATIONS)?;
                 }
                 return Ok(());
             }
             let next = if best == 0 {
-                tried[0].0 - 2.0 * step
+                tried[0].la - 2.0 * step
             } else {
-                tried[tried.len() - 1].0 + 2.0 * step
+                tried[tried.len() - 1].la + 2.0 * step
             };
             // past the box the clamped points repeat: nothing more to learn
-            let (edge, beyond) = (at(tried[best].0.exp()), at(next.exp()));
-            if edge == beyond || probe(self, ev, &mut tried, next)?.is_none() {
+            let (edge, beyond) = (at(tried[best].la.exp()), at(next.exp()));
+            if edge == beyond || probe(self, ev, &mut tried, next, LINE_EVALUATIONS)?.is_none() {
                 return Ok(());
             }
         }
+    }
+
+    /// Walks the ray from a point that passes the limits toward a neighbour that misses
+    /// one, to where the governing ratio reaches 1 − [`LIMIT_MARGIN`]: the secant of
+    /// log ratio against log α (a drift falls about as a power of the slip loads), kept a
+    /// tenth of the bracket inside it, until the bracket is within 1 % in α or the
+    /// ray's evaluations and [`LIMIT_EVALUATIONS`] more are spent. `fail`, `pass`:
+    /// (log α, governing ratio).
+    fn walk_to_limit<P>(
+        &mut self,
+        ev: &mut Evaluations<'_>,
+        mut fail: (f64, f64),
+        mut pass: (f64, f64),
+        tried: &mut Vec<Tried>,
+        probe: &P,
+    ) -> Result<(), OptError>
+    where
+        P: Fn(
+            &mut Self,
+            &mut Evaluations<'_>,
+            &mut Vec<Tried>,
+            f64,
+            usize,
+        ) -> Result<Option<f64>, OptError>,
+    {
+        let target = (1.0 - LIMIT_MARGIN).ln();
+        while (fail.0 - pass.0).abs() > 1.01f64.ln() {
+            let t = if fail.1 > 0.0 && pass.1 > 0.0 {
+                let (df, dp) = (fail.1.ln() - target, pass.1.ln() - target);
+                if df > dp && dp <= 0.0 {
+                    (-dp / (df - dp)).clamp(0.1, 0.9)
+                } else {
+                    0.5
+                }
+            } else {
+                0.5
+            };
+            let la = pass.0 + t * (fail.0 - pass.0);
+            if probe(self, ev, tried, la, LINE_EVALUATIONS + LIMIT_EVALUATIONS)?.is_none() {
+                break;
+            }
+            let Some(now) = tried.iter().find(|x| (x.la - la).abs() < 1e-12) else {
+                break;
+            };
+            match (now.f.is_finite(), now.governing) {
+                (true, Some(g)) => pass = (la, g),
+                (false, Some(g)) => fail = (la, g),
+                _ => break,
+            }
+        }
+        Ok(())
     }
 
     /// Evaluates the first interpolation set: the centre and c ± Δeᵢ (c − Δ and c − 2Δ,
@@ -243,21 +333,21 @@ impl ModelSearch {
         zs.extend(second);
         let values = self.values(space, ev, &zs)?;
         self.points = vec![self.centre.clone()];
-        for (z, f) in zs.into_iter().zip(values) {
-            if let Some(f) = f {
-                self.admit(Point { z, f });
-            }
+        for p in values.into_iter().flatten() {
+            self.admit(p);
         }
         Ok(())
     }
 
-    /// Takes a new point: a better one becomes the centre; a finite one joins the set
-    /// (the set's farthest point from the centre leaves when it holds 2d + 1).
+    /// Takes a new point: a better one becomes the centre; one with a finite objective
+    /// joins the set (a design that misses a limit too: its objective and ratios are
+    /// samples of the models; the set's farthest point from the centre leaves when it
+    /// holds 2d + 1).
     fn admit(&mut self, p: Point) {
         if p.f < self.centre.f {
             self.centre = p.clone();
         }
-        if !p.f.is_finite() || self.points.iter().any(|q| q.z == p.z) {
+        if !p.objective().is_finite() || self.points.iter().any(|q| q.z == p.z) {
             return;
         }
         self.points.push(p);
@@ -274,10 +364,11 @@ impl ModelSearch {
         }
     }
 
-    /// The least-change model at the centre in s = (z − c)/Δ: gradient, Hessian (in s),
-    /// and the value scale it was fitted at. `None` when the set does not determine a
-    /// gradient (fewer than d + 1 points) or the solve fails.
-    fn model(&self, d: usize) -> Option<(DVector<f64>, DMatrix<f64>, f64)> {
+    /// The least-change model at the centre in s = (z − c)/Δ (gradient, Hessian in s, and
+    /// the value scale it was fitted at) and, where every point of the set carries the
+    /// limits' ratios, a least-norm model of each ratio. `None` when the set does not
+    /// determine a gradient (fewer than d + 1 points) or the solve fails.
+    fn model(&self, d: usize) -> Option<Fit> {
         let c = &self.centre;
         let delta = self.radius;
         let m = self.points.len();
@@ -290,10 +381,11 @@ impl ModelSearch {
             .map(|p| DVector::from_iterator(d, p.z.iter().zip(&c.z).map(|(z, c)| (z - c) / delta)))
             .collect();
         let h0 = DMatrix::from_row_slice(d, d, &self.hessian) * (delta * delta);
+        let fc = c.objective();
         let scale = match self
             .points
             .iter()
-            .map(|p| (p.f - c.f).abs())
+            .map(|p| (p.objective() - fc).abs())
             .fold(0.0, f64::max)
         {
             v if v > 0.0 && v.is_finite() => v,
@@ -312,18 +404,92 @@ impl ModelSearch {
                 w[(k, m + 1 + i)] = s[k][i];
                 w[(m + 1 + i, k)] = s[k][i];
             }
-            rhs[k] = (self.points[k].f - c.f) / scale - 0.5 * s[k].dot(&(&h0 / scale * &s[k]));
+            rhs[k] =
+                (self.points[k].objective() - fc) / scale - 0.5 * s[k].dot(&(&h0 / scale * &s[k]));
         }
-        let x = w.svd(true, true).solve(&rhs, 1e-12).ok()?;
-        let g = DVector::from_iterator(d, (0..d).map(|i| x[m + 1 + i]));
-        let mut h = &h0 / scale;
-        for k in 0..m {
-            h += &s[k] * s[k].transpose() * x[k];
-        }
+        let svd = w.svd(true, true);
+        // the quadratic of the multipliers x: gradient and Hessian (in s) added to `h0`
+        let quadratic = |x: &DVector<f64>, h0: DMatrix<f64>| {
+            let g = DVector::from_iterator(d, (0..d).map(|i| x[m + 1 + i]));
+            let mut h = h0;
+            for k in 0..m {
+                h += &s[k] * s[k].transpose() * x[k];
+            }
+            (g, h)
+        };
+        let x = svd.solve(&rhs, 1e-12).ok()?;
+        let (g, h) = quadratic(&x, &h0 / scale);
         if g.iter().chain(h.iter()).any(|v| !v.is_finite()) {
             return None;
         }
-        Some((g, h, scale))
+        // the limits: every ratio of every point, least-norm (no memory), same system
+        let ratios = |p: &Point| p.limits.as_ref().map(|l| l.ratios.clone());
+        let rc = ratios(c).filter(|r| !r.is_empty());
+        let mut limits = Vec::new();
+        if let Some(rc) = rc
+            && self
+                .points
+                .iter()
+                .all(|p| ratios(p).is_some_and(|r| r.len() == rc.len()))
+        {
+            for (j, &r0) in rc.iter().enumerate() {
+                let mut rhs = DVector::zeros(n);
+                for k in 0..m {
+                    rhs[k] = self.points[k]
+                        .limits
+                        .as_ref()
+                        .expect("checked above")
+                        .ratios[j]
+                        - r0;
+                }
+                let Ok(x) = svd.solve(&rhs, 1e-12) else {
+                    continue;
+                };
+                let (gj, hj) = quadratic(&x, DMatrix::zeros(d, d));
+                if r0.is_finite() && gj.iter().chain(hj.iter()).all(|v| v.is_finite()) {
+                    limits.push(LimitModel {
+                        at: r0,
+                        g: gj,
+                        h: hj,
+                    });
+                }
+            }
+        }
+        Some(Fit {
+            g,
+            h,
+            scale,
+            limits,
+        })
+    }
+
+    /// The linearised limits that can bind inside the trust box (a ratio whose linear
+    /// model reaches 1 − [`LIMIT_MARGIN`] somewhere in it), as rows gᵀs ≤ 1 − margin − r(c),
+    /// and the curvature they add to the step's model: the Hessian of the most binding
+    /// one times its multiplier, estimated by least squares from g_f + λ g_r = 0 (the
+    /// Lagrangian's curvature of an SQP step).
+    fn binding_limits(fit: &Fit) -> (Vec<Cut>, Option<DMatrix<f64>>) {
+        let target = 1.0 - LIMIT_MARGIN;
+        let mut cuts = Vec::new();
+        let mut most: Option<(&LimitModel, f64)> = None;
+        for l in &fit.limits {
+            let reach = l.at + l.g.iter().map(|v| v.abs()).sum::<f64>();
+            if reach <= target {
+                continue;
+            }
+            // (a centre past the target already, by round-off or the margin: no step may
+            // raise the ratio further)
+            cuts.push((l.g.as_slice().to_vec(), (target - l.at).max(0.0)));
+            if most.is_none_or(|(_, r)| l.at > r) {
+                most = Some((l, l.at));
+            }
+        }
+        let curvature = most.and_then(|(l, _)| {
+            let gg = l.g.dot(&l.g);
+            let lambda = -fit.g.dot(&l.g) / gg;
+            (gg > 0.0 && lambda > 0.0 && lambda.is_finite()).then(|| &l.h * lambda)
+        });
+        (cuts, curvature)
     }
 
     /// One model step (see the module doc).
@@ -334,19 +500,24 @@ impl ModelSearch {
     ) -> Result<(), OptError> {
         let d = space.dim();
         let delta = self.radius;
-        let Some((g, h, scale)) = self.model(d) else {
+        let Some(fit) = self.model(d) else {
             self.stop = Some(StopReason::NoProgress);
             return Ok(());
         };
+        let (g, h, scale) = (&fit.g, &fit.h, fit.scale);
         // the least-change memory, back in z
-        self.hessian = (&h * (scale / (delta * delta))).as_slice().to_vec();
+        self.hessian = (h * (scale / (delta * delta))).as_slice().to_vec();
         // (nalgebra is column-major; H is symmetric, so rows = columns)
         let c = self.centre.clone();
-        let hp = qp::clip_to_psd(&h, 0.0);
-        let step = trust_step(space, &c.z, delta, &hp, g.as_slice());
+        let (cuts, curvature) = Self::binding_limits(&fit);
+        let hp = match curvature {
+            Some(hl) => qp::clip_to_psd(&(h + hl), 0.0),
+            None => qp::clip_to_psd(h, 0.0),
+        };
+        let step = trust_step(space, &c.z, delta, &hp, g.as_slice(), &cuts);
         let trial = step.and_then(|s| {
             let sv = DVector::from_column_slice(&s);
-            let pred = -(g.dot(&sv) + 0.5 * sv.dot(&(&h * &sv))) * scale;
+            let pred = -(g.dot(&sv) + 0.5 * sv.dot(&(h * &sv))) * scale;
             let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + delta * s).collect();
             clamp01(&mut z);
             let len = dist_inf(&z, &c.z);
@@ -369,12 +540,12 @@ impl ModelSearch {
             self.shrink();
             return Ok(());
         };
-        let Some(f) = self.values(space, ev, std::slice::from_ref(&z))?[0] else {
+        let Some(p) = self.values(space, ev, std::slice::from_ref(&z))?.remove(0) else {
             self.stop = Some(StopReason::Budget);
             return Ok(());
         };
-        let rho = (c.f - f) / pred;
-        self.admit(Point { z, f });
+        let rho = (c.f - p.f) / pred;
+        self.admit(p);
         if rho >= 0.7 && len >= 0.9 * delta {
             self.radius = (2.0 * delta).min(MAX_RADIUS);
         } else if rho < 0.1 || rho.is_nan() {
@@ -421,8 +592,8 @@ impl ModelSearch {
             c[i] - delta
         };
         clamp01(&mut z);
-        match self.values(space, ev, std::slice::from_ref(&z))?[0] {
-            Some(f) => self.admit(Point { z, f }),
+        match self.values(space, ev, std::slice::from_ref(&z))?.remove(0) {
+            Some(p) => self.admit(p),
             None => self.stop = Some(StopReason::Budget),
         }
         Ok(())
@@ -434,6 +605,52 @@ impl ModelSearch {
             self.stop = Some(StopReason::Tolerance);
         }
     }
+}
+
+/// A linear constraint aᵀs ≤ b of a trust step (a linearised limit).
+type Cut = (Vec<f64>, f64);
+
+/// The models of one fit ([`ModelSearch::model`]).
+struct Fit {
+    /// The objective's gradient in s, over `scale`.
+    g: DVector<f64>,
+    /// Its Hessian in s, over `scale`.
+    h: DMatrix<f64>,
+    /// The value scale of `g` and `h`.
+    scale: f64,
+    /// The limits' ratios.
+    limits: Vec<LimitModel>,
+}
+
+/// The least-norm quadratic model of one limit ratio around the centre, in s.
+struct LimitModel {
+    /// The ratio at the centre.
+    at: f64,
+    /// Its gradient.
+    g: DVector<f64>,
+    /// Its Hessian.
+    h: DMatrix<f64>,
+}
+
+/// A point of a line search.
+#[derive(Debug, Clone, Copy)]
+struct Tried {
+    /// log α.
+    la: f64,
+    /// What the refiner minimises (+∞: missed a limit or collapsed).
+    f: f64,
+    /// The objective whether the limits pass or not ([`Point::objective`]).
+    raw: f64,
+    /// The largest of the limits' smooth ratios, where the point carries them.
+    governing: Option<f64>,
+}
+
+/// The largest of a point's smooth limit ratios (`None`: it carries none).
+fn governing_ratio(p: &Point) -> Option<f64> {
+    p.limits
+        .as_ref()
+        .filter(|l| !l.ratios.is_empty())
+        .map(|l| l.ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max))
 }
 
 /// The vertex (in log α) of the parabola through three points of a bracket whose middle

@@ -17,13 +17,10 @@ fn value(
 ) -> Result<Point, OptError> {
     clamp01(&mut z);
     if !space.is_feasible(&z) {
-        return Ok(Point {
-            z,
-            f: f64::INFINITY,
-        });
+        return Ok(Point::new(z, f64::INFINITY));
     }
     let f = ev.eval_one(&z)?;
-    Ok(Point { z, f })
+    Ok(Point::new(z, f))
 }
 
 fn sort(s: &mut [Point]) {

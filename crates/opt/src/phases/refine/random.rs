@@ -32,10 +32,7 @@ impl RandomSearch {
     pub fn new(cfg: &RefineConfig) -> Self {
         RandomSearch {
             rng: SplitMix::new(cfg.seed),
-            best: Point {
-                z: Vec::new(),
-                f: f64::INFINITY,
-            },
+            best: Point::new(Vec::new(), f64::INFINITY),
             radius: cfg.initial_radius,
             tolerance: cfg.tolerance,
             fails: 0,
@@ -75,7 +72,7 @@ impl Refiner for RandomSearch {
         };
         let f = ev.eval_one(&z)?;
         if f < self.best.f {
-            self.best = Point { z, f };
+            self.best = Point::new(z, f);
             self.radius = (1.5 * self.radius).min(0.5);
             self.fails = 0;
         } else {

@@ -83,10 +83,7 @@ impl TrustRegion {
     /// A refiner with the study's settings and `budget`.
     pub fn new(cfg: &RefineConfig, budget: usize) -> Self {
         TrustRegion {
-            centre: Point {
-                z: Vec::new(),
-                f: f64::INFINITY,
-            },
+            centre: Point::new(Vec::new(), f64::INFINITY),
             radius: cfg.initial_radius,
             tolerance: cfg.tolerance,
             budget,
@@ -207,7 +204,7 @@ impl TrustRegion {
         let h = qp::clip_to_psd(&h, 0.0);
         // a subproblem clarabel cannot solve (numerically hard model) is treated like a
         // model that predicts no decrease: shrink and refit
-        let Some(s) = trust_step(space, &c.z, *delta, &h, &g) else {
+        let Some(s) = trust_step(space, &c.z, *delta, &h, &g, &[]) else {
             *delta *= 0.5;
             return Ok(());
         };
@@ -223,7 +220,7 @@ impl TrustRegion {
         let f = ev.eval_one(&z)?;
         let rho = (c.f - f) / pred;
         if f < c.f {
-            self.centre = Point { z, f };
+            self.centre = Point::new(z, f);
         }
         if rho >= 0.75 && step >= 0.9 * *delta {
             *delta = (2.0 * *delta).min(0.5);
