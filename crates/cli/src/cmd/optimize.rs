@@ -160,9 +160,14 @@ fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> Strin
         let _ = std::fmt::Write::write_fmt(
             &mut text,
             format_args!(
-                "; post-check of {} single-floor and profile moves of ±{:.1} % of the range: {}",
+                "; post-check of {} single-floor and profile moves of ±{:.1} % of the range{}: {}",
                 s.moves,
                 pct(s.step),
+                if s.polls > 1 {
+                    format!(" (poll {}: each earlier one's best move taken)", s.polls)
+                } else {
+                    String::new()
+                },
                 if s.stationary {
                     format!(
                         "stationary (the best, {}, changes the objective by {:+.3} %; threshold {:.1} %)",

@@ -434,10 +434,26 @@ pub fn refine_sweep(
         stops.push(refine(method, &study.space, &known[s], &mut ev, &cfg, budget)?.stop);
     }
     // the model refiner shows its optimum is stationary: single-floor and profile moves
-    // of max(tolerance, 1 %) of the range, a batch of at most 2d + 2 evaluations
+    // of max(tolerance, 1 %) of the range, a batch of at most 2d + 2 evaluations; while
+    // a move still gains and the starts' budget has room for another batch, the poll
+    // goes on from the better design (a pattern search: a refiner that stopped on its
+    // tolerance with a move left that gains is not done)
     let stationarity = if method == RefineMethod::Model {
-        let at = ev.best().expect("the sweep gave points");
-        post_check(&study.space, &at, &mut ev, cfg.tolerance.max(0.01))?
+        let step = cfg.tolerance.max(0.01);
+        let batch = 2 * study.space.dim() + 2;
+        let mut s = post_check(
+            &study.space,
+            &ev.best().expect("the sweep gave points"),
+            &mut ev,
+            step,
+        )?;
+        let mut polls = 1;
+        while s.as_ref().is_some_and(|s| !s.stationary) && ev.count() + batch <= budget {
+            let at = ev.best().expect("the sweep gave points");
+            s = post_check(&study.space, &at, &mut ev, step)?;
+            polls += 1;
+        }
+        s.map(|s| Stationarity { polls, ..s })
     } else {
         None
     };

@@ -132,6 +132,9 @@ struct StationarityEntry<'a> {
     stationary: bool,
     /// The threshold, relative.
     threshold: f64,
+    /// Polls made (more than one when the budget had room after a poll that gained).
+    #[serde(skip_serializing_if = "is_one")]
+    polls: usize,
 }
 
 /// `optimum.json`.
@@ -168,6 +171,10 @@ struct OptimumFile<'a> {
     /// The recommended design's code check (a study with limits).
     #[serde(skip_serializing_if = "Option::is_none")]
     check: Option<CheckEntry>,
+}
+
+fn is_one(v: &usize) -> bool {
+    *v == 1
 }
 
 /// Pretty JSON with a final newline; through a [`serde_json::Value`], so object keys are
@@ -257,6 +264,7 @@ impl StudyReport {
                     best_move: &s.best_move,
                     stationary: s.stationary,
                     threshold: crate::phases::refine::STATIONARY_GAIN,
+                    polls: s.polls,
                 }),
                 finalists: r
                     .finalists

@@ -121,6 +121,9 @@ pub struct Stationarity {
     pub best_move: String,
     /// Whether no move gains more than [`STATIONARY_GAIN`].
     pub stationary: bool,
+    /// Polls made: the first, and each one more the budget had room for after a poll
+    /// whose best move gained (that move taken).
+    pub polls: usize,
 }
 
 /// Polls the moves of [`Stationarity`] around `at` (their evaluations join `ev`, so a
@@ -173,5 +176,6 @@ pub fn post_check(
         best_gain: gain,
         best_move: moves[k].0.clone(),
         stationary: gain <= STATIONARY_GAIN,
+        polls: 1,
     }))
 }

@@ -39,7 +39,11 @@
 //! whose limits are far from binding steps exactly as without them); the most binding
 //! one adds its curvature times its least-squares multiplier to the model's Hessian
 //! (the Lagrangian of an SQP step). The centre always meets the limits, so s = 0 is
-//! feasible and every step a decrease of a passing design. A line search whose best
+//! feasible and every step a decrease of a passing design. A step that misses a limit is
+//! followed back along itself to where the ratios, linear between the centre and the
+//! trial, reach the margin (one evaluation); a decrease that passes there keeps the
+//! radius, so a rough limit (a residual drift) does not shrink the region to the
+//! tolerance by itself. A line search whose best
 //! point has a neighbour that misses a limit at a lower objective walks to the limit
 //! (the secant of log ratio in log α, up to [`LIMIT_EVALUATIONS`] more points): the
 //! least dampers that meet the limits (`objective.cost`) lie where a limit binds.
@@ -545,7 +549,26 @@ impl ModelSearch {
             return Ok(());
         };
         let rho = (c.f - p.f) / pred;
+        let back = Self::back_to_limit(&c, &p);
         self.admit(p);
+        // a step that missed a limit: back along it to where the limits' ratios, linear
+        // between the centre and the trial, reach the margin; a decrease that passes
+        // there keeps the radius
+        if let Some(t) = back
+            && self.room(ev) > 0
+        {
+            let mut zb: Vec<f64> = c.z.iter().zip(&z).map(|(c, z)| c + t * (z - c)).collect();
+            clamp01(&mut zb);
+            if space.is_feasible(&zb)
+                && let Some(pb) = self.values(space, ev, std::slice::from_ref(&zb))?.remove(0)
+            {
+                let better = pb.f < c.f;
+                self.admit(pb);
+                if better {
+                    return Ok(());
+                }
+            }
+        }
         if rho >= 0.7 && len >= 0.9 * delta {
             self.radius = (2.0 * delta).min(MAX_RADIUS);
         } else if rho < 0.1 || rho.is_nan() {
@@ -555,6 +578,26 @@ impl ModelSearch {
             self.shrink();
         }
         Ok(())
+    }
+
+    /// Where to go back along a step c → p that missed a limit (p stands: its objective
+    /// is finite): the fraction t of the step at which the first ratio, linear between
+    /// the centre and p, reaches 1 − [`LIMIT_MARGIN`], kept within [0.1, 0.9]. `None`
+    /// when p met the limits, collapsed, or carries no ratios.
+    fn back_to_limit(c: &Point, p: &Point) -> Option<f64> {
+        let (lc, lp) = (c.limits.as_ref()?, p.limits.as_ref()?);
+        if p.f.is_finite() || !lp.objective.is_finite() || lc.ratios.len() != lp.ratios.len() {
+            return None;
+        }
+        let target = 1.0 - LIMIT_MARGIN;
+        let t = lc
+            .ratios
+            .iter()
+            .zip(&lp.ratios)
+            .filter(|(rc, rp)| **rp > target && rp > rc)
+            .map(|(rc, rp)| (target - rc) / (rp - rc))
+            .fold(f64::INFINITY, f64::min);
+        t.is_finite().then(|| t.clamp(0.1, 0.9))
     }
 
     /// Replaces the set's farthest point by one at the radius along the coordinate the
