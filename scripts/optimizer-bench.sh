@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The refiners in ten and twenty dimensions. Each row is one `slipload optimize`
+# The refiners in ten, twenty and forty dimensions. Each row is one `slipload optimize`
 # with the case's 16-point Halton sweep and one refiner; the objective is the study's own
 # number (sweep fidelity). The cases (buildings, studies, rows) are defined once in
 # scripts/optimizer_cases.py, which scripts/optimizer_peers.py reads too.
@@ -18,13 +18,20 @@
 # design-level suite with its property bounds and limit (33 runs a design), from the
 # neutral start (every slip load 3000 kN): model at 60 evaluations (+ 42 post-check
 # moves), trust-region and nelder-mead at its 102, model at 240 as the long run.
+# forty: the same frame at forty storeys (storey stiffness 700 to 350 MN/m, bare-frame
+# T1 = 3.94 s; slip loads 0-6000 kN, about twice what the storey-shear profile's best
+# scale puts at the base), the same suite, from the neutral start (3000 kN): model at 120
+# evaluations (3 a slip load, as in the other cases, + 82 post-check moves), trust-region
+# and nelder-mead at its 202, model at 480 as the long run. A forty-storey design takes
+# about 2 s on 2 cores, so the long run alone may take up to ~20 min (580 designs if it
+# spends its whole budget) and the case about 40 min.
 #
-# Writes results/optimizer/{ten-story-check,twenty-story}.{md,json}
+# Writes results/optimizer/{ten-story-check,twenty-story,forty-story}.{md,json}
 # (objective, its gap to the best known, refinement designs, simulations, wall time, why
 # it stopped, the post-check) and best-known.json (each case's best design with its
 # objective). Builds into $CARGO_TARGET_DIR when it is set, else target/.
-# Usage: scripts/optimizer-bench.sh [ten|twenty]...   (from anywhere; about 15 and 8
-# min; no argument: both)
+# Usage: scripts/optimizer-bench.sh [ten|twenty|forty]...   (from anywhere; about 15, 8
+# and 40 min; no argument: ten and twenty)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet -p slipload

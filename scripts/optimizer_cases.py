@@ -10,6 +10,8 @@ worst case, its limits) and its objective, the mean peak storey drift ratio:
   1500 kN, the middle of the box).
 - twenty: a twenty-storey yielding frame written here, twenty free slip loads 0-6000 kN,
   the design-level suite only (33 runs a design), from the neutral start (3000 kN).
+- forty: the same frame at forty storeys, forty free slip loads 0-6000 kN, the
+  design-level suite (33 runs a design), from the neutral start (3000 kN).
 
 `write_case(root, case, folder)` writes the case's start buildings into `folder` and
 returns the study (a dict without building and refine settings), the starts (name ->
@@ -25,6 +27,8 @@ CASES = {
             "title": "Refiners on the ten-storey check example (10 slip loads, 66 runs per design)"},
     "twenty": {"name": "twenty-story", "n": 20, "upper_kn": 6000, "runs": 33,
                "title": "Refiners on a twenty-storey yielding frame (20 slip loads, 33 runs per design)"},
+    "forty": {"name": "forty-story", "n": 40, "upper_kn": 6000, "runs": 33,
+              "title": "Refiners on a forty-storey yielding frame (40 slip loads, 33 runs per design)"},
 }
 
 # the benchmark's rows per case: (refiner, max_evaluations, starts)
@@ -32,11 +36,12 @@ ROWS = {
     "ten": [("model", 24, 1), ("trust-region", 12, 1), ("trust-region", 46, 1),
             ("nelder-mead", 46, 1), ("model", 120, 2)],
     "twenty": [("model", 60, 1), ("trust-region", 102, 1), ("nelder-mead", 102, 1), ("model", 240, 1)],
+    "forty": [("model", 120, 1), ("trust-region", 202, 1), ("nelder-mead", 202, 1), ("model", 480, 1)],
 }
 
 # the model refiner's row in each case: the default budget of 3 evaluations a slip load
 # (the ten-storey example's own setting there), neutral start; the peers get its designs
-MODEL_ROW = {"ten": 24, "twenty": 60}
+MODEL_ROW = {"ten": 24, "twenty": 60, "forty": 120}
 
 # designs of every sweep: 16 Halton points, the bare frame and the building file's design
 SWEEP_DESIGNS = 18
@@ -83,7 +88,7 @@ def write_case(root, case, folder):
         starts = {"file": os.path.join(configs, "ten-story-yielding.json"), "neutral": neutral}
     else:
         n, upper = spec["n"], spec["upper_kn"]
-        stiffness = {"twenty": (900, 520)}[case]
+        stiffness = {"twenty": (900, 520), "forty": (700, 350)}[case]
         building = {"name": f"{case}-story-yielding, every slip load {upper // 2} kN"}
         building.update(yielding_frame(n, *stiffness, upper // 2))
         study["name"] = spec["name"]
