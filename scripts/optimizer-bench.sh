@@ -19,8 +19,9 @@
 # neutral start (every slip load 3000 kN): model at 60 evaluations (+ 42 post-check
 # moves), trust-region and nelder-mead at its 102, model at 240 as the long run.
 # forty: the same frame at forty storeys (storey stiffness 700 to 350 MN/m, bare-frame
-# T1 = 3.94 s; slip loads 0-6000 kN, about twice what the storey-shear profile's best
-# scale puts at the base), the same suite, from the neutral start (3000 kN): model at 120
+# T1 = 3.94 s; slip loads 0-12000 kN, twice what the dampers need: in a 0-6000 kN box the
+# optimum pressed most floors against the bound), the same suite, from the neutral start
+# (6000 kN, uniform slip loads near their best scale: see scripts/optimizer_cases.py): model at 120
 # evaluations (3 a slip load, as in the other cases, + 82 post-check moves), trust-region
 # and nelder-mead at its 202, model at 480 as the long run. A forty-storey design takes
 # about 2 s on 2 cores, so the long run alone may take up to ~20 min (580 designs if it
