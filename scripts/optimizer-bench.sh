@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The refiners in ten and twenty dimensions. Each row is one `slipload optimize` with the
-# case's 16-point Halton sweep and one refiner; the objective is the study's own number
-# (sweep fidelity).
+# The refiners in ten, twenty and forty dimensions. Each row is one `slipload optimize`
+# with the case's 16-point Halton sweep and one refiner; the objective is the study's own
+# number (sweep fidelity). The cases (buildings, studies, rows) are defined once in
+# scripts/optimizer_cases.py, which scripts/optimizer_peers.py reads too.
 #
 # ten: the ten-storey check example (configs/study-ten-story-check.json: 10 free slip
 # loads, 2 hazard levels x 11 records x 3 property cases, limits; 66 runs a design), from
@@ -17,61 +18,39 @@
 # design-level suite with its property bounds and limit (33 runs a design), from the
 # neutral start (every slip load 3000 kN): model at 60 evaluations (+ 42 post-check
 # moves), trust-region and nelder-mead at its 102, model at 240 as the long run.
+# forty: the same frame at forty storeys (storey stiffness 700 to 350 MN/m, bare-frame
+# T1 = 3.94 s; slip loads 0-12000 kN, twice what the dampers need: in a 0-6000 kN box the
+# optimum pressed most floors against the bound), the same suite, from the neutral start
+# (6000 kN, uniform slip loads near their best scale: see scripts/optimizer_cases.py): model at 120
+# evaluations (3 a slip load, as in the other cases, + 82 post-check moves), trust-region
+# and nelder-mead at its 202, model at 480 as the long run. A forty-storey design takes
+# about 2 s on 2 cores, so the long run alone may take up to ~20 min (580 designs if it
+# spends its whole budget) and the case about 40 min.
 #
-# Writes results/optimizer/{ten-story-check,twenty-story}.{md,json} (objective, its gap
-# to the best known, refinement designs, simulations, wall time, why it stopped, the
-# post-check) and best-known.json (each case's best design with its objective).
-# Usage: scripts/optimizer-bench.sh [ten|twenty]   (from anywhere; about 15 and 8 min)
+# Writes results/optimizer/{ten-story-check,twenty-story,forty-story}.{md,json}
+# (objective, its gap to the best known, refinement designs, simulations, wall time, why
+# it stopped, the post-check) and best-known.json (each case's best design with its
+# objective). Builds into $CARGO_TARGET_DIR when it is set, else target/.
+# Usage: scripts/optimizer-bench.sh [ten|twenty|forty]...   (from anywhere; about 15, 8
+# and 40 min; no argument: ten and twenty)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet -p slipload
-bin=$PWD/target/release/slipload
+bin=${CARGO_TARGET_DIR:-$PWD/target}/release/slipload
 out=results/optimizer
 mkdir -p "$out"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cases=${1:-ten twenty}
+cases=${*:-ten twenty}
 
 for case in $cases; do
     mkdir -p "$tmp/$case"
     python3 - "$PWD" "$tmp/$case" "$case" <<'EOF'
 import json, os, sys
 root, tmp, case = sys.argv[1:4]
-configs = os.path.join(root, "configs")
-study = json.load(open(os.path.join(configs, "study-ten-story-check.json")))
-for s in study["suites"]:
-    s["records"] = [os.path.normpath(os.path.join(configs, r)) for r in s["records"]]
-if case == "ten":
-    building = json.load(open(os.path.join(configs, "ten-story-yielding.json")))
-    for d in building["dissipators"]:
-        d["slip_load"] = "1500 kN"
-    building["name"] = "ten-story-yielding, every slip load 1500 kN"
-    json.dump(building, open(os.path.join(tmp, "neutral-building.json"), "w"), indent=1)
-    starts = {"file": os.path.join(configs, "ten-story-yielding.json"),
-              "neutral": os.path.join(tmp, "neutral-building.json")}
-    rows = [("model", 24, 1), ("trust-region", 12, 1), ("trust-region", 46, 1),
-            ("nelder-mead", 46, 1), ("model", 120, 2)]
-else:
-    n = 20
-    k = [900 - 380 * i / (n - 1) for i in range(n)]
-    building = {
-        "name": "twenty-story-yielding, every slip load 3000 kN",
-        "floor_masses": ["350 t"] * (n - 1) + ["280 t"],
-        "storey_stiffness": [f"{v:.1f} MN/m" for v in k],
-        "damping": {"modal": {"ratio": 0.02}},
-        "storey_heights": ["3.5 m"] * n,
-        "storey_yield": [{"storey": i + 1, "yield_drift": "26.25 mm", "post_yield_ratio": 0.02} for i in range(n)],
-        "p_delta": {},
-        "dissipators": [{"floor": i + 1, "brace_stiffness": f"{k[i]:.1f} MN/m", "mass": 0,
-                         "brace_damping": 0, "slip_load": "3000 kN"} for i in range(n)],
-    }
-    json.dump(building, open(os.path.join(tmp, "neutral-building.json"), "w"), indent=1)
-    study["name"] = "twenty-story"
-    study["suites"] = study["suites"][:1]
-    study["space"] = {"free": {"lower_kn": [0] * n, "upper_kn": [6000] * n}}
-    study.pop("devices", None)
-    starts = {"neutral": os.path.join(tmp, "neutral-building.json")}
-    rows = [("model", 60, 1), ("trust-region", 102, 1), ("nelder-mead", 102, 1), ("model", 240, 1)]
+sys.path.insert(0, os.path.join(root, "scripts"))
+from optimizer_cases import write_case
+study, starts, rows = write_case(root, case, tmp)
 for start, path in starts.items():
     for method, evals, n_starts in rows:
         x = json.loads(json.dumps(study))
@@ -84,13 +63,12 @@ EOF
         echo "== $case: $name" >&2
         "$bin" --threads 2 optimize "$f" --out "$tmp/$case/out.$name" --quiet > "$tmp/$case/$name.txt"
     done
-    python3 - "$tmp/$case" "$out" "$case" <<'EOF'
+    python3 - "$tmp/$case" "$out" "$case" "$PWD" <<'EOF'
 import json, os, re, sys
-tmp, out, case = sys.argv[1:4]
-name, title = {
-    "ten": ("ten-story-check", "Refiners on the ten-storey check example (10 slip loads, 66 runs per design)"),
-    "twenty": ("twenty-story", "Refiners on a twenty-storey yielding frame (20 slip loads, 33 runs per design)"),
-}[case]
+tmp, out, case, root = sys.argv[1:5]
+sys.path.insert(0, os.path.join(root, "scripts"))
+from optimizer_cases import CASES, MODEL_ROW
+name, title = CASES[case]["name"], CASES[case]["title"]
 runs = []
 for f in sorted(os.listdir(tmp)):
     if not (f.endswith(".txt") and f.count(".") == 3):
@@ -109,7 +87,8 @@ for f in sorted(os.listdir(tmp)):
 best_known = min(runs, key=lambda r: r["objective"])
 for r in runs:
     r["gap_percent"] = 100.0 * (r["objective"] / best_known["objective"] - 1.0)
-runs.sort(key=lambda r: (r["start"] != "neutral", r["refiner"] != "model" or r["max_evaluations"] > 100,
+# the model row (the default budget) first, then the others by budget, the long run last
+runs.sort(key=lambda r: (r["start"] != "neutral", r["refiner"] != "model" or r["max_evaluations"] != MODEL_ROW[case],
                          r["max_evaluations"], r["refiner"]))
 json.dump({"case": name, "best_known": best_known, "runs": runs},
           open(os.path.join(out, name + ".json"), "w"), indent=1)

@@ -1,19 +1,27 @@
-"""Peers of the model refiner on the ten-storey check example, at equal simulations.
+"""Peers of the model refiner on the optimizer benchmark's cases, at equal simulations.
 
-CMA-ES (pycma) and pymoo's genetic algorithm minimise the study's own objective of
-configs/study-ten-story-check.json (mean peak storey drift ratio, worst of the three
-property cases, averaged over both hazard levels; a design that misses a limit or
-collapses scores +inf, as the refiners see it) through the Python package: each design is
-the study's 66 simulations at its sweep fidelity (`slipload.evaluate_objectives`, whose
-first objective, the study's drift objective, is checked below against the number
-`optimize` reported for the model refiner's optimum). Each peer gets as many designs as
-the model refiner's row of results/optimizer/ten-story-check.json from the neutral start
-used in all (sweep and refinement designs; the finalists' check and the design table not
-counted), and starts from what it needs, not from a design: CMA-ES from the middle of the
-box, the GA from a random population. Seeds 1, 2, 3.
+CMA-ES (pycma), pymoo's genetic algorithm and nevergrad's recommended general optimizer
+(NGOpt) minimise a case's own objective (scripts/optimizer_cases.py: the study
+scripts/optimizer-bench.sh runs; mean peak storey drift ratio, worst of the three property
+cases, averaged over the case's hazard levels; a design that misses a limit or collapses
+scores +inf, as the refiners see it) through the Python package: each design is the
+study's simulations at its sweep fidelity (`slipload.evaluate_objectives`, whose first
+objective, the study's drift objective, is checked below against the number `optimize`
+reported for the model refiner's optimum). Each peer gets as many designs as the model
+refiner's row of the case's benchmark file (results/optimizer/<case>.json) from the
+neutral start used in all (sweep and refinement designs, its post-check included; the
+finalists' check and the design table not counted), and starts from what it needs, not
+from a design: CMA-ES and NGOpt from the middle of the box, the GA from a random
+population. Seeds 1, 2, 3.
 
-Writes results/optimizer/peers.{json,md}. Usage (with the package and cma, pymoo
-installed; scripts/optimizer-peers.sh does that): python3 scripts/optimizer_peers.py
+A design asked again (the same slip loads to the bit) is not simulated again: the
+objective is deterministic, so it is read from the earlier evaluation; it still counts
+as one of the peer's designs.
+
+Writes results/optimizer/peers.{json,md} for the ten case and
+results/optimizer/peers-<case>.{json,md} for the others. Usage (with the package and cma,
+pymoo, nevergrad installed; scripts/optimizer-peers.sh does that):
+python3 scripts/optimizer_peers.py [ten|twenty|forty]   (default ten)
 """
 
 import json
@@ -21,6 +29,7 @@ import math
 import os
 import statistics
 import sys
+import tempfile
 
 import numpy as np
 
@@ -28,19 +37,25 @@ import slipload
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "results", "optimizer")
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from optimizer_cases import CASES, MODEL_ROW, SWEEP_DESIGNS, write_case  # noqa: E402
+
 SEEDS = [1, 2, 3]
 # a design the refiners reject (+inf) is this much, a drift ratio of 100 %, for the peers
 # that need finite values; worse than every design that passes
 REJECTED = 1.0
+# what each case's table calls its study
+LABEL = {"ten": "ten-storey check example", "twenty": "twenty-storey yielding frame",
+         "forty": "forty-storey yielding frame"}
 
 
-def study_dict():
-    configs = os.path.join(ROOT, "configs")
-    study = json.load(open(os.path.join(configs, "study-ten-story-check.json")))
-    for s in study["suites"]:
-        s["records"] = [os.path.normpath(os.path.join(configs, r)) for r in s["records"]]
-    study["building"] = os.path.join(configs, "ten-story-yielding.json")
-    # the study's objective as the first of two objectives (the second is not read)
+def study_dict(case, folder):
+    """The case's study as the benchmark runs it, with the study's objective as the first
+    of two objectives (the second is not read)."""
+    study, starts, _ = write_case(ROOT, case, folder)
+    # ten: the example's own building file, as this script has used from the start (every
+    # design's slip loads replace its own); the other cases have only the neutral one
+    study["building"] = starts.get("file", starts["neutral"])
     study["objectives"] = [
         {"metric": "peak_drift_ratio", "statistic": "mean"},
         {"metric": "peak_floor_acceleration", "statistic": "mean"},
@@ -49,23 +64,39 @@ def study_dict():
 
 
 def main():
-    bench = json.load(open(os.path.join(OUT, "ten-story-check.json")))
-    model = next(r for r in bench["runs"] if r["start"] == "neutral" and r["refiner"] == "model" and r["max_evaluations"] == 24)
-    sweep_designs = 18  # the example's 16 Halton points, the bare frame and the file's design
-    budget = sweep_designs + model["refine_designs"]
+    case = sys.argv[1] if len(sys.argv) > 1 else "ten"
+    spec = CASES[case]
+    command = "scripts/optimizer-peers.sh" + ("" if case == "ten" else f" {case}")
+    stem = "peers" if case == "ten" else f"peers-{case}"
+    bench = json.load(open(os.path.join(OUT, spec["name"] + ".json")))
+    model = next(r for r in bench["runs"] if r["start"] == "neutral" and r["refiner"] == "model"
+                 and r["max_evaluations"] == MODEL_ROW[case])
+    budget = SWEEP_DESIGNS + model["refine_designs"]
     best_known = bench["best_known"]["objective"]
-    study = slipload.load_study(study_dict())
-    upper = 3000e3  # N, every floor's upper bound (lower 0)
-    d = 10
+    with tempfile.TemporaryDirectory() as folder:
+        study = slipload.load_study(study_dict(case, folder))
+    upper = spec["upper_kn"] * 1e3  # N, every floor's upper bound (lower 0)
+    d = spec["n"]
+    seen = {}
+
+    def evaluate_loads(loads):
+        loads = np.ascontiguousarray(loads, dtype=float)
+        new = [row for row in loads if row.tobytes() not in seen]
+        if new:
+            fs = slipload.evaluate_objectives(study, np.array(new), progress=False)[:, 0]
+            seen.update((row.tobytes(), float(f)) for row, f in zip(new, fs))
+        return np.array([seen[row.tobytes()] for row in loads])
 
     def evaluate(z):
-        loads = np.ascontiguousarray(np.clip(np.asarray(z, dtype=float), 0.0, 1.0) * upper)
-        return slipload.evaluate_objectives(study, loads, progress=False)[:, 0]
+        return evaluate_loads(np.clip(np.asarray(z, dtype=float), 0.0, 1.0) * upper)
 
     # the first objective is the study's: the model refiner's optimum gives its number
-    check = evaluate([np.array(model["slip_loads_kN"]) * 1e3 / upper])[0]
+    # (its slip loads as optimize wrote them, not through the scaled variables, whose
+    # round trip may move the last bit)
+    check = evaluate_loads([np.array(model["slip_loads_kN"]) * 1e3])[0]
     same = bool(check == model["objective"])
     print(f"the study's objective through evaluate_objectives: {check!r} against optimize's {model['objective']!r}", file=sys.stderr)
+    seen.clear()  # the check's design is not one of any peer's
 
     rows = []
     import cma
@@ -104,8 +135,29 @@ def main():
     for seed in SEEDS:
         problem = Drift()
         minimize(problem, GA(pop_size=16), get_termination("n_eval", budget), seed=seed, verbose=False)
-        seen = problem.seen[:budget]
-        rows.append({"peer": "GA (pymoo, population 16)", "seed": seed, "designs": len(seen), "objective": min(seen)})
+        got = problem.seen[:budget]
+        rows.append({"peer": "GA (pymoo, population 16)", "seed": seed, "designs": len(got), "objective": min(got)})
+        print(rows[-1], file=sys.stderr)
+
+    import nevergrad as ng
+
+    for seed in SEEDS:
+        param = ng.p.Array(init=np.full(d, 0.5), lower=0.0, upper=1.0)
+        param.random_state = np.random.RandomState(seed)
+        opt = ng.optimizers.NGOpt(parametrization=param, budget=budget, num_workers=1)
+        best, chose = math.inf, None
+        for _ in range(budget):
+            x = opt.ask()
+            if chose is None:
+                # the optimizer NGOpt chose for this dimension, budget and one worker
+                inner = opt
+                while getattr(inner, "optim", None) is not None:
+                    inner = inner.optim
+                chose = getattr(inner, "name", type(inner).__name__)
+            f = float(evaluate([x.value])[0])
+            best = min(best, f)
+            opt.tell(x, f if math.isfinite(f) else REJECTED)
+        rows.append({"peer": f"NGOpt (nevergrad, chose {chose})", "seed": seed, "designs": budget, "objective": best})
         print(rows[-1], file=sys.stderr)
 
     for r in rows:
@@ -114,25 +166,34 @@ def main():
     for peer in sorted({r["peer"] for r in rows}):
         vals = [r["objective"] for r in rows if r["peer"] == peer]
         summary[peer] = {"median": statistics.median(vals), "best": min(vals)}
+    gap = 100 * (model["objective"] / best_known - 1)
     result = {
-        "case": "configs/study-ten-story-check.json, neutral start",
+        "case": ("configs/study-ten-story-check.json, neutral start" if case == "ten"
+                 else f"{spec['name']} (scripts/optimizer_cases.py), neutral start"),
+        "command": command,
         "designs_each": budget,
         "best_known": best_known,
         "model_refiner": {"objective": model["objective"], "designs": budget},
         "objective_reproduced_bit_for_bit": same,
+        "simulations_run": len(seen) * spec["runs"],
         "runs": rows,
         "summary": summary,
     }
-    with open(os.path.join(OUT, "peers.json"), "w") as f:
+    with open(os.path.join(OUT, stem + ".json"), "w") as f:
         json.dump(result, f, indent=1)
-    with open(os.path.join(OUT, "peers.md"), "w") as f:
-        f.write(f"# Peers at equal simulations: ten-storey check example, {budget} designs of 66 simulations each\n\n")
-        f.write(f"Best known {best_known:.7f}; the model refiner's row (neutral start, sweep and refinement designs) {model['objective']:.6f} ({100 * (model['objective'] / best_known - 1):+.2f} %). Made by `scripts/optimizer-peers.sh`.\n\n")
+    with open(os.path.join(OUT, stem + ".md"), "w") as f:
+        f.write(f"# Peers at equal simulations: {LABEL[case]}, {budget} designs of {spec['runs']} simulations each\n\n")
+        f.write(f"Best known {best_known:.7f}; the model refiner's row (neutral start, sweep and refinement designs) {model['objective']:.6f} ({gap:+.2f} %). Made by `{command}`.\n\n")
         f.write("| optimiser | seed | designs | best objective | vs best known |\n|---|---:|---:|---:|---:|\n")
-        f.write(f"| model refiner (slipload) | — | {budget} | {model['objective']:.6f} | {100 * (model['objective'] / best_known - 1):+.2f} % |\n")
+        f.write(f"| model refiner (slipload) | — | {budget} | {model['objective']:.6f} | {gap:+.2f} % |\n")
         for r in rows:
             f.write(f"| {r['peer']} | {r['seed']} | {r['designs']} | {r['objective']:.6f} | {r['gap_percent']:+.2f} % |\n")
-    print(open(os.path.join(OUT, "peers.md")).read())
+        f.write(f"\nOver the seeds, against the model refiner's {gap:+.2f} %:\n\n| optimiser | best | median |\n|---|---:|---:|\n")
+        for peer, s in summary.items():
+            f.write(f"| {peer} | {100 * (s['best'] / best_known - 1):+.2f} % | {100 * (s['median'] / best_known - 1):+.2f} % |\n")
+        if not same:
+            f.write(f"\nThe study's objective through `evaluate_objectives` ({check!r}) is not the number `optimize` reported ({model['objective']!r}): the peers' numbers are not comparable.\n")
+    print(open(os.path.join(OUT, stem + ".md")).read())
 
 
 if __name__ == "__main__":

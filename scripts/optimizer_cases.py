@@ -1,0 +1,104 @@
+"""The optimizer benchmark's cases, one definition for scripts/optimizer-bench.sh and
+scripts/optimizer_peers.py.
+
+Every case runs the suites of configs/study-ten-story-check.json (records scaled to the
+design spectrum, slip-load property bounds x 0.85 / x 1.15 with the objective read at the
+worst case, its limits) and its objective, the mean peak storey drift ratio:
+
+- ten: the example itself, ten free slip loads 0-3000 kN, both hazard levels (66 runs a
+  design), from the building file's design and from a neutral start (every slip load
+  1500 kN, the middle of the box).
+- twenty: a twenty-storey yielding frame written here, twenty free slip loads 0-6000 kN,
+  the design-level suite only (33 runs a design), from the neutral start (3000 kN).
+- forty: the same frame at forty storeys, forty free slip loads 0-12000 kN, the
+  design-level suite (33 runs a design), from the neutral start (6000 kN). The box is
+  twice what the dampers need: in a 0-6000 kN box the model refiner put most floors
+  within 1 % of the bound, and uniform slip loads do best near 5000 kN (objective
+  0.00454 at 3000 kN, 0.00426 at 5000, 0.00431 at 6000, 0.00475 at 9000).
+
+`write_case(root, case, folder)` writes the case's start buildings into `folder` and
+returns the study (a dict without building and refine settings), the starts (name ->
+building file) and the benchmark's rows (refiner, max_evaluations, starts).
+"""
+
+import json
+import os
+
+# name of the result files, title of the benchmark table, slip loads, box (kN), runs a design
+CASES = {
+    "ten": {"name": "ten-story-check", "n": 10, "upper_kn": 3000, "runs": 66,
+            "title": "Refiners on the ten-storey check example (10 slip loads, 66 runs per design)"},
+    "twenty": {"name": "twenty-story", "n": 20, "upper_kn": 6000, "runs": 33,
+               "title": "Refiners on a twenty-storey yielding frame (20 slip loads, 33 runs per design)"},
+    "forty": {"name": "forty-story", "n": 40, "upper_kn": 12000, "runs": 33,
+              "title": "Refiners on a forty-storey yielding frame (40 slip loads, 33 runs per design)"},
+}
+
+# the benchmark's rows per case: (refiner, max_evaluations, starts)
+ROWS = {
+    "ten": [("model", 24, 1), ("trust-region", 12, 1), ("trust-region", 46, 1),
+            ("nelder-mead", 46, 1), ("model", 120, 2)],
+    "twenty": [("model", 60, 1), ("trust-region", 102, 1), ("nelder-mead", 102, 1), ("model", 240, 1)],
+    "forty": [("model", 120, 1), ("trust-region", 202, 1), ("nelder-mead", 202, 1), ("model", 480, 1)],
+}
+
+# the model refiner's row in each case: the default budget of 3 evaluations a slip load
+# (the ten-storey example's own setting there), neutral start; the peers get its designs
+MODEL_ROW = {"ten": 24, "twenty": 60, "forty": 120}
+
+# designs of every sweep: 16 Halton points, the bare frame and the building file's design
+SWEEP_DESIGNS = 18
+
+
+def yielding_frame(n, k_bottom, k_top, slip_kn):
+    """A shear frame of n storeys 3.5 m high, floors of 350 t (the roof 280 t), storey
+    stiffness falling linearly from k_bottom to k_top (MN/m), yielding at 0.75 % drift
+    with 2 % post-yield stiffness, P-Delta, 2 % modal damping, and one massless friction
+    damper per floor on a brace as stiff as its storey, every slip load slip_kn."""
+    k = [k_bottom - (k_bottom - k_top) * i / (n - 1) for i in range(n)]
+    return {
+        "floor_masses": ["350 t"] * (n - 1) + ["280 t"],
+        "storey_stiffness": [f"{v:.1f} MN/m" for v in k],
+        "damping": {"modal": {"ratio": 0.02}},
+        "storey_heights": ["3.5 m"] * n,
+        "storey_yield": [{"storey": i + 1, "yield_drift": "26.25 mm", "post_yield_ratio": 0.02} for i in range(n)],
+        "p_delta": {},
+        "dissipators": [{"floor": i + 1, "brace_stiffness": f"{k[i]:.1f} MN/m", "mass": 0,
+                         "brace_damping": 0, "slip_load": f"{slip_kn} kN"} for i in range(n)],
+    }
+
+
+def check_study(root):
+    """configs/study-ten-story-check.json with its record paths made absolute."""
+    configs = os.path.join(root, "configs")
+    study = json.load(open(os.path.join(configs, "study-ten-story-check.json")))
+    for s in study["suites"]:
+        s["records"] = [os.path.normpath(os.path.join(configs, r)) for r in s["records"]]
+    return study
+
+
+def write_case(root, case, folder):
+    """(study, starts, rows) of a case, its start buildings written into folder."""
+    configs = os.path.join(root, "configs")
+    study = check_study(root)
+    spec = CASES[case]
+    neutral = os.path.join(folder, "neutral-building.json")
+    if case == "ten":
+        building = json.load(open(os.path.join(configs, "ten-story-yielding.json")))
+        for d in building["dissipators"]:
+            d["slip_load"] = "1500 kN"
+        building["name"] = "ten-story-yielding, every slip load 1500 kN"
+        starts = {"file": os.path.join(configs, "ten-story-yielding.json"), "neutral": neutral}
+    else:
+        n, upper = spec["n"], spec["upper_kn"]
+        stiffness = {"twenty": (900, 520), "forty": (700, 350)}[case]
+        building = {"name": f"{case}-story-yielding, every slip load {upper // 2} kN"}
+        building.update(yielding_frame(n, *stiffness, upper // 2))
+        study["name"] = spec["name"]
+        study["suites"] = study["suites"][:1]
+        study["space"] = {"free": {"lower_kn": [0] * n, "upper_kn": [upper] * n}}
+        study.pop("devices", None)
+        starts = {"neutral": neutral}
+    with open(neutral, "w") as f:
+        json.dump(building, f, indent=1)
+    return study, starts, ROWS[case]
