@@ -65,14 +65,21 @@ def study_dict(case, folder):
     return study
 
 
-def main():
-    case = sys.argv[1] if len(sys.argv) > 1 else "ten"
+def case_files(case):
+    """A case's spec, the command that makes its peers files, their stem, and the model
+    refiner's row of its bench file (with the bench file's best known)."""
     spec = CASES[case]
     command = "scripts/optimizer-peers.sh" + ("" if case == "ten" else f" {case}")
     stem = "peers" if case == "ten" else f"peers-{case}"
     bench = json.load(open(os.path.join(OUT, spec["name"] + ".json")))
     model = next(r for r in bench["runs"] if r["start"] == "neutral" and r["refiner"] == "model"
                  and r["max_evaluations"] == MODEL_ROW[case])
+    return spec, command, stem, bench, model
+
+
+def main():
+    case = sys.argv[1] if len(sys.argv) > 1 else "ten"
+    spec, command, stem, bench, model = case_files(case)
     budget = SWEEP_DESIGNS + model["refine_designs"]
     best_known = bench["best_known"]["objective"]
     with tempfile.TemporaryDirectory() as folder:
@@ -170,12 +177,7 @@ def regrade(case):
     """Rewrites a case's peers files from their own runs against the best design now known
     (results/optimizer/<case>.json, which a later bench run may have improved): no
     simulation; the file says it was re-read."""
-    spec = CASES[case]
-    command = "scripts/optimizer-peers.sh" + ("" if case == "ten" else f" {case}")
-    stem = "peers" if case == "ten" else f"peers-{case}"
-    bench = json.load(open(os.path.join(OUT, spec["name"] + ".json")))
-    model = next(r for r in bench["runs"] if r["start"] == "neutral" and r["refiner"] == "model"
-                 and r["max_evaluations"] == MODEL_ROW[case])
+    spec, command, stem, bench, model = case_files(case)
     old = json.load(open(os.path.join(OUT, stem + ".json")))
     if old["model_refiner"]["objective"] != model["objective"]:
         sys.exit(f"{stem}.json was run against a model row of {old['model_refiner']['objective']!r}, "
