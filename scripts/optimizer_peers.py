@@ -88,7 +88,7 @@ def main():
     digest = hashlib.sha256(json.dumps(identity, sort_keys=True).encode()).hexdigest()[:16]
     cache_path = os.path.join(ROOT, "target", "optimizer-peers", f"{case}-{digest}.jsonl")
     os.makedirs(os.path.dirname(cache_path), exist_ok=True)
-    seen, used = {}, set()
+    seen, asked = {}, set()
     if os.path.exists(cache_path):
         for line in open(cache_path):
             try:
@@ -111,7 +111,7 @@ def main():
                 seen[row.tobytes()] = float(f)
                 cache.write(json.dumps({"x": row.tobytes().hex(), "f": float(f)}) + "\n")
             cache.flush()
-        used.update(row.tobytes() for row in loads)
+        asked.update(row.tobytes() for row in loads)
         return np.array([seen[row.tobytes()] for row in loads])
 
     def evaluate(z):
@@ -202,7 +202,7 @@ def main():
         "model_refiner": {"objective": model["objective"], "designs": budget},
         "objective_reproduced_bit_for_bit": same,
         # the distinct designs the peers asked for, each the study's simulations once
-        "simulations_run": len(used) * spec["runs"],
+        "simulations_run": len(asked) * spec["runs"],
         "runs": rows,
         "summary": summary,
     }
