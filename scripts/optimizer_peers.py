@@ -16,7 +16,11 @@ population. Seeds 1, 2, 3.
 
 A design asked again (the same slip loads to the bit) is not simulated again: the
 objective is deterministic, so it is read from the earlier evaluation; it still counts
-as one of the peer's designs.
+as one of the peer's designs. The evaluations are also appended to
+target/optimizer-peers/<case>-<study hash>.jsonl, so a run that was stopped continues
+where it stopped (the seeds replay the same designs); the hash covers the study with its
+building's content and the package version. The check of the model refiner's number
+always simulates.
 
 Writes results/optimizer/peers.{json,md} for the ten case and
 results/optimizer/peers-<case>.{json,md} for the others. Usage (with the package and cma,
@@ -26,6 +30,7 @@ python3 scripts/optimizer_peers.py CASE --regrade rewrites a case's files from t
 runs against the best design its bench file now knows (no simulation).
 """
 
+import hashlib
 import json
 import math
 import os
@@ -83,17 +88,39 @@ def main():
     budget = SWEEP_DESIGNS + model["refine_designs"]
     best_known = bench["best_known"]["objective"]
     with tempfile.TemporaryDirectory() as folder:
-        study = slipload.load_study(study_dict(case, folder))
+        raw = study_dict(case, folder)
+        study = slipload.load_study(raw)
+        identity = dict(raw, building=json.load(open(raw["building"])), version=slipload.__version__)
     upper = spec["upper_kn"] * 1e3  # N, every floor's upper bound (lower 0)
     d = spec["n"]
-    seen = {}
+    # evaluations of this study by this script, kept across runs (the key is the design's bytes)
+    digest = hashlib.sha256(json.dumps(identity, sort_keys=True).encode()).hexdigest()[:16]
+    cache_path = os.path.join(ROOT, "target", "optimizer-peers", f"{case}-{digest}.jsonl")
+    os.makedirs(os.path.dirname(cache_path), exist_ok=True)
+    seen, asked = {}, set()
+    if os.path.exists(cache_path):
+        for line in open(cache_path):
+            try:
+                e = json.loads(line)
+            except ValueError:
+                continue  # a line torn by a stop
+            seen[bytes.fromhex(e["x"])] = float(e["f"])
+        print(f"{len(seen)} evaluations read from {cache_path}", file=sys.stderr)
+    cache = open(cache_path, "a")
+
+    def simulate(loads):
+        return slipload.evaluate_objectives(study, np.ascontiguousarray(loads, dtype=float), progress=False)[:, 0]
 
     def evaluate_loads(loads):
         loads = np.ascontiguousarray(loads, dtype=float)
         new = [row for row in loads if row.tobytes() not in seen]
         if new:
-            fs = slipload.evaluate_objectives(study, np.array(new), progress=False)[:, 0]
-            seen.update((row.tobytes(), float(f)) for row, f in zip(new, fs))
+            fs = simulate(np.array(new))
+            for row, f in zip(new, fs):
+                seen[row.tobytes()] = float(f)
+                cache.write(json.dumps({"x": row.tobytes().hex(), "f": float(f)}) + "\n")
+            cache.flush()
+        asked.update(row.tobytes() for row in loads)
         return np.array([seen[row.tobytes()] for row in loads])
 
     def evaluate(z):
@@ -102,10 +129,9 @@ def main():
     # the first objective is the study's: the model refiner's optimum gives its number
     # (its slip loads as optimize wrote them, not through the scaled variables, whose
     # round trip may move the last bit)
-    check = evaluate_loads([np.array(model["slip_loads_kN"]) * 1e3])[0]
+    check = simulate([np.array(model["slip_loads_kN"]) * 1e3])[0]
     same = bool(check == model["objective"])
     print(f"the study's objective through evaluate_objectives: {check!r} against optimize's {model['objective']!r}", file=sys.stderr)
-    seen.clear()  # the check's design is not one of any peer's
 
     rows = []
     import cma
@@ -170,7 +196,7 @@ def main():
         print(rows[-1], file=sys.stderr)
 
     write(case, spec, command, stem, budget, best_known, model, rows, same, check,
-          len(seen) * spec["runs"], regraded=False)
+          len(asked) * spec["runs"], regraded=False)
 
 
 def regrade(case):
@@ -204,6 +230,7 @@ def write(case, spec, command, stem, budget, best_known, model, rows, same, chec
         "best_known": best_known,
         "model_refiner": {"objective": model["objective"], "designs": budget},
         "objective_reproduced_bit_for_bit": same,
+        # the distinct designs the peers asked for, each the study's simulations once
         "simulations_run": simulations,
         "runs": rows,
         "summary": summary,
