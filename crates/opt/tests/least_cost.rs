@@ -6,10 +6,10 @@
 //! cost without limits, or beside response terms, is refused naming the field.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
+mod common;
+
 use slipload_opt::Study;
-use slipload_opt::eval::progress::NoProgress;
-use slipload_opt::pipeline::{NoFigures, OptimizeOptions, OptimizeRun, optimize_study};
-use slipload_opt::store::folder::FolderRequest;
+use slipload_opt::pipeline::OptimizeRun;
 
 fn path() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json")
@@ -36,18 +36,7 @@ fn run(v: &serde_json::Value, tag: &str) -> OptimizeRun {
     let dir =
         std::env::temp_dir().join(format!("slipload-least-cost-{}-{tag}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let run = optimize_study(
-        &study,
-        &OptimizeOptions::default(),
-        FolderRequest {
-            path: &dir,
-            option: "--out",
-            fresh: true,
-        },
-        &NoProgress,
-        &NoFigures,
-    )
-    .unwrap();
+    let run = common::optimize_fresh(&study, &dir);
     std::fs::remove_dir_all(&dir).unwrap();
     run
 }

@@ -6,8 +6,8 @@
 //! limit.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
-use nalgebra::DMatrix;
-use slipload_opt::DesignSpace;
+mod common;
+
 use slipload_opt::model::config::{RefineConfig, RefineMethod};
 use slipload_opt::phases::refine::{Evaluations, LimitValues, Point, refine};
 
@@ -58,28 +58,11 @@ impl Problem {
     }
 }
 
-/// [0, 1]^n as slip loads 0–3000 kN, with a storey-shear-like profile (1 at the first
-/// variable falling to 0.3 at the last).
-fn space(n: usize) -> DesignSpace {
-    DesignSpace {
-        dampers: (0..n).collect(),
-        offset: vec![0.0; n],
-        basis: DMatrix::from_diagonal_element(n, n, 3.0e6),
-        a: DMatrix::zeros(0, n),
-        b: vec![],
-        names: (0..n).map(|i| format!("floor{}", i + 1)).collect(),
-        shape: None,
-        profile: (0..n)
-            .map(|i| 1.0 - 0.7 * i as f64 / (n - 1) as f64)
-            .collect(),
-    }
-}
-
 /// The model refiner from the neutral start (every variable 0.7, which meets the limit
 /// with room) with `budget` evaluations: the best point and every point evaluated.
 fn run(n: usize, budget: usize) -> (Point, Vec<Point>, f64) {
     let p = Problem::new(n);
-    let sp = space(n);
+    let sp = common::free_space(n);
     let z0 = vec![0.7; n];
     let (f, limits) = p.value(&z0);
     assert!(f.is_finite(), "the start meets the limit");
@@ -142,7 +125,7 @@ fn a_limit_far_from_binding_leaves_the_refiner_as_without_limits() {
     // corner, where the sum is least
     let n = 10;
     let p = Problem::new(n);
-    let sp = space(n);
+    let sp = common::free_space(n);
     let value = |z: &[f64]| -> (f64, Option<LimitValues>) {
         let (_, l) = p.value(z);
         let l = l.unwrap();

@@ -5,8 +5,9 @@
 //! and the stationarity post-check say what happened.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
+mod common;
+
 use nalgebra::{DMatrix, DVector};
-use slipload_opt::DesignSpace;
 use slipload_opt::model::config::{RefineConfig, RefineMethod};
 use slipload_opt::phases::refine::{
     Evaluations, Point, STATIONARY_GAIN, StopReason, post_check, refine,
@@ -80,28 +81,11 @@ impl Valley {
     }
 }
 
-/// [0, 1]^n as slip loads 0–3000 kN, with a storey-shear-like profile (1 at the first
-/// variable falling to 0.3 at the last: not the minimum's shape).
-fn space(n: usize) -> DesignSpace {
-    DesignSpace {
-        dampers: (0..n).collect(),
-        offset: vec![0.0; n],
-        basis: DMatrix::from_diagonal_element(n, n, 3.0e6),
-        a: DMatrix::zeros(0, n),
-        b: vec![],
-        names: (0..n).map(|i| format!("floor{}", i + 1)).collect(),
-        shape: None,
-        profile: (0..n)
-            .map(|i| 1.0 - 0.7 * i as f64 / (n - 1) as f64)
-            .collect(),
-    }
-}
-
 /// Runs `method` from the neutral start (every variable 0.5) with `budget` evaluations;
 /// returns the best point and the evaluations made.
 fn run(method: RefineMethod, n: usize, budget: usize) -> (Point, usize, StopReason, Vec<Point>) {
     let valley = Valley::new(n);
-    let sp = space(n);
+    let sp = common::free_space(n);
     let cfg = RefineConfig::default();
     let z0 = vec![0.5; n];
     let start = Point {
@@ -186,7 +170,7 @@ fn the_same_start_gives_the_same_bits() {
 fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
     let n = 10;
     let valley = Valley::new(n);
-    let sp = space(n);
+    let sp = common::free_space(n);
     let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| valley.f(z)).collect());
     let at_min = Point {
         z: valley.star.clone(),
@@ -215,9 +199,6 @@ fn the_post_check_finds_the_valley_floor_stationary_and_a_slope_not() {
 #[test]
 fn a_model_study_gives_the_same_bytes_on_one_and_two_threads() {
     use slipload_opt::Study;
-    use slipload_opt::eval::progress::NoProgress;
-    use slipload_opt::pipeline::{NoFigures, OptimizeOptions, optimize_study};
-    use slipload_opt::store::folder::FolderRequest;
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/study-benchmark.json");
     let mut v: serde_json::Value =
@@ -239,21 +220,7 @@ fn a_model_study_gives_the_same_bytes_on_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .unwrap();
-        let run = pool
-            .install(|| {
-                optimize_study(
-                    &study,
-                    &OptimizeOptions::default(),
-                    FolderRequest {
-                        path: &dir,
-                        option: "--out",
-                        fresh: true,
-                    },
-                    &NoProgress,
-                    &NoFigures,
-                )
-            })
-            .unwrap();
+        let run = pool.install(|| common::optimize_fresh(&study, &dir));
         let r = &run.report.refine;
         // the budget, then the post-check's 2d + 2 moves
         assert!(r.log.len() <= 14 + 2 * 3 + 2, "{} evaluations", r.log.len());
