@@ -10,7 +10,7 @@ mod common;
 use nalgebra::{DMatrix, DVector};
 use slipload_opt::model::config::{RefineConfig, RefineMethod};
 use slipload_opt::phases::refine::{
-    Evaluations, Point, STATIONARY_GAIN, StopReason, post_check, refine,
+    Evaluations, Point, STATIONARY_GAIN, StopReason, post_check, refine, refine_starts,
 };
 
 /// The minimum: a profile falling from 0.62 at the first variable to 0.26 at the last
@@ -164,6 +164,58 @@ fn the_same_start_gives_the_same_bits() {
     let (b, _, _, lb) = run(RefineMethod::Model, 10, 60);
     assert_eq!(a.f.to_bits(), b.f.to_bits());
     assert_eq!(la, lb);
+}
+
+/// Starts side by side (`parallel_starts`): each start's evaluations are exactly those it
+/// makes alone (the other start does not feed it), each within its own budget, on one
+/// thread or two.
+#[test]
+fn starts_side_by_side_take_the_paths_they_take_alone() {
+    let n = 10;
+    let valley = Valley::new(n);
+    let sp = common::free_space(n);
+    let point = |z: Vec<f64>| Point::new(z.clone(), valley.f(&z));
+    let starts = [point(vec![0.5; n]), point(vec![0.35; n])];
+    let known: Vec<Point> = starts.to_vec();
+    let evaluations = || {
+        let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| valley.f(z)).collect());
+        Evaluations::new(Box::new(oracle), known.clone())
+    };
+    let budget = 30;
+    let alone: Vec<Vec<Point>> = starts
+        .iter()
+        .map(|s| {
+            let cfg = RefineConfig {
+                max_evaluations: budget,
+                ..RefineConfig::default()
+            };
+            let mut ev = evaluations();
+            refine(RefineMethod::Model, &sp, s, &mut ev, &cfg, budget).unwrap();
+            ev.log
+        })
+        .collect();
+    let refs: Vec<&Point> = starts.iter().collect();
+    let cfg = RefineConfig {
+        max_evaluations: budget,
+        parallel_starts: true,
+        ..RefineConfig::default()
+    };
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let (log, stops) = pool
+            .install(|| {
+                refine_starts(RefineMethod::Model, &sp, &refs, evaluations, &cfg)
+                    .map(|(ev, stops)| (ev.log, stops))
+            })
+            .unwrap();
+        assert_eq!(stops, vec![StopReason::Budget; 2], "{threads} threads");
+        assert_eq!(log.len(), 2 * budget);
+        assert_eq!(log[..budget], alone[0][..], "{threads} threads");
+        assert_eq!(log[budget..], alone[1][..], "{threads} threads");
+    }
 }
 
 #[test]

@@ -372,6 +372,11 @@ pub struct RefineConfig {
     /// Most design evaluations per start (default 40).
     #[serde(default = "default_max_evals")]
     pub max_evaluations: usize,
+    /// Run the starts side by side, each with its own `max_evaluations` and the sweep's
+    /// designs, independent of the others (default false: one after the other, a later
+    /// start seeing the earlier ones' designs and taking what they left of the budget).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub parallel_starts: bool,
     /// Stop when the step (trust radius, simplex size) falls below this, in variables
     /// scaled to [0, 1] (default 2e-3).
     #[serde(default = "default_tolerance")]
@@ -412,6 +417,7 @@ impl Default for RefineConfig {
             method: default_refiner(),
             starts: default_starts(),
             max_evaluations: default_max_evals(),
+            parallel_starts: false,
             tolerance: default_tolerance(),
             initial_radius: default_radius(),
             finalists: default_finalists(),

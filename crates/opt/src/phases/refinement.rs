@@ -10,13 +10,13 @@ use crate::model::config::RefineMethod;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
 use crate::phases::refine::{
-    Evaluations, LimitValues, Point, Stationarity, StopReason, post_check, refine,
+    Evaluations, LimitValues, Point, Stationarity, StopReason, post_check, refine_starts,
 };
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
-use std::cell::RefCell;
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Mutex;
 
 /// Finalists differ by at least this much in some scaled variable (5 % of its range), so
 /// that the check compares designs, not round-off around one design.
@@ -400,16 +400,19 @@ pub fn refine_sweep(
     }
     // a study with a front keeps the runs of the evaluations: they are its candidates
     let keep_runs = !study.objectives.is_empty();
-    let kept = RefCell::new(RefinedRuns::default());
-    let oracle = {
-        let bare = bare.clone();
+    let kept = Mutex::new(RefinedRuns::default());
+    let oracle = || {
+        let bare = &bare;
         let kept = &kept;
+        let sweep_fid = &sweep_fid;
         move |zs: &[Vec<f64>]| -> Result<Vec<(f64, Option<LimitValues>)>, OptError> {
             let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
-            let runs = run_designs_journalled(study, &designs, &sweep_fid, front.journal, tick)?;
-            let values = values_of(study, &designs, &runs, &bare, target)?;
+            let runs = run_designs_journalled(study, &designs, sweep_fid, front.journal, tick)?;
+            let values = values_of(study, &designs, &runs, bare, target)?;
             if keep_runs {
-                let mut k = kept.borrow_mut();
+                let mut k = kept
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner);
                 for (z, r) in zs.iter().zip(runs) {
                     k.0.insert(RefinedRuns::key(z), r);
                 }
@@ -417,22 +420,29 @@ pub fn refine_sweep(
             Ok(values)
         }
     };
-    let mut ev = Evaluations::with_limits(Box::new(oracle), known.clone());
-    if let Some(path) = journal {
-        let (appender, replay) = crate::store::journal::open_journal::<Point>(
+    let journal = match journal {
+        Some(path) => Some(crate::store::journal::open_journal::<Point>(
             path,
             "refine",
             &manifest.fingerprint,
             crate::store::journal::Reuse::Resume,
-        )?;
-        ev = ev.with_journal(replay, Box::new(move |p: &Point| appender.append(p)));
-    }
-    let mut budget = 0;
-    let mut stops = Vec::new();
-    for &s in order.iter().take(cfg.starts) {
-        budget += cfg.max_evaluations;
-        stops.push(refine(method, &study.space, &known[s], &mut ev, &cfg, budget)?.stop);
-    }
+        )?),
+        None => None,
+    };
+    // the evaluations of a refiner: the known points, the journal's replay and its hook
+    let evaluations = || {
+        let ev = Evaluations::with_limits(Box::new(oracle()), known.clone());
+        match &journal {
+            Some((appender, replay)) => ev.with_journal(
+                replay.clone(),
+                Box::new(move |p: &Point| appender.append(p)),
+            ),
+            None => ev,
+        }
+    };
+    let starts: Vec<&Point> = order.iter().take(cfg.starts).map(|&s| &known[s]).collect();
+    let budget = cfg.max_evaluations * starts.len();
+    let (mut ev, stops) = refine_starts(method, &study.space, &starts, evaluations, &cfg)?;
     // the model refiner shows its optimum is stationary: single-floor and profile moves
     // of max(tolerance, 1 %) of the range, a batch of at most 2d + 2 evaluations; while
     // a move still gains and the starts' budget has room for another batch, the poll
@@ -461,7 +471,9 @@ pub fn refine_sweep(
     let log = ev.log.clone();
     let replayed = ev.replayed;
     drop(ev);
-    let runs = kept.into_inner();
+    let runs = kept
+        .into_inner()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     Ok(Refinement {
         runs,
         stops,

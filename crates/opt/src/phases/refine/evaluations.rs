@@ -269,6 +269,18 @@ impl<'a> Evaluations<'a> {
         Ok(())
     }
 
+    /// Points evaluated by another [`Evaluations`] of the same objective (a start run side
+    /// by side), joined in their order: counted as new evaluations and known from now on,
+    /// not computed again (the journal's hook saw them where they were computed).
+    /// `replayed`: how many of them that one took from the journal.
+    pub fn absorb(&mut self, points: Vec<Point>, replayed: usize) {
+        self.replayed += replayed;
+        for p in points {
+            self.cache.insert(key(&p.z), (p.f, p.limits.clone()));
+            self.log.push(p);
+        }
+    }
+
     /// Objective at one point.
     pub fn eval_one(&mut self, z: &[f64]) -> Result<f64, OptError> {
         Ok(self.eval(&[z.to_vec()])?[0])

@@ -25,6 +25,7 @@ pub use trust_region::TrustRegion;
 use crate::base::error::OptError;
 use crate::model::config::{RefineConfig, RefineMethod};
 use crate::model::space::DesignSpace;
+use rayon::prelude::*;
 
 /// A refiner's answer and why it stopped.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,6 +101,54 @@ pub fn refine(
         RefineMethod::Random => Box::new(RandomSearch::new(cfg)),
     };
     run(r.as_mut(), space, start, ev, budget)
+}
+
+/// Runs `method` from each of `starts`, each with `cfg.max_evaluations` evaluations;
+/// `evaluations` makes the evaluations of a refinement (the points known before it, the
+/// journal). Returns the evaluations of all starts (in the order of the starts) and why
+/// each start stopped.
+///
+/// With `cfg.parallel_starts` the starts run side by side, each on evaluations of its own
+/// (the known points and its own), so its path does not depend on the other starts or
+/// on the threads; their evaluations join in the order of the starts. Otherwise they run
+/// one after the other on one set of evaluations: a later start sees the earlier ones'
+/// points and takes what they left of the budget.
+pub fn refine_starts<'a, E>(
+    method: RefineMethod,
+    space: &DesignSpace,
+    starts: &[&Point],
+    evaluations: E,
+    cfg: &RefineConfig,
+) -> Result<(Evaluations<'a>, Vec<StopReason>), OptError>
+where
+    E: Fn() -> Evaluations<'a> + Sync,
+{
+    let mut ev = evaluations();
+    let mut stops = Vec::with_capacity(starts.len());
+    if cfg.parallel_starts && starts.len() > 1 {
+        // (why it stopped, its evaluations, how many of them the journal gave)
+        type Start = (StopReason, Vec<Point>, usize);
+        let runs: Vec<Result<Start, OptError>> = starts
+            .par_iter()
+            .map(|start| {
+                let mut own = evaluations();
+                let r = refine(method, space, start, &mut own, cfg, cfg.max_evaluations)?;
+                Ok((r.stop, std::mem::take(&mut own.log), own.replayed))
+            })
+            .collect();
+        for run in runs {
+            let (stop, log, replayed) = run?;
+            stops.push(stop);
+            ev.absorb(log, replayed);
+        }
+    } else {
+        let mut budget = 0;
+        for start in starts {
+            budget += cfg.max_evaluations;
+            stops.push(refine(method, space, start, &mut ev, cfg, budget)?.stop);
+        }
+    }
+    Ok((ev, stops))
 }
 
 /// A design counts as stationary when no poll move lowers its objective by more than
