@@ -6,7 +6,7 @@ use super::check::{
     check_floor_masses, check_magnitudes, dissipators, per_floor, square, storey_yield,
     unstable_frame,
 };
-use super::config::{BuildingConfig, DampingConfig, PDeltaConfig};
+use super::config::{BuildingConfig, DampingConfig, PDeltaConfig, RayleighConfig};
 use super::validated::Building;
 use crate::error::SimError;
 use crate::modes::Modes;
@@ -60,6 +60,144 @@ fn gravity_loads(
             Ok(p)
         }
     }
+}
+
+/// α and β of Rayleigh damping as written: given, or from the ratios ζᵢ, ζⱼ at two
+/// circular frequencies ωᵢ ≠ ωⱼ (two modes of the bare frame, or two periods), solving
+/// ζ = α/(2ω) + βω/2 at both (Chopra, Dynamics of Structures, §11.4):
+/// α = 2ωᵢωⱼ(ζᵢωⱼ − ζⱼωᵢ)/(ωⱼ² − ωᵢ²), β = 2(ζⱼωⱼ − ζᵢωᵢ)/(ωⱼ² − ωᵢ²).
+pub(crate) fn rayleigh_coefficients(
+    r: &RayleighConfig,
+    modes: &Modes,
+    path: &Path,
+) -> Result<(f64, f64), SimError> {
+    let field = |name: &str| format!("damping.rayleigh.{name}");
+    let invalid = |name: &str, message: String| SimError::invalid(path, field(name), message);
+    let by_ratios =
+        r.ratio.is_some() || r.ratios.is_some() || r.modes.is_some() || r.periods.is_some();
+    let (alpha, beta) = match (r.alpha, r.beta) {
+        (Some(a), Some(b)) if !by_ratios => (a, b),
+        (None, None) if by_ratios => {
+            let zeta = match (r.ratio, &r.ratios) {
+                (Some(z), None) => [z, z],
+                (None, Some(zs)) if zs.len() == 2 => [zs[0], zs[1]],
+                (None, Some(zs)) => {
+                    return Err(invalid(
+                        "ratios",
+                        format!(
+                            "expected the ratios at the two modes or periods, got {} values",
+                            zs.len()
+                        ),
+                    ));
+                }
+                _ => {
+                    return Err(invalid(
+                        "ratio",
+                        "give exactly one of `ratio` (the same at both) and `ratios` (one per mode or period)".into(),
+                    ));
+                }
+            };
+            if let Some(z) = zeta.iter().find(|z| !(**z >= 0.0 && **z < 1.0)) {
+                return Err(invalid(
+                    if r.ratio.is_some() { "ratio" } else { "ratios" },
+                    format!("a damping ratio is a fraction of critical in [0, 1), got {z}"),
+                ));
+            }
+            let n = modes.omega.len();
+            let omega: [f64; 2] = match (&r.modes, &r.periods) {
+                (Some(ms), None) if ms.len() == 2 => {
+                    if let Some(m) = ms.iter().find(|m| **m == 0 || **m > n) {
+                        return Err(invalid(
+                            "modes",
+                            format!("mode {m}: the bare frame has modes 1 to {n}"),
+                        ));
+                    }
+                    [modes.omega[ms[0] - 1], modes.omega[ms[1] - 1]]
+                }
+                (None, Some(ts)) if ts.len() == 2 => {
+                    if let Some(t) = ts.iter().find(|t| !is_positive(t.0)) {
+                        return Err(invalid(
+                            "periods",
+                            format!("a period must be finite and > 0, got {} s", t.0),
+                        ));
+                    }
+                    let w = |t: f64| 2.0 * std::f64::consts::PI / t;
+                    [w(ts[0].0), w(ts[1].0)]
+                }
+                (Some(v), None) => {
+                    return Err(invalid(
+                        "modes",
+                        format!("expected two modes, got {}", v.len()),
+                    ));
+                }
+                (None, Some(v)) => {
+                    return Err(invalid(
+                        "periods",
+                        format!("expected two periods, got {}", v.len()),
+                    ));
+                }
+                _ => {
+                    return Err(invalid(
+                        "modes",
+                        "give exactly one of `modes` (two modes of the bare frame, 1 = the first) and `periods` (two periods) where the ratios hold".into(),
+                    ));
+                }
+            };
+            let (wi, wj) = (omega[0], omega[1]);
+            // (both finite and > 0 here; closer than 1e-6 the 2 × 2 system is singular
+            // to the digits a ratio is given with)
+            if (wi - wj).abs() <= 1e-6 * wi.max(wj) {
+                return Err(invalid(
+                    if r.modes.is_some() {
+                        "modes"
+                    } else {
+                        "periods"
+                    },
+                    "the two modes or periods must differ: one frequency cannot fix both α and β"
+                        .into(),
+                ));
+            }
+            let d = wj * wj - wi * wi;
+            let alpha = 2.0 * wi * wj * (zeta[0] * wj - zeta[1] * wi) / d;
+            let beta = 2.0 * (zeta[1] * wj - zeta[0] * wi) / d;
+            // round-off of equal ratios may leave a coefficient a hair below 0
+            let clean = |x: f64, scale: f64| {
+                if x < 0.0 && x > -1e-12 * scale {
+                    0.0
+                } else {
+                    x
+                }
+            };
+            let alpha = clean(alpha, zeta[0].max(zeta[1]) * wi.max(wj));
+            let beta = clean(beta, zeta[0].max(zeta[1]) / wi.min(wj));
+            if alpha < 0.0 || beta < 0.0 {
+                return Err(invalid(
+                    if r.ratio.is_some() { "ratio" } else { "ratios" },
+                    format!(
+                        "ratios {} and {} at {:.4} s and {:.4} s give α = {alpha:.6e} 1/s, β = {beta:.6e} s: Rayleigh damping cannot fall or rise that fast between the two (a negative coefficient makes modes with negative damping); bring the ratios closer or use `modal` damping",
+                        zeta[0],
+                        zeta[1],
+                        2.0 * std::f64::consts::PI / wi,
+                        2.0 * std::f64::consts::PI / wj
+                    ),
+                ));
+            }
+            (alpha, beta)
+        }
+        _ => {
+            return Err(SimError::invalid(
+                path,
+                "damping.rayleigh",
+                "give `alpha` and `beta`, or the damping ratio (`ratio` or `ratios`) at two `modes` or two `periods` of the bare frame",
+            ));
+        }
+    };
+    for (name, v) in [("alpha", alpha), ("beta", beta)] {
+        if !is_non_negative(v) {
+            return Err(invalid(name, format!("must be finite and ≥ 0, got {v}")));
+        }
+    }
+    Ok((alpha, beta))
 }
 
 fn chain(values: &[f64]) -> DMatrix<f64> {
@@ -158,17 +296,9 @@ impl Building {
         let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| unstable_frame(cfg, path))?;
         let damping = match &cfg.damping {
             None | Some(DampingConfig::None) => DMatrix::zeros(n, n),
-            Some(DampingConfig::Rayleigh { alpha, beta }) => {
-                for (name, v) in [("alpha", *alpha), ("beta", *beta)] {
-                    if !is_non_negative(v) {
-                        return Err(SimError::invalid(
-                            path,
-                            format!("damping.rayleigh.{name}"),
-                            format!("must be finite and ≥ 0, got {v}"),
-                        ));
-                    }
-                }
-                &mass * *alpha + &stiffness * *beta
+            Some(DampingConfig::Rayleigh(r)) => {
+                let (alpha, beta) = rayleigh_coefficients(r, &modes, path)?;
+                &mass * alpha + &stiffness * beta
             }
             Some(DampingConfig::Modal { ratio, ratios }) => {
                 let zeta: Vec<f64> = match (ratio, ratios) {

@@ -257,7 +257,7 @@ pub(super) fn check_magnitudes(
 
 /// Adds `d`'s brace, locked, to a frame: k′ between floor `floor` − 1 (or the ground) and
 /// floor `floor`, m′ on floor `floor`.
-fn lock_brace(k: &mut DMatrix<f64>, m: &mut DMatrix<f64>, floor: usize, d: &Dissipator) {
+pub(crate) fn lock_brace(k: &mut DMatrix<f64>, m: &mut DMatrix<f64>, floor: usize, d: &Dissipator) {
     let kb = d.brace_stiffness;
     k[(floor, floor)] += kb;
     if floor > 0 {

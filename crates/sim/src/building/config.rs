@@ -3,7 +3,7 @@
 //! Nothing here is validated; `build` and `check` turn it into a
 //! [`Building`](super::validated::Building).
 
-use crate::units::{Damping, Force, Length, Mass, Stiffness};
+use crate::units::{Damping, Force, Length, Mass, Stiffness, Time};
 use serde::{Deserialize, Serialize};
 
 /// A building file, as written.
@@ -95,13 +95,9 @@ pub struct PDeltaConfig {
 pub enum DampingConfig {
     /// No frame damping.
     None,
-    /// Rayleigh: C = α M + β K (bare frame matrices).
-    Rayleigh {
-        /// Mass coefficient α, 1/s.
-        alpha: f64,
-        /// Stiffness coefficient β, s.
-        beta: f64,
-    },
+    /// Rayleigh: C = α M + β K (bare frame matrices), given by its coefficients or by
+    /// the damping ratios it has at two modes or two periods of the bare frame.
+    Rayleigh(RayleighConfig),
     /// Modal damping ratios of the bare frame: one `ratio` for all modes, or `ratios`
     /// per mode (missing modes take the last ratio given).
     Modal {
@@ -117,6 +113,31 @@ pub enum DampingConfig {
     /// Full symmetric damping matrix, N·s/m (entries are numbers or strings with units,
     /// `"509.253 kN·s/m"`).
     Matrix(Vec<Vec<Damping>>),
+}
+
+/// Rayleigh damping as written: `alpha` and `beta`, or the ratio (`ratio` for both, or
+/// `ratios`) at two `modes` (1 = the first) or two `periods` of the bare frame.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RayleighConfig {
+    /// Mass coefficient α, 1/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alpha: Option<f64>,
+    /// Stiffness coefficient β, s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beta: Option<f64>,
+    /// One damping ratio at both modes or periods.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
+    /// The damping ratios at the two modes or periods, in their order.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratios: Option<Vec<f64>>,
+    /// The two modes of the bare frame (1 = the first) where the ratios hold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<Vec<usize>>,
+    /// The two periods where the ratios hold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub periods: Option<Vec<Time>>,
 }
 
 /// One friction dissipator with its brace, as written.

@@ -11,11 +11,12 @@
 //!
 //! Files: `config` (the file as written), `validated` (the validated building and its
 //! parts), `check` (the checks and the physical bands), `build` (the assembly, running
-//! the checks).
+//! the checks), `dynamics` (the modes' damping ratios, the periods with the dampers stuck).
 
 mod build;
 mod check;
 mod config;
+mod dynamics;
 mod validated;
 
 pub use build::{DEFAULT_COLLAPSE_DRIFT_RATIO, STANDARD_GRAVITY};
@@ -25,6 +26,8 @@ pub use check::{
     Plausibility, STOREY_HEIGHT_BAND_M, plausibility, slip_load_plausibility, storey_stiffness,
 };
 pub use config::{
-    BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, SlipLoad, StoreyYieldConfig,
+    BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, RayleighConfig, SlipLoad,
+    StoreyYieldConfig,
 };
+pub use dynamics::Dynamics;
 pub use validated::{Building, Dissipator, StoreyYield};
