@@ -303,7 +303,11 @@ pub(super) fn banded(bench: &mut Bench) -> anyhow::Result<()> {
         );
         // What the banded step buys: the same plans on the dense step (what every frame
         // ran before it), timed in alternation with the banded one.
-        for (n, target) in [(10, 3.0), (50, 6.0)] {
+        // At 50 storeys the 6× target holds; at 10 the 3× target is withdrawn (below the
+        // floor of the banded step: results/performance/README.md, "Issue 30's speed
+        // targets: option A decided") and the row guards against regressions at 20 %
+        // under the recorded floor of 1.39×, as the exact rows' guards are set.
+        for (n, target, withdrawn) in [(10, 1.11, Some(3.0)), (50, 6.0, None)] {
             let p = storey_plan(&building, n)?;
             let (banded, dense) = seconds_banded_dense(&p, &bench.clock, bench.budget)?;
             bench.figs.push(Figure::new(
@@ -312,15 +316,18 @@ pub(super) fn banded(bench: &mut Bench) -> anyhow::Result<()> {
                 dense * 1e3,
                 "ms",
             ));
-            bench.figs.push(
+            let speed_up = || {
                 Figure::new(
                     case,
                     &format!("banded step's speed-up over the dense step, {n} storeys"),
                     dense / banded,
                     "x",
                 )
-                .at_least(target),
-            );
+            };
+            bench.figs.push(speed_up().at_least(target));
+            if let Some(t) = withdrawn {
+                bench.figs.push(speed_up().at_least(t).withdrawn());
+            }
         }
     }
     Ok(())
