@@ -1,6 +1,7 @@
-//! Scene selection shared by `simulate` and `explain`: a scene or building file, or the
-//! embedded default (the benchmark building under the first record of the embedded
-//! synthetic suite), with the flags that override the file.
+//! Scene selection shared by `simulate`, `explain` and `opensees`: a scene or building
+//! file, or the embedded default (the benchmark building under the first record of the
+//! embedded synthetic suite), with the flags that override the file; or one run of a
+//! study's design (`--study`, `--designs`, `--design`, `--run`).
 
 use anyhow::Context;
 use slipload_motion::Units;
@@ -26,6 +27,10 @@ pub struct SceneArgs {
     /// Scale the record to this peak ground acceleration, in g
     #[arg(long, allow_negative_numbers = true)]
     pub scale_pga_g: Option<f64>,
+    /// Multiply the ground motion by this factor (a suite's scale factor; in place of the
+    /// scene's own `scale` or `scale_pga_g`; not with --scale-pga-g)
+    #[arg(long, allow_negative_numbers = true)]
+    pub scale: Option<f64>,
     /// Use only the window START,DURATION of the ground motion, in s or with a unit
     /// (`2,10`, `2s,10s`, `"500 ms,10 s"`). Replaces the scene's window; a window past the
     /// record's end is padded with the ground at rest, as a longer --duration is (a note
@@ -44,6 +49,28 @@ pub struct SceneArgs {
     /// stderr says so)
     #[arg(long, value_parser = parse_time, allow_hyphen_values = true)]
     pub duration: Option<f64>,
+    /// Run a design of a study instead of a scene: the study file; with --designs (its
+    /// output folder), --design and --run, the run is the one the study's check made
+    /// (the suite's scaled record, the property case, the check's method and step;
+    /// --method changes the method only)
+    #[arg(long, value_name = "STUDY.json", requires_all = ["designs", "run"],
+          conflicts_with_all = ["scene", "record", "units", "scale_pga_g", "scale", "window", "dt", "duration"])]
+    pub study: Option<PathBuf>,
+    /// With --study: the study's output folder (its candidates.json) or a candidates file
+    #[arg(long, value_name = "DIR", requires = "study")]
+    pub designs: Option<PathBuf>,
+    /// With --study: the design's name in the candidates (optimum, uniform, storey-shear,
+    /// file, bare, or a name of your candidates file)
+    #[arg(long, default_value = "optimum", requires = "study")]
+    pub design: String,
+    /// With --study: the run, as the study's tables name it: a record's name (or its file
+    /// name, or stem), with ` [lower]` or ` [upper]` after it at a property bound
+    #[arg(long, requires = "study")]
+    pub run: Option<String>,
+    /// With --study: the suite of the run, where its record is in several suites (each
+    /// scales it its own way)
+    #[arg(long, requires = "study")]
+    pub suite: Option<String>,
 }
 
 /// The integration methods as command-line values (help lists them with what they are).
@@ -114,6 +141,14 @@ impl SceneArgs {
     pub fn input_files(&self) -> Vec<PathBuf> {
         use slipload_sim::scene::{BuildingRef, SceneConfig};
         let mut files: Vec<PathBuf> = self.record.iter().cloned().collect();
+        if let Some(study) = &self.study {
+            files.push(study.clone());
+            if let Some(d) = &self.designs {
+                files.push(d.clone());
+                files.push(d.join("candidates.json"));
+                files.push(d.join("manifest.json"));
+            }
+        }
         if let Some(path) = &self.scene {
             files.push(path.clone());
             let text = slipload_motion::limits::read_input_text(
@@ -138,10 +173,27 @@ impl SceneArgs {
     }
 
     fn resolve(&self, histories: bool, plan_only: bool) -> anyhow::Result<Scene> {
+        if let (Some(study), Some(designs), Some(run)) = (&self.study, &self.designs, &self.run) {
+            let loaded = super::study_args::load_study(Some(study))?;
+            let mut scene = slipload_opt::pipeline::design_run_scene(
+                &loaded,
+                &slipload_opt::pipeline::DesignRun {
+                    designs,
+                    design: &self.design,
+                    run,
+                    suite: self.suite.as_deref(),
+                    method: self.method.map(MethodName::from),
+                },
+            )
+            .with_context(|| format!("the design of study {}", study.display()))?;
+            scene.outputs.histories = histories;
+            return Ok(scene);
+        }
         let over = SceneOverrides {
             record: self.record.clone(),
             units: self.units,
             scale_pga_g: self.scale_pga_g,
+            scale: self.scale,
             window: self.window,
             method: self.method.map(MethodName::from),
             dt: self.dt,

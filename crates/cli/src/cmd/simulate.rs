@@ -39,7 +39,7 @@ pub struct SimulateArgs {
     /// the ±μN/k′ thresholds, friction hysteresis, energies, peak drift profile. Turns on
     /// histories and energies; the data go beside the figures (history.csv,
     /// drift-profile.csv, response.json) with the scene that ran (scene.json)
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, value_name = "DIR", conflicts_with = "study")]
     plot: Option<PathBuf>,
     /// With --plot: also run the bare frame — the same scene with no braces, i.e. every
     /// slip load 0 (a brace without friction carries no force) — and draw floor

@@ -267,6 +267,9 @@ pub fn resolved(args: &SceneArgs, scene: &Scene, dir: &Path) -> anyhow::Result<S
         if let Some(p) = args.scale_pga_g {
             record.scale_pga_g = Field::Resolved(p);
         }
+        if let Some(f) = args.scale {
+            record.scale = Field::Resolved(Value::from(f));
+        }
         excitation.synthetic = Field::Absent;
         excitation.record = Field::Resolved(record);
     } else if let Some(mut r) = excitation.record.object()? {
@@ -287,12 +290,24 @@ pub fn resolved(args: &SceneArgs, scene: &Scene, dir: &Path) -> anyhow::Result<S
             r.scale = Field::Absent;
             r.scale_pga_g = Field::Resolved(p);
         }
+        if let Some(f) = args.scale {
+            // --scale replaces the scene's own scaling
+            r.scale_pga_g = Field::Absent;
+            r.scale = Field::Resolved(Value::from(f));
+        }
         excitation.record = Field::Resolved(r);
-    } else if let Some(mut syn) = excitation.synthetic.object()?
-        && let Some(p) = args.scale_pga_g
-    {
-        syn.pga_g = Field::Resolved(p);
-        excitation.synthetic = Field::Resolved(syn);
+    } else if let Some(mut syn) = excitation.synthetic.object()? {
+        // a synthetic motion is generated at its PGA: --scale-pga-g is that PGA, and
+        // --scale makes it the scaled motion's (the same motion to round-off)
+        let pga = match (args.scale_pga_g, args.scale, &scene.record) {
+            (Some(p), _, _) => Some(p),
+            (None, Some(_), Some(r)) => Some(r.pga() / slipload_motion::G),
+            _ => None,
+        };
+        if let Some(p) = pga {
+            syn.pga_g = Field::Resolved(p);
+            excitation.synthetic = Field::Resolved(syn);
+        }
     }
     run.duration = Field::Resolved(scene.duration);
     run.method.name = Field::Resolved(scene.method.name.as_str().to_string());
@@ -320,10 +335,16 @@ mod tests {
             record: None,
             units: None,
             scale_pga_g: None,
+            scale: None,
             window: None,
             method: None,
             dt: None,
             duration: None,
+            study: None,
+            designs: None,
+            design: "optimum".into(),
+            run: None,
+            suite: None,
         }
     }
 

@@ -165,6 +165,25 @@ pub fn design_plan(
     fid: &Fidelity,
     label: &str,
 ) -> Result<Plan, OptError> {
+    let scene = design_scene(study, design, run, fid, label);
+    let wrap = |source| OptError::Simulation {
+        design: label.to_string(),
+        record: study.run_name(run),
+        source: Box::new(source),
+    };
+    Plan::compile(&scene).map_err(wrap)
+}
+
+/// The scene of one run of a design (its record scaled as the suite scales it, the
+/// property case's factors on the slip loads and braces, the fidelity's method and
+/// step), as [`design_plan`] compiles it.
+pub fn design_scene(
+    study: &Study,
+    design: &DesignLoads,
+    run: usize,
+    fid: &Fidelity,
+    label: &str,
+) -> Scene {
     let (case, record) = study.run(run);
     let rec = &study.records[record];
     let n = study.building.floors();
@@ -183,7 +202,7 @@ pub fn design_plan(
         .unwrap_or_else(|| default_dt(fid.method, study.building.t1(), Some(rec.dt()), duration))
         * fid.dt_factor;
     let alpha = hht_alpha(fid.method);
-    let scene = Scene {
+    Scene {
         name: label.to_string(),
         building,
         record: Some(rec.clone()),
@@ -205,13 +224,7 @@ pub fn design_plan(
         },
         reduce: true,
         notes: Vec::new(),
-    };
-    let wrap = |source| OptError::Simulation {
-        design: label.to_string(),
-        record: study.run_name(run),
-        source: Box::new(source),
-    };
-    Plan::compile(&scene).map_err(wrap)
+    }
 }
 
 /// One task: slip loads (N per dissipator) and a record index.

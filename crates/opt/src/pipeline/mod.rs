@@ -45,12 +45,14 @@
 //! [`Phase::ParetoCheck`]: crate::eval::progress::Phase::ParetoCheck
 //! [`Phase::ParetoTable`]: crate::eval::progress::Phase::ParetoTable
 
+mod design_run;
 mod figures;
 mod optimize;
 mod rank;
 mod report;
 mod sweep;
 
+pub use design_run::{DesignRun, design_run_scene};
 pub use figures::{FigureWriter, NoFigures};
 pub use optimize::{OptimizeOptions, OptimizeRun, optimize_study};
 pub use rank::{family_study, rank_study};

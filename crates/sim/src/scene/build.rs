@@ -186,7 +186,9 @@ impl Scene {
                 units,
                 rc.dt.map(|d| d.0),
             )?)?;
-            if let Some(f) = rc.scale {
+            if over.scale.is_some() {
+                // --scale replaces the scene's own scaling (applied below)
+            } else if let Some(f) = rc.scale {
                 if !f.is_finite() {
                     return Err(SimError::invalid(
                         path,
@@ -196,7 +198,10 @@ impl Scene {
                 }
                 r = r.try_scaled(f)?;
             }
-            match over.scale_pga_g.or(rc.scale_pga_g) {
+            match over
+                .scale_pga_g
+                .or(rc.scale_pga_g.filter(|_| over.scale.is_none()))
+            {
                 Some(pga) if !target_pga_in_band(pga) => {
                     return Err(SimError::invalid(
                         path,
@@ -227,6 +232,16 @@ impl Scene {
                 )));
             }
             None
+        };
+        let record = match (record, over.scale) {
+            (Some(r), Some(f)) => Some(Arc::new(r.try_scaled(f)?)),
+            (None, Some(f)) => {
+                return Err(SimError::Scene(format!(
+                    "--scale {f}: {} has no ground motion to scale; give a record (--record)",
+                    path.display()
+                )));
+            }
+            (r, None) => r,
         };
         let harmonic = match &cfg.excitation.harmonic {
             None => None,

@@ -53,6 +53,19 @@ pub(super) fn check_overrides(over: &SceneOverrides) -> Result<(), SimError> {
             target_pga_expected(pga)
         )));
     }
+    if let Some(f) = over.scale {
+        if over.scale_pga_g.is_some() {
+            return Err(SimError::Scene(
+                "--scale and --scale-pga-g: give one way of scaling the ground motion, not both"
+                    .into(),
+            ));
+        }
+        if !is_positive(f) {
+            return Err(SimError::Scene(format!(
+                "--scale {f}: a scale factor must be finite and > 0"
+            )));
+        }
+    }
     if let Some(d) = over.duration
         && !is_positive(d)
     {

@@ -262,6 +262,9 @@ pub struct SceneOverrides {
     pub units: Option<Units>,
     /// Scale to this PGA, g.
     pub scale_pga_g: Option<f64>,
+    /// Multiply the ground motion by this factor (in place of a record's own `scale` or
+    /// `scale_pga_g`; not with `scale_pga_g`): a suite's scale factor.
+    pub scale: Option<f64>,
     /// Window (start, duration), s: replaces the scene's record window and applies to
     /// whichever ground motion the scene has (record, `record` above, or synthetic).
     pub window: Option<(f64, f64)>,
