@@ -25,17 +25,27 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
 }
 
 /// [`choose_sweep_method`], with `exact`'s counted work over `newmark`'s on the probe
-/// where the probe ran both.
+/// where the probe ran both. A study that names `fidelity.method` is probed too where its
+/// check is `exact`: the check's bound on `exact`'s cost ([`EXACT_CHECK_COST`]) holds
+/// whichever way the sweep's method was chosen.
 fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
-    if let Some(method) = study.config.fidelity.method {
-        return Ok((
-            SweepMethod {
-                method,
-                reason: "named by the study (fidelity.method)".into(),
-            },
-            None,
-        ));
+    let Some(method) = study.config.fidelity.method else {
+        return probe_methods(study);
+    };
+    let named = SweepMethod {
+        method,
+        reason: "named by the study (fidelity.method)".into(),
+    };
+    if study.config.fidelity.check_method != MethodName::Exact {
+        return Ok((named, None));
     }
+    let (_, ratio) = probe_methods(study)?;
+    Ok((named, ratio))
+}
+
+/// The probe of both methods: the method it chooses, and `exact`'s counted work over
+/// `newmark`'s where it ran both.
+fn probe_methods(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
     let probe = |method: MethodName| {
         let fid = Fidelity {
             method,
@@ -203,6 +213,28 @@ pub fn choose_check_method(
             study.records[0].name()
         ),
     })
+}
+
+/// How the summary names the finalists' check as it runs: `check at reference accuracy
+/// (exact at 1 × dt)` where the study's `fidelity.check_method` runs; where it could not
+/// run within its bounds ([`choose_check_method`]), the method that runs instead, which is
+/// not the reference, and in place of what.
+pub fn check_label(study: &Study) -> String {
+    let ran = study.check_method.method;
+    let named = study.config.fidelity.check_method;
+    let factor = study.config.fidelity.check_dt_factor;
+    if ran == named {
+        format!(
+            "check at reference accuracy ({} at {factor} × dt)",
+            ran.as_str()
+        )
+    } else {
+        format!(
+            "check at the check's step ({} at {factor} × dt, in place of the study's {}, which could not run within its bounds)",
+            ran.as_str(),
+            named.as_str()
+        )
+    }
 }
 
 impl Study {
