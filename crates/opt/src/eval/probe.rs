@@ -237,7 +237,52 @@ pub fn check_label(study: &Study) -> String {
     }
 }
 
+/// A base-shear limit (N) below this fraction of the building's weight is doubtful: a
+/// bare number a study meant in kN, read as newtons ([`Study::warnings`]).
+pub const MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT: f64 = 0.01;
+
 impl Study {
+    /// What the study's inputs make doubtful without making them wrong, in the words the
+    /// command line prints after "warning: study FILE, ": a slip load of the building file
+    /// that looks like kN written as N; a base-shear limit (a number of newtons) below
+    /// [`MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT`] of the building's weight — "did you mean
+    /// kN?". Every front gives these.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out: Vec<String> = slipload_sim::building::slip_load_plausibility(&self.building)
+            .iter()
+            .map(|w| format!("the building file's slip loads: {w}"))
+            .collect();
+        let weight = self.building.mass.trace() * slipload_motion::G;
+        let n = |v: f64| slipload_sim::units::short_number(v);
+        let base_shear = crate::model::check::LimitMetric::BaseShear;
+        for (i, s) in self.config.suites.iter().enumerate() {
+            let Some(l) = &s.limits else { continue };
+            let criteria = l
+                .criteria
+                .iter()
+                .enumerate()
+                .map(|(j, c)| (format!("criteria[{j}]"), c.metric, c.max));
+            let records = l
+                .unacceptable
+                .record_limits
+                .iter()
+                .enumerate()
+                .map(|(j, c)| (format!("unacceptable.record_limits[{j}]"), c.metric, c.max));
+            for (field, metric, max) in criteria.chain(records) {
+                if metric == base_shear && max < MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT * weight {
+                    out.push(format!(
+                        "suites[{i}].limits.{field}.max: the base-shear limit {} N is below {} % of the building's weight (W = {} N): a limit's number is in the response's SI unit, base shear in N; did you mean kN ({} N)?",
+                        n(max),
+                        n(100.0 * MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT),
+                        n(weight),
+                        n(max * 1e3)
+                    ));
+                }
+            }
+        }
+        out
+    }
+
     /// The embedded benchmark study (`configs/study-benchmark.json` with the embedded
     /// benchmark building inlined): what every front optimises when no study is named.
     pub fn benchmark() -> Result<Study, OptError> {
