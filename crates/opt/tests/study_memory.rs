@@ -88,6 +88,11 @@ fn a_newmark_check_needs_no_exact_budget() {
     let msg = m.check(&study.path, false, 0.0).unwrap_err().to_string();
     assert!(!msg.contains("check_method"), "{msg}");
     assert!(msg.contains("fewer threads"), "{msg}");
+    // named as the user gives them: the command's option, Python's argument
+    assert!(
+        msg.contains("`--threads N`") && msg.contains("`threads=N` in Python"),
+        "{msg}"
+    );
 }
 
 /// Issue 39's fidelity choice never runs what it has not bounded: where `exact` refuses the
