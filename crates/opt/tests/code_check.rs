@@ -332,6 +332,15 @@ fn bad_bounds_and_limits_are_refused_by_field() {
             Box::new(|v| v["devices"] = serde_json::json!({ "brace_angle_deg": 90 })),
             "devices.brace_angle_deg",
         ),
+        // a brace angle without limits (no code check, so no device table) is refused,
+        // not dropped
+        (
+            Box::new(|v| {
+                bounds(v);
+                v["devices"] = serde_json::json!({ "brace_angle_deg": 35 });
+            }),
+            "`devices`: the device table is written beside the code check, which needs acceptance limits",
+        ),
         // a limit the elastic benchmark frame cannot evaluate is refused as it loads
         (
             Box::new(

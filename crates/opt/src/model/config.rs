@@ -762,6 +762,15 @@ impl StudyConfig {
                 format!("must be in [0, 90) degrees from the horizontal, got {t}"),
             ));
         }
+        // the device table is written beside the code check, which a study with limits
+        // has: without them `devices` would be dropped without a word
+        if self.devices.is_some() && self.suites.iter().all(|s| s.limits.is_none()) {
+            return Err(OptError::invalid(
+                path,
+                "devices",
+                "the device table is written beside the code check, which needs acceptance limits: give a suite `limits`, or leave `devices` out",
+            ));
+        }
         match (&self.objective.cost, self.objective.terms.is_empty()) {
             (None, true) => {
                 return Err(OptError::invalid(
