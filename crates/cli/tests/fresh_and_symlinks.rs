@@ -163,3 +163,46 @@ fn a_users_files_are_kept_and_never_overwritten() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A user's own code check or device table put into a folder slipload already wrote in
+/// (names the check and the device table take) is never overwritten: a run, a resume and
+/// a `--fresh` run are refused before they start, naming the file; the earlier run's own
+/// files are still slipload's and rewritten.
+#[test]
+fn a_users_code_check_or_device_table_in_a_study_folder_is_never_overwritten() {
+    let dir = common::scratch("fresh", "check-files");
+    let st = study(&dir);
+    let out = dir.join("out");
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--quiet"]);
+    assert!(ok, "{err}");
+    for mine in [
+        "code-check.md",
+        "code-check.csv",
+        "code-check.json",
+        "device-table.csv",
+        "device-table.md",
+        "device-table.json",
+    ] {
+        std::fs::write(out.join(mine), "my own").unwrap();
+        for extra in [&[][..], &["--resume"][..], &["--fresh"][..]] {
+            let mut args = vec!["sweep", s(&st), "--out", s(&out), "--quiet"];
+            args.extend_from_slice(extra);
+            let (ok, err) = run(&args);
+            assert!(!ok, "sweep {extra:?} over a user's {mine} must be refused");
+            assert!(
+                err.contains(mine) && err.contains("did not write"),
+                "the refusal names {mine} and why: {err}"
+            );
+            assert_eq!(std::fs::read_to_string(out.join(mine)).unwrap(), "my own");
+            assert!(
+                out.join("journal.jsonl").exists(),
+                "--fresh removed nothing"
+            );
+        }
+        std::fs::remove_file(out.join(mine)).unwrap();
+    }
+    // without them, the folder's own files are rewritten as before
+    let (ok, err) = run(&["sweep", s(&st), "--out", s(&out), "--resume", "--quiet"]);
+    assert!(ok, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

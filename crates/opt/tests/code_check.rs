@@ -332,6 +332,34 @@ fn bad_bounds_and_limits_are_refused_by_field() {
             Box::new(|v| v["devices"] = serde_json::json!({ "brace_angle_deg": 90 })),
             "devices.brace_angle_deg",
         ),
+        // a brace angle without limits (no code check, so no device table) is refused,
+        // not dropped
+        (
+            Box::new(|v| {
+                bounds(v);
+                v["devices"] = serde_json::json!({ "brace_angle_deg": 35 });
+            }),
+            "`devices`: the device table is written beside the code check, which needs acceptance limits",
+        ),
+        // a limit the elastic benchmark frame cannot evaluate is refused as it loads
+        (
+            Box::new(
+                |v| v["suites"][0]["limits"] = serde_json::json!({ "criteria": [ { "metric": "peak_drift_ratio", "statistic": "mean", "max": 0.02 }, { "metric": "peak_ductility", "statistic": "mean", "max": 4 } ] }),
+            ),
+            "suites[0].limits.criteria[1].metric`: peak_ductility needs a frame whose storeys yield",
+        ),
+        (
+            Box::new(
+                |v| v["suites"][0]["limits"] = serde_json::json!({ "unacceptable": { "record_limits": [ { "metric": "peak_ductility", "max": 6 } ] } }),
+            ),
+            "suites[0].limits.unacceptable.record_limits[0].metric`: peak_ductility needs",
+        ),
+        (
+            Box::new(
+                |v| v["objective"] = serde_json::json!({ "terms": [ { "metric": "peak_ductility", "statistic": "mean" } ] }),
+            ),
+            "objective.terms[0].metric`: peak_ductility needs",
+        ),
     ];
     for (patch, field) in cases {
         let e = study(patch).unwrap_err().to_string();
@@ -366,4 +394,30 @@ fn a_damper_that_never_slips_is_flagged_as_a_rigid_brace() {
         t.to_markdown()
             .contains("acts as a rigid brace at this slip load")
     );
+}
+
+/// A base-shear limit is a number of newtons: one far below the building's weight (a
+/// bare number meant as kN) is warned about as a slip load is ("did you mean kN?"),
+/// naming the field; a plausible one is not.
+#[test]
+fn a_base_shear_limit_that_looks_like_kn_is_warned_about() {
+    let with = |max: f64| {
+        study(move |v| {
+            v["suites"][0]["limits"] = serde_json::json!({ "criteria": [
+                { "metric": "peak_drift_ratio", "statistic": "mean", "max": 0.02 },
+                { "metric": "base_shear", "statistic": "mean", "max": max } ] });
+        })
+        .unwrap()
+    };
+    let w = with(5000.0).warnings();
+    let shear: Vec<&String> = w.iter().filter(|w| w.contains("base-shear")).collect();
+    assert_eq!(shear.len(), 1, "{w:?}");
+    assert!(
+        shear[0].starts_with("suites[0].limits.criteria[1].max: the base-shear limit 5000 N")
+            && shear[0].contains("did you mean kN (5000000 N)?"),
+        "{}",
+        shear[0]
+    );
+    let w = with(5.0e6).warnings();
+    assert!(!w.iter().any(|w| w.contains("base-shear")), "{w:?}");
 }

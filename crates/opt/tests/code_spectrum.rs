@@ -103,3 +103,47 @@ fn a_bad_target_is_refused_naming_the_field() {
     let e = study("maximum", "").unwrap_err().to_string();
     assert!(e.contains("maximum") || e.contains("hazard"), "{e}");
 }
+
+/// An object given as an array is read by position, so two swapped values would pass in
+/// the wrong fields: the code spectrum (and any other key whose value is an object of
+/// named fields) is refused as an array, naming the key and its fields.
+#[test]
+fn a_code_spectrum_given_as_an_array_is_refused() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let study_with = |scale: &str, sweep: &str| {
+        let text = format!(
+            r#"{{ "building": "configs/ten-story.json",
+  "suites": [ {{ "name": "code", "records": ["records/RSN*.AT2"], "scale": {scale} }} ],
+  "space": {{ "profile": {{ "shape": "uniform", "scale_kn": [0, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark" }},
+  "sweep": {sweep} }}"#
+        );
+        Study::from_json(&text, &root.join("study.json"))
+    };
+    let sweep = r#"{ "sampler": "halton", "points": 2, "seed": 5 }"#;
+    // S_D1 and S_DS swapped: read by position they would pass as another spectrum
+    let e = study_with(
+        r#"{ "code_spectrum": [0.6, 1.0, 8, "design", null] }"#,
+        sweep,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("suites[0].scale.code_spectrum"), "{e}");
+    assert!(e.contains("got an array"), "{e}");
+    assert!(e.contains("\"sds_g\"") && e.contains("\"sd1_g\""), "{e}");
+    // another object key given as an array: the sweep's settings
+    let e = study_with(
+        r#"{ "code_spectrum": { "sds_g": 1.0, "sd1_g": 0.6, "tl_s": 8 } }"#,
+        r#"["halton", 2, 5]"#,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("sweep") && e.contains("got an array"), "{e}");
+    // written with its keys, the same spectrum loads
+    study_with(
+        r#"{ "code_spectrum": { "sds_g": 1.0, "sd1_g": 0.6, "tl_s": 8 } }"#,
+        sweep,
+    )
+    .unwrap();
+}

@@ -337,3 +337,81 @@ fn merged_shards_give_the_figure_data_of_one_whole_sweep() {
         std::fs::remove_dir_all(d).unwrap();
     }
 }
+
+/// On its first tick, from inside the running sweep, a second call into the same folder
+/// (with `fresh`) is made on another thread of the process — as two Python threads do —
+/// and its outcome kept.
+struct Intruder<'a> {
+    study: &'a Study,
+    out: &'a Path,
+    second: Mutex<Option<Result<(), String>>>,
+}
+
+impl Progress for Intruder<'_> {
+    fn tick(&self) {
+        let mut second = self.second.lock().unwrap();
+        if second.is_some() {
+            return;
+        }
+        let (study, out) = (self.study, self.out);
+        let outcome = std::thread::scope(|s| {
+            s.spawn(|| {
+                let request = slipload_opt::store::folder::FolderRequest {
+                    path: out,
+                    option: "out",
+                    fresh: true,
+                };
+                sweep_study(study, Shard::ALL, false, request, &NoProgress, &NoFigures)
+                    .map(|_| ())
+                    .map_err(|e| match e {
+                        slipload_opt::base::error::OptError::FolderBusy { .. } => {
+                            format!("busy: {e}")
+                        }
+                        other => other.to_string(),
+                    })
+            })
+            .join()
+            .unwrap()
+        });
+        *second = Some(outcome);
+    }
+}
+
+/// One folder, one writer, within one process too: a second call into a folder that a
+/// running call holds — from another thread, `fresh` asked — is refused at once as a
+/// second process is; it removes nothing, and the first call finishes with the bytes of a
+/// sweep that ran alone.
+#[test]
+fn a_second_thread_into_a_folder_in_use_is_refused_and_erases_nothing() {
+    let st = study(3);
+    let out = scratch("threads");
+    let intruder = Intruder {
+        study: &st,
+        out: &out,
+        second: Mutex::new(None),
+    };
+    sweep_study(&st, Shard::ALL, false, folder(&out), &intruder, &NoFigures).unwrap();
+    let second = intruder.second.lock().unwrap().clone().unwrap();
+    let err = second.expect_err("the second call ran while the first held the folder");
+    assert!(err.starts_with("busy: "), "{err}");
+    assert!(err.contains("in use by another slipload command"), "{err}");
+    let alone = scratch("threads-alone");
+    sweep_study(
+        &st,
+        Shard::ALL,
+        false,
+        folder(&alone),
+        &NoProgress,
+        &NoFigures,
+    )
+    .unwrap();
+    for name in ["responses.csv", "designs.csv"] {
+        assert_eq!(
+            std::fs::read(out.join(name)).unwrap(),
+            std::fs::read(alone.join(name)).unwrap(),
+            "{name}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&alone);
+}

@@ -9,7 +9,7 @@ use slipload_opt::Study;
 use slipload_opt::base::error::OptError;
 use slipload_opt::eval::evaluate::{DesignLoads, design_plan};
 use slipload_opt::eval::memory::{MAX_STUDY_MEMORY_BYTES, run_bytes};
-use slipload_opt::eval::probe::EXACT_CHECK_COST;
+use slipload_opt::eval::probe::{EXACT_CHECK_COST, check_label};
 use slipload_opt::model::fidelity::Fidelity;
 use slipload_sim::bench_scenes::{ShearDamping, shear_building_damped};
 use slipload_sim::integrator::exact::MemoryBudget;
@@ -38,7 +38,10 @@ fn tall_study(storeys: usize, check: &str) -> Study {
 
 #[test]
 fn the_estimate_holds_exacts_budget_on_every_thread_and_the_records_once() {
-    let study = tall_study(60, "exact");
+    // 20 storeys: exact's cost on the probe is within the check's bound (at 60 it is not,
+    // and the check runs newmark, named sweep method or not)
+    let study = tall_study(20, "exact");
+    assert_eq!(study.check_method.method, MethodName::Exact);
     let m = study.memory;
     assert_eq!(m.threads, rayon::current_num_threads().max(1));
     let plan =
@@ -47,7 +50,7 @@ fn the_estimate_holds_exacts_budget_on_every_thread_and_the_records_once() {
     let sweep = plan(&Fidelity::sweep(&study));
     assert_eq!(m.check_run_bytes, run_bytes(&check));
     assert_eq!(m.sweep_run_bytes, run_bytes(&sweep));
-    // exact's run holds its budget (at 60 storeys about 140 MiB), newmark's far less
+    // exact's run holds its budget (at 20 storeys about 64 MiB), newmark's far less
     assert!(
         m.check_run_bytes >= MemoryBudget::for_plan(&check).bytes,
         "{m:?}"
@@ -85,6 +88,11 @@ fn a_newmark_check_needs_no_exact_budget() {
     let msg = m.check(&study.path, false, 0.0).unwrap_err().to_string();
     assert!(!msg.contains("check_method"), "{msg}");
     assert!(msg.contains("fewer threads"), "{msg}");
+    // named as the user gives them: the command's option, Python's argument
+    assert!(
+        msg.contains("`--threads N`") && msg.contains("`threads=N` in Python"),
+        "{msg}"
+    );
 }
 
 /// Issue 39's fidelity choice never runs what it has not bounded: where `exact` refuses the
@@ -93,12 +101,17 @@ fn a_newmark_check_needs_no_exact_budget() {
 /// fits, the study's `exact` check is kept and its bound is named.
 #[test]
 fn a_check_exact_refuses_runs_newmark_and_says_its_step_halving_error() {
-    let kept = tall_study(60, "exact");
+    let kept = tall_study(20, "exact");
     assert_eq!(kept.check_method.method, MethodName::Exact);
     assert!(
         kept.check_method.reason.contains("within its bounds"),
         "{}",
         kept.check_method.reason
+    );
+    // the summary's line says the reference ran where it did
+    assert_eq!(
+        check_label(&kept),
+        "check at reference accuracy (exact at 0.5 × dt)"
     );
 
     let study = tall_study(600, "exact");
@@ -125,26 +138,52 @@ fn a_check_exact_refuses_runs_newmark_and_says_its_step_halving_error() {
     assert!(error > 0.0 && error < 0.05, "{}", c.reason);
     // the check that runs is newmark's, and the memory estimate is newmark's too
     assert_eq!(Fidelity::check(&study).method, MethodName::Newmark);
+    // and the summary says newmark ran, not the reference
+    let label = check_label(&study);
+    assert!(
+        label.starts_with(
+            "check at the check's step (newmark at 0.5 × dt, in place of the study's exact"
+        ),
+        "{label}"
+    );
+    assert!(!label.contains("reference"), "{label}");
     assert_eq!(study.memory.check_run_bytes, study.memory.sweep_run_bytes);
 }
 
 /// Where the sweep-method probe measured `exact` at more than `EXACT_CHECK_COST` times
 /// `newmark`'s work (a 60-storey frame whose every floor slips), the check does not run
-/// `exact`: it runs `newmark` at the check's step and says why, with its error.
+/// `exact`: it runs `newmark` at the check's step and says why, with its error — whether
+/// the sweep's method was chosen by the probe or named by the study (`fidelity.method`,
+/// as the shipped check example names it).
 #[test]
 fn a_check_exact_would_take_too_long_runs_newmark_and_says_why() {
+    for named in [None, Some("newmark")] {
+        a_check_exact_would_take_too_long(named);
+    }
+}
+
+fn a_check_exact_would_take_too_long(method: Option<&str>) {
     let building: serde_json::Value =
         serde_json::from_str(&shear_building_damped(60, ShearDamping::Rayleigh)).unwrap();
-    let v = serde_json::json!({
+    let mut v = serde_json::json!({
         "name": "tall",
         "building": building,
         "suites": [ { "name": "syn", "synthetic": { "count": 1, "seed": 7, "pga_g": 0.3, "duration_s": 2.0 } } ],
         "space": { "profile": { "shape": "storey_shear", "scale_kn": [100, 20000] } },
         "objective": { "terms": [ { "metric": "peak_drift_ratio", "statistic": "mean" } ] }
     });
+    if let Some(m) = method {
+        v["fidelity"] = serde_json::json!({ "method": m });
+    }
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/inline-study.json");
     let study = Study::from_json(&v.to_string(), &path).unwrap();
     assert_eq!(study.sweep_method.method, MethodName::Newmark);
+    assert_eq!(
+        study.sweep_method.reason == "named by the study (fidelity.method)",
+        method.is_some(),
+        "{}",
+        study.sweep_method.reason
+    );
     let c = &study.check_method;
     assert_eq!(c.method, MethodName::Newmark, "{}", c.reason);
     assert!(c.reason.starts_with("exact costs "), "{}", c.reason);

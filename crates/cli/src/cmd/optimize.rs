@@ -341,10 +341,10 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         outln!("{line}");
     }
     if r.check_reran {
+        // the method that ran (not the reference where the study's could not run)
         outln!(
-            "check at reference accuracy ({} at {} × dt): finalists' ranking {}",
-            study.config.fidelity.check_method.as_str(),
-            study.config.fidelity.check_dt_factor,
+            "{}: finalists' ranking {}",
+            slipload_opt::eval::probe::check_label(study),
             if r.ranking_held { "held" } else { "changed" }
         );
     } else {

@@ -16,13 +16,10 @@ pub fn load_study(path: Option<&Path>) -> anyhow::Result<Study> {
     match path {
         Some(p) => {
             let study = Study::load(p).with_context(|| format!("loading study {}", p.display()))?;
-            // the building file's design as a study reads it: a slip load that looks
-            // like kN written as N is said before anything runs
-            for w in slipload_sim::building::slip_load_plausibility(&study.building) {
-                eprintln!(
-                    "warning: study {}, the building file's slip loads: {w}",
-                    p.display()
-                );
+            // what looks like kN written as N (the building file's slip loads, a
+            // base-shear limit) is said before anything runs
+            for w in study.warnings() {
+                eprintln!("warning: study {}, {w}", p.display());
             }
             Ok(study)
         }

@@ -25,17 +25,27 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
 }
 
 /// [`choose_sweep_method`], with `exact`'s counted work over `newmark`'s on the probe
-/// where the probe ran both.
+/// where the probe ran both. A study that names `fidelity.method` is probed too where its
+/// check is `exact`: the check's bound on `exact`'s cost ([`EXACT_CHECK_COST`]) holds
+/// whichever way the sweep's method was chosen.
 fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
-    if let Some(method) = study.config.fidelity.method {
-        return Ok((
-            SweepMethod {
-                method,
-                reason: "named by the study (fidelity.method)".into(),
-            },
-            None,
-        ));
+    let Some(method) = study.config.fidelity.method else {
+        return probe_methods(study);
+    };
+    let named = SweepMethod {
+        method,
+        reason: "named by the study (fidelity.method)".into(),
+    };
+    if study.config.fidelity.check_method != MethodName::Exact {
+        return Ok((named, None));
     }
+    let (_, ratio) = probe_methods(study)?;
+    Ok((named, ratio))
+}
+
+/// The probe of both methods: the method it chooses, and `exact`'s counted work over
+/// `newmark`'s where it ran both.
+fn probe_methods(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
     let probe = |method: MethodName| {
         let fid = Fidelity {
             method,
@@ -205,7 +215,74 @@ pub fn choose_check_method(
     })
 }
 
+/// How the summary names the finalists' check as it runs: `check at reference accuracy
+/// (exact at 1 × dt)` where the study's `fidelity.check_method` runs; where it could not
+/// run within its bounds ([`choose_check_method`]), the method that runs instead, which is
+/// not the reference, and in place of what.
+pub fn check_label(study: &Study) -> String {
+    let ran = study.check_method.method;
+    let named = study.config.fidelity.check_method;
+    let factor = study.config.fidelity.check_dt_factor;
+    if ran == named {
+        format!(
+            "check at reference accuracy ({} at {factor} × dt)",
+            ran.as_str()
+        )
+    } else {
+        format!(
+            "check at the check's step ({} at {factor} × dt, in place of the study's {}, which could not run within its bounds)",
+            ran.as_str(),
+            named.as_str()
+        )
+    }
+}
+
+/// A base-shear limit (N) below this fraction of the building's weight is doubtful: a
+/// bare number a study meant in kN, read as newtons ([`Study::warnings`]).
+pub const MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT: f64 = 0.01;
+
 impl Study {
+    /// What the study's inputs make doubtful without making them wrong, in the words the
+    /// command line prints after "warning: study FILE, ": a slip load of the building file
+    /// that looks like kN written as N; a base-shear limit (a number of newtons) below
+    /// [`MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT`] of the building's weight — "did you mean
+    /// kN?". Every front gives these.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out: Vec<String> = slipload_sim::building::slip_load_plausibility(&self.building)
+            .iter()
+            .map(|w| format!("the building file's slip loads: {w}"))
+            .collect();
+        let weight = self.building.mass.trace() * slipload_motion::G;
+        let n = |v: f64| slipload_sim::units::short_number(v);
+        let base_shear = crate::model::check::LimitMetric::BaseShear;
+        for (i, s) in self.config.suites.iter().enumerate() {
+            let Some(l) = &s.limits else { continue };
+            let criteria = l
+                .criteria
+                .iter()
+                .enumerate()
+                .map(|(j, c)| (format!("criteria[{j}]"), c.metric, c.max));
+            let records = l
+                .unacceptable
+                .record_limits
+                .iter()
+                .enumerate()
+                .map(|(j, c)| (format!("unacceptable.record_limits[{j}]"), c.metric, c.max));
+            for (field, metric, max) in criteria.chain(records) {
+                if metric == base_shear && max < MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT * weight {
+                    out.push(format!(
+                        "suites[{i}].limits.{field}.max: the base-shear limit {} N is below {} % of the building's weight (W = {} N): a limit's number is in the response's SI unit, base shear in N; did you mean kN ({} N)?",
+                        n(max),
+                        n(100.0 * MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT),
+                        n(weight),
+                        n(max * 1e3)
+                    ));
+                }
+            }
+        }
+        out
+    }
+
     /// The embedded benchmark study (`configs/study-benchmark.json` with the embedded
     /// benchmark building inlined): what every front optimises when no study is named.
     pub fn benchmark() -> Result<Study, OptError> {

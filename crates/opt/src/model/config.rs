@@ -573,9 +573,67 @@ fn shape_error(text: &str, path: &Path) -> Option<OptError> {
     None
 }
 
+/// The first place where `written` (a study as its file gives it) has an array and the
+/// study as parsed (`parsed`, serialized back) an object: a key whose value is an object
+/// of named fields, given as an array. serde reads such an array by position, so values
+/// in another order than the fields' would pass silently in the wrong fields; the study
+/// refuses it, naming the key and its fields. Returns the key's path and the fields.
+fn object_as_array(
+    written: &serde_json::Value,
+    parsed: &serde_json::Value,
+    at: &str,
+) -> Option<(String, Vec<String>)> {
+    use serde_json::Value;
+    let join = |k: &str| {
+        if at.is_empty() {
+            k.to_string()
+        } else {
+            format!("{at}.{k}")
+        }
+    };
+    match (written, parsed) {
+        (Value::Array(_), Value::Object(fields)) => {
+            Some((at.to_string(), fields.keys().cloned().collect()))
+        }
+        (Value::Object(w), Value::Object(p)) => w
+            .iter()
+            .filter_map(|(k, wv)| p.get(k).map(|pv| (k, wv, pv)))
+            .find_map(|(k, wv, pv)| object_as_array(wv, pv, &join(k))),
+        (Value::Array(w), Value::Array(p)) if w.len() == p.len() => w
+            .iter()
+            .zip(p)
+            .enumerate()
+            .find_map(|(i, (wv, pv))| object_as_array(wv, pv, &format!("{at}[{i}]"))),
+        _ => None,
+    }
+}
+
 impl StudyConfig {
-    /// Parses a study from JSON text; `path` names it in errors.
+    /// Parses a study from JSON text; `path` names it in errors. A key whose value is an
+    /// object given as an array (read by position) is refused ([`object_as_array`]).
     pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
+        let cfg = StudyConfig::parse(text, path)?;
+        if let (Ok(written), Ok(parsed)) = (
+            serde_json::from_str::<serde_json::Value>(text),
+            serde_json::to_value(&cfg),
+        ) && let Some((field, keys)) = object_as_array(&written, &parsed, "")
+        {
+            return Err(OptError::invalid(
+                path,
+                field,
+                format!(
+                    "expected an object {{{}}}, got an array: its values would be read by position, not by name; write the keys",
+                    keys.iter()
+                        .map(|k| format!("{k:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
+        Ok(cfg)
+    }
+
+    fn parse(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
         serde_json::from_str(text).map_err(|source| {
             // A building or scene given as a study: say so, and what to run.
             match slipload_sim::kind::wrong_kind(text, path, slipload_sim::kind::Expected::Study) {
@@ -708,6 +766,15 @@ impl StudyConfig {
                 path,
                 "devices.brace_angle_deg",
                 format!("must be in [0, 90) degrees from the horizontal, got {t}"),
+            ));
+        }
+        // the device table is written beside the code check, which a study with limits
+        // has: without them `devices` would be dropped without a word
+        if self.devices.is_some() && self.suites.iter().all(|s| s.limits.is_none()) {
+            return Err(OptError::invalid(
+                path,
+                "devices",
+                "the device table is written beside the code check, which needs acceptance limits: give a suite `limits`, or leave `devices` out",
             ));
         }
         match (&self.objective.cost, self.objective.terms.is_empty()) {

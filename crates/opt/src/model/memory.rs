@@ -55,9 +55,9 @@ impl MemoryEstimate {
         }
         let exact_check = exact_check && self.check_run_bytes >= self.sweep_run_bytes;
         let hint = if exact_check {
-            "; the check's `exact` holds most of it: fewer threads (RAYON_NUM_THREADS) or `fidelity.check_method: newmark` need less"
+            "; the check's `exact` holds most of it: fewer threads (`--threads N`; `threads=N` in Python) or `fidelity.check_method: newmark` need less"
         } else {
-            "; fewer threads (RAYON_NUM_THREADS) need less"
+            "; fewer threads (`--threads N`; `threads=N` in Python) need less"
         };
         Err(OptError::TooLarge {
             what: format!(

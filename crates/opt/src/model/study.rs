@@ -353,6 +353,55 @@ impl Fidelity {
     }
 }
 
+/// A study that reads `peak_ductility` (an objective's term, a suite's criterion or
+/// record limit) on a building whose storeys do not yield is refused when it loads,
+/// naming the field: the response does not exist on an elastic frame, and would
+/// otherwise fail only after the sweep.
+fn refuse_ductility_on_elastic(
+    cfg: &StudyConfig,
+    building: &Building,
+    path: &Path,
+) -> Result<(), OptError> {
+    if building.storey_yield.iter().any(Option::is_some) {
+        return Ok(());
+    }
+    let mut fields: Vec<String> = cfg
+        .objective
+        .terms
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.metric == crate::model::objective::Metric::PeakDuctility)
+        .map(|(j, _)| format!("objective.terms[{j}].metric"))
+        .collect();
+    for (i, s) in cfg.suites.iter().enumerate() {
+        let Some(l) = &s.limits else { continue };
+        let duct = crate::model::check::LimitMetric::PeakDuctility;
+        fields.extend(
+            l.criteria
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.metric == duct)
+                .map(|(j, _)| format!("suites[{i}].limits.criteria[{j}].metric")),
+        );
+        fields.extend(
+            l.unacceptable
+                .record_limits
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.metric == duct)
+                .map(|(j, _)| format!("suites[{i}].limits.unacceptable.record_limits[{j}].metric")),
+        );
+    }
+    match fields.first() {
+        None => Ok(()),
+        Some(field) => Err(OptError::invalid(
+            path,
+            field.clone(),
+            "peak_ductility needs a frame whose storeys yield (storey_yield in the building); this building is elastic: give the storeys' yield, or limit another response",
+        )),
+    }
+}
+
 impl Study {
     /// Validates and resolves a config: building, space, constraints, then records; the
     /// sweep method is left for [`crate::eval::probe`] to choose (every public constructor,
@@ -387,6 +436,7 @@ impl Study {
             let yielding = building.storey_yield.iter().any(Option::is_some);
             crate::model::objectives::validate(&objectives, Some(yielding), path)?;
         }
+        refuse_ductility_on_elastic(&cfg, &building, path)?;
         let objective = Objective {
             terms: cfg.objective.terms.clone(),
             cost: cfg.objective.cost,

@@ -41,7 +41,7 @@ const LIST_HEADER: &str =
 
 /// Whether `name` is a file some slipload command writes into an output folder: the
 /// journals, the sweep's and `optimize`'s tables, the design table, the candidates, the
-/// study figures (`.csv`, `.svg`, `.png`), `rank`'s and `table`'s files, the HTML
+/// code check and the device table, the study figures (`.csv`, `.svg`, `.png`), `rank`'s and `table`'s files, the HTML
 /// report, and the hidden temporary file an interrupted atomic write leaves
 /// (`.NAME.tmp`).
 pub fn is_output_name(name: &str) -> bool {
@@ -57,7 +57,7 @@ pub fn is_output_name(name: &str) -> bool {
 
 /// The files (other than journals and figures) that slipload's study commands and its
 /// report write into an output folder.
-const OUTPUT_FILES: [&str; 20] = [
+const OUTPUT_FILES: [&str; 26] = [
     "manifest.json",
     "pareto.csv",
     "pareto.json",
@@ -72,6 +72,12 @@ const OUTPUT_FILES: [&str; 20] = [
     "design-table.csv",
     "design-table.md",
     "design-table.json",
+    "code-check.csv",
+    "code-check.md",
+    "code-check.json",
+    "device-table.csv",
+    "device-table.md",
+    "device-table.json",
     "rank.csv",
     "rank.md",
     "rank.json",
@@ -235,6 +241,8 @@ impl StudyFolder {
         // the list is kept from now on, even if this run is refused below: a later run
         // must not take a user's file for an earlier slipload's
         folder.save_list()?;
+        // refused before `fresh` removes anything: a refused command changes nothing
+        folder.refuse_foreign()?;
         let discarded = if request.fresh {
             let d = folder.discard(&before)?;
             folder.save_list()?;
@@ -242,7 +250,6 @@ impl StudyFolder {
         } else {
             None
         };
-        folder.refuse_foreign()?;
         Ok((folder, discarded))
     }
 
@@ -296,8 +303,10 @@ impl StudyFolder {
     }
 
     /// The path of the journal `name` (`journal.jsonl`, `check.jsonl`, …), claimed as
-    /// slipload's.
+    /// slipload's (refused, as [`StudyFolder::write`] is, when a file slipload did not
+    /// write is there under that name).
     pub fn journal(&self, name: &str) -> Result<PathBuf, OptError> {
+        self.refuse_unlisted(name)?;
         self.claim(&[name])?;
         Ok(self.path(name))
     }
@@ -310,8 +319,11 @@ impl StudyFolder {
     }
 
     /// Writes `bytes` to the file `name` of the folder atomically
-    /// ([`crate::base::output::write_atomic`]), claimed as slipload's first.
+    /// ([`crate::base::output::write_atomic`]), claimed as slipload's first. A file
+    /// already there under `name` that slipload did not write is refused
+    /// ([`OptError::NotWritten`]), never overwritten.
     pub fn write(&self, name: &str, bytes: &[u8]) -> Result<(), OptError> {
+        self.refuse_unlisted(name)?;
         self.claim(&[name])?;
         write_atomic(&self.path(name), bytes)
     }
@@ -332,6 +344,16 @@ impl StudyFolder {
             return Err(not_written(&self.dir, &foreign));
         }
         self.claim(&names)
+    }
+
+    /// Refuses `name` when something is there under it that slipload did not write (a
+    /// user's own file under a name a command writes).
+    fn refuse_unlisted(&self, name: &str) -> Result<(), OptError> {
+        let owned = name.to_string();
+        if !self.wrote(name) && std::fs::symlink_metadata(self.path(name)).is_ok() {
+            return Err(not_written(&self.dir, &[&owned]));
+        }
+        Ok(())
     }
 
     /// Refuses files under slipload's output names that slipload did not write here.
@@ -467,6 +489,39 @@ mod tests {
             Err(OptError::FolderBusy { .. })
         ));
         drop(again);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_slipload_did_not_write_is_never_written_over() {
+        let dir = std::env::temp_dir().join(format!("slipload-unlisted-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let request = FolderRequest {
+            path: &dir,
+            option: "out",
+            fresh: false,
+        };
+        let (folder, _) = StudyFolder::open(request).unwrap();
+        folder.write("table.md", b"slipload's\n").unwrap();
+        // a user's file appears under a name the run is about to write (not one of the
+        // output names the opening refuses): the write and the journal are refused
+        std::fs::write(dir.join("mine.md"), "the user's").unwrap();
+        let e = folder.write("mine.md", b"over").unwrap_err();
+        assert!(matches!(e, OptError::NotWritten { .. }), "{e}");
+        assert!(e.to_string().contains("mine.md"), "{e}");
+        assert!(folder.journal("mine.md").is_err());
+        assert_eq!(
+            std::fs::read_to_string(dir.join("mine.md")).unwrap(),
+            "the user's"
+        );
+        assert!(!folder.wrote("mine.md"));
+        // slipload's own file is rewritten
+        folder.write("table.md", b"again\n").unwrap();
+        assert_eq!(
+            std::fs::read_to_string(dir.join("table.md")).unwrap(),
+            "again\n"
+        );
+        drop(folder);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -65,6 +65,11 @@ fn write_report(out: &Path, html: &[u8]) -> anyhow::Result<()> {
             option: "--out",
             fresh: false,
         })?;
+        // a name of the user's choosing (not one the study commands write) is theirs to
+        // replace: --out named it
+        if !is_output_name(name) {
+            folder.claim(&[name])?;
+        }
         folder.write(name, html)?;
     } else {
         write_atomic(out, html)?;
