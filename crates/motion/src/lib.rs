@@ -51,8 +51,9 @@ pub use record::{
     max_abs_accel_m_s2,
 };
 pub use scaling::{
-    ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
-    scale_to_spectral_acceleration,
+    ASCE7_FRACTION, Asce7Scaling, REFINE_MARGIN, SCALING_POINTS_PER_DECADE, ScaledSuite,
+    TargetMatch, scale_suite_asce7, scale_suite_over_range, scale_to_spectral_acceleration,
+    smallest_factor,
 };
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
