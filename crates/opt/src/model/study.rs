@@ -39,7 +39,10 @@ pub struct SuiteInfo {
 
 /// A suite scaled to a code spectrum (ASCE 7-16 §16.2.3): one factor for every record,
 /// the smallest that puts the suite's mean 5 %-damped spectrum at or above 90 % of the
-/// target at every period of [0.2 T, 2 T] ([`slipload_motion::scale_suite_asce7`]).
+/// target at every period of the range ([`slipload_motion::scale_suite_over_range`]): by
+/// default from the lesser of 0.2 × the first period with the dampers stuck and the period
+/// of the last mode needed for 90 % of the mass, to 2 × the bare frame's first period
+/// (docs/MODEL.md § Ground motions in code form); [0.2 T, 2 T] for a given `period_s`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CodeScaling {
     /// The hazard level.
@@ -50,10 +53,19 @@ pub struct CodeScaling {
     pub sd1_g: f64,
     /// T_L, s.
     pub tl_s: f64,
-    /// T, s: the period the range is built around.
+    /// T, s: the period the range's upper end is built on (2 T): the bare frame's first
+    /// period, or the study's `period_s`.
     pub period_s: f64,
-    /// The period range [0.2 T, 2 T], s.
+    /// The period range, s.
     pub range_s: [f64; 2],
+    /// The first period with every damper stuck (the braced frame), s, when the range was
+    /// built from the building (no `period_s`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stuck_period_s: Option<f64>,
+    /// The period of the last mode needed for 90 % of the mass (the shorter of the bare and
+    /// the braced frame's), s, when the range was built from the building.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_90_period_s: Option<f64>,
     /// The suite's factor (every record × this).
     pub factor: f64,
     /// The period where the scaled mean spectrum meets 90 % of the target, s.
@@ -277,13 +289,40 @@ pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchm
 /// How errors name the embedded benchmark study.
 pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
 
-/// Scales the records of suite `i` by one factor to the code spectrum `c` over
-/// [0.2 T, 2 T] (T = `c.period_s`, else the building's `t1`), refusing a factor that puts
-/// a record below [`MIN_STUDY_PGA_G`].
+/// The period range of a code-scaled suite: [0.2 T, 2 T] for a given T (`period_s`);
+/// else from the building (ASCE 7-16 §16.2.3.1, docs/MODEL.md § Ground motions in code
+/// form): the lower end the lesser of 0.2 × the first period with every damper stuck and
+/// the period of the last mode needed for 90 % of the mass, the upper end 2 × the bare
+/// frame's first period (the dampers slipping). Returns (T, range, stuck T₁, 90 %-mass
+/// period).
+fn scaling_range(
+    building: &Building,
+    period_s: Option<f64>,
+) -> (f64, [f64; 2], Option<f64>, Option<f64>) {
+    if let Some(t) = period_s {
+        return (t, [0.2 * t, 2.0 * t], None, None);
+    }
+    let t1 = building.t1();
+    match building.scaling_periods() {
+        Some(p) => {
+            let lower = (0.2 * p.stuck_t1_s).min(p.mass_90_period_s);
+            (
+                t1,
+                [lower, 2.0 * t1],
+                Some(p.stuck_t1_s),
+                Some(p.mass_90_period_s),
+            )
+        }
+        None => (t1, [0.2 * t1, 2.0 * t1], None, None),
+    }
+}
+
+/// Scales the records of suite `i` by one factor to the code spectrum `c` over its range
+/// ([`scaling_range`]), refusing a factor that puts a record below [`MIN_STUDY_PGA_G`].
 fn scale_to_code(
     unscaled: &[Record],
     c: &CodeSpectrumConfig,
-    t1: f64,
+    building: &Building,
     path: &Path,
     i: usize,
 ) -> Result<(Vec<Record>, CodeScaling), OptError> {
@@ -298,8 +337,8 @@ fn scale_to_code(
             e.to_string(),
         )
     })?;
-    let period = c.period_s.unwrap_or(t1);
-    let a = slipload_motion::scale_suite_asce7(unscaled, &target, period, 0.05)?;
+    let (period, range, stuck, mass_90) = scaling_range(building, c.period_s);
+    let a = slipload_motion::scale_suite_over_range(unscaled, &target, range, 0.05)?;
     for r in &a.suite.records {
         let pga_g = r.pga() / G;
         if pga_g < MIN_STUDY_PGA_G {
@@ -319,7 +358,9 @@ fn scale_to_code(
         sd1_g: c.sd1_g,
         tl_s: c.tl_s,
         period_s: period,
-        range_s: [0.2 * period, 2.0 * period],
+        range_s: range,
+        stuck_period_s: stuck,
+        mass_90_period_s: mass_90,
         factor: a.factor,
         controlling_period_s: a.controlling_period_s,
         mean_sa_g: a.mean_psa_m_s2.iter().map(|m| m * a.factor / G).collect(),
@@ -475,7 +516,7 @@ impl Study {
                     }
                 }
                 if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
-                    let (scaled, scaling) = scale_to_code(&unscaled, c, t1, path, i)?;
+                    let (scaled, scaling) = scale_to_code(&unscaled, c, &building, path, i)?;
                     records.extend(scaled.into_iter().map(Arc::new));
                     code_scaling = Some(scaling);
                 }

@@ -27,4 +27,4 @@ pub use check::{
 pub use config::{
     BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, SlipLoad, StoreyYieldConfig,
 };
-pub use validated::{Building, Dissipator, StoreyYield};
+pub use validated::{Building, Dissipator, ScalingPeriods, StoreyYield};

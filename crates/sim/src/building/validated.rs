@@ -48,6 +48,56 @@ impl Dissipator {
     }
 }
 
+/// The periods a code-scaled suite's range is built from: the first period of the frame
+/// with its dampers slipping (the bare frame: a slipping damper adds a force, no
+/// stiffness) and with them stuck (every brace acting as a storey spring), and the modes
+/// that make up 90 % of the mass in each state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScalingPeriods {
+    /// First period of the bare frame (dampers slipping), s.
+    pub bare_t1_s: f64,
+    /// First period with every damper stuck (braced), s.
+    pub stuck_t1_s: f64,
+    /// How many modes of the bare frame make up 90 % of its mass.
+    pub bare_modes_90: usize,
+    /// How many modes of the braced frame make up 90 % of its mass.
+    pub stuck_modes_90: usize,
+    /// The shorter of the two frames' periods of the last of those modes, s.
+    pub mass_90_period_s: f64,
+}
+
+/// The modes (in ascending frequency) whose effective masses first add up to 90 % of the
+/// total, for ground motion along `r`.
+struct MassParticipation {
+    modes: usize,
+    period_s: f64,
+}
+
+impl MassParticipation {
+    fn of(m: &DMatrix<f64>, modes: &Modes, r: &nalgebra::DVector<f64>) -> MassParticipation {
+        // mass-normalised shapes: effective mass of mode k = (φₖᵀ M r)²; their sum over all
+        // modes is rᵀ M r
+        let mr = m * r;
+        let total = r.dot(&mr);
+        let mut sum = 0.0;
+        let n = modes.omega.len();
+        for k in 0..n {
+            let gamma = modes.shapes.column(k).dot(&mr);
+            sum += gamma * gamma;
+            if sum >= 0.9 * total || k + 1 == n {
+                return MassParticipation {
+                    modes: k + 1,
+                    period_s: 2.0 * std::f64::consts::PI / modes.omega[k],
+                };
+            }
+        }
+        MassParticipation {
+            modes: n,
+            period_s: 2.0 * std::f64::consts::PI / modes.omega[n - 1],
+        }
+    }
+}
+
 /// A validated building, SI units, floors numbered 0..n from the bottom.
 #[derive(Debug, Clone)]
 pub struct Building {
@@ -87,6 +137,38 @@ impl Building {
     /// Fundamental period of the bare frame, s.
     pub fn t1(&self) -> f64 {
         2.0 * std::f64::consts::PI / self.modes.omega[0]
+    }
+
+    /// The first periods the range of a code-scaled suite is built from
+    /// ([`ScalingPeriods`]); `None` when the braced frame has no modes (an unstable or
+    /// massless frame, which validation refuses before).
+    pub fn scaling_periods(&self) -> Option<ScalingPeriods> {
+        let n = self.floors();
+        let ones = nalgebra::DVector::from_element(n, 1.0);
+        let bare = MassParticipation::of(&self.mass, &self.modes, &ones);
+        // every dissipator stuck: its brace k′ is a storey spring between floors i−1 and i,
+        // its mass m′ moves with floor i (docs/MODEL.md § The model, μN → ∞)
+        let mut m = self.mass.clone();
+        let mut k = self.stiffness.clone();
+        for (i, d) in self.dissipators.iter().enumerate() {
+            let Some(d) = d else { continue };
+            m[(i, i)] += d.mass;
+            k[(i, i)] += d.brace_stiffness;
+            if i > 0 {
+                k[(i - 1, i - 1)] += d.brace_stiffness;
+                k[(i - 1, i)] -= d.brace_stiffness;
+                k[(i, i - 1)] -= d.brace_stiffness;
+            }
+        }
+        let stuck_modes = Modes::compute(&m, &k)?;
+        let stuck = MassParticipation::of(&m, &stuck_modes, &ones);
+        Some(ScalingPeriods {
+            bare_t1_s: self.t1(),
+            stuck_t1_s: 2.0 * std::f64::consts::PI / stuck_modes.omega[0],
+            bare_modes_90: bare.modes,
+            stuck_modes_90: stuck.modes,
+            mass_90_period_s: bare.period_s.min(stuck.period_s),
+        })
     }
 
     /// Replaces the slip load of every dissipator by `slip_loads[i]` (N; `None` keeps the
