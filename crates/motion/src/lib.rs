@@ -27,6 +27,7 @@ mod error;
 mod intensity;
 pub mod limits;
 mod number;
+mod pair;
 mod propagator;
 mod reader;
 mod record;
@@ -45,6 +46,7 @@ pub use error::{MotionError, readable};
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
+pub use pair::{PairScaling, RecordPair, rotd100_spectrum, scale_pairs_over_range};
 pub use reader::{RecordFormat, read_record};
 pub use record::{
     MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, check_record_dt,

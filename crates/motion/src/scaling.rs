@@ -8,7 +8,7 @@
 //!   spectrum is at least 90 % of the target spectrum at **every** period of the range —
 //!   the amplitude-scaling rule of ASCE 7-16 §16.2.3, applied to single-component records
 //!   (pairs of components are scaled by their maximum-direction spectrum,
-//!   see the pairs module). The range is continuous, so the factor is found
+//!   [`crate::scale_pairs_over_range`]). The range is continuous, so the factor is found
 //!   as the minimum of the ratio mean/target over it ([`smallest_factor`]): the ratio on a
 //!   grid of [`SCALING_POINTS_PER_DECADE`] log-spaced periods per decade (plus the
 //!   target's corner periods T₀, T_S, T_L inside the range), then a golden-section search
