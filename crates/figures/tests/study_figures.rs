@@ -241,6 +241,7 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
         range_s: [0.24, 2.4],
         stuck_period_s: None,
         mass_90_period_s: None,
+        pairs: None,
         factor: 1.04,
         controlling_period_s: 0.675,
         periods_s: vec![0.24, 0.675, 2.4],

@@ -199,6 +199,12 @@ impl CodeCheck {
                     c.range_s[1],
                     c.controlling_period_s
                 );
+                if let Some(n) = c.pairs {
+                    let _ = writeln!(
+                        s,
+                        "The suite is {n} pairs of horizontal components, scaled by their mean maximum-direction (RotD100) spectrum (ASCE 7-22 §16.2.3.2); the planar model runs each component of a pair as its own record.\n"
+                    );
+                }
                 if let (Some(stuck), Some(m90)) = (c.stuck_period_s, c.mass_90_period_s) {
                     let _ = writeln!(
                         s,
