@@ -11,17 +11,36 @@ use slipload_motion::{DesignSpectrum, G, RecordPair, log_spaced_periods, rotd100
 use slipload_opt::Study;
 use std::path::Path;
 
-/// Stand-in pairs for the arithmetic: records of records/ with one sample interval, two by
-/// two (the Sylmar pair is a real one).
+/// The eight events of records/ with both horizontal components (records/README.md):
+/// the second of most pairs is in records/pairs/.
 const PAIRS: [[&str; 2]; 8] = [
     ["SYL090.AT2", "SYL360.AT2"],
-    ["STM090.AT2", "RIO270.AT2"],
-    ["RSN1106_KOBE_KJM000.AT2", "RSN900_LANDERS_YER270.AT2"],
-    ["ARL360.at2", "elCentro.AT2"],
-    ["RSN1084_NORTHR_SCS142.AT2", "RSN1148_KOCAELI_ARE090.AT2"],
-    ["RSN1158_KOCAELI_DZC180.AT2", "RSN125_FRIULI.A_A-TMZ000.AT2"],
-    ["RSN1602_DUZCE_BOL000.AT2", "RSN169_IMPVALL.H_H-DLT352.AT2"],
-    ["RSN68_SFERN_PEL090.AT2", "RSN6_IMPVALL.I_I-ELC180.AT2"],
+    [
+        "RSN1158_KOCAELI_DZC180.AT2",
+        "pairs/RSN1158_KOCAELI_DZC270.AT2",
+    ],
+    [
+        "pairs/RSN1197_CHICHI_CHY028-E.AT2",
+        "pairs/RSN1197_CHICHI_CHY028-N.AT2",
+    ],
+    [
+        "pairs/RSN1203_CHICHI_CHY036-E.AT2",
+        "pairs/RSN1203_CHICHI_CHY036-N.AT2",
+    ],
+    [
+        "pairs/RSN1605_DUZCE_DZC180.AT2",
+        "pairs/RSN1605_DUZCE_DZC270.AT2",
+    ],
+    // 7830 and 7837 samples: the shorter is at rest after its end
+    ["RSN777_LOMAP_HCH090.AT2", "pairs/RSN777_LOMAP_HCH180.AT2"],
+    [
+        "pairs/RSN8066_CCHURCH_CHHCN01W.AT2",
+        "pairs/RSN8066_CCHURCH_CHHCS89W.AT2",
+    ],
+    [
+        "RSN900_LANDERS_YER270.AT2",
+        "pairs/RSN900_LANDERS_YER360.AT2",
+    ],
 ];
 
 fn study(records: &str, extra: &str) -> Result<Study, slipload_opt::OptError> {
