@@ -323,6 +323,14 @@ pub enum MotionError {
         /// The valid range.
         expected: &'static str,
     },
+    /// Two records named as the components of one event cannot be a pair.
+    #[error("record pair {pair}: {reason}")]
+    PairMismatch {
+        /// The pair's name.
+        pair: String,
+        /// Why not, with what was expected.
+        reason: String,
+    },
     /// A record cannot be scaled to a target because its measure is zero.
     #[error("{file}: cannot scale to a target {measure}: the record's {measure} is zero")]
     ZeroMeasure {

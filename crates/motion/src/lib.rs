@@ -27,6 +27,7 @@ mod error;
 mod intensity;
 pub mod limits;
 mod number;
+mod pair;
 mod propagator;
 mod reader;
 mod record;
@@ -45,14 +46,16 @@ pub use error::{MotionError, readable};
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
+pub use pair::{PairScaling, RecordPair, rotd100_spectrum, scale_pairs_over_range};
 pub use reader::{RecordFormat, read_record};
 pub use record::{
     MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, check_record_dt,
     max_abs_accel_m_s2,
 };
 pub use scaling::{
-    ASCE7_FRACTION, ASCE7_PERIOD_POINTS, Asce7Scaling, ScaledSuite, scale_suite_asce7,
-    scale_to_spectral_acceleration,
+    ASCE7_FRACTION, Asce7Scaling, REFINE_MARGIN, SCALING_POINTS_PER_DECADE, ScaledSuite,
+    TargetMatch, scale_suite_asce7, scale_suite_over_range, scale_to_spectral_acceleration,
+    smallest_factor,
 };
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,

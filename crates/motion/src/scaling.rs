@@ -3,21 +3,162 @@
 //! Contract:
 //! * [`scale_to_spectral_acceleration`]: each record gets its own factor so that its
 //!   pseudo-spectral acceleration at T₁ equals the target (to rounding);
-//! * [`scale_suite_asce7`]: one common factor for the whole suite, the smallest for which
-//!   the suite's mean spectrum is at least 90 % of the target spectrum at every period of
-//!   a grid of [`ASCE7_PERIOD_POINTS`] log-spaced periods over [0.2·T₁, 2.0·T₁] — the
-//!   period range and amplitude-scaling rule of ASCE 7-16 §16.2.3, applied to single-component records (ASCE 7-16 itself uses the maximum-direction
-//!   spectra of horizontal pairs, and an MCE_R target). The factor is
-//!   max over the grid of 0.9·target/mean, rounded up by a few ulps so that the inequality
-//!   also holds in floating point. Means are summed in record order (deterministic).
+//! * [`scale_suite_over_range`] (and [`scale_suite_asce7`], its range [0.2·T₁, 2.0·T₁]):
+//!   one common factor for the whole suite, the smallest for which the suite's mean
+//!   spectrum is at least 90 % of the target spectrum at **every** period of the range —
+//!   the amplitude-scaling rule of ASCE 7-16 §16.2.3, applied to single-component records
+//!   (pairs of components are scaled by their maximum-direction spectrum,
+//!   [`crate::scale_pairs_over_range`]). The range is continuous, so the factor is found
+//!   as the minimum of the ratio mean/target over it ([`smallest_factor`]): the ratio on a
+//!   grid of [`SCALING_POINTS_PER_DECADE`] log-spaced periods per decade (plus the
+//!   target's corner periods T₀, T_S, T_L inside the range), then a golden-section search
+//!   of ln T between the neighbours of every local minimum of the grid within
+//!   [`REFINE_MARGIN`] of the least. The factor is 0.9·target/mean at that minimum,
+//!   rounded up by a few ulps so that the inequality also holds in floating point. Means
+//!   are summed in record order (deterministic).
 
 use crate::{DesignSpectrum, MotionError, Record, Spectrum, log_spaced_periods};
 
-/// Periods per scaling grid over [0.2·T₁, 2·T₁] (one decade): 50 per decade, finer than
-/// the ≈ 10 % half-power width of a 5 %-damped spectral peak.
-pub const ASCE7_PERIOD_POINTS: usize = 50;
+/// Periods per decade of the scaling grid. A 5 %-damped oscillator's response to a record
+/// changes on the scale of its half-power band, 2ζ ≈ 0.1 in ln T (Chopra, *Dynamics of
+/// Structures*, §3.2.5), and so does a suite's mean spectrum; 200 per decade is a step of
+/// 0.0115 in ln T, a ninth of that band, so that no dip of the mean spectrum falls between
+/// two grid periods without lowering one of them. The refinement then finds the minimum
+/// between them.
+pub const SCALING_POINTS_PER_DECADE: usize = 200;
+
+/// Local minima of the grid's ratio within this fraction of the least are refined: a
+/// minimum between two grid periods lies below the better of them by far less than this
+/// at the grid's step (crates/motion/tests/scaling.rs measures it), so no minimum that
+/// could be the least is left out.
+pub const REFINE_MARGIN: f64 = 0.05;
+
+/// The width in ln T to which a minimum is refined (a relative precision of 10⁻⁸ in
+/// period, where the ratio moves by less than 10⁻⁶ of itself).
+const REFINE_TOLERANCE_LN_T: f64 = 1e-8;
+
 /// The fraction of the target the mean spectrum must reach (ASCE 7-16 §16.2.3).
 pub const ASCE7_FRACTION: f64 = 0.9;
+
+/// The smallest factor that lifts a mean spectrum to 90 % of a target over a period range
+/// ([`smallest_factor`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TargetMatch {
+    /// The factor (dimensionless).
+    pub factor: f64,
+    /// The period where the scaled mean equals 90 % of the target, s.
+    pub controlling_period_s: f64,
+    /// The periods the mean was computed at, s, ascending: the grid, the target's corners
+    /// and every period the refinement evaluated.
+    pub periods_s: Vec<f64>,
+    /// The unscaled mean there, m/s².
+    pub mean_psa_m_s2: Vec<f64>,
+    /// The target there, m/s².
+    pub target_psa_m_s2: Vec<f64>,
+}
+
+/// The smallest factor f with f·mean(T) ≥ 0.9·target(T) for every T of `range_s`
+/// (s, 0 < lower ≤ upper), where `mean` gives the (unscaled) mean spectrum, m/s², at a
+/// list of periods (see the module docs for the search).
+///
+/// Errors: [`MotionError::InvalidArgument`] for a bad range, [`MotionError::ZeroMeasure`]
+/// when the mean vanishes at a period of the range, and whatever `mean` returns.
+pub fn smallest_factor(
+    mean: impl Fn(&[f64]) -> Result<Vec<f64>, MotionError>,
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+) -> Result<TargetMatch, MotionError> {
+    let [lo, hi] = range_s;
+    let count = if lo == hi {
+        1
+    } else {
+        let decades = (hi / lo).log10();
+        ((SCALING_POINTS_PER_DECADE as f64 * decades).ceil() as usize + 1).max(2)
+    };
+    let mut grid = log_spaced_periods(lo, hi, count)?;
+    for corner in [target.t0_s(), target.ts_s(), target.tl_s()] {
+        if corner > lo && corner < hi {
+            grid.push(corner);
+        }
+    }
+    grid.sort_by(f64::total_cmp);
+    grid.dedup();
+    let ratio_of = |t: f64, m: f64| -> Result<f64, MotionError> {
+        if m.is_nan() || m <= 0.0 {
+            return Err(MotionError::ZeroMeasure {
+                file: format!("suite mean spectrum at T = {t} s"),
+                measure: "spectral acceleration",
+            });
+        }
+        Ok(m / target.sa_m_s2(t))
+    };
+    let grid_mean = mean(&grid)?;
+    let mut points: Vec<(f64, f64)> = grid.iter().copied().zip(grid_mean).collect();
+    let ratios = points
+        .iter()
+        .map(|&(t, m)| ratio_of(t, m))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let least = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+    let n = grid.len();
+    for k in 0..n {
+        let r = ratios[k];
+        let local = (k == 0 || r <= ratios[k - 1]) && (k + 1 == n || r <= ratios[k + 1]);
+        if !local || r > least * (1.0 + REFINE_MARGIN) || n == 1 {
+            continue;
+        }
+        let (mut a, mut b) = (
+            grid[k.saturating_sub(1)].ln(),
+            grid[(k + 1).min(n - 1)].ln(),
+        );
+        // golden-section search of the ratio in ln T; every evaluation is kept
+        let shrink = (5f64.sqrt() - 1.0) / 2.0;
+        let eval = |x: f64, points: &mut Vec<(f64, f64)>| -> Result<f64, MotionError> {
+            let t = x.exp().clamp(lo, hi);
+            let m = mean(&[t])?[0];
+            points.push((t, m));
+            ratio_of(t, m)
+        };
+        let mut c = b - shrink * (b - a);
+        let mut d = a + shrink * (b - a);
+        let mut fc = eval(c, &mut points)?;
+        let mut fd = eval(d, &mut points)?;
+        while b - a > REFINE_TOLERANCE_LN_T {
+            if fc <= fd {
+                b = d;
+                d = c;
+                fd = fc;
+                c = b - shrink * (b - a);
+                fc = eval(c, &mut points)?;
+            } else {
+                a = c;
+                c = d;
+                fc = fd;
+                d = a + shrink * (b - a);
+                fd = eval(d, &mut points)?;
+            }
+        }
+    }
+    points.sort_by(|x, y| x.0.total_cmp(&y.0));
+    points.dedup_by(|x, y| x.0 == y.0);
+    let mut factor = 0.0;
+    let mut controlling = points[0].0;
+    for &(t, m) in &points {
+        let f = ASCE7_FRACTION * target.sa_m_s2(t) / m;
+        if f > factor {
+            factor = f;
+            controlling = t;
+        }
+    }
+    // a few ulps up so that mean·factor ≥ 0.9·target survives the rounding of the product
+    factor *= 1.0 + 4.0 * f64::EPSILON;
+    Ok(TargetMatch {
+        factor,
+        controlling_period_s: controlling,
+        target_psa_m_s2: points.iter().map(|&(t, _)| target.sa_m_s2(t)).collect(),
+        mean_psa_m_s2: points.iter().map(|&(_, m)| m).collect(),
+        periods_s: points.into_iter().map(|(t, _)| t).collect(),
+    })
+}
 
 /// Records scaled by the factors that were applied to them.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -65,33 +206,54 @@ pub fn scale_to_spectral_acceleration(
     Ok(suite)
 }
 
-/// The outcome of [`scale_suite_asce7`].
+/// The outcome of [`scale_suite_over_range`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Asce7Scaling {
     /// The common factor applied to every record (dimensionless).
     pub factor: f64,
     /// The period where the scaled mean equals 90 % of the target, s.
     pub controlling_period_s: f64,
-    /// The period grid, s.
+    /// The periods the mean was computed at, s ([`TargetMatch::periods_s`]).
     pub periods_s: Vec<f64>,
-    /// Mean pseudo-spectral acceleration of the unscaled suite on the grid, m/s².
+    /// Mean pseudo-spectral acceleration of the unscaled suite there, m/s².
     pub mean_psa_m_s2: Vec<f64>,
-    /// Target spectrum on the grid, m/s².
+    /// Target spectrum there, m/s².
     pub target_psa_m_s2: Vec<f64>,
     /// The scaled records (every factor equal to `factor`).
     pub suite: ScaledSuite,
 }
 
 /// Scales `records` by one common factor so that their mean spectrum (damping ratio
-/// `damping`) is at least 90 % of `target` over [0.2·t1_s, 2.0·t1_s] (see the module
-/// docs).
+/// `damping`) is at least 90 % of `target` over [0.2·t1_s, 2.0·t1_s]
+/// ([`scale_suite_over_range`]).
 ///
-/// Errors: [`MotionError::InvalidArgument`] for no records or a bad T₁ or damping,
-/// [`MotionError::ZeroMeasure`] when the mean spectrum vanishes somewhere on the grid.
+/// Errors: as [`scale_suite_over_range`], and [`MotionError::InvalidArgument`] for a bad T₁.
 pub fn scale_suite_asce7(
     records: &[Record],
     target: &DesignSpectrum,
     t1_s: f64,
+    damping: f64,
+) -> Result<Asce7Scaling, MotionError> {
+    if !(t1_s.is_finite() && t1_s > 0.0) {
+        return Err(MotionError::InvalidArgument {
+            what: "T1 (s)",
+            value: t1_s,
+            expected: "finite and > 0",
+        });
+    }
+    scale_suite_over_range(records, target, [0.2 * t1_s, 2.0 * t1_s], damping)
+}
+
+/// Scales `records` by one common factor, the smallest for which their mean spectrum
+/// (damping ratio `damping`) is at least 90 % of `target` at every period of `range_s`
+/// (see the module docs).
+///
+/// Errors: [`MotionError::InvalidArgument`] for no records or a bad range or damping,
+/// [`MotionError::ZeroMeasure`] when the mean spectrum vanishes somewhere in the range.
+pub fn scale_suite_over_range(
+    records: &[Record],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
     damping: f64,
 ) -> Result<Asce7Scaling, MotionError> {
     if records.is_empty() {
@@ -101,53 +263,30 @@ pub fn scale_suite_asce7(
             expected: "at least 1",
         });
     }
-    if !(t1_s.is_finite() && t1_s > 0.0) {
-        return Err(MotionError::InvalidArgument {
-            what: "T1 (s)",
-            value: t1_s,
-            expected: "finite and > 0",
-        });
-    }
-    let periods = log_spaced_periods(0.2 * t1_s, 2.0 * t1_s, ASCE7_PERIOD_POINTS)?;
-    let mut mean = vec![0.0; periods.len()];
-    for r in records {
-        let s = Spectrum::compute(r, damping, &periods)?;
-        for (m, sa) in mean.iter_mut().zip(&s.psa_m_s2) {
-            *m += sa;
-        }
-    }
     let n = records.len() as f64;
-    mean.iter_mut().for_each(|m| *m /= n);
-    let target_sa: Vec<f64> = periods.iter().map(|&t| target.sa_m_s2(t)).collect();
-    let mut factor = 0.0;
-    let mut controlling = periods[0];
-    for ((&t, &m), &s) in periods.iter().zip(&mean).zip(&target_sa) {
-        if m == 0.0 {
-            return Err(MotionError::ZeroMeasure {
-                file: "suite mean spectrum".to_string(),
-                measure: "spectral acceleration",
-            });
+    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
+        let mut sum = vec![0.0; periods.len()];
+        for r in records {
+            let s = Spectrum::compute(r, damping, periods)?;
+            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
+                *m += sa;
+            }
         }
-        let f = ASCE7_FRACTION * s / m;
-        if f > factor {
-            factor = f;
-            controlling = t;
-        }
-    }
-    // a few ulps up so that mean·factor ≥ 0.9·target survives the rounding of the product
-    factor *= 1.0 + 4.0 * f64::EPSILON;
+        Ok(sum.into_iter().map(|m| m / n).collect())
+    };
+    let m = smallest_factor(mean, target, range_s)?;
     let scaled = records
         .iter()
-        .map(|r| r.try_scaled(factor))
+        .map(|r| r.try_scaled(m.factor))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Asce7Scaling {
-        factor,
-        controlling_period_s: controlling,
-        periods_s: periods,
-        mean_psa_m_s2: mean,
-        target_psa_m_s2: target_sa,
+        factor: m.factor,
+        controlling_period_s: m.controlling_period_s,
+        periods_s: m.periods_s,
+        mean_psa_m_s2: m.mean_psa_m_s2,
+        target_psa_m_s2: m.target_psa_m_s2,
         suite: ScaledSuite {
-            factors: vec![factor; scaled.len()],
+            factors: vec![m.factor; scaled.len()],
             records: scaled,
         },
     })

@@ -163,6 +163,26 @@ fn integrate(
     damping: f64,
     mut visit: impl FnMut(bool, f64),
 ) -> Result<(), MotionError> {
+    integrate_components(
+        [record.samples()],
+        record.dt(),
+        period_s,
+        damping,
+        |at, [u]| visit(at, u),
+    )
+}
+
+/// Runs one oscillator through each of N components sampled at `dt` (s) at once, calling
+/// `visit(at_sample, [u₁ … u_N])` at t = 0 and after every (sub-)step. The run lasts as long
+/// as the longest component; a shorter one is at rest (zero) after its last sample. Each
+/// component's response is what [`integrate`] gives for it alone, operation for operation.
+pub(crate) fn integrate_components<const N: usize>(
+    components: [&[f64]; N],
+    dt: f64,
+    period_s: f64,
+    damping: f64,
+    mut visit: impl FnMut(bool, [f64; N]),
+) -> Result<(), MotionError> {
     if !(damping.is_finite() && (0.0..=MAX_SPECTRUM_DAMPING).contains(&damping)) {
         return Err(MotionError::InvalidArgument {
             what: "damping ratio",
@@ -177,12 +197,12 @@ fn integrate(
             expected: "finite, >= 0 and at most 1e4 s (beyond any structure's period)",
         });
     }
-    let a = record.samples();
+    let len = components.iter().map(|c| c.len()).max().unwrap_or(0);
+    let sample = |c: &[f64], j: usize| c.get(j).copied().unwrap_or(0.0);
     if period_s == 0.0 {
-        a.iter().for_each(|_| visit(true, 0.0));
+        (0..len).for_each(|_| visit(true, [0.0; N]));
         return Ok(());
     }
-    let dt = record.dt();
     let omega = 2.0 * std::f64::consts::PI / period_s;
     let ratio = (10.0 * dt / period_s).ceil();
     if ratio > MAX_SUBSTEPS as f64 {
@@ -198,20 +218,24 @@ fn integrate(
     // x₁' = x₂, x₂' = −x₁ − 2ζx₂ + p. Balanced entries keep the exponential accurate.
     let prop = Propagator::new([[0.0, 1.0], [-1.0, -2.0 * damping]], [0.0, 1.0], omega * h);
     let to_u = 1.0 / (omega * omega);
-    let mut x = [0.0, 0.0];
-    visit(true, 0.0);
-    for w in a.windows(2) {
-        let (a0, a1) = (w[0], w[1]);
-        let mut p_start = -a0;
+    let mut x = [[0.0, 0.0]; N];
+    visit(true, [0.0; N]);
+    for k in 1..len {
+        let mut p_start: [f64; N] = std::array::from_fn(|c| -sample(components[c], k - 1));
         for j in 1..=substeps {
-            let p_end = if j == substeps {
-                -a1
-            } else {
-                -(a0 + (a1 - a0) * j as f64 / substeps as f64)
-            };
-            x = prop.step(&x, p_start, p_end);
-            visit(j == substeps, x[0] * to_u);
-            p_start = p_end;
+            let mut u = [0.0; N];
+            for c in 0..N {
+                let (a0, a1) = (sample(components[c], k - 1), sample(components[c], k));
+                let p_end = if j == substeps {
+                    -a1
+                } else {
+                    -(a0 + (a1 - a0) * j as f64 / substeps as f64)
+                };
+                x[c] = prop.step(&x[c], p_start[c], p_end);
+                u[c] = x[c][0] * to_u;
+                p_start[c] = p_end;
+            }
+            visit(j == substeps, u);
         }
     }
     Ok(())

@@ -1,4 +1,4 @@
-//! Contract: every recorded accelerogram in `records/` reads, and its NPTS, DT and
+//! Contract: every recorded accelerogram in `records/` (and `records/pairs/`) reads, and its NPTS, DT and
 //! PGA agree with `records/index.csv` (read here, not hard-coded). The index prints
 //! PGA in g to 4 significant figures, so the measured PGA must lie within half a unit of
 //! that last figure; NPTS is exact and DT is a short decimal, compared to 1e-12 relative
@@ -77,11 +77,18 @@ fn every_record_matches_the_index() {
 #[test]
 fn every_file_in_the_folder_is_indexed() {
     let rows = index();
-    let mut on_disk: Vec<String> = std::fs::read_dir(records_dir())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.to_ascii_lowercase().ends_with(".at2"))
-        .collect();
+    // records/ and records/pairs/ (the second components of pairs, kept out of the
+    // `RSN*.AT2` patterns of the shipped studies), indexed as `pairs/FILE`
+    let mut on_disk: Vec<String> = Vec::new();
+    for (dir, prefix) in [(records_dir(), ""), (records_dir().join("pairs"), "pairs/")] {
+        on_disk.extend(
+            std::fs::read_dir(dir)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n.to_ascii_lowercase().ends_with(".at2"))
+                .map(|n| format!("{prefix}{n}")),
+        );
+    }
     on_disk.sort();
     let mut indexed: Vec<String> = rows.into_iter().map(|r| r.file).collect();
     indexed.sort();

@@ -1,6 +1,8 @@
 //! Contract: a suite scaled to a code spectrum (`scale.code_spectrum`, ASCE 7-16 §16.2.3)
 //! gets one factor for every record — the smallest for which the suite's mean 5 %-damped
-//! spectrum is at least 90 % of the target at every period of [0.2 T, 2 T] — and the study
+//! spectrum is at least 90 % of the target at every period of its range, by default from
+//! 0.2 × the braced frame's first period (or the 90 %-mass mode's) to 2 × the bare
+//! frame's, [0.2 T, 2 T] for a given T — and the study
 //! keeps that factor, the range, the controlling period and both spectra for its manifest.
 //! The MCE_R level is 1.5 × the design level (ASCE 7-16 §11.4.5), so its factor is 1.5 ×
 //! the design level's. Bad targets are refused naming the field.
@@ -37,7 +39,15 @@ fn one_factor_puts_the_mean_spectrum_at_90_percent_of_the_target() {
     let c = suite.code_scaling.as_ref().unwrap();
     let t1 = st.building.t1();
     assert_eq!(c.period_s, t1);
-    assert_eq!(c.range_s, [0.2 * t1, 2.0 * t1]);
+    // the range covers the frame with its dampers stuck (braced, stiffer) and slipping
+    // (bare), and the modes of 90 % of the mass
+    let p = st.building.scaling_periods().unwrap();
+    assert!(p.stuck_t1_s < 0.75 * t1, "{p:?}");
+    let lower = (0.2 * p.stuck_t1_s).min(p.mass_90_period_s);
+    assert_eq!(c.range_s, [lower, 2.0 * t1]);
+    assert!(c.range_s[0] <= p.mass_90_period_s && c.range_s[0] <= 0.2 * p.stuck_t1_s);
+    assert_eq!(c.stuck_period_s, Some(p.stuck_t1_s));
+    assert_eq!(c.mass_90_period_s, Some(p.mass_90_period_s));
     // recomputed independently: the scaled records' mean spectrum on the same periods
     let target = DesignSpectrum::new(1.0, 0.6, 8.0).unwrap();
     let mut mean = vec![0.0; c.periods_s.len()];
@@ -86,12 +96,11 @@ fn the_mce_level_is_one_and_a_half_times_the_design_level() {
     );
     // the rule is linear in the target; the factors differ by their rounding only
     assert!((b / a - 1.5).abs() < 1e-12, "{b} / {a}");
-    // and a chosen period moves the range
+    // and a chosen period moves the range to [0.2 T, 2 T]
     let at = study("design", r#", "period_s": 2.0"#).unwrap();
-    assert_eq!(
-        at.suites[0].code_scaling.as_ref().unwrap().range_s,
-        [0.4, 4.0]
-    );
+    let c = at.suites[0].code_scaling.as_ref().unwrap();
+    assert_eq!(c.range_s, [0.4, 4.0]);
+    assert_eq!((c.stuck_period_s, c.mass_90_period_s), (None, None));
 }
 
 #[test]

@@ -23,7 +23,7 @@ pub mod scene;
 pub mod simulate;
 pub mod units;
 
-pub use building::{Building, BuildingConfig, Dissipator, StoreyYield};
+pub use building::{Building, BuildingConfig, Dissipator, ScalingPeriods, StoreyYield};
 pub use error::SimError;
 pub use integrator::{DelaCruz, Exact, Integrator, Newmark};
 pub use kind::FileKind;

@@ -79,9 +79,10 @@ pub struct DevicesConfig {
 pub struct SuiteConfig {
     /// Name used in tables.
     pub name: String,
-    /// Record files or `*` patterns, relative to the study file.
+    /// Record files or `*` patterns, relative to the study file, or pairs of files: the two
+    /// horizontal components of one event ([`RecordEntry`]).
     #[serde(default)]
-    pub records: Vec<String>,
+    pub records: Vec<RecordEntry>,
     /// Units of the record values ("g", "m/s2", "cm/s2"); default: by format (AT2 = g).
     #[serde(default)]
     pub units: Option<String>,
@@ -97,6 +98,26 @@ pub struct SuiteConfig {
     /// The suite's acceptance limits ([`crate::model::check::SuiteLimits`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub limits: Option<crate::model::check::SuiteLimits>,
+}
+
+/// One entry of a suite's `records`: a file or `*` pattern (single components, as before),
+/// or `[first, second]`, the two horizontal components of one event (no patterns). A pair
+/// runs each component as its own record (the planar model takes one direction at a
+/// time); a suite scaled to a code spectrum scales pairs by their mean maximum-direction
+/// spectrum (docs/MODEL.md § Ground motions in code form).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RecordEntry {
+    /// A file or a `*` pattern.
+    File(String),
+    /// The two horizontal components of one event.
+    Pair([String; 2]),
+}
+
+impl From<&str> for RecordEntry {
+    fn from(s: &str) -> RecordEntry {
+        RecordEntry::File(s.to_string())
+    }
 }
 
 /// Scaling of every record of a suite.
@@ -129,10 +150,15 @@ pub struct CodeSpectrumConfig {
     /// ([`Hazard`]; read by [`CodeSpectrumConfig::hazard`]).
     #[serde(default)]
     pub hazard: Option<String>,
-    /// The period T of the range [0.2 T, 2 T], s (default: the bare frame's first period,
-    /// the building's T₁).
+    /// The period T of the range [0.2 T, 2 T], s (default: a range built from the building,
+    /// from its braced and bare first periods and its 90 %-mass modes).
     #[serde(default)]
     pub period_s: Option<f64>,
+    /// The least number of records (single components) or pairs the study accepts in the
+    /// suite (default: 11 records, ASCE 7-16 Ch. 16; 7 pairs, Ch. 18): a study that follows
+    /// another rule says so here.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_records: Option<usize>,
 }
 
 /// A hazard level of a code-scaled suite.

@@ -11,13 +11,15 @@ use crate::base::metrics::RecordMetrics;
 use crate::model::check::{CaseName, Checks, DesignCheck, PropertyCase};
 use crate::model::config::{
     CodeSpectrumConfig, Hazard, MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G,
-    SamplerKind, ScaleConfig, StudyConfig, too_large,
+    RecordEntry, SamplerKind, ScaleConfig, StudyConfig, too_large,
 };
 use crate::model::fidelity::{Fidelity, SweepMethod};
 use crate::model::objective::{Metric, Objective};
 use crate::model::space::DesignSpace;
 use serde::{Deserialize, Serialize};
-use slipload_motion::{DesignSpectrum, G, Record, SuiteTarget, Synthetic, Units};
+use slipload_motion::{
+    DesignSpectrum, G, Record, RecordPair, SuiteTarget, Synthetic, TargetMatch, Units,
+};
 use slipload_sim::Building;
 use slipload_sim::scene::{BuildingRef, MethodName};
 use std::ops::Range;
@@ -39,7 +41,10 @@ pub struct SuiteInfo {
 
 /// A suite scaled to a code spectrum (ASCE 7-16 §16.2.3): one factor for every record,
 /// the smallest that puts the suite's mean 5 %-damped spectrum at or above 90 % of the
-/// target at every period of [0.2 T, 2 T] ([`slipload_motion::scale_suite_asce7`]).
+/// target at every period of the range ([`slipload_motion::scale_suite_over_range`]): by
+/// default from the lesser of 0.2 × the first period with the dampers stuck and the period
+/// of the last mode needed for 90 % of the mass, to 2 × the bare frame's first period
+/// (docs/MODEL.md § Ground motions in code form); [0.2 T, 2 T] for a given `period_s`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CodeScaling {
     /// The hazard level.
@@ -50,10 +55,24 @@ pub struct CodeScaling {
     pub sd1_g: f64,
     /// T_L, s.
     pub tl_s: f64,
-    /// T, s: the period the range is built around.
+    /// T, s: the period the range's upper end is built on (2 T): the bare frame's first
+    /// period, or the study's `period_s`.
     pub period_s: f64,
-    /// The period range [0.2 T, 2 T], s.
+    /// The period range, s.
     pub range_s: [f64; 2],
+    /// The first period with every damper stuck (the braced frame), s, when the range was
+    /// built from the building (no `period_s`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stuck_period_s: Option<f64>,
+    /// The period of the last mode needed for 90 % of the mass (the shorter of the bare and
+    /// the braced frame's), s, when the range was built from the building.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_90_period_s: Option<f64>,
+    /// The number of pairs, when the suite is pairs of components scaled by their mean
+    /// maximum-direction (RotD100) spectrum (`mean_sa_g` is then that mean); absent for
+    /// single components.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pairs: Option<usize>,
     /// The suite's factor (every record × this).
     pub factor: f64,
     /// The period where the scaled mean spectrum meets 90 % of the target, s.
@@ -270,6 +289,13 @@ fn check_work(
     )
 }
 
+/// The least number of single-component records of a suite scaled to a code spectrum,
+/// unless the study says otherwise (ASCE 7-16 Ch. 16, as the project reads it: 11).
+pub const MIN_CODE_RECORDS: usize = 11;
+/// The least number of pairs of components of such a suite (ASCE 7-16 Ch. 18, as the
+/// project reads it: 7).
+pub const MIN_CODE_PAIRS: usize = 7;
+
 /// The benchmark study (`configs/study-benchmark.json`), embedded so that every front
 /// runs the main job with no files; its building is the embedded benchmark building.
 pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchmark.json");
@@ -277,16 +303,87 @@ pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchm
 /// How errors name the embedded benchmark study.
 pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
 
-/// Scales the records of suite `i` by one factor to the code spectrum `c` over
-/// [0.2 T, 2 T] (T = `c.period_s`, else the building's `t1`), refusing a factor that puts
-/// a record below [`MIN_STUDY_PGA_G`].
+/// The period range of a code-scaled suite: [0.2 T, 2 T] for a given T (`period_s`);
+/// else from the building (ASCE 7-16 §16.2.3.1, docs/MODEL.md § Ground motions in code
+/// form): the lower end the lesser of 0.2 × the first period with every damper stuck and
+/// the period of the last mode needed for 90 % of the mass, the upper end 2 × the bare
+/// frame's first period (the dampers slipping). Returns (T, range, stuck T₁, 90 %-mass
+/// period).
+fn scaling_range(
+    building: &Building,
+    period_s: Option<f64>,
+) -> (f64, [f64; 2], Option<f64>, Option<f64>) {
+    if let Some(t) = period_s {
+        return (t, [0.2 * t, 2.0 * t], None, None);
+    }
+    let t1 = building.t1();
+    match building.scaling_periods() {
+        Some(p) => {
+            let lower = (0.2 * p.stuck_t1_s).min(p.mass_90_period_s);
+            (
+                t1,
+                [lower, 2.0 * t1],
+                Some(p.stuck_t1_s),
+                Some(p.mass_90_period_s),
+            )
+        }
+        None => (t1, [0.2 * t1, 2.0 * t1], None, None),
+    }
+}
+
+/// Scales the records of suite `i` by one factor to the code spectrum `c` over its range
+/// ([`scaling_range`]), refusing a factor that puts a record below [`MIN_STUDY_PGA_G`].
+///
+/// A suite is either single components (scaled by their mean spectrum) or pairs (scaled
+/// by their mean maximum-direction spectrum, both components of a pair run as records, in
+/// order); fewer than the standard's count (11 records, ASCE 7-16 Ch. 16; 7 pairs, Ch. 18),
+/// or the study's `min_records`, is refused with the number needed.
 fn scale_to_code(
     unscaled: &[Record],
+    pairs: &[RecordPair],
     c: &CodeSpectrumConfig,
-    t1: f64,
+    building: &Building,
     path: &Path,
     i: usize,
 ) -> Result<(Vec<Record>, CodeScaling), OptError> {
+    if !unscaled.is_empty() && !pairs.is_empty() {
+        return Err(OptError::invalid(
+            path,
+            format!("suites[{i}].records"),
+            format!(
+                "names {} single records and {} pairs: a suite scaled to a code spectrum is single components (scaled by their spectra) or pairs (by their maximum-direction spectra), not both; make two suites",
+                unscaled.len(),
+                pairs.len()
+            ),
+        ));
+    }
+    let (count, what, standard, rule) = if pairs.is_empty() {
+        (
+            unscaled.len(),
+            "records",
+            MIN_CODE_RECORDS,
+            "ASCE 7-16 Ch. 16",
+        )
+    } else {
+        (pairs.len(), "pairs", MIN_CODE_PAIRS, "ASCE 7-16 Ch. 18")
+    };
+    let needed = c.min_records.unwrap_or(standard);
+    if count < needed {
+        let source = match c.min_records {
+            Some(_) => "the study's scale.code_spectrum.min_records".to_string(),
+            None => format!(
+                "{rule} asks for at least {standard} {what}; a study that follows another rule gives scale.code_spectrum.min_records"
+            ),
+        };
+        return Err(OptError::invalid(
+            path,
+            format!("suites[{i}].records"),
+            format!(
+                "{count} {what}: at least {needed} needed ({source}); add {} more",
+                needed - count
+            ),
+        ));
+    }
     let hazard = c.hazard().map_err(|e| {
         OptError::invalid(path, format!("suites[{i}].scale.code_spectrum.hazard"), e)
     })?;
@@ -298,9 +395,28 @@ fn scale_to_code(
             e.to_string(),
         )
     })?;
-    let period = c.period_s.unwrap_or(t1);
-    let a = slipload_motion::scale_suite_asce7(unscaled, &target, period, 0.05)?;
-    for r in &a.suite.records {
+    let (period, range, stuck, mass_90) = scaling_range(building, c.period_s);
+    let (matched, scaled) = if pairs.is_empty() {
+        let a = slipload_motion::scale_suite_over_range(unscaled, &target, range, 0.05)?;
+        let m = TargetMatch {
+            factor: a.factor,
+            controlling_period_s: a.controlling_period_s,
+            periods_s: a.periods_s,
+            mean_psa_m_s2: a.mean_psa_m_s2,
+            target_psa_m_s2: a.target_psa_m_s2,
+        };
+        (m, a.suite.records)
+    } else {
+        let a = slipload_motion::scale_pairs_over_range(pairs, &target, range, 0.05)?;
+        let records = a
+            .pairs
+            .into_iter()
+            .flat_map(|p| [p.first().clone(), p.second().clone()])
+            .collect();
+        (a.matched, records)
+    };
+    let a = matched;
+    for r in &scaled {
         let pga_g = r.pga() / G;
         if pga_g < MIN_STUDY_PGA_G {
             return Err(OptError::invalid(
@@ -319,14 +435,17 @@ fn scale_to_code(
         sd1_g: c.sd1_g,
         tl_s: c.tl_s,
         period_s: period,
-        range_s: [0.2 * period, 2.0 * period],
+        range_s: range,
+        stuck_period_s: stuck,
+        mass_90_period_s: mass_90,
         factor: a.factor,
         controlling_period_s: a.controlling_period_s,
+        pairs: (!pairs.is_empty()).then_some(pairs.len()),
         mean_sa_g: a.mean_psa_m_s2.iter().map(|m| m * a.factor / G).collect(),
         target_sa_g: a.target_psa_m_s2.iter().map(|t| t / G).collect(),
         periods_s: a.periods_s,
     };
-    Ok((a.suite.records, scaling))
+    Ok((scaled, scaling))
 }
 
 impl Fidelity {
@@ -472,9 +591,33 @@ impl Study {
                 let mut seen: Vec<(PathBuf, usize)> = Vec::new();
                 // a suite scaled to a code spectrum: read whole, then one factor for all
                 let mut unscaled: Vec<Record> = Vec::new();
+                // pairs of components, when the suite is scaled to a code spectrum
+                let mut pairs: Vec<RecordPair> = Vec::new();
+                let code = matches!(&s.scale, Some(ScaleConfig::CodeSpectrum(_)));
                 for (j, entry) in s.records.iter().enumerate() {
                     let field = format!("suites[{i}].records[{j}]");
-                    for file in expand(base, entry, path, &field)? {
+                    let (files, is_pair) = match entry {
+                        RecordEntry::File(e) => (expand(base, e, path, &field)?, false),
+                        RecordEntry::Pair(two) => {
+                            let mut files = Vec::with_capacity(2);
+                            for (c, e) in two.iter().enumerate() {
+                                let f = format!("{field}[{c}]");
+                                if e.contains('*') {
+                                    return Err(OptError::invalid(
+                                        path,
+                                        f,
+                                        format!(
+                                            "{e:?}: a pair names the two component files of one event, not a `*` pattern"
+                                        ),
+                                    ));
+                                }
+                                files.extend(expand(base, e, path, &f)?);
+                            }
+                            (files, true)
+                        }
+                    };
+                    let mut components: Vec<Record> = Vec::new();
+                    for file in files {
                         let key = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
                         if let Some((_, k)) = seen.iter().find(|(f, _)| *f == key) {
                             return Err(OptError::invalid(
@@ -490,7 +633,11 @@ impl Study {
                         let r = slipload_motion::read_record(&file, units, s.dt_s)?;
                         let r = match &s.scale {
                             Some(ScaleConfig::CodeSpectrum(_)) => {
-                                unscaled.push(r);
+                                if is_pair {
+                                    components.push(r);
+                                } else {
+                                    unscaled.push(r);
+                                }
                                 continue;
                             }
                             None => r,
@@ -523,9 +670,25 @@ impl Study {
                         };
                         records.push(Arc::new(r));
                     }
+                    if code && is_pair {
+                        let mut two = components.into_iter();
+                        if let (Some(a), Some(b)) = (two.next(), two.next()) {
+                            let stem = |r: &Record| {
+                                Path::new(r.name()).file_name().map_or_else(
+                                    || r.name().to_string(),
+                                    |n| n.to_string_lossy().into_owned(),
+                                )
+                            };
+                            let name = format!("{}+{}", stem(&a), stem(&b));
+                            let pair = RecordPair::new(name, a, b)
+                                .map_err(|e| OptError::invalid(path, &field, e.to_string()))?;
+                            pairs.push(pair);
+                        }
+                    }
                 }
                 if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
-                    let (scaled, scaling) = scale_to_code(&unscaled, c, t1, path, i)?;
+                    let (scaled, scaling) =
+                        scale_to_code(&unscaled, &pairs, c, &building, path, i)?;
                     records.extend(scaled.into_iter().map(Arc::new));
                     code_scaling = Some(scaling);
                 }

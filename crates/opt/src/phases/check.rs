@@ -199,6 +199,19 @@ impl CodeCheck {
                     c.range_s[1],
                     c.controlling_period_s
                 );
+                if let Some(n) = c.pairs {
+                    let _ = writeln!(
+                        s,
+                        "The suite is {n} pairs of horizontal components, scaled by their mean maximum-direction (RotD100) spectrum (ASCE 7-22 §16.2.3.2); the planar model runs each component of a pair as its own record.\n"
+                    );
+                }
+                if let (Some(stuck), Some(m90)) = (c.stuck_period_s, c.mass_90_period_s) {
+                    let _ = writeln!(
+                        s,
+                        "The range runs from the lesser of 0.2 × the first period with the dampers stuck ({stuck:.3} s) and the period of the last mode for 90 % of the mass ({m90:.3} s), to 2 × the bare frame's first period ({:.3} s; ASCE 7-16 §16.2.3.1).\n",
+                        c.period_s
+                    );
+                }
             }
             let lines: Vec<_> = self
                 .check

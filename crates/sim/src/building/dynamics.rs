@@ -1,16 +1,68 @@
 //! A building's dynamics as an engineer states them: the bare frame's modes with the
-//! damping ratio each has, and the periods with the dampers stuck (every brace a storey
-//! spring) and slipping (a slipping damper adds no stiffness: the bare frame's).
+//! damping ratio each has, the periods with the dampers stuck (every brace a storey
+//! spring) and slipping (a slipping damper adds no stiffness: the bare frame's), and the
+//! periods a code-scaled suite's range is built from ([`ScalingPeriods`]).
 
 use super::check::lock_brace;
 use super::validated::Building;
 use crate::modes::Modes;
+use nalgebra::DMatrix;
 use std::fmt::Write as _;
 
 /// Off-diagonal terms of ΦᵀCΦ below this fraction of the geometric mean of their
 /// diagonal terms leave the modes uncoupled: the damping is classical (Rayleigh, modal
 /// and stiffness-proportional storey dashpots are, up to round-off ~1e-15).
 const CLASSICAL_COUPLING: f64 = 1e-9;
+
+/// The periods a code-scaled suite's range is built from: the first period of the frame
+/// with its dampers slipping (the bare frame: a slipping damper adds a force, no
+/// stiffness) and with them stuck (every brace acting as a storey spring), and the modes
+/// that make up 90 % of the mass in each state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScalingPeriods {
+    /// First period of the bare frame (dampers slipping), s.
+    pub bare_t1_s: f64,
+    /// First period with every damper stuck (braced), s.
+    pub stuck_t1_s: f64,
+    /// How many modes of the bare frame make up 90 % of its mass.
+    pub bare_modes_90: usize,
+    /// How many modes of the braced frame make up 90 % of its mass.
+    pub stuck_modes_90: usize,
+    /// The shorter of the two frames' periods of the last of those modes, s.
+    pub mass_90_period_s: f64,
+}
+
+/// The modes (in ascending frequency) whose effective masses first add up to 90 % of the
+/// total, for ground motion along `r`.
+struct MassParticipation {
+    modes: usize,
+    period_s: f64,
+}
+
+impl MassParticipation {
+    fn of(m: &DMatrix<f64>, modes: &Modes, r: &nalgebra::DVector<f64>) -> MassParticipation {
+        // mass-normalised shapes: effective mass of mode k = (φₖᵀ M r)²; their sum over all
+        // modes is rᵀ M r
+        let mr = m * r;
+        let total = r.dot(&mr);
+        let mut sum = 0.0;
+        let n = modes.omega.len();
+        for k in 0..n {
+            let gamma = modes.shapes.column(k).dot(&mr);
+            sum += gamma * gamma;
+            if sum >= 0.9 * total || k + 1 == n {
+                return MassParticipation {
+                    modes: k + 1,
+                    period_s: 2.0 * std::f64::consts::PI / modes.omega[k],
+                };
+            }
+        }
+        MassParticipation {
+            modes: n,
+            period_s: 2.0 * std::f64::consts::PI / modes.omega[n - 1],
+        }
+    }
+}
 
 /// The modal facts of a building ([`Building::dynamics`]).
 #[derive(Debug, Clone)]
@@ -43,19 +95,48 @@ impl Building {
                         <= CLASSICAL_COUPLING * (c[(i, i)].abs() * c[(j, j)].abs()).sqrt()
             })
         });
-        let (mut k, mut m) = (self.stiffness.clone(), self.mass.clone());
-        let mut any = false;
-        for (floor, d) in self.dissipators.iter().enumerate() {
-            if let Some(d) = d.filter(|d| !d.is_free()) {
-                lock_brace(&mut k, &mut m, floor, &d);
-                any = true;
-            }
-        }
+        let any = self.dissipators.iter().flatten().any(|d| !d.is_free());
         Dynamics {
             damping_ratios,
             classical,
-            stuck: if any { Modes::compute(&m, &k) } else { None },
+            stuck: if any { self.stuck(false).1 } else { None },
         }
+    }
+
+    /// The frame with its dampers stuck (each brace a storey spring between floors i − 1
+    /// and i, its m′ moving with floor i: docs/MODEL.md § The model, μN → ∞) — every
+    /// damper (`all`: the slip loads a design may give them), or those whose contact can
+    /// stick as the building stands (not free) — as its mass matrix and its modes
+    /// (`None`: none).
+    fn stuck(&self, all: bool) -> (DMatrix<f64>, Option<Modes>) {
+        let (mut k, mut m) = (self.stiffness.clone(), self.mass.clone());
+        for (floor, d) in self.dissipators.iter().enumerate() {
+            if let Some(d) = d.filter(|d| all || !d.is_free()) {
+                lock_brace(&mut k, &mut m, floor, &d);
+            }
+        }
+        let modes = Modes::compute(&m, &k);
+        (m, modes)
+    }
+
+    /// The first periods the range of a code-scaled suite is built from
+    /// ([`ScalingPeriods`]); `None` when the braced frame has no modes (an unstable or
+    /// massless frame, which validation refuses before).
+    pub fn scaling_periods(&self) -> Option<ScalingPeriods> {
+        let n = self.floors();
+        let ones = nalgebra::DVector::from_element(n, 1.0);
+        let bare = MassParticipation::of(&self.mass, &self.modes, &ones);
+        // every damper stuck, whatever the file's slip load: a design gives it one
+        let (m, stuck_modes) = self.stuck(true);
+        let stuck_modes = stuck_modes?;
+        let stuck = MassParticipation::of(&m, &stuck_modes, &ones);
+        Some(ScalingPeriods {
+            bare_t1_s: self.t1(),
+            stuck_t1_s: 2.0 * std::f64::consts::PI / stuck_modes.omega[0],
+            bare_modes_90: bare.modes,
+            stuck_modes_90: stuck.modes,
+            mass_90_period_s: bare.period_s.min(stuck.period_s),
+        })
     }
 
     /// The bare frame's periods, mode shapes (each scaled to a largest entry of 1, floors

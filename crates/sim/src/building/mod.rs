@@ -29,5 +29,5 @@ pub use config::{
     BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, RayleighConfig, SlipLoad,
     StoreyYieldConfig,
 };
-pub use dynamics::Dynamics;
+pub use dynamics::{Dynamics, ScalingPeriods};
 pub use validated::{Building, Dissipator, StoreyYield};

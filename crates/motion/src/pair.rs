@@ -1,0 +1,186 @@
+//! Pairs of horizontal components of one event, their maximum-direction spectrum, and
+//! suites of pairs scaled to a target by it.
+//!
+//! Contract:
+//! * a [`RecordPair`] is two components sampled at the same dt (the shorter is at rest
+//!   after its last sample); [`RecordPair::rotated`] is the component along azimuth θ from
+//!   the first, a_θ = a₁ cos θ + a₂ sin θ;
+//! * [`rotd100_spectrum`] is the maximum-direction spectrum RotD100 (Boore, 2010, *BSSA*
+//!   100(4), 1830–1835): per period, the peak over rotation angles θ of the peak response
+//!   of the oscillator to a_θ. The oscillator is linear, so its response to a_θ is
+//!   u_θ(t) = u₁(t) cos θ + u₂(t) sin θ, whose largest |u_θ(t)| over θ is the length of
+//!   (u₁(t), u₂(t)): RotD100 Sd = max over t of √(u₁² + u₂²), exactly — over every angle,
+//!   not a grid of them (peaks sampled at the same (sub-)step points as [`crate::Spectrum`]);
+//!   PSA = ω²·Sd. At T = 0, the peak length of the ground-acceleration vector.
+//! * [`scale_pairs_over_range`]: one factor for every pair, the smallest for which the
+//!   suite's mean RotD100 spectrum is at least 90 % of the target at every period of the
+//!   range (ASCE 7-22 §16.2.3.2, as [`crate::smallest_factor`] finds it).
+
+use crate::spectrum::integrate_components;
+use crate::{DesignSpectrum, MotionError, Record, Spectrum, TargetMatch, smallest_factor};
+
+/// The two horizontal components of one event.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RecordPair {
+    name: String,
+    first: Record,
+    second: Record,
+}
+
+impl RecordPair {
+    /// The pair `name` of components `first` and `second`.
+    ///
+    /// Errors: [`MotionError::PairMismatch`] when their sample intervals differ.
+    pub fn new(
+        name: impl Into<String>,
+        first: Record,
+        second: Record,
+    ) -> Result<RecordPair, MotionError> {
+        let name = name.into();
+        // the same dt to 1e-9 of itself: the headers' rounding, not another interval
+        if (first.dt() - second.dt()).abs() > 1e-9 * first.dt() {
+            return Err(MotionError::PairMismatch {
+                pair: name,
+                reason: format!(
+                    "{} is sampled at dt = {} s and {} at dt = {} s: the two components of one event share a time axis",
+                    first.name(),
+                    first.dt(),
+                    second.name(),
+                    second.dt()
+                ),
+            });
+        }
+        Ok(RecordPair {
+            name,
+            first,
+            second,
+        })
+    }
+
+    /// The pair's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The first component.
+    pub fn first(&self) -> &Record {
+        &self.first
+    }
+
+    /// The second component.
+    pub fn second(&self) -> &Record {
+        &self.second
+    }
+
+    /// Both components × `factor` ([`Record::try_scaled`]).
+    pub fn try_scaled(&self, factor: f64) -> Result<RecordPair, MotionError> {
+        Ok(RecordPair {
+            name: self.name.clone(),
+            first: self.first.try_scaled(factor)?,
+            second: self.second.try_scaled(factor)?,
+        })
+    }
+
+    /// The component along azimuth `theta_rad` from the first component towards the second:
+    /// a₁ cos θ + a₂ sin θ, as long as the longer component (the shorter is zero after its
+    /// end), named `NAME@θ°`.
+    pub fn rotated(&self, theta_rad: f64) -> Result<Record, MotionError> {
+        let (a, b) = (self.first.samples(), self.second.samples());
+        let (c, s) = (theta_rad.cos(), theta_rad.sin());
+        let len = a.len().max(b.len());
+        let at = |x: &[f64], j: usize| x.get(j).copied().unwrap_or(0.0);
+        let samples = (0..len).map(|j| at(a, j) * c + at(b, j) * s).collect();
+        Record::new(
+            format!("{}@{}deg", self.name, theta_rad.to_degrees()),
+            self.first.dt(),
+            samples,
+        )
+    }
+}
+
+/// The maximum-direction (RotD100) spectrum of `pair` for damping ratio
+/// `damping` at `periods_s` (see the module docs): Sd, PSV = ω·Sd, PSA = ω²·Sd.
+///
+/// Errors: as [`Spectrum::compute`].
+pub fn rotd100_spectrum(
+    pair: &RecordPair,
+    damping: f64,
+    periods_s: &[f64],
+) -> Result<Spectrum, MotionError> {
+    let mut s = Spectrum {
+        damping,
+        periods_s: periods_s.to_vec(),
+        sd_m: Vec::with_capacity(periods_s.len()),
+        psv_m_s: Vec::with_capacity(periods_s.len()),
+        psa_m_s2: Vec::with_capacity(periods_s.len()),
+    };
+    let (a, b) = (pair.first.samples(), pair.second.samples());
+    for &t in periods_s {
+        let mut peak = 0.0f64;
+        integrate_components([a, b], pair.first.dt(), t, damping, |_, [u, v]| {
+            peak = peak.max(u.hypot(v));
+        })?;
+        if t == 0.0 {
+            let len = a.len().max(b.len());
+            let at = |x: &[f64], j: usize| x.get(j).copied().unwrap_or(0.0);
+            let pga = (0..len).fold(0.0f64, |m, j| m.max(at(a, j).hypot(at(b, j))));
+            s.sd_m.push(0.0);
+            s.psv_m_s.push(0.0);
+            s.psa_m_s2.push(pga);
+        } else {
+            let omega = 2.0 * std::f64::consts::PI / t;
+            s.sd_m.push(peak);
+            s.psv_m_s.push(omega * peak);
+            s.psa_m_s2.push(omega * omega * peak);
+        }
+    }
+    Ok(s)
+}
+
+/// Pairs scaled by one common factor ([`scale_pairs_over_range`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PairScaling {
+    /// The factor, the controlling period and the mean RotD100 spectrum (unscaled) beside
+    /// the target.
+    pub matched: TargetMatch,
+    /// The scaled pairs, in input order.
+    pub pairs: Vec<RecordPair>,
+}
+
+/// Scales `pairs` by one common factor, the smallest for which their mean RotD100
+/// spectrum (damping ratio `damping`) is at least 90 % of `target` at every period of
+/// `range_s` (s).
+///
+/// Errors: [`MotionError::InvalidArgument`] for no pairs or a bad range or damping,
+/// [`MotionError::ZeroMeasure`] when the mean vanishes somewhere in the range.
+pub fn scale_pairs_over_range(
+    pairs: &[RecordPair],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<PairScaling, MotionError> {
+    if pairs.is_empty() {
+        return Err(MotionError::InvalidArgument {
+            what: "number of record pairs",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let n = pairs.len() as f64;
+    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
+        let mut sum = vec![0.0; periods.len()];
+        for p in pairs {
+            let s = rotd100_spectrum(p, damping, periods)?;
+            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
+                *m += sa;
+            }
+        }
+        Ok(sum.into_iter().map(|m| m / n).collect())
+    };
+    let matched = smallest_factor(mean, target, range_s)?;
+    let pairs = pairs
+        .iter()
+        .map(|p| p.try_scaled(matched.factor))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(PairScaling { matched, pairs })
+}
