@@ -141,3 +141,36 @@ fn collapses_are_said_in_words_by_every_command() {
     assert!(!family.join("family.csv").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Where every design the sweep ran collapses (a slip-load range of 0–200 kN on the frame
+/// above), `optimize` stops with the collapse message and writes no recommendation —
+/// without limits and with them (where no design meeting the limits would otherwise
+/// make it recommend the "closest", a collapsing design with an objective of inf).
+#[test]
+fn a_study_whose_every_design_collapses_stops_with_the_collapse_message() {
+    let dir = common::scratch("collapse", "every");
+    let text = std::fs::read_to_string(study(&dir)).unwrap();
+    let text = text.replace("\"scale_kn\": [0, 2000]", "\"scale_kn\": [0, 200]");
+    let with_limits = text.replace(
+        "\"pga_g\": 0.5, \"duration_s\": 4 }",
+        "\"pga_g\": 0.5, \"duration_s\": 4 }, \"limits\": { \"criteria\": [ { \"metric\": \"peak_drift_ratio\", \"statistic\": \"mean\", \"max\": 0.006 } ] }",
+    );
+    assert_ne!(text, with_limits);
+    for (name, text) in [("plain", text), ("limits", with_limits)] {
+        let st = dir.join(format!("{name}.json"));
+        std::fs::write(&st, text).unwrap();
+        let out = dir.join(name);
+        let o = slipload_within(T, &["optimize", s(&st), "--out", s(&out)]);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{name}: {e}");
+        assert!(
+            e.contains("every sampled design collapses on some record of the study"),
+            "{name}: {e}"
+        );
+        assert!(
+            !out.join("optimum.json").exists(),
+            "{name}: an optimum was written"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -360,6 +360,16 @@ pub fn refine_sweep(
             limits: target.limit_values(obj[0].0, check),
         });
     }
+    // with limits, no design meeting them makes the refiners look for the closest
+    // (the smallest sum of exceedances, finite for a collapsing design too): where every
+    // design the sweep ran collapses on some record there is no closest design to
+    // recommend, and the study stops as a study without limits does
+    if target == RefineTarget::Violation && obj.iter().skip(1).all(|(f, _)| !f.is_finite()) {
+        return Err(OptError::Missing(format!(
+            "every sampled design collapses on some record of the study (the drift limit of the building): widen the slip-load range or lower the suites' intensity ({} designs)",
+            obj.len() - 1
+        )));
+    }
     let by_value = |known: &[Point]| {
         let mut order: Vec<usize> = (0..known.len()).collect();
         order.sort_by(|&a, &b| known[a].f.total_cmp(&known[b].f).then(a.cmp(&b)));
