@@ -68,6 +68,15 @@ impl PyStudy {
         })
     }
 
+    /// What the study's inputs make doubtful without making them wrong (a slip load of
+    /// the building file that looks like kN written as N, a base-shear limit that looks
+    /// like kN written as N): the command line's warnings, in its words;
+    /// `slipload.load_study` (and every study call) warns them as `UserWarning`s.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings()
+    }
+
     /// The study's name.
     #[getter]
     fn name(&self) -> String {

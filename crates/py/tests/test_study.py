@@ -270,3 +270,28 @@ def test_the_design_table_frame_has_one_number_per_cell(cli_optimized):
         assert list(frame[f"slip_load_kn_floor_{f}"]) == list(csv[f"slip_load_kN_{f}"])
     for i in range(1, storeys + 1):
         assert list(frame[f"stroke_max_storey_{i}"]) == list(csv[f"stroke_max_m_{i}"])
+
+
+def test_a_study_warns_what_the_command_line_warns():
+    """A base-shear limit of 5000 (meant as kN, read as N) is warned about as the command
+    line warns it ("did you mean kN?"), naming the field; a plausible one is not."""
+    study = json.loads(STUDY.read_text())
+    study["building"] = str(ROOT / "configs" / "benchmark-3story.json")
+    for s in study["suites"]:
+        if "records" in s:
+            s["records"] = [str((STUDY.parent / r).resolve()) for r in s["records"]]
+
+    def with_limit(max_n):
+        s = json.loads(json.dumps(study))
+        s["suites"][0]["limits"] = {"criteria": [
+            {"metric": "peak_drift_ratio", "statistic": "mean", "max": 0.02},
+            {"metric": "base_shear", "statistic": "mean", "max": max_n}]}
+        return s
+
+    with pytest.warns(UserWarning, match=r"suites\[0\]\.limits\.criteria\[1\]\.max: .*did you mean kN"):
+        loaded = slipload.load_study(with_limit(5000.0))
+    assert any("did you mean kN" in w for w in loaded.warnings)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert slipload.load_study(with_limit(5.0e6)).warnings == []

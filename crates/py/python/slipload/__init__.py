@@ -432,6 +432,10 @@ def load_study(study: Union[None, PathLike, Dict[str, Any], Study] = None) -> St
             from the current folder), a :class:`Study`, or ``None`` for the embedded
             benchmark study (``configs/study-benchmark.json``, the command line's default).
 
+    Warns:
+        UserWarning: what the study's inputs make doubtful (``Study.warnings``: a slip load
+        or a base-shear limit that looks like kN written as N), as the command line warns.
+
     Raises:
         InputError: a bad file or field, with the message the command line prints.
     """
@@ -440,10 +444,15 @@ def load_study(study: Union[None, PathLike, Dict[str, Any], Study] = None) -> St
     if isinstance(study, Study):
         return study
     if isinstance(study, dict):
-        return Study.from_json(_json_text(study, "study (a dict)", "study"), "study (a dict)")
-    if isinstance(study, (str, os.PathLike)):
-        return Study.load(os.fspath(study))
-    raise InputError(f"study: expected a file path, a dict, a slipload.Study or None, got a {type(study).__name__}")
+        loaded, name = Study.from_json(_json_text(study, "study (a dict)", "study"), "study (a dict)"), "study (a dict)"
+    elif isinstance(study, (str, os.PathLike)):
+        loaded, name = Study.load(os.fspath(study)), f"study {os.fspath(study)}"
+    else:
+        raise InputError(f"study: expected a file path, a dict, a slipload.Study or None, got a {type(study).__name__}")
+    # the command line's "warning: study FILE, …" lines ("did you mean kN?")
+    for text in loaded.warnings:
+        warnings.warn(f"{name}, {text}", UserWarning, stacklevel=3)
+    return loaded
 
 
 # the design table's quantities given per dissipator (the others are per storey)

@@ -258,6 +258,9 @@ class Study:
     def benchmark() -> "Study":
         """The embedded benchmark study."""
     @property
+    def warnings(self) -> List[str]:
+        """What the study's inputs make doubtful (the command line's warnings)."""
+    @property
     def name(self) -> str:
         """The study's name."""
     @property
