@@ -146,6 +146,19 @@ impl Writer<'_> {
             if plain.is(v) {
                 return Err(self.refuse("a numpy value that gives no Python value"));
             }
+            let dtype = v.getattr("dtype")?;
+            let kind: String = dtype.getattr("kind")?.extract()?;
+            let size: usize = dtype.getattr("itemsize")?.extract()?;
+            if kind == "f" && size == 4 {
+                // float32: the decimals numpy shows (np.float32(0.1) is 0.1, not the
+                // 0.10000000149011612 its bits are as a double)
+                let shown = shown_f32(&plain)?;
+                return self.value(&shown);
+            }
+            if kind == "f" && size < 4 {
+                return Err(self
+                    .refuse("a float16 value keeps about three digits; give float32 or float64"));
+            }
             return self.value(&plain);
         }
         Err(self.refuse(format!(
@@ -184,4 +197,29 @@ pub fn dict_json(value: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<S
     };
     w.value(value)?;
     Ok(w.out)
+}
+
+/// `plain` (a float32 value or array as `tolist` gives it, nested lists of Python floats)
+/// with every float replaced by the shortest decimal that reads back to the same float32
+/// — the number numpy shows — read as a double.
+fn shown_f32<'py>(plain: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let py = plain.py();
+    if let Ok(x) = plain.cast::<PyFloat>() {
+        // exact: a float32 widened to a double narrows back to itself
+        let single = x.value() as f32;
+        let shown: f64 = if single.is_finite() {
+            format!("{single}").parse().unwrap_or(x.value())
+        } else {
+            x.value()
+        };
+        return Ok(PyFloat::new(py, shown).into_any());
+    }
+    if let Ok(list) = plain.cast::<PyList>() {
+        let items = list
+            .iter()
+            .map(|item| shown_f32(&item))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(PyList::new(py, items)?.into_any());
+    }
+    Ok(plain.clone())
 }

@@ -96,6 +96,13 @@ def test_numpy_numbers_and_arrays_in_a_dict_are_the_numbers_they_show():
     a = slipload.simulate(slipload.load_scene(plain, duration=2.0))
     b = slipload.simulate(slipload.load_scene(numpy, duration=2.0))
     np.testing.assert_array_equal(a.peak_drift, b.peak_drift)
+    # float32 numbers are the decimals numpy shows, not their bits as a double
+    text = _slipload.dict_json(
+        {"x": np.float32(0.1), "a": np.array([0.3, 1.0e-7, 2.0e5], dtype=np.float32)}, "x", "x")
+    assert json.loads(text) == {"x": 0.1, "a": [0.3, 1.0e-7, 2.0e5]}
+    assert float(np.float32(0.1)) != 0.1  # (what tolist() alone would give)
+    with pytest.raises(slipload.InputError, match="float16"):
+        _slipload.dict_json({"x": np.float16(0.1)}, "x", "x")
     # an array in its logical order, whatever its memory order
     m = np.arange(6.0).reshape(2, 3)
     for view in (m, m.T, np.asfortranarray(m), np.asfortranarray(m).T):
