@@ -75,6 +75,7 @@ fn overrides(
     record: Option<&Bound<'_, PyAny>>,
     units: Option<&str>,
     scale_pga_g: Option<f64>,
+    scale: Option<f64>,
     window: Option<(f64, f64)>,
     method_name: Option<&str>,
     dt: Option<f64>,
@@ -83,6 +84,7 @@ fn overrides(
     let mut over = SceneOverrides {
         units: crate::records::units(units)?,
         scale_pga_g,
+        scale,
         window,
         method: method_name.map(method).transpose()?,
         dt,
@@ -157,21 +159,30 @@ fn read_scene_text(path: &std::path::Path) -> PyResult<String> {
 impl PyScene {
     /// Loads a scene or building file.
     #[staticmethod]
-    #[pyo3(signature = (path, *, record=None, units=None, scale_pga_g=None, window=None, method=None, dt=None, duration=None))]
+    #[pyo3(signature = (path, *, record=None, units=None, scale_pga_g=None, scale=None, window=None, method=None, dt=None, duration=None))]
     #[allow(clippy::too_many_arguments)]
     fn load(
         path: PathBuf,
         record: Option<&Bound<'_, PyAny>>,
         units: Option<&str>,
         scale_pga_g: Option<f64>,
+        scale: Option<f64>,
         window: Option<(f64, f64)>,
         method: Option<&str>,
         dt: Option<f64>,
         duration: Option<f64>,
     ) -> PyResult<PyScene> {
         guarded(|| {
-            let (over, given) =
-                overrides(record, units, scale_pga_g, window, method, dt, duration)?;
+            let (over, given) = overrides(
+                record,
+                units,
+                scale_pga_g,
+                scale,
+                window,
+                method,
+                dt,
+                duration,
+            )?;
             let text = read_scene_text(&path)?;
             PyScene::from_text(&text, path, over, given)
         })
@@ -179,7 +190,7 @@ impl PyScene {
 
     /// A scene from JSON text (a scene file's or a building file's).
     #[staticmethod]
-    #[pyo3(signature = (text, name="scene", *, record=None, units=None, scale_pga_g=None, window=None, method=None, dt=None, duration=None))]
+    #[pyo3(signature = (text, name="scene", *, record=None, units=None, scale_pga_g=None, scale=None, window=None, method=None, dt=None, duration=None))]
     #[allow(clippy::too_many_arguments)]
     fn from_json(
         text: &str,
@@ -187,14 +198,23 @@ impl PyScene {
         record: Option<&Bound<'_, PyAny>>,
         units: Option<&str>,
         scale_pga_g: Option<f64>,
+        scale: Option<f64>,
         window: Option<(f64, f64)>,
         method: Option<&str>,
         dt: Option<f64>,
         duration: Option<f64>,
     ) -> PyResult<PyScene> {
         guarded(|| {
-            let (over, given) =
-                overrides(record, units, scale_pga_g, window, method, dt, duration)?;
+            let (over, given) = overrides(
+                record,
+                units,
+                scale_pga_g,
+                scale,
+                window,
+                method,
+                dt,
+                duration,
+            )?;
             PyScene::from_text(text, PathBuf::from(name), over, given)
                 .map_err(|e| crate::json_path::located(e, text, name))
         })
@@ -203,20 +223,29 @@ impl PyScene {
     /// The embedded benchmark building under the first record of the embedded synthetic
     /// suite (the command line's default scene).
     #[staticmethod]
-    #[pyo3(signature = (*, record=None, units=None, scale_pga_g=None, window=None, method=None, dt=None, duration=None))]
+    #[pyo3(signature = (*, record=None, units=None, scale_pga_g=None, scale=None, window=None, method=None, dt=None, duration=None))]
     #[allow(clippy::too_many_arguments)]
     fn benchmark(
         record: Option<&Bound<'_, PyAny>>,
         units: Option<&str>,
         scale_pga_g: Option<f64>,
+        scale: Option<f64>,
         window: Option<(f64, f64)>,
         method: Option<&str>,
         dt: Option<f64>,
         duration: Option<f64>,
     ) -> PyResult<PyScene> {
         guarded(|| {
-            let (over, given) =
-                overrides(record, units, scale_pga_g, window, method, dt, duration)?;
+            let (over, given) = overrides(
+                record,
+                units,
+                scale_pga_g,
+                scale,
+                window,
+                method,
+                dt,
+                duration,
+            )?;
             PyScene::build(Source {
                 config: slipload_sim::scene::benchmark_scene_config().py()?,
                 path: PathBuf::from(slipload_sim::scene::BENCHMARK_ORIGIN),
@@ -228,20 +257,30 @@ impl PyScene {
     }
 
     /// The same scene with other overrides (those not given are kept).
-    #[pyo3(signature = (*, record=None, units=None, scale_pga_g=None, window=None, method=None, dt=None, duration=None))]
+    #[pyo3(signature = (*, record=None, units=None, scale_pga_g=None, scale=None, window=None, method=None, dt=None, duration=None))]
     #[allow(clippy::too_many_arguments)]
     fn replace(
         &self,
         record: Option<&Bound<'_, PyAny>>,
         units: Option<&str>,
         scale_pga_g: Option<f64>,
+        scale: Option<f64>,
         window: Option<(f64, f64)>,
         method: Option<&str>,
         dt: Option<f64>,
         duration: Option<f64>,
     ) -> PyResult<PyScene> {
         guarded(|| {
-            let (o, given) = overrides(record, units, scale_pga_g, window, method, dt, duration)?;
+            let (o, given) = overrides(
+                record,
+                units,
+                scale_pga_g,
+                scale,
+                window,
+                method,
+                dt,
+                duration,
+            )?;
             let mut source = self.source.clone();
             let over = &mut source.over;
             if o.record.is_some() {
@@ -253,7 +292,11 @@ impl PyScene {
                 over.record = None;
             }
             over.units = o.units.or(over.units);
-            over.scale_pga_g = o.scale_pga_g.or(over.scale_pga_g);
+            // one way of scaling: a new one replaces the other
+            if o.scale_pga_g.is_some() || o.scale.is_some() {
+                over.scale_pga_g = o.scale_pga_g;
+                over.scale = o.scale;
+            }
             over.window = o.window.or(over.window);
             over.method = o.method.or(over.method);
             over.dt = o.dt.or(over.dt);

@@ -63,6 +63,19 @@ def test_scene_file_with_record_and_window():
     same_contract(slipload.simulate(str(scene)), cli_json("simulate", scene, "--format", "json"))
 
 
+def test_a_scale_factor_is_the_cli_scale():
+    """``scale=`` is ``--scale``: the record times the factor, the same bits; a scene
+    re-resolved with ``scale_pga_g`` takes that in place of the factor."""
+    rec = ROOT / "records" / "elCentro.AT2"
+    scaled = slipload.load_scene(record=rec, scale=1.7)
+    same_contract(slipload.simulate(scaled), cli_json("simulate", "--record", rec, "--scale", "1.7", "--format", "json"))
+    again = slipload.load_scene(scaled, scale_pga_g=0.3)
+    same_contract(slipload.simulate(again),
+                  cli_json("simulate", "--record", rec, "--scale-pga-g", "0.3", "--format", "json"))
+    with pytest.raises(slipload.InputError, match="not both"):
+        slipload.load_scene(record=rec, scale=2.0, scale_pga_g=0.3)
+
+
 def test_yielding_frame_reports_ductility_as_the_cli():
     scene = ROOT / "configs" / "ten-story-yielding.json"
     rec = ROOT / "records" / "I-ELC180.AT2"

@@ -243,6 +243,7 @@ def load_scene(
     record: Union[None, Record, PathLike] = None,
     units: Optional[str] = None,
     scale_pga_g: Optional[float] = None,
+    scale: Optional[float] = None,
     window: Optional[Tuple[float, float]] = None,
     method: Optional[str] = None,
     dt: Optional[float] = None,
@@ -261,6 +262,8 @@ def load_scene(
         record: a :class:`Record` or a record file, replacing the scene's ground motion.
         units: units of that record file's values (``"g"``, ``"m/s2"``, ``"cm/s2"``).
         scale_pga_g: scale the ground motion to this PGA, g.
+        scale: multiply the ground motion by this factor (a suite's scale factor; in place
+            of the scene's own ``scale`` or ``scale_pga_g``; not with ``scale_pga_g``).
         window: ``(start, duration)`` of the ground motion to use, s.
         method: ``"newmark"`` (default), ``"hht"``, ``"bilinear"``, ``"delacruz"`` or
             ``"exact"``.
@@ -271,7 +274,7 @@ def load_scene(
     Raises:
         InputError: a bad file or field, with the message the command line prints.
     """
-    kw = dict(record=record, units=units, scale_pga_g=scale_pga_g, window=window, method=method, dt=dt, duration=duration)
+    kw = dict(record=record, units=units, scale_pga_g=scale_pga_g, scale=scale, window=window, method=method, dt=dt, duration=duration)
     if isinstance(record, os.PathLike):
         kw["record"] = os.fspath(record)
     if scene is None:
