@@ -241,6 +241,12 @@ pub fn check_label(study: &Study) -> String {
 /// bare number a study meant in kN, read as newtons ([`Study::warnings`]).
 pub const MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT: f64 = 0.01;
 
+/// A suite's record whose scaled PGA is more than this factor above (or below) the
+/// suite's median PGA is named in [`Study::warnings`]: the suites of the examples keep
+/// within 3.6 × (a near-fault record among distant ones), a record 4 × off is an outlier a
+/// scale factor or a wrong file made.
+pub const EXTREME_PGA_RATIO: f64 = 4.0;
+
 impl Study {
     /// What the study's inputs make doubtful without making them wrong, in the words the
     /// command line prints after "warning: study FILE, ": a slip load of the building file
@@ -276,6 +282,38 @@ impl Study {
                         n(100.0 * MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT),
                         n(weight),
                         n(max * 1e3)
+                    ));
+                }
+            }
+        }
+        // a record scaled far outside the rest of its suite drives the suite's mean
+        for suite in &self.suites {
+            let pgas: Vec<(usize, f64)> = suite
+                .range
+                .clone()
+                .map(|r| (r, self.records[r].pga()))
+                .collect();
+            if pgas.len() < 3 {
+                continue;
+            }
+            let mut sorted: Vec<f64> = pgas.iter().map(|p| p.1).collect();
+            sorted.sort_by(f64::total_cmp);
+            let m = sorted.len();
+            let median = if m % 2 == 1 {
+                sorted[m / 2]
+            } else {
+                0.5 * (sorted[m / 2 - 1] + sorted[m / 2])
+            };
+            for (r, pga) in pgas {
+                let ratio = pga / median;
+                if !(1.0 / EXTREME_PGA_RATIO..=EXTREME_PGA_RATIO).contains(&ratio) {
+                    out.push(format!(
+                        "suite {}: record {} is scaled to a PGA of {} g, {} x the suite's median PGA ({} g): a record this far from the rest drives the suite's statistics; check its factor, or whether it belongs to this suite",
+                        suite.name,
+                        self.records[r].name(),
+                        n(pga / slipload_motion::G),
+                        n(ratio),
+                        n(median / slipload_motion::G)
                     ));
                 }
             }

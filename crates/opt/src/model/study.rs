@@ -126,8 +126,20 @@ pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
     )?)
 }
 
-/// `*` matching of one file name (no other wildcards).
+/// `*` matching of one file name (no other wildcards); a pattern's extension matches in
+/// any case (`*.AT2` takes `x.at2`: PEER files come with either).
 fn wildcard(pattern: &str, name: &str) -> bool {
+    if let (Some((pstem, pext)), Some((nstem, next))) =
+        (pattern.rsplit_once('.'), name.rsplit_once('.'))
+        && !pext.contains('*')
+    {
+        return pext.eq_ignore_ascii_case(next) && wildcard_exact(pstem, nstem);
+    }
+    wildcard_exact(pattern, name)
+}
+
+/// `*` matching of one file name, case as written.
+fn wildcard_exact(pattern: &str, name: &str) -> bool {
     let parts: Vec<&str> = pattern.split('*').collect();
     if parts.len() == 1 {
         return pattern == name;
@@ -146,7 +158,8 @@ fn wildcard(pattern: &str, name: &str) -> bool {
     true
 }
 
-/// Files of one record entry: the file itself, or the sorted matches of a `*` pattern.
+/// Files of one record entry: the file itself, or the sorted matches of a `*` pattern
+/// (whose extension matches in any case: [`wildcard`]).
 fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<PathBuf>, OptError> {
     let full = base.join(entry);
     let name = full
@@ -156,7 +169,7 @@ fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<Path
     if !name.contains('*') {
         if !full.is_file() {
             let what = if full.is_dir() {
-                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2)"
+                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2, which takes .at2 too)"
             } else if full.exists() {
                 "is not a regular file"
             } else {
@@ -875,7 +888,11 @@ mod tests {
         assert!(wildcard("*.AT2", "RSN6.AT2"));
         assert!(wildcard("RSN*_*.AT2", "RSN6_IMPVALL.AT2"));
         assert!(!wildcard("RSN*.AT2", "ELC.AT2"));
-        assert!(!wildcard("*.AT2", "x.at2"));
+        // the extension in any case, the rest as written
+        assert!(wildcard("*.AT2", "x.at2"));
+        assert!(wildcard("RSN*.at2", "RSN6.AT2"));
+        assert!(!wildcard("RSN*.AT2", "rsn6.AT2"));
+        assert!(!wildcard("*.AT2", "x.AT2.bak"));
         assert!(wildcard("a*a", "aa"));
         assert!(!wildcard("a*a", "a"));
     }

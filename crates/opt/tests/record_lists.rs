@@ -1,0 +1,81 @@
+//! Record lists as engineers give them: a pattern's `.AT2` matches `.at2` too (PEER files
+//! come with either), and a record scaled far from the rest of its suite is named among
+//! the study's warnings — while the shipped examples warn about nothing.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
+
+use slipload_opt::Study;
+use std::path::Path;
+
+/// A study of the benchmark building over one suite of `records` (paths from configs/),
+/// scaled by `scale` (a JSON object).
+fn study(records: &[&str], scale: &str) -> Result<Study, String> {
+    let list: Vec<String> = records.iter().map(|r| format!("\"{r}\"")).collect();
+    let text = format!(
+        r#"{{ "name": "lists", "building": "benchmark-3story.json",
+  "suites": [ {{ "name": "s", "records": [{}], "scale": {scale} }} ],
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark", "check_method": "newmark" }},
+  "sweep": {{ "sampler": "halton", "points": 2, "seed": 1 }} }}"#,
+        list.join(", ")
+    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/lists.json");
+    Study::from_json(&text, &path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn a_patterns_at2_takes_the_lower_case_files_too() {
+    // records/ARL360.at2 is the one file of records/ named in lower case
+    let s = study(&["../records/ARL*.AT2"], r#"{ "pga_g": 0.4 }"#).unwrap();
+    assert_eq!(s.records.len(), 1);
+    assert!(
+        s.records[0].name().ends_with("ARL360.at2"),
+        "{}",
+        s.records[0].name()
+    );
+    // the rest of the name is as written
+    let e = study(&["../records/arl*.AT2"], r#"{ "pga_g": 0.4 }"#).unwrap_err();
+    assert!(e.contains("matches no file"), "{e}");
+}
+
+#[test]
+fn a_record_scaled_far_from_its_suite_is_named() {
+    // PGAs 0.17, 0.13, 0.24, 0.25 and 1.22 g, one factor: San Fernando's Pacoima record
+    // at 5 x the suite's median
+    let records = [
+        "../records/WON185.AT2",
+        "../records/RSN1148_KOCAELI_ARE090.AT2",
+        "../records/RSN900_LANDERS_YER270.AT2",
+        "../records/RSN777_LOMAP_HCH090.AT2",
+        "../records/RSN77_SFERN_PUL164.AT2",
+    ];
+    let s = study(&records, r#"{ "factor": 1.0 }"#).unwrap();
+    let w: Vec<String> = s
+        .warnings()
+        .into_iter()
+        .filter(|w| w.contains("median PGA"))
+        .collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].contains("RSN77_SFERN_PUL164.AT2") && w[0].contains("x the suite's median"),
+        "{}",
+        w[0]
+    );
+    // the same records each scaled to one PGA: nothing to name
+    let s = study(&records, r#"{ "pga_g": 0.4 }"#).unwrap();
+    assert!(!s.warnings().iter().any(|w| w.contains("median PGA")));
+}
+
+#[test]
+fn the_shipped_code_scaled_examples_warn_about_nothing() {
+    for name in [
+        "study-ten-story-check.json",
+        "study-ten-story-least-slip-load.json",
+    ] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../configs")
+            .join(name);
+        let s = Study::load(&path).unwrap();
+        assert!(s.warnings().is_empty(), "{name}: {:?}", s.warnings());
+    }
+}
