@@ -244,6 +244,38 @@ fn the_optimum_meets_every_limit_and_its_check_is_the_resimulated_design() {
         let k = 448.12e6;
         assert!((row.brace_axial_stiffness_mn_m.unwrap() - k / (c * c) / 1e6).abs() < 1e-9);
     }
+    // a chevron: two braces at the angle share each damper's force and stiffness, so
+    // each carries half the axial force and has half the axial stiffness (the products
+    // in another order: round-off)
+    let chevron = study(|v| {
+        limits(0.012)(v);
+        v["devices"]["braces_per_damper"] = 2.into();
+    })
+    .unwrap();
+    let two = slipload_opt::phases::devices::DeviceTable::of(
+        &chevron,
+        optimum,
+        &all_runs,
+        "the check".into(),
+    )
+    .unwrap();
+    assert_eq!(two.braces_per_damper, Some(2));
+    for (one, two) in devices.dampers.iter().zip(&two.dampers) {
+        for (a, b) in [
+            (one.brace_axial_force_kn, two.brace_axial_force_kn),
+            (
+                one.brace_axial_stiffness_mn_m,
+                two.brace_axial_stiffness_mn_m,
+            ),
+        ] {
+            let (a, b) = (a.unwrap(), b.unwrap());
+            assert!((b - a / 2.0).abs() <= 1e-12 * a, "{b} vs {a} / 2");
+        }
+    }
+    assert!(
+        two.to_markdown()
+            .contains("2 brace(s) per damper (a chevron)")
+    );
     for f in ["device-table.csv", "device-table.md", "device-table.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
@@ -331,6 +363,20 @@ fn bad_bounds_and_limits_are_refused_by_field() {
         (
             Box::new(|v| v["devices"] = serde_json::json!({ "brace_angle_deg": 90 })),
             "devices.brace_angle_deg",
+        ),
+        (
+            Box::new(|v| {
+                limits(0.012)(v);
+                v["devices"] = serde_json::json!({ "brace_angle_deg": 40, "braces_per_damper": 0 });
+            }),
+            "devices.braces_per_damper`: must be 1 (a single diagonal) to 8 (2: a chevron), got 0",
+        ),
+        (
+            Box::new(|v| {
+                limits(0.012)(v);
+                v["devices"] = serde_json::json!({ "braces_per_damper": 2 });
+            }),
+            "devices.braces_per_damper`: the braces' forces and stiffnesses need their angle",
         ),
         // a brace angle without limits (no code check, so no device table) is refused,
         // not dropped

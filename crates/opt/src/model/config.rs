@@ -62,6 +62,9 @@ pub struct StudyConfig {
     pub devices: Option<DevicesConfig>,
 }
 
+/// Most braces one damper's force is shared by (`devices.braces_per_damper`).
+pub const MAX_BRACES_PER_DAMPER: usize = 8;
+
 /// The study key `devices`: the geometry the device specification needs.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -71,6 +74,11 @@ pub struct DevicesConfig {
     /// are the storey-level (horizontal) force and stiffness the building gives.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub brace_angle_deg: Option<f64>,
+    /// Braces that carry one damper's force, each at the brace angle (1: a single
+    /// diagonal, the default; 2: a chevron or inverted V): the device table then gives
+    /// each brace's axial force F/(n cos θ) and stiffness k′/(n cos²θ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub braces_per_damper: Option<usize>,
 }
 
 /// One suite of records.
@@ -793,6 +801,26 @@ impl StudyConfig {
                 "devices.brace_angle_deg",
                 format!("must be in [0, 90) degrees from the horizontal, got {t}"),
             ));
+        }
+        if let Some(d) = self.devices
+            && let Some(n) = d.braces_per_damper
+        {
+            if !(1..=MAX_BRACES_PER_DAMPER).contains(&n) {
+                return Err(OptError::invalid(
+                    path,
+                    "devices.braces_per_damper",
+                    format!(
+                        "must be 1 (a single diagonal) to {MAX_BRACES_PER_DAMPER} (2: a chevron), got {n}"
+                    ),
+                ));
+            }
+            if d.brace_angle_deg.is_none() {
+                return Err(OptError::invalid(
+                    path,
+                    "devices.braces_per_damper",
+                    "the braces' forces and stiffnesses need their angle: give devices.brace_angle_deg",
+                ));
+            }
         }
         // the device table is written beside the code check, which a study with limits
         // has: without them `devices` would be dropped without a word

@@ -77,6 +77,10 @@ pub struct DeviceTable {
     /// The brace angle to the horizontal, degrees, when the study gives it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub brace_angle_deg: Option<f64>,
+    /// Braces sharing each damper's force, when the study gives it (the brace columns are
+    /// per brace).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub braces_per_damper: Option<usize>,
     /// One row per damper, bottom to top.
     pub dampers: Vec<DeviceRow>,
 }
@@ -100,6 +104,10 @@ impl DeviceTable {
         );
         let n = study.records.len();
         let angle = study.config.devices.and_then(|d| d.brace_angle_deg);
+        let braces = study.config.devices.and_then(|d| d.braces_per_damper);
+        // n braces at θ share the storey-level force and stiffness: each carries
+        // F/(n cos θ) axially and has k′/(n cos²θ)
+        let per_brace = braces.unwrap_or(1) as f64;
         let cos = angle.map(|t| t.to_radians().cos());
         let mut rows = Vec::new();
         for (k, &floor) in study.space.dampers.iter().enumerate() {
@@ -165,8 +173,10 @@ impl DeviceTable {
                 slip_excursions: excursions,
                 cycles: max(&|d| d.cycles),
                 energy_kj: max(&|d| d.energy_j) / 1e3,
-                brace_axial_force_kn: cos.map(|c| peak_force / c / 1e3),
-                brace_axial_stiffness_mn_m: cos.zip(brace).map(|(c, k)| k / (c * c) / 1e6),
+                brace_axial_force_kn: cos.map(|c| peak_force / (per_brace * c) / 1e3),
+                brace_axial_stiffness_mn_m: cos
+                    .zip(brace)
+                    .map(|(c, k)| k / (per_brace * c * c) / 1e6),
                 never_slips: excursions == 0,
             });
         }
@@ -175,6 +185,7 @@ impl DeviceTable {
             fidelity,
             runs: runs.len(),
             brace_angle_deg: angle,
+            braces_per_damper: braces,
             dampers: rows,
         })
     }
@@ -256,11 +267,15 @@ impl DeviceTable {
             "What each damper must be specified and prototype-tested for: the largest of each quantity over {} runs (every record at every property case), {}. Stroke: the largest slip displacement each way; per suite, the mean over its records and the largest (the larger way per record).{}\n",
             self.runs,
             self.fidelity,
-            match self.brace_angle_deg {
-                Some(t) => format!(
+            match (self.brace_angle_deg, self.braces_per_damper) {
+                (Some(t), None) => format!(
                     " Brace at {t}° to the horizontal: axial force F / cos θ, axial stiffness k′ / cos²θ."
                 ),
-                None => String::new(),
+                (Some(t), Some(n)) => format!(
+                    " {n} brace(s) per damper{}, each at {t}° to the horizontal: each brace's axial force F / ({n} cos θ), axial stiffness k′ / ({n} cos²θ).",
+                    if n == 2 { " (a chevron)" } else { "" }
+                ),
+                (None, _) => String::new(),
             }
         );
         let suites: Vec<String> = self
