@@ -57,6 +57,24 @@ fn a_passing_design_ends_with_its_verdict() {
     let text = String::from_utf8_lossy(&out.stdout);
     let last = text.lines().last().unwrap();
     assert!(last.starts_with("verdict: PASS (governing: "), "{last}");
+    // whether the bare frame and the file's design met the limits already, as the
+    // optimum.json says it
+    let optimum: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("o/optimum.json")).unwrap())
+            .unwrap();
+    let says = |key: &str| {
+        if optimum[key].as_bool().unwrap() {
+            "meets every limit"
+        } else {
+            "misses a limit"
+        }
+    };
+    let line = format!(
+        "limits: the bare frame {}, the building file's design {}",
+        says("bare_passes"),
+        says("file_passes")
+    );
+    assert!(text.contains(&line), "{line:?} not in\n{text}");
     assert!(text.contains("devices to specify"), "{text}");
     assert!(
         text.contains("lower properties (slip loads × 0.8"),

@@ -336,6 +336,26 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
             against(r.bare_objective),
             against(r.file_objective)
         );
+        // with limits: whether a study was needed to meet them at all
+        if let (Some(bare), Some(file)) = (r.bare_passes, r.file_passes) {
+            let says = |passes: bool| {
+                if passes {
+                    "meets every limit"
+                } else {
+                    "misses a limit"
+                }
+            };
+            outln!(
+                "limits: the bare frame {}, the building file's design {}{}",
+                says(bare),
+                says(file),
+                if bare {
+                    " (dampers here only lower the objective; `\"objective\": {\"cost\": …}` finds the least that keep the limits)"
+                } else {
+                    ""
+                }
+            );
+        }
     }
     if let Some(line) = costs_line(report) {
         outln!("{line}");

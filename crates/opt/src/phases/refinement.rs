@@ -117,6 +117,9 @@ pub struct OptimizeReport {
     /// study has no limits). With a cost objective, a bare frame that meets them needs
     /// no damper.
     pub bare_passes: Option<bool>,
+    /// Whether the building file's design meets the limits as the sweep ran it (a study
+    /// with limits).
+    pub file_passes: Option<bool>,
     /// Objective of the building file's slip loads.
     pub file_objective: f64,
     /// What the refiners minimised.
@@ -242,6 +245,9 @@ pub struct Refinement {
     pub bare_objective: f64,
     /// Whether the bare frame meets the study's limits (`None`: no limits).
     pub bare_passes: Option<bool>,
+    /// Whether the building file's design meets the limits as the sweep ran it (a study
+    /// with limits).
+    pub file_passes: Option<bool>,
     /// Objective of the building file's slip loads (sweep fidelity).
     pub file_objective: f64,
     /// What the refiners minimised.
@@ -497,6 +503,7 @@ pub fn refine_sweep(
         replayed,
         bare_objective: obj[0].0,
         bare_passes: checks.as_ref().map(|c| c[0].passes()),
+        file_passes: checks.as_ref().map(|c| c[1].passes()),
         file_objective: obj[1].0,
         target,
     })
@@ -523,6 +530,7 @@ pub fn check_finalists(
         replayed,
         bare_objective,
         bare_passes,
+        file_passes,
         file_objective,
         target,
         runs: refined_runs,
@@ -652,6 +660,7 @@ pub fn check_finalists(
         check_reran,
         bare_objective,
         bare_passes,
+        file_passes,
         file_objective,
         simulations,
         replayed,

@@ -156,6 +156,9 @@ struct OptimumFile<'a> {
     /// Whether the bare frame meets the limits (a study with limits).
     #[serde(skip_serializing_if = "Option::is_none")]
     bare_passes: Option<bool>,
+    /// Whether the building file's design meets them (a study with limits).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    file_passes: Option<bool>,
     sweep_designs: usize,
     refine_evaluations: usize,
     /// Why each start's refiner stopped (`tolerance`, `budget`, `no_progress`).
@@ -254,6 +257,7 @@ impl StudyReport {
                 bare_objective: r.bare_objective,
                 file_objective: r.file_objective,
                 bare_passes: r.bare_passes,
+                file_passes: r.file_passes,
                 sweep_designs: r.sweep_designs,
                 refine_evaluations: r.log.len(),
                 refine_stops: r.stops.iter().map(|s| s.as_str()).collect(),
