@@ -79,3 +79,40 @@ fn the_shipped_code_scaled_examples_warn_about_nothing() {
         assert!(s.warnings().is_empty(), "{name}: {:?}", s.warnings());
     }
 }
+
+/// What the model cannot show that a check counts is said: the elastic benchmark frame
+/// checked at MCE_R, and a count of unacceptable responses on a frame that cannot collapse
+/// with no per-record limit (0 whatever the design) — in the study's warnings and in the
+/// code check.
+#[test]
+fn what_the_model_cannot_show_is_named() {
+    let text = r#"{ "name": "elastic-mce", "building": "benchmark-3story.json",
+  "suites": [ { "name": "mce", "records": ["../records/RSN*.AT2"],
+                "scale": { "code_spectrum": { "sds_g": 0.5, "sd1_g": 0.3, "tl_s": 8, "hazard": "mce_r" } },
+                "limits": { "criteria": [ { "metric": "peak_drift_ratio", "statistic": "mean", "max": 0.03 } ],
+                            "unacceptable": { "max_count": 1 } } } ],
+  "space": { "free": { "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] } },
+  "objective": { "terms": [ { "metric": "peak_drift_ratio", "statistic": "mean" } ] },
+  "fidelity": { "method": "newmark", "check_method": "newmark" },
+  "sweep": { "sampler": "halton", "points": 2, "seed": 1 } }"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/elastic-mce.json");
+    let s = Study::from_json(text, &path).unwrap();
+    let m = s.model_limits();
+    assert_eq!(m.len(), 2, "{m:?}");
+    assert!(
+        m[0].contains("checked at MCE_R on an elastic frame"),
+        "{}",
+        m[0]
+    );
+    assert!(m[1].contains("the count is 0 for every design"), "{}", m[1]);
+    // both are among the warnings the fronts print
+    let w = s.warnings();
+    assert!(m.iter().all(|x| w.contains(x)), "{w:?}");
+    // a per-record limit makes the count count: only the elastic frame is left
+    let with_record_limit = text.replace(
+        r#""unacceptable": { "max_count": 1 }"#,
+        r#""unacceptable": { "max_count": 1, "record_limits": [ { "metric": "peak_drift_ratio", "max": 0.05 } ] }"#,
+    );
+    let s = Study::from_json(&with_record_limit, &path).unwrap();
+    assert_eq!(s.model_limits().len(), 1, "{:?}", s.model_limits());
+}

@@ -286,6 +286,7 @@ impl Study {
                 }
             }
         }
+        out.extend(self.model_limits());
         // a record scaled far outside the rest of its suite drives the suite's mean
         for suite in &self.suites {
             let pgas: Vec<(usize, f64)> = suite
@@ -316,6 +317,37 @@ impl Study {
                         n(median / slipload_motion::G)
                     ));
                 }
+            }
+        }
+        out
+    }
+
+    /// What the model cannot show that a suite's check counts: an elastic frame checked
+    /// at MCE_R (its members would yield; an elastic model's drifts there are not the
+    /// drifts the limits mean), and a count of unacceptable responses on a frame that
+    /// cannot collapse (no collapse limit) with no per-record limit (the count is then 0
+    /// whatever the design). In the words the summary and `code-check.md` print.
+    pub fn model_limits(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let elastic = !self.building.is_nonlinear_frame();
+        let collapses = self.building.collapse_drift.is_some();
+        for (i, (cfg, suite)) in self.config.suites.iter().zip(&self.suites).enumerate() {
+            let Some(limits) = &cfg.limits else { continue };
+            if elastic
+                && suite
+                    .code_scaling
+                    .as_ref()
+                    .is_some_and(|c| c.hazard == crate::model::config::Hazard::MceR)
+            {
+                out.push(format!(
+                    "suites[{i}] ({}) is checked at MCE_R on an elastic frame: no storey of the building yields (no `storey_yield`), so its drifts are an elastic model's, not the drifts the limits mean there; give the storeys' yield laws",
+                    suite.name
+                ));
+            }
+            if !collapses && limits.unacceptable.record_limits.is_empty() {
+                out.push(format!(
+                    "suites[{i}].limits.unacceptable counts unacceptable responses, but the frame cannot collapse (no collapse limit: it needs yielding storeys or P-Δ, and storey heights) and no `record_limits` is given: the count is 0 for every design"
+                ));
             }
         }
         out

@@ -56,6 +56,9 @@ pub struct CodeCheck {
     pub verdict: String,
     /// The margin of the governing criterion, 1 − ratio.
     pub margin: f64,
+    /// What the model cannot show that the check counts ([`Study::model_limits`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub model_limits: Vec<String>,
 }
 
 impl CodeCheck {
@@ -130,6 +133,7 @@ impl CodeCheck {
             passes: check.passes(),
             verdict: check.verdict(),
             margin: check.margin(),
+            model_limits: study.model_limits(),
             check,
         })
     }
@@ -164,6 +168,9 @@ impl CodeCheck {
             .join(", ");
         let _ = writeln!(s, "Design (nominal slip loads, kN): {loads}.\n");
         let _ = writeln!(s, "Chosen as {}.\n", self.chosen_as);
+        for w in &self.model_limits {
+            let _ = writeln!(s, "**What the model cannot show:** {w}.\n");
+        }
         let _ = writeln!(
             s,
             "Objective: {} = {}. Responses: {}.\n",
