@@ -10,6 +10,7 @@ pub mod fingerprint;
 pub mod memory;
 pub mod objective;
 pub mod objectives;
+pub mod refine_config;
 pub mod sampler;
 pub mod space;
 pub mod study;
