@@ -537,7 +537,7 @@ fn object_as_array(
 
 impl StudyConfig {
     /// Parses a study from JSON text; `path` names it in errors. A key whose value is an
-    /// object given as an array (read by position) is refused ([`object_as_array`]).
+    /// object given as an array (read by position) is refused, naming the key and its fields.
     pub fn from_json(text: &str, path: &Path) -> Result<StudyConfig, OptError> {
         let cfg = StudyConfig::parse(text, path)?;
         if let (Ok(written), Ok(parsed)) = (
