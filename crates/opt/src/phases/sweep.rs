@@ -111,6 +111,19 @@ impl Manifest {
         }
     }
 
+    /// Reads a folder's `manifest.json` (`path`), size-bounded, naming it in errors.
+    pub fn read(path: &Path) -> Result<Manifest, OptError> {
+        let text = slipload_motion::limits::read_input_text(
+            path,
+            "sweep manifest",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
+        serde_json::from_str(&text).map_err(|source| OptError::Json {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
     /// Number of tasks (designs × records); task k = design · records + record.
     pub fn tasks(&self) -> usize {
         self.designs.len() * self.records.len()
@@ -643,16 +656,7 @@ pub fn merge(
     for dir in dirs {
         // a shard still being written would be merged half done
         crate::store::folder::check_idle(dir)?;
-        let path = dir.join("manifest.json");
-        let text = slipload_motion::limits::read_input_text(
-            &path,
-            "sweep manifest",
-            slipload_motion::limits::MAX_CONFIG_BYTES,
-        )?;
-        let m: Manifest = serde_json::from_str(&text).map_err(|source| OptError::Json {
-            path: path.clone(),
-            source,
-        })?;
+        let m = Manifest::read(&dir.join("manifest.json"))?;
         match &manifest {
             None => manifest = Some((m, dir)),
             Some((first, fd)) if first.fingerprint != m.fingerprint => {

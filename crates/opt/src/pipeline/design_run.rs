@@ -118,15 +118,7 @@ pub fn design_run_scene(study: &Study, req: &DesignRun<'_>) -> Result<Scene, Opt
     let file = if req.designs.is_dir() {
         let manifest_path = req.designs.join("manifest.json");
         if manifest_path.exists() {
-            let text = slipload_motion::limits::read_input_text(
-                &manifest_path,
-                "sweep manifest",
-                slipload_motion::limits::MAX_CONFIG_BYTES,
-            )?;
-            let found: Manifest = serde_json::from_str(&text).map_err(|source| OptError::Json {
-                path: manifest_path.clone(),
-                source,
-            })?;
+            let found = Manifest::read(&manifest_path)?;
             let ours = Manifest::of(study);
             if found.fingerprint != ours.fingerprint {
                 return Err(OptError::Argument(format!(
