@@ -115,4 +115,14 @@ fn what_the_model_cannot_show_is_named() {
     );
     let s = Study::from_json(&with_record_limit, &path).unwrap();
     assert_eq!(s.model_limits().len(), 1, "{:?}", s.model_limits());
+    // a count the study does not write (the default allowance) is not one it is told of
+    let unwritten = text.replace(
+        r#",
+                            "unacceptable": { "max_count": 1 }"#,
+        "",
+    );
+    assert_ne!(unwritten, text);
+    let s = Study::from_json(&unwritten, &path).unwrap();
+    assert_eq!(s.model_limits().len(), 1, "{:?}", s.model_limits());
+    assert!(s.model_limits()[0].contains("elastic frame"));
 }

@@ -324,9 +324,9 @@ impl Study {
 
     /// What the model cannot show that a suite's check counts: an elastic frame checked
     /// at MCE_R (its members would yield; an elastic model's drifts there are not the
-    /// drifts the limits mean), and a count of unacceptable responses on a frame that
-    /// cannot collapse (no collapse limit) with no per-record limit (the count is then 0
-    /// whatever the design). In the words the summary and `code-check.md` print.
+    /// drifts the limits mean), and a count of unacceptable responses the study writes
+    /// (`unacceptable`) on a frame that cannot collapse (no collapse limit) with no
+    /// per-record limit (the count is then 0 whatever the design). In the words the summary and `code-check.md` print.
     pub fn model_limits(&self) -> Vec<String> {
         let mut out = Vec::new();
         let elastic = !self.building.is_nonlinear_frame();
@@ -344,7 +344,10 @@ impl Study {
                     suite.name
                 ));
             }
-            if !collapses && limits.unacceptable.record_limits.is_empty() {
+            if limits.unacceptable.written
+                && !collapses
+                && limits.unacceptable.record_limits.is_empty()
+            {
                 out.push(format!(
                     "suites[{i}].limits.unacceptable counts unacceptable responses, but the frame cannot collapse (no collapse limit: it needs yielding storeys or P-Δ, and storey heights) and no `record_limits` is given: the count is 0 for every design"
                 ));

@@ -195,6 +195,14 @@ pub struct Unacceptable {
     /// that collapses always does).
     #[serde(default)]
     pub record_limits: Vec<RecordLimit>,
+    /// Whether the study wrote the key (its absence allows the default count): only a
+    /// count the study asks for is one it is told cannot happen ([`crate::Study::model_limits`]).
+    #[serde(skip, default = "written")]
+    pub written: bool,
+}
+
+fn written() -> bool {
+    true
 }
 
 fn one() -> usize {
@@ -206,6 +214,7 @@ impl Default for Unacceptable {
         Unacceptable {
             max_count: 1,
             record_limits: Vec::new(),
+            written: false,
         }
     }
 }
@@ -658,6 +667,7 @@ mod tests {
                         metric: LimitMetric::PeakDriftRatio,
                         max: 0.03,
                     }],
+                    written: true,
                 },
             })],
         )
