@@ -1,6 +1,7 @@
 //! Issue 39: a study of a 120-storey frame (a massless damper on every floor, a profile
-//! space, a small `newmark` sweep, two short synthetic records, exact's check) finishes within
-//! bounded memory — the process's peak resident memory (`VmHWM`) stays at most 2 GiB —
+//! space, a small `newmark` sweep, two short synthetic records; its check is `newmark`,
+//! exact's cost being past the bound at which a check runs it) finishes within bounded
+//! memory — the process's peak resident memory (`VmHWM`) stays at most 2 GiB —
 //! and its optimum, simulated again at the check's fidelity outside the study, gives the
 //! design table's row to the last bit.
 //!
@@ -48,14 +49,28 @@ fn a_120_storey_study_finishes_within_2_gib_and_its_optimum_is_its_table() {
     });
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/inline-study.json");
     let study = Study::from_json(&v.to_string(), &path).unwrap();
-    // the default check is exact, which fits its memory bounds at 120 storeys (the sweep's
-    // method named, no probe measures exact's cost, which would hand the check to newmark)
+    // the default check is exact, but at 120 storeys exact costs far more than the bound
+    // at which the check runs it (measured by the probe also when the sweep's method is
+    // named): the check runs newmark and says why
     assert_eq!(
         study.check_method.method,
-        MethodName::Exact,
+        MethodName::Newmark,
         "{}",
         study.check_method.reason
     );
+    assert!(
+        study
+            .check_method
+            .reason
+            .contains("newmark's work on the sweep-method probe"),
+        "{}",
+        study.check_method.reason
+    );
+    // loading ran the sweep-method probe, exact once on the file's design: that run is not
+    // in the study's estimate (which bounds the study's own runs, newmark here), and the
+    // allocator keeps what it freed resident, so the study is held to the larger of the
+    // two
+    let probe_peak = peak_rss_bytes();
     let out = std::env::temp_dir().join(format!("slipload-tall-study-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let run = optimize_study(
@@ -74,10 +89,11 @@ fn a_120_storey_study_finishes_within_2_gib_and_its_optimum_is_its_table() {
     );
     // the estimate made before the study ran bounds what it held
     assert!(
-        peak <= study.memory.total_bytes() + (256 << 20),
-        "peak {} MiB against the estimate {}",
+        peak <= study.memory.total_bytes().max(probe_peak) + (256 << 20),
+        "peak {} MiB against the estimate {} and the probe's peak {} MiB",
         peak >> 20,
-        study.memory.text()
+        study.memory.text(),
+        probe_peak >> 20
     );
     let md = std::fs::read_to_string(out.join("design-table.md")).unwrap();
     let _ = std::fs::remove_dir_all(&out);
