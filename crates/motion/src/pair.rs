@@ -107,34 +107,18 @@ pub fn rotd100_spectrum(
     damping: f64,
     periods_s: &[f64],
 ) -> Result<Spectrum, MotionError> {
-    let mut s = Spectrum {
-        damping,
-        periods_s: periods_s.to_vec(),
-        sd_m: Vec::with_capacity(periods_s.len()),
-        psv_m_s: Vec::with_capacity(periods_s.len()),
-        psa_m_s2: Vec::with_capacity(periods_s.len()),
-    };
     let (a, b) = (pair.first.samples(), pair.second.samples());
-    for &t in periods_s {
+    // the largest ground acceleration over every direction, the T = 0 ordinate (a shorter
+    // component at rest after its end)
+    let at = |x: &[f64], j: usize| x.get(j).copied().unwrap_or(0.0);
+    let pga = || (0..a.len().max(b.len())).fold(0.0f64, |m, j| m.max(at(a, j).hypot(at(b, j))));
+    Spectrum::from_peaks(damping, periods_s, pga, |t| {
         let mut peak = 0.0f64;
         integrate_components([a, b], pair.first.dt(), t, damping, |_, [u, v]| {
             peak = peak.max(u.hypot(v));
         })?;
-        if t == 0.0 {
-            let len = a.len().max(b.len());
-            let at = |x: &[f64], j: usize| x.get(j).copied().unwrap_or(0.0);
-            let pga = (0..len).fold(0.0f64, |m, j| m.max(at(a, j).hypot(at(b, j))));
-            s.sd_m.push(0.0);
-            s.psv_m_s.push(0.0);
-            s.psa_m_s2.push(pga);
-        } else {
-            let omega = 2.0 * std::f64::consts::PI / t;
-            s.sd_m.push(peak);
-            s.psv_m_s.push(omega * peak);
-            s.psa_m_s2.push(omega * omega * peak);
-        }
-    }
-    Ok(s)
+        Ok(peak)
+    })
 }
 
 /// Pairs scaled by one common factor ([`scale_pairs_over_range`]).

@@ -44,6 +44,23 @@ impl Spectrum {
         damping: f64,
         periods_s: &[f64],
     ) -> Result<Spectrum, MotionError> {
+        Spectrum::from_peaks(
+            damping,
+            periods_s,
+            || record.pga(),
+            |t| peak_displacement(record, t, damping),
+        )
+    }
+
+    /// The spectrum of the peak relative displacements `peak(T)` (called at every period,
+    /// T = 0 included, so its checks hold there too): Sd, PSV = ω·Sd, PSA = ω²·Sd, and at
+    /// T = 0 the peak ground acceleration `pga()` (m/s², asked only there).
+    pub(crate) fn from_peaks(
+        damping: f64,
+        periods_s: &[f64],
+        pga: impl Fn() -> f64,
+        mut peak: impl FnMut(f64) -> Result<f64, MotionError>,
+    ) -> Result<Spectrum, MotionError> {
         let mut s = Spectrum {
             damping,
             periods_s: periods_s.to_vec(),
@@ -52,11 +69,11 @@ impl Spectrum {
             psa_m_s2: Vec::with_capacity(periods_s.len()),
         };
         for &t in periods_s {
-            let peak = peak_displacement(record, t, damping)?;
+            let peak = peak(t)?;
             if t == 0.0 {
                 s.sd_m.push(0.0);
                 s.psv_m_s.push(0.0);
-                s.psa_m_s2.push(record.pga());
+                s.psa_m_s2.push(pga());
             } else {
                 let omega = 2.0 * std::f64::consts::PI / t;
                 s.sd_m.push(peak);
