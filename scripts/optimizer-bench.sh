@@ -8,9 +8,9 @@
 # loads, 2 hazard levels x 11 records x 3 property cases, limits; 66 runs a design), from
 # the building file's design and from a neutral start (every slip load 1500 kN, the middle
 # of the box: what a study knows with no design in the building file):
-#   - model, 24 evaluations (+ its post-check of 22 moves): the example's setting;
+#   - model, 48 evaluations (+ its post-check of 22 moves): the example's setting;
 #   - trust-region, 12 evaluations: the example's setting before the model refiner;
-#   - trust-region and nelder-mead at 46 evaluations: the model row's refinement designs;
+#   - trust-region and nelder-mead at 70 evaluations: the model row's refinement designs;
 #   - model, 120 evaluations, 2 starts: the long run that sets the best-known design.
 # twenty: a twenty-storey yielding frame written here (storey stiffness 900 to 520 MN/m,
 # yield at 0.75 % drift, post-yield 2 %, P-Delta, modal damping 2 %, a massless damper per

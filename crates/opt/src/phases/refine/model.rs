@@ -80,6 +80,11 @@ const MODEL_RADIUS_FRACTION: f64 = 1.0 / 3.0;
 /// Largest trust radius, scaled variables.
 const MAX_RADIUS: f64 = 0.5;
 
+/// Least decrease of a poll, as a fraction of the objective, for polls to go on
+/// ([`ModelSearch::poll_gained`]): the post-check's threshold of a stationary design
+/// ([`super::STATIONARY_GAIN`]).
+const POLL_GAIN: f64 = super::STATIONARY_GAIN;
+
 /// How far inside its limits the refiner aims a design it moves toward them: a ratio of
 /// 1 − 0.1 % (the linearised limits are first-order; a step aimed at exactly 1 lands
 /// outside as often as inside).
@@ -104,6 +109,21 @@ pub struct ModelSearch {
     pub hessian: Vec<f64>,
     /// Why it stopped, once it has.
     pub stop: Option<StopReason>,
+    /// Model steps failed in a row since the centre last moved.
+    #[serde(default)]
+    pub failures: usize,
+    /// The last poll that lowered the objective by more than [`POLL_GAIN`] of it: its
+    /// radius and its decrease per evaluation (`None`: it did not, or no poll yet).
+    /// While polls gain faster than the model steps made since, a second failed model
+    /// step in a row is followed by a poll at that radius, not by a second shrink.
+    #[serde(default)]
+    pub poll_gained: Option<(f64, f64)>,
+    /// The decrease the model steps made since the last poll, and their evaluations.
+    #[serde(default)]
+    pub model_gain: (f64, usize),
+    /// Polls made.
+    #[serde(default)]
+    pub polls: usize,
 }
 
 impl ModelSearch {
@@ -118,6 +138,10 @@ impl ModelSearch {
             points: Vec::new(),
             hessian: Vec::new(),
             stop: None,
+            failures: 0,
+            poll_gained: None,
+            model_gain: (0.0, 0),
+            polls: 0,
         }
     }
 
@@ -309,15 +333,23 @@ impl ModelSearch {
         Ok(())
     }
 
-    /// Evaluates the first interpolation set: the centre and c ± Δeᵢ (c − Δ and c − 2Δ,
-    /// or c + Δ and c + 2Δ, where the box has room on one side only).
-    fn first_set(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
+    /// Polls the centre: evaluates c ± Δeᵢ (c − Δ and c − 2Δ, or c + Δ and c + 2Δ, where
+    /// the box has room on one side only), one batch, then the designs the poll points
+    /// to ([`poll_candidates`]), a second batch. The first poll makes the first
+    /// interpolation set; a later one joins the set (its farthest points leave).
+    fn poll(
+        &mut self,
+        space: &DesignSpace,
+        ev: &mut Evaluations<'_>,
+        first: bool,
+    ) -> Result<(), OptError> {
         let d = space.dim();
-        let c = self.centre.z.clone();
+        let centre = self.centre.clone();
+        let c = &centre.z;
         let delta = self.radius;
         // one point per coordinate first, then the second: with a budget for d of them
         // only, the model is linear
-        let (mut zs, mut second) = (Vec::with_capacity(2 * d), Vec::with_capacity(d));
+        let (mut moves, mut second) = (Vec::with_capacity(2 * d), Vec::with_capacity(d));
         for i in 0..d {
             let (a, b) = if c[i] + delta <= 1.0 && c[i] - delta >= 0.0 {
                 (delta, -delta)
@@ -326,20 +358,37 @@ impl ModelSearch {
             } else {
                 (delta, 2.0 * delta)
             };
-            for (s, list) in [(a, &mut zs), (b, &mut second)] {
+            for (s, list) in [(a, &mut moves), (b, &mut second)] {
                 let mut z = c.clone();
                 z[i] = (z[i] + s).clamp(0.0, 1.0);
-                if z != c {
-                    list.push(z);
+                if z != *c {
+                    list.push((i, z));
                 }
             }
         }
-        zs.extend(second);
+        moves.extend(second);
+        let zs: Vec<Vec<f64>> = moves.iter().map(|(_, z)| z.clone()).collect();
+        let before = ev.count();
         let values = self.values(space, ev, &zs)?;
-        self.points = vec![self.centre.clone()];
-        for p in values.into_iter().flatten() {
+        if first {
+            self.points = vec![centre.clone()];
+        }
+        let mut polled = Vec::with_capacity(moves.len());
+        for ((i, z), p) in moves.into_iter().zip(values) {
+            if let Some(p) = p {
+                polled.push((i, z[i] - c[i], p.clone()));
+                self.admit(p);
+            }
+        }
+        let candidates = poll_candidates(&centre, &polled, delta, !first);
+        for p in self.values(space, ev, &candidates)?.into_iter().flatten() {
             self.admit(p);
         }
+        let (gain, evals) = (centre.f - self.centre.f, ev.count() - before);
+        self.poll_gained = (gain > POLL_GAIN * centre.f.abs() && evals > 0)
+            .then(|| (delta, gain / evals as f64));
+        self.model_gain = (0.0, 0);
+        self.polls += 1;
         Ok(())
     }
 
@@ -350,6 +399,7 @@ impl ModelSearch {
     fn admit(&mut self, p: Point) {
         if p.f < self.centre.f {
             self.centre = p.clone();
+            self.failures = 0;
         }
         if !p.objective().is_finite() || self.points.iter().any(|q| q.z == p.z) {
             return;
@@ -536,8 +586,11 @@ impl ModelSearch {
             .map(|p| dist_inf(&p.z, &c.z))
             .fold(0.0, f64::max);
         let Some((z, pred, len)) = trial else {
-            // the model predicts no decrease: improve its geometry if far points made
-            // it, else the region is too large
+            // the model predicts no decrease: poll (see `fail`), improve its geometry if
+            // far points made it, else the region is too large
+            if self.fail() {
+                return self.poll(space, ev, false);
+            }
             if far > 2.0 * delta {
                 return self.geometry_step(space, ev);
             }
@@ -572,6 +625,9 @@ impl ModelSearch {
         if rho >= 0.7 && len >= 0.9 * delta {
             self.radius = (2.0 * delta).min(MAX_RADIUS);
         } else if rho < 0.1 || rho.is_nan() {
+            if self.centre.z == c.z && self.fail() {
+                return self.poll(space, ev, false);
+            }
             if far > 2.0 * delta {
                 return self.geometry_step(space, ev);
             }
@@ -642,6 +698,26 @@ impl ModelSearch {
         Ok(())
     }
 
+    /// Counts a failed model step; true when it is the second in a row at a centre while
+    /// the last poll gained, and sets the radius back to that poll's for the next one.
+    /// On a smooth objective a failed step means the region was too large (the model
+    /// steps on after one shrink); on an objective with kinks (a peak over storeys and
+    /// records, the worst of the property cases) the interpolation model misleads again
+    /// and again where single-floor moves and their combination still gain.
+    fn fail(&mut self) -> bool {
+        self.failures += 1;
+        let (gain, evals) = self.model_gain;
+        let model_rate = if evals > 0 { gain / evals as f64 } else { 0.0 };
+        match self.poll_gained {
+            Some((r, rate)) if self.failures >= 2 && rate > model_rate => {
+                self.radius = r;
+                self.failures = 0;
+                true
+            }
+            _ => false,
+        }
+    }
+
     fn shrink(&mut self) {
         self.radius *= 0.5;
         if self.radius < self.tolerance {
@@ -694,6 +770,69 @@ fn governing_ratio(p: &Point) -> Option<f64> {
         .as_ref()
         .filter(|l| !l.ratios.is_empty())
         .map(|l| l.ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+}
+
+/// The designs a poll around `c` points to (`polled`: coordinate, move, point): the
+/// step of the separable quadratic through each coordinate's two moves (its gradient
+/// and curvature by differences, the curvature at least |g|/(2Δ), so no coordinate moves
+/// more than 2Δ), and the design that takes every move that lowered what the refiner
+/// minimises, each whole and half way. On an objective with kinks (a peak over storeys
+/// and records, the worst of the property cases) one floor moved alone often climbs
+/// where floors moved together descend, and the interpolation model of the whole set
+/// misleads; these steps read only the poll around the present centre (implicit
+/// filtering's difference gradient at the scale Δ, Kelley 2011, and a combined
+/// coordinate move).
+fn poll_candidates(
+    c: &Point,
+    polled: &[(usize, f64, Point)],
+    delta: f64,
+    separable: bool,
+) -> Vec<Vec<f64>> {
+    let d = c.z.len();
+    let fc = c.objective();
+    // each coordinate's moves: (offset, objective) — the objective whether the limits
+    // pass or not, smooth across them
+    let mut per: Vec<Vec<(f64, f64)>> = vec![Vec::new(); d];
+    let mut gain = vec![(0.0, c.f); d];
+    for (i, s, p) in polled {
+        per[*i].push((*s, p.objective()));
+        if p.f < gain[*i].1 {
+            gain[*i] = (*s, p.f);
+        }
+    }
+    let mut newton = vec![0.0; d];
+    for (i, moves) in per.iter().enumerate() {
+        let &[(a, fa), (b, fb)] = &moves[..] else {
+            continue;
+        };
+        if !(fa.is_finite() && fb.is_finite() && fc.is_finite()) || a == b {
+            continue;
+        }
+        // the parabola through (0, fc), (a, fa), (b, fb)
+        let (da, db) = ((fa - fc) / a, (fb - fc) / b);
+        let curvature = 2.0 * (da - db) / (a - b);
+        let g = da - 0.5 * curvature * a;
+        if g != 0.0 {
+            newton[i] = (-g / curvature.max(g.abs() / (2.0 * delta))).clamp(-2.0 * delta, 2.0 * delta);
+        }
+    }
+    let combined: Vec<f64> = gain.iter().map(|(s, _)| *s).collect();
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    let gaining = combined.iter().filter(|s| **s != 0.0).count();
+    // (one gaining move alone: the poll made it whole already, its half is new)
+    for (step, useful) in [(&newton, separable && newton.iter().any(|s| *s != 0.0)), (&combined, gaining >= 1)] {
+        if !useful {
+            continue;
+        }
+        for t in [1.0, 0.5] {
+            let mut z: Vec<f64> = c.z.iter().zip(step).map(|(z, s)| z + t * s).collect();
+            clamp01(&mut z);
+            if z != c.z && !out.contains(&z) {
+                out.push(z);
+            }
+        }
+    }
+    out
 }
 
 /// The vertex (in log α) of the parabola through three points of a bracket whose middle
@@ -756,7 +895,7 @@ impl Refiner for ModelSearch {
         // the profile searches placed the overall scale; one floor against the others is
         // the valley's steep side, so the model starts at a third of the initial radius
         self.radius *= MODEL_RADIUS_FRACTION;
-        self.first_set(space, ev)
+        self.poll(space, ev, true)
     }
 
     fn next_iter(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
@@ -764,7 +903,13 @@ impl Refiner for ModelSearch {
             self.stop = Some(StopReason::Budget);
             return Ok(());
         }
-        self.model_step(space, ev)
+        let (f, n, polls) = (self.centre.f, ev.count(), self.polls);
+        self.model_step(space, ev)?;
+        if self.polls == polls {
+            self.model_gain.0 += f - self.centre.f;
+            self.model_gain.1 += ev.count() - n;
+        }
+        Ok(())
     }
 
     fn terminate(&self) -> bool {
