@@ -17,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet -p slipload
-bin=$PWD/target/release/slipload
+bin=${CARGO_TARGET_DIR:-$PWD/target}/release/slipload
 out=results/least-slip-load
 mkdir -p "$out"
 tmp=$(mktemp -d)

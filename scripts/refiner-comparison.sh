@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-bin=target/release/slipload
+bin=${CARGO_TARGET_DIR:-$PWD/target}/release/slipload
 out=results/refiners
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
