@@ -28,6 +28,20 @@
 //! first replaced by a point at the radius (a geometry step). A design that fails the
 //! limits or collapses (+∞) is no sample of the model: it is a rejected step.
 //!
+//! **Polls where the model misleads.** The first interpolation set is a poll: the 2d
+//! single-floor moves ±Δ around the centre, one batch, followed by the design that takes
+//! every move that gained, whole and half way. A slip-load objective has kinks (a peak
+//! over storeys and records, the worst of the property cases: one floor too low drifts
+//! and governs, one floor higher changes little), and there the interpolation model's
+//! steps fail while single-floor moves and their combination still gain. So when the
+//! last poll lowered the objective by more than [`POLL_GAIN`], faster per evaluation than
+//! the model steps since, a second failed model step in a row is followed by another
+//! poll at that poll's radius instead of a second shrink; such a poll also tries the step
+//! of the separable quadratic through each floor's two moves (implicit filtering's
+//! difference gradient at the scale Δ, Kelley 2011), whole and half way. On a smooth
+//! valley the model's steps win and no second poll is made (the analytic valleys of
+//! `tests/refiner_model.rs` take the same path to the bit).
+//!
 //! **Limits as constraints.** In a study with limits every evaluation carries, beside
 //! the value the refiners minimise (+∞ for a design that misses a limit), the objective
 //! itself and the ratio demand/limit of each criterion at each property case
@@ -385,8 +399,8 @@ impl ModelSearch {
             self.admit(p);
         }
         let (gain, evals) = (centre.f - self.centre.f, ev.count() - before);
-        self.poll_gained = (gain > POLL_GAIN * centre.f.abs() && evals > 0)
-            .then(|| (delta, gain / evals as f64));
+        self.poll_gained =
+            (gain > POLL_GAIN * centre.f.abs() && evals > 0).then(|| (delta, gain / evals as f64));
         self.model_gain = (0.0, 0);
         self.polls += 1;
         Ok(())
@@ -813,14 +827,18 @@ fn poll_candidates(
         let curvature = 2.0 * (da - db) / (a - b);
         let g = da - 0.5 * curvature * a;
         if g != 0.0 {
-            newton[i] = (-g / curvature.max(g.abs() / (2.0 * delta))).clamp(-2.0 * delta, 2.0 * delta);
+            newton[i] =
+                (-g / curvature.max(g.abs() / (2.0 * delta))).clamp(-2.0 * delta, 2.0 * delta);
         }
     }
     let combined: Vec<f64> = gain.iter().map(|(s, _)| *s).collect();
     let mut out: Vec<Vec<f64>> = Vec::new();
     let gaining = combined.iter().filter(|s| **s != 0.0).count();
     // (one gaining move alone: the poll made it whole already, its half is new)
-    for (step, useful) in [(&newton, separable && newton.iter().any(|s| *s != 0.0)), (&combined, gaining >= 1)] {
+    for (step, useful) in [
+        (&newton, separable && newton.iter().any(|s| *s != 0.0)),
+        (&combined, gaining >= 1),
+    ] {
         if !useful {
             continue;
         }
@@ -922,5 +940,44 @@ impl Refiner for ModelSearch {
 
     fn stop_reason(&self) -> StopReason {
         self.stop.unwrap_or(StopReason::Budget)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a separable quadratic f = Σ aᵢ (zᵢ − mᵢ)² with each mᵢ within 2Δ of the centre,
+    /// the separable step of a poll lands on the minimum (to round-off: differences of a
+    /// quadratic are exact), and the combined design takes every gaining move.
+    #[test]
+    fn a_polls_separable_step_lands_on_a_separable_quadratics_minimum() {
+        let (a, m) = ([1.0, 4.0, 0.5], [0.42, 0.55, 0.6]);
+        let f = |z: &[f64]| -> f64 { (0..3).map(|i| a[i] * (z[i] - m[i]).powi(2)).sum() };
+        let (c, delta) = (vec![0.5, 0.5, 0.5], 0.05);
+        let centre = Point::new(c.clone(), f(&c));
+        let mut polled = Vec::new();
+        for i in 0..3 {
+            for s in [delta, -delta] {
+                let mut z = c.clone();
+                z[i] += s;
+                polled.push((i, s, Point::new(z.clone(), f(&z))));
+            }
+        }
+        let cands = poll_candidates(&centre, &polled, delta, true);
+        // the separable step whole, then half way, then the combined moves
+        let step = &cands[0];
+        for i in 0..3 {
+            assert!((step[i] - m[i]).abs() < 1e-12, "{step:?} vs {m:?}");
+        }
+        // floors 1 and 2 gain downward and upward by Δ; floor 3's minimum is 2Δ up
+        let combined = [0.45, 0.55, 0.55];
+        assert!(
+            cands
+                .iter()
+                .any(|z| z.iter().zip(&combined).all(|(a, b)| (a - b).abs() < 1e-15))
+        );
+        // without the separable step (the first poll) only the combined moves
+        assert_eq!(poll_candidates(&centre, &polled, delta, false).len(), 2);
     }
 }
