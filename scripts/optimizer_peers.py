@@ -18,8 +18,9 @@ A design asked again (the same slip loads to the bit) is not simulated again: th
 objective is deterministic, so it is read from the earlier evaluation; it still counts
 as one of the peer's designs. The evaluations are also appended to
 target/optimizer-peers/<case>-<study hash>.jsonl, so a run that was stopped continues
-where it stopped (the seeds replay the same designs); the hash covers the study with its
-building's content and the package version. The check of the model refiner's number
+where it stopped (the seeds replay the same designs); the hash covers the study (but for
+its refiner's and sweep's settings, which no evaluation reads) with its building's content
+and the package version. The check of the model refiner's number
 always simulates.
 
 Writes results/optimizer/peers.{json,md} for the ten case and
@@ -90,7 +91,9 @@ def main():
     with tempfile.TemporaryDirectory() as folder:
         raw = study_dict(case, folder)
         study = slipload.load_study(raw)
-        identity = dict(raw, building=json.load(open(raw["building"])), version=slipload.__version__)
+        # (what an evaluation depends on: not the refiner's or the sweep's settings)
+        identity = {k: v for k, v in raw.items() if k not in ("refine", "sweep")}
+        identity.update(building=json.load(open(raw["building"])), version=slipload.__version__)
     upper = spec["upper_kn"] * 1e3  # N, every floor's upper bound (lower 0)
     d = spec["n"]
     # evaluations of this study by this script, kept across runs (the key is the design's bytes)
