@@ -467,3 +467,50 @@ fn a_base_shear_limit_that_looks_like_kn_is_warned_about() {
     let w = with(5.0e6).warnings();
     assert!(!w.iter().any(|w| w.contains("base-shear")), "{w:?}");
 }
+
+/// Bounds built from their parts (`property_bounds.slip_load.derivation`) run exactly as
+/// the same bounds given as numbers, and the code check prints how they were built.
+#[test]
+fn bounds_built_from_their_parts_run_as_their_numbers_and_the_check_prints_them() {
+    let derived = |v: &mut serde_json::Value| {
+        limits(0.012)(v);
+        v["property_bounds"]["slip_load"] = serde_json::json!({ "derivation": {
+            "testing": { "min": 0.9, "max": 1.1, "source": "prototype tests, report PT-1" },
+            "aging_environment": { "min": 0.9, "max": 1.2 },
+            "specification": { "min": 0.93, "max": 1.06 }
+        } });
+    };
+    // ASCE 7-16 Eq. 17.2-1 and 17.2-2 by hand, in the order the study builds them
+    let (lower, upper) = (
+        (1.0 - 0.75 * (1.0 - 0.9)) * 0.9 * 0.93,
+        (1.0 + 0.75 * (1.2 - 1.0)) * 1.1 * 1.06,
+    );
+    let numbers = move |v: &mut serde_json::Value| {
+        limits(0.012)(v);
+        v["property_bounds"]["slip_load"] = serde_json::json!({ "lower": lower, "upper": upper });
+    };
+    let (a, b) = (study(derived).unwrap(), study(numbers).unwrap());
+    assert_eq!(a.checks.cases(), b.checks.cases());
+    assert!(b.checks.derivations().is_empty());
+    let out = scratch("derived-bounds");
+    let run = optimize_study(
+        &a,
+        &OptimizeOptions::default(),
+        folder(&out),
+        &NoProgress,
+        &NoFigures,
+    )
+    .unwrap();
+    assert!(run.report.code_check.is_some());
+    let md = std::fs::read_to_string(out.join("code-check.md")).unwrap();
+    for line in [
+        "- slip load: λ_max = (1 + 0.75 × (1.2 − 1)) × 1.1 × 1.06 = 1.3409",
+        "- slip load: λ_min = (1 − 0.75 × (1 − 0.9)) × 0.9 × 0.93 = 0.7742",
+        "- slip load, testing (0.9 to 1.1): prototype tests, report PT-1",
+    ] {
+        assert!(md.contains(line), "{line} in\n{md}");
+    }
+    let json = std::fs::read_to_string(out.join("code-check.json")).unwrap();
+    assert!(json.contains("\"derivations\""), "{json}");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -26,15 +26,7 @@ use std::fmt::Write as _;
 use std::ops::Range;
 use std::path::Path;
 
-/// Factors on a property: `lower ≤ 1 ≤ upper`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Factors {
-    /// λ_min (≤ 1).
-    pub lower: f64,
-    /// λ_max (≥ 1).
-    pub upper: f64,
-}
+pub use super::bounds::{Derivation, Factors, Part};
 
 /// Which property case the objective reads.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -58,7 +50,7 @@ impl BoundReading {
 }
 
 /// The study key `property_bounds`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PropertyBoundsConfig {
     /// λ_min and λ_max of every slip load.
@@ -231,43 +223,13 @@ pub struct SuiteLimits {
     pub unacceptable: Unacceptable,
 }
 
-fn check_factor(path: &Path, field: &str, v: f64, below: bool) -> Result<(), OptError> {
-    let ok = v.is_finite() && v > 0.0 && if below { v <= 1.0 } else { v >= 1.0 };
-    if ok {
-        Ok(())
-    } else {
-        Err(OptError::invalid(
-            path,
-            field,
-            format!(
-                "must be {} 1{}, got {v}",
-                if below { "in (0," } else { "finite and ≥" },
-                if below { "]" } else { "" }
-            ),
-        ))
-    }
-}
-
 impl PropertyBoundsConfig {
-    /// Checks the factors: 0 < λ_min ≤ 1 ≤ λ_max, finite.
+    /// Checks the factors ([`Factors::validate`]): numbers or a derivation, then
+    /// 0 < λ_min ≤ 1 ≤ λ_max, finite.
     pub fn validate(&self, path: &Path) -> Result<(), OptError> {
-        let mut parts = vec![("slip_load", self.slip_load)];
-        if let Some(k) = self.brace_stiffness {
-            parts.push(("brace_stiffness", k));
-        }
-        for (name, f) in parts {
-            check_factor(
-                path,
-                &format!("property_bounds.{name}.lower"),
-                f.lower,
-                true,
-            )?;
-            check_factor(
-                path,
-                &format!("property_bounds.{name}.upper"),
-                f.upper,
-                false,
-            )?;
+        self.slip_load.validate(path, "property_bounds.slip_load")?;
+        if let Some(k) = &self.brace_stiffness {
+            k.validate(path, "property_bounds.brace_stiffness")?;
         }
         Ok(())
     }
@@ -452,20 +414,39 @@ impl Checks {
     pub fn cases(&self) -> Vec<PropertyCase> {
         let mut out = vec![PropertyCase::NOMINAL];
         if let Some(b) = &self.property_bounds {
-            let k = b.brace_stiffness.unwrap_or(Factors {
-                lower: 1.0,
-                upper: 1.0,
-            });
+            let k = b
+                .brace_stiffness
+                .as_ref()
+                .map_or((1.0, 1.0), Factors::bounds);
+            let s = b.slip_load.bounds();
             out.push(PropertyCase {
                 name: CaseName::Lower,
-                slip_load: b.slip_load.lower,
-                brace_stiffness: k.lower,
+                slip_load: s.0,
+                brace_stiffness: k.0,
             });
             out.push(PropertyCase {
                 name: CaseName::Upper,
-                slip_load: b.slip_load.upper,
-                brace_stiffness: k.upper,
+                slip_load: s.1,
+                brace_stiffness: k.1,
             });
+        }
+        out
+    }
+
+    /// How the property bounds were built from their parts, for the report (empty where
+    /// the study gave the factors as numbers).
+    pub fn derivations(&self) -> Vec<String> {
+        let Some(b) = &self.property_bounds else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (name, f) in [
+            ("slip load", Some(&b.slip_load)),
+            ("brace stiffness", b.brace_stiffness.as_ref()),
+        ] {
+            if let Some(d) = f.and_then(|f| f.derivation.as_ref()) {
+                out.extend(d.lines(name));
+            }
         }
         out
     }
@@ -473,6 +454,7 @@ impl Checks {
     /// Which case the objective reads.
     pub fn reading(&self) -> BoundReading {
         self.property_bounds
+            .as_ref()
             .map_or(BoundReading::Nominal, |b| b.objective_reads)
     }
 
@@ -648,10 +630,7 @@ mod tests {
     fn checks(max_count: usize) -> Checks {
         Checks::of(
             Some(PropertyBoundsConfig {
-                slip_load: Factors {
-                    lower: 0.8,
-                    upper: 1.2,
-                },
+                slip_load: Factors::numbers(0.8, 1.2),
                 brace_stiffness: None,
                 objective_reads: BoundReading::Worst,
             }),
@@ -764,10 +743,7 @@ mod tests {
     #[test]
     fn factors_out_of_order_are_refused_by_field() {
         let b = PropertyBoundsConfig {
-            slip_load: Factors {
-                lower: 1.1,
-                upper: 1.2,
-            },
+            slip_load: Factors::numbers(1.1, 1.2),
             brace_stiffness: None,
             objective_reads: BoundReading::Nominal,
         };

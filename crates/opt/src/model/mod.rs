@@ -3,6 +3,7 @@
 //! samplers and designs, the fidelities, the study itself and its fingerprint. Nothing here
 //! simulates or touches an output folder.
 
+pub mod bounds;
 pub mod check;
 pub mod config;
 pub mod fidelity;

@@ -719,7 +719,7 @@ impl Study {
                 .unwrap_or_else(|| "study".into())
         });
         let checks = Checks::of(
-            cfg.property_bounds,
+            cfg.property_bounds.clone(),
             cfg.suites.iter().map(|s| s.limits.clone()).collect(),
         );
         let cfg_check_method = cfg.fidelity.check_method;

@@ -46,6 +46,10 @@ pub struct CodeCheck {
     pub fidelity: String,
     /// The property cases.
     pub cases: Vec<PropertyCase>,
+    /// How the bounds were built from their parts, where the study gave them
+    /// (`property_bounds.*.derivation`), one line each bound and each source.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub derivations: Vec<String>,
     /// The suites.
     pub suites: Vec<CheckedSuite>,
     /// Every criterion at every suite and case.
@@ -121,6 +125,7 @@ impl CodeCheck {
                 fid.dt_factor
             ),
             cases: study.checks.cases(),
+            derivations: study.checks.derivations(),
             suites: study
                 .suites
                 .iter()
@@ -191,6 +196,13 @@ impl CodeCheck {
             );
         }
         s.push('\n');
+        if !self.derivations.is_empty() {
+            s.push_str("The bounds as built from their parts (λ_test, λ_ae of which a share counts, λ_spec; ASCE 7-16 Eq. 17.2-1 and 17.2-2, which Ch. 18 follows for damping devices; a bound the study sets on them is the study's number):\n\n");
+            for l in &self.derivations {
+                let _ = writeln!(s, "- {l}");
+            }
+            s.push('\n');
+        }
         for suite in &self.suites {
             let _ = writeln!(s, "## {} ({} records)\n", suite.name, suite.records);
             if let Some(c) = &suite.code_scaling {
