@@ -468,12 +468,17 @@ fn a_base_shear_limit_that_looks_like_kn_is_warned_about() {
     assert!(!w.iter().any(|w| w.contains("base-shear")), "{w:?}");
 }
 
+/// The drift limit of the derived-bounds study.
+const DRIFT: f64 = 0.0058;
+
 /// Bounds built from their parts (`property_bounds.slip_load.derivation`) run exactly as
-/// the same bounds given as numbers, and the code check prints how they were built.
+/// the same bounds given as numbers, and the code check prints how they were built and
+/// the widest specification band at which the design passes (a drift limit close enough
+/// that a band short of the widest searched fails).
 #[test]
 fn bounds_built_from_their_parts_run_as_their_numbers_and_the_check_prints_them() {
     let derived = |v: &mut serde_json::Value| {
-        limits(0.012)(v);
+        limits(DRIFT)(v);
         v["property_bounds"]["slip_load"] = serde_json::json!({ "derivation": {
             "testing": { "min": 0.9, "max": 1.1, "source": "prototype tests, report PT-1" },
             "aging_environment": { "min": 0.9, "max": 1.2 },
@@ -486,7 +491,7 @@ fn bounds_built_from_their_parts_run_as_their_numbers_and_the_check_prints_them(
         (1.0 + 0.75 * (1.2 - 1.0)) * 1.1 * 1.06,
     );
     let numbers = move |v: &mut serde_json::Value| {
-        limits(0.012)(v);
+        limits(DRIFT)(v);
         v["property_bounds"]["slip_load"] = serde_json::json!({ "lower": lower, "upper": upper });
     };
     let (a, b) = (study(derived).unwrap(), study(numbers).unwrap());
@@ -512,5 +517,58 @@ fn bounds_built_from_their_parts_run_as_their_numbers_and_the_check_prints_them(
     }
     let json = std::fs::read_to_string(out.join("code-check.json")).unwrap();
     assert!(json.contains("\"derivations\""), "{json}");
+    // the widest specification band: the design passes there and fails one precision
+    // step wider, each re-checked here on a study given the bounds as numbers
+    let tol = run
+        .report
+        .code_check
+        .as_ref()
+        .unwrap()
+        .tolerance
+        .clone()
+        .unwrap();
+    assert!(
+        md.contains("**Specification tolerance:** the widest"),
+        "{md}"
+    );
+    let optimum = run.report.refine.finalists[0].slip_loads_n.clone();
+    let passes_at = |t: f64| {
+        let (lo, hi) = (
+            (1.0 - 0.75 * (1.0 - 0.9)) * 0.9 * (1.0 - t),
+            (1.0 + 0.75 * (1.2 - 1.0)) * 1.1 * (1.0 + t),
+        );
+        let s = study(move |v: &mut serde_json::Value| {
+            limits(DRIFT)(v);
+            v["property_bounds"]["slip_load"] = serde_json::json!({ "lower": lo, "upper": hi });
+        })
+        .unwrap();
+        let fid = Fidelity::check(&s);
+        let rows: Vec<RecordMetrics> = (0..s.runs())
+            .map(|i| {
+                slipload_opt::eval::evaluate::run_design(
+                    &s,
+                    &optimum.clone().into(),
+                    i,
+                    &fid,
+                    "again",
+                )
+                .unwrap()
+            })
+            .collect();
+        s.check_design(&rows).unwrap().passes()
+    };
+    let widest = tol
+        .widest_band
+        .expect("the optimum passes at the study's own band");
+    assert!(widest >= 0.07, "{tol:?}: at least the study's ±7 %");
+    assert!(passes_at(widest), "{tol:?}");
+    // (measured: passes at ±19.47 %, fails at ±19.69 % after 9 checks)
+    let (t, verdict) = tol.fails_at.clone().expect("a band short of ±50 % fails");
+    assert!(
+        t - widest <= slipload_opt::phases::tolerance::PRECISION,
+        "{tol:?}"
+    );
+    assert!(verdict.starts_with("FAIL"), "{verdict}");
+    assert!(!passes_at(t), "{tol:?}");
     let _ = std::fs::remove_dir_all(&out);
 }

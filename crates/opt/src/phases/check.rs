@@ -50,6 +50,10 @@ pub struct CodeCheck {
     /// (`property_bounds.*.derivation`), one line each bound and each source.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub derivations: Vec<String>,
+    /// The widest specification tolerance the design affords, where the bounds are built
+    /// from their parts and the design passes ([`crate::phases::tolerance`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<crate::phases::tolerance::Tolerance>,
     /// The suites.
     pub suites: Vec<CheckedSuite>,
     /// Every criterion at every suite and case.
@@ -126,6 +130,7 @@ impl CodeCheck {
             ),
             cases: study.checks.cases(),
             derivations: study.checks.derivations(),
+            tolerance: None,
             suites: study
                 .suites
                 .iter()
@@ -202,6 +207,9 @@ impl CodeCheck {
                 let _ = writeln!(s, "- {l}");
             }
             s.push('\n');
+        }
+        if let Some(t) = &self.tolerance {
+            let _ = writeln!(s, "**Specification tolerance:** {}.\n", t.text());
         }
         for suite in &self.suites {
             let _ = writeln!(s, "## {} ({} records)\n", suite.name, suite.records);

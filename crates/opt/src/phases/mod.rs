@@ -15,3 +15,4 @@ pub mod refine;
 pub mod refinement;
 pub mod sweep;
 pub mod table;
+pub mod tolerance;

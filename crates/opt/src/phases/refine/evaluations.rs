@@ -31,6 +31,11 @@ pub trait Refiner {
     }
 }
 
+/// A design counts as stationary when no poll move lowers its objective by more than
+/// this fraction of it (0.1 %: a tenth of the 1 % within which a study should find the
+/// best design).
+pub const STATIONARY_GAIN: f64 = 1e-3;
+
 /// Why a refiner stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

@@ -15,7 +15,8 @@ mod random;
 mod trust_region;
 
 pub use evaluations::{
-    Evaluations, Hook, LimitOracle, LimitValues, Oracle, Point, Refiner, StopReason,
+    Evaluations, Hook, LimitOracle, LimitValues, Oracle, Point, Refiner, STATIONARY_GAIN,
+    StopReason,
 };
 pub use model::{LINE_EVALUATIONS, ModelSearch};
 pub use nelder_mead::NelderMead;
@@ -150,11 +151,6 @@ where
     }
     Ok((ev, stops))
 }
-
-/// A design counts as stationary when no poll move lowers its objective by more than
-/// this fraction of it (0.1 %: a tenth of the 1 % within which a study should find the
-/// best design).
-pub const STATIONARY_GAIN: f64 = 1e-3;
 
 /// The post-check of a refined design: every single-variable move ±h and the profile move
 /// (every slip load × (1 ± h)), evaluated in one batch.

@@ -68,7 +68,9 @@
 //! ([`StopReason::Budget`]), or no model can be built (too few finite points,
 //! [`StopReason::NoProgress`]).
 
-use super::evaluations::{Evaluations, Point, Refiner, StopReason, clamp01, dist_inf, trust_step};
+use super::evaluations::{
+    Evaluations, Point, Refiner, STATIONARY_GAIN, StopReason, clamp01, dist_inf, trust_step,
+};
 use crate::base::error::OptError;
 use crate::base::qp;
 use crate::model::config::RefineConfig;
@@ -96,8 +98,8 @@ const MAX_RADIUS: f64 = 0.5;
 
 /// Least decrease of a poll, as a fraction of the objective, for polls to go on
 /// ([`ModelSearch::poll_gained`]): the post-check's threshold of a stationary design
-/// ([`super::STATIONARY_GAIN`]).
-const POLL_GAIN: f64 = super::STATIONARY_GAIN;
+/// ([`STATIONARY_GAIN`]).
+const POLL_GAIN: f64 = STATIONARY_GAIN;
 
 /// How far inside its limits the refiner aims a design it moves toward them: a ratio of
 /// 1 − 0.1 % (the linearised limits are first-order; a step aimed at exactly 1 lands
