@@ -128,7 +128,7 @@ pub struct ModelSearch {
     /// Model steps failed in a row since the centre last moved.
     #[serde(default)]
     pub failures: usize,
-    /// The last poll that lowered the objective by more than [`POLL_GAIN`] of it: its
+    /// The last poll that lowered the objective by more than 0.1 % of it (`POLL_GAIN`): its
     /// radius and its decrease per evaluation (`None`: it did not, or no poll yet).
     /// While polls gain faster than the model steps made since, a second failed model
     /// step in a row is followed by a poll at that radius, not by a second shrink.
