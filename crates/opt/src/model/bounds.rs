@@ -147,6 +147,17 @@ impl Derivation {
         ] {
             range(format!("{name}.min"), p.min, true)?;
             range(format!("{name}.max"), p.max, false)?;
+            // the source is printed as a line of code-check.md: one line of text
+            if let Some(src) = &p.source
+                && (src.trim().is_empty() || src.chars().any(char::is_control))
+            {
+                return Err((
+                    format!("{name}.source"),
+                    format!(
+                        "{src:?} is blank or holds a control character: give the source on one line"
+                    ),
+                ));
+            }
         }
         if !(0.0..=1.0).contains(&self.aging_share) {
             return Err((
@@ -311,6 +322,12 @@ mod tests {
                 && e.contains("must be in (0, 1], got 1.05"),
             "{e}"
         );
+        let lined = parts.replace(
+            r#""min": 0.9, "max": 1.1}"#,
+            r#""min": 0.9, "max": 1.1, "source": "a\n## b"}"#,
+        );
+        let e = factors(&format!(r#"{{"derivation": {{{lined}}}}}"#)).unwrap_err();
+        assert!(e.contains("derivation.testing.source"), "{e}");
         let e = factors(&format!(
             r#"{{"derivation": {{{parts}, "aging_share": 1.5}}}}"#
         ))

@@ -65,19 +65,24 @@ impl Tolerance {
     }
 }
 
+/// The study's slip-load bounds as built from their parts, which the search needs (`None`:
+/// the study gives them as numbers, or has none).
+pub fn derivation(study: &Study) -> Option<&Derivation> {
+    study
+        .checks
+        .property_bounds
+        .as_ref()
+        .and_then(|b| b.slip_load.derivation.as_ref())
+}
+
 /// The widest tolerance of the design `loads_n` (N) of `study`, where the study builds
-/// its slip-load bounds from their parts; `None` otherwise.
+/// its slip-load bounds from their parts ([`derivation`]); `None` otherwise.
 pub fn widest(
     study: &Study,
     loads_n: &[f64],
     tick: &(dyn Fn() + Sync),
 ) -> Result<Option<Tolerance>, OptError> {
-    let Some(derivation) = study
-        .checks
-        .property_bounds
-        .as_ref()
-        .and_then(|b| b.slip_load.derivation.clone())
-    else {
+    let Some(derivation) = derivation(study).cloned() else {
         return Ok(None);
     };
     let spec = &derivation.specification;

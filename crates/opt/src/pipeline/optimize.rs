@@ -271,14 +271,9 @@ fn run_phases(
     let mut code_check = crate::phases::check::CodeCheck::of(study, &refined)?;
     // where the bounds are built from their parts, the widest specification band the
     // recommended design still passes at
-    let derived = study
-        .checks
-        .property_bounds
-        .as_ref()
-        .is_some_and(|b| b.slip_load.derivation.is_some());
     if let (Some(c), Some(first)) = (code_check.as_mut(), refined.finalists.first())
         && c.passes
-        && derived
+        && crate::phases::tolerance::derivation(study).is_some()
     {
         c.tolerance = phase(progress, Phase::Check, 8 * nr, |tick| {
             crate::phases::tolerance::widest(study, &first.slip_loads_n, tick)
