@@ -8,7 +8,9 @@
 //!
 //! [`DesignSpace`]: crate::DesignSpace
 
+mod candidates;
 mod evaluations;
+mod minimax;
 mod model;
 mod nelder_mead;
 mod random;
