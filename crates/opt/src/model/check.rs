@@ -502,8 +502,9 @@ impl Checks {
     }
 
     /// The objective at each property case, nominal first, where the objective reads the
-    /// worst of several (their largest is [`Checks::objective`]); empty otherwise. With a
-    /// cost objective each carries the design's cost.
+    /// worst of several (their largest is [`Checks::objective`]); empty otherwise, and
+    /// for a cost alone (no response term: every case's value is the cost). With a cost
+    /// beside response terms each carries the design's cost.
     pub fn case_objectives(
         &self,
         objective: &Objective,
@@ -514,7 +515,7 @@ impl Checks {
         loads_n: &[f64],
     ) -> Result<Vec<f64>, OptError> {
         let cases = self.cases().len();
-        if self.reading() != BoundReading::Worst || cases < 2 {
+        if self.reading() != BoundReading::Worst || cases < 2 || objective.terms.is_empty() {
             return Ok(Vec::new());
         }
         let cost = objective.cost_value(loads_n);
