@@ -9,7 +9,9 @@
 use crate::base::error::OptError;
 use crate::eval::evaluate::{DesignLoads, design_plan};
 use crate::model::fidelity::Fidelity;
-pub use crate::model::memory::{MAX_STUDY_MEMORY_BYTES, MemoryEstimate};
+pub use crate::model::memory::{
+    AddressSpace, MAX_STUDY_MEMORY_BYTES, MemoryEstimate, check_probe_fits,
+};
 use crate::model::study::Study;
 use slipload_sim::Plan;
 use slipload_sim::integrator::exact::MemoryBudget;

@@ -100,6 +100,7 @@ fn probe_methods(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> 
             None,
         ));
     }
+    memory::check_probe_fits(&study.path, run_bytes, memory::AddressSpace::read())?;
     let exact = probe(MethodName::Exact);
     // this thread will not run exact again: the study's runs go to the pool's threads,
     // whose budgets the memory estimate counts
@@ -391,11 +392,13 @@ impl Study {
         study.sweep_method = sweep;
         study.check_method = choose_check_method(&study, exact_work_ratio)?;
         study.memory = memory::estimate(&study, rayon::current_num_threads())?;
-        study.memory.check(
-            &study.path,
-            study.check_method.method == MethodName::Exact,
-            memory::MAX_STUDY_MEMORY_BYTES,
-        )?;
+        let exact_check = study.check_method.method == MethodName::Exact;
+        study
+            .memory
+            .check(&study.path, exact_check, memory::MAX_STUDY_MEMORY_BYTES)?;
+        study
+            .memory
+            .check_address_space(&study.path, exact_check, memory::AddressSpace::read())?;
         Ok(study)
     }
 }
