@@ -53,7 +53,6 @@ impl Problem {
             Some(LimitValues {
                 objective: cost,
                 ratios: vec![r, 0.5 * r],
-                cases: Vec::new(),
             }),
         )
     }
@@ -136,7 +135,6 @@ fn a_limit_far_from_binding_leaves_the_refiner_as_without_limits() {
             Some(LimitValues {
                 objective: l.objective,
                 ratios,
-                cases: Vec::new(),
             }),
         )
     };

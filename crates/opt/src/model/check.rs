@@ -501,32 +501,6 @@ impl Checks {
         Ok(response + objective.cost_value(loads_n))
     }
 
-    /// The objective at each property case, nominal first, where the objective reads the
-    /// worst of several (their largest is [`Checks::objective`]); empty otherwise, and
-    /// for a cost alone (no response term: every case's value is the cost). With a cost
-    /// beside response terms each carries the design's cost.
-    pub fn case_objectives(
-        &self,
-        objective: &Objective,
-        rows: &[RecordMetrics],
-        bare: Option<&[RecordMetrics]>,
-        suites: &[Range<usize>],
-        records: usize,
-        loads_n: &[f64],
-    ) -> Result<Vec<f64>, OptError> {
-        let cases = self.cases().len();
-        if self.reading() != BoundReading::Worst || cases < 2 || objective.terms.is_empty() {
-            return Ok(Vec::new());
-        }
-        let cost = objective.cost_value(loads_n);
-        (0..cases)
-            .map(|c| {
-                let span = c * records..(c + 1) * records;
-                Ok(objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)? + cost)
-            })
-            .collect()
-    }
-
     /// Each term's value at the case the objective reads (for the worst reading: at the
     /// case whose objective is the worst).
     pub fn terms(

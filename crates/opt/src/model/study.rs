@@ -802,26 +802,6 @@ impl Study {
         )
     }
 
-    /// The objective of one design at each property case, nominal first, where the
-    /// study's objective reads the worst of them (its largest is
-    /// [`Study::objective_value`]); empty otherwise.
-    pub fn case_objectives(
-        &self,
-        rows: &[RecordMetrics],
-        bare: &[RecordMetrics],
-        loads_n: &[f64],
-    ) -> Result<Vec<f64>, OptError> {
-        let ranges: Vec<Range<usize>> = self.suites.iter().map(|s| s.range.clone()).collect();
-        self.checks.case_objectives(
-            &self.objective,
-            rows,
-            Some(bare),
-            &ranges,
-            self.records.len(),
-            loads_n,
-        )
-    }
-
     /// The check of one design's runs against every limit at every property case.
     pub fn check_design(&self, rows: &[RecordMetrics]) -> Result<DesignCheck, OptError> {
         let suites: Vec<(&str, Range<usize>)> = self

@@ -74,27 +74,14 @@ impl RefineTarget {
         }
     }
 
-    /// The values the model refiner models beside what it minimises ([`LimitValues`]):
-    /// for the objective of passing designs, the objective, the smooth ratios of the
-    /// check and the objective at each property case (`cases`, where the objective reads
-    /// the worst); for the objective alone, the cases where there are any; none for the
-    /// exceedances.
-    pub fn limit_values(
-        self,
-        f: f64,
-        check: Option<&DesignCheck>,
-        cases: Vec<f64>,
-    ) -> Option<LimitValues> {
+    /// The limit values the model refiner keeps to ([`LimitValues`]): for the objective
+    /// of passing designs, the objective and the smooth ratios of the check; none for
+    /// the other targets.
+    pub fn limit_values(self, f: f64, check: Option<&DesignCheck>) -> Option<LimitValues> {
         match (self, check) {
             (RefineTarget::PassingObjective, Some(c)) => Some(LimitValues {
                 objective: f,
                 ratios: c.smooth_ratios(),
-                cases,
-            }),
-            (RefineTarget::Objective, _) if !cases.is_empty() => Some(LimitValues {
-                objective: f,
-                ratios: Vec::new(),
-                cases,
             }),
             _ => None,
         }
@@ -194,10 +181,9 @@ fn values_of(
                 RefineTarget::Objective => None,
                 _ => Some(study.check_design(rows)?),
             };
-            let cases = study.case_objectives(rows, bare, loads)?;
             Ok((
                 target.value(f, check.as_ref()),
-                target.limit_values(f, check.as_ref(), cases),
+                target.limit_values(f, check.as_ref()),
             ))
         })
         .collect()
@@ -338,15 +324,6 @@ pub fn refine_sweep(
             }
         }
     };
-    // each sampled design's objective at every property case (where the objective reads
-    // the worst), from its runs
-    let case_objectives = |i: usize| {
-        study.case_objectives(
-            &rows[i * nr..(i + 1) * nr],
-            &bare,
-            &manifest.designs[i].slip_loads_n,
-        )
-    };
     let mut known: Vec<Point> = manifest
         .designs
         .iter()
@@ -354,15 +331,13 @@ pub fn refine_sweep(
         .enumerate()
         .filter_map(|(i, (d, (f, _)))| {
             let check = checks.as_ref().map(|c| &c[i]);
-            d.z.clone().map(|z| {
-                Ok(Point {
-                    z,
-                    f: target.value(*f, check),
-                    limits: target.limit_values(*f, check, case_objectives(i)?),
-                })
+            d.z.clone().map(|z| Point {
+                z,
+                f: target.value(*f, check),
+                limits: target.limit_values(*f, check),
             })
         })
-        .collect::<Result<_, OptError>>()?;
+        .collect();
     let sampled = known.len();
     // the building file's design (design 1) is a design the sweep evaluated: where the
     // space holds it (symmetric slip loads on the space), it competes with the sample
@@ -374,7 +349,7 @@ pub fn refine_sweep(
         known.push(Point {
             z,
             f: target.value(obj[1].0, check),
-            limits: target.limit_values(obj[1].0, check, case_objectives(1)?),
+            limits: target.limit_values(obj[1].0, check),
         });
     }
     // with a cost objective the bare frame is the design without dampers: where the
@@ -388,7 +363,7 @@ pub fn refine_sweep(
         known.push(Point {
             z,
             f: target.value(obj[0].0, check),
-            limits: target.limit_values(obj[0].0, check, case_objectives(0)?),
+            limits: target.limit_values(obj[0].0, check),
         });
     }
     // with limits, no design meeting them makes the refiners look for the closest
@@ -420,7 +395,7 @@ pub fn refine_sweep(
             known.push(Point {
                 z: z.clone(),
                 f: target.value(*f, check.as_ref()),
-                limits: target.limit_values(*f, check.as_ref(), Vec::new()),
+                limits: target.limit_values(*f, check.as_ref()),
             });
         }
     }

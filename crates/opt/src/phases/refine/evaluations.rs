@@ -88,9 +88,8 @@ impl Point {
     }
 }
 
-/// A design's objective, the ratios of the study's limits and the objective at each
-/// property case, as the model refiner models them
-/// ([`crate::model::check::DesignCheck::smooth_ratios`]).
+/// A design's objective and the ratios of the study's limits, as the model refiner
+/// models the limits ([`crate::model::check::DesignCheck::smooth_ratios`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LimitValues {
     /// The objective whether the limits pass or not (+∞, written `"inf"`: collapsed).
@@ -98,14 +97,8 @@ pub struct LimitValues {
     pub objective: f64,
     /// demand / limit of each criterion at each case, in the check's order (counts of
     /// unacceptable responses left out: they are steps, not smooth functions); ≤ 1
-    /// passes. Empty in a study without limits.
+    /// passes.
     pub ratios: Vec<f64>,
-    /// Where the objective reads the worst of the property cases: the objective at each
-    /// case, nominal first (the objective is their largest); empty otherwise. Each is
-    /// smooth where their largest has a kink (where two cases are equal), so the model
-    /// refiner models them one by one ([`super::minimax`]).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub cases: Vec<f64>,
 }
 
 /// An objective value in a journal: a JSON number, or `"inf"` for +∞ (a collapsed

@@ -8,9 +8,7 @@
 //!
 //! [`DesignSpace`]: crate::DesignSpace
 
-mod candidates;
 mod evaluations;
-mod minimax;
 mod model;
 mod nelder_mead;
 mod random;

@@ -62,25 +62,15 @@
 //! (the secant of log ratio in log α, up to [`LIMIT_EVALUATIONS`] more points): the
 //! least dampers that meet the limits (`objective.cost`) lie where a limit binds.
 //!
-//! **The worst of the property cases.** A study that reads the worst of its property
-//! cases carries each case's objective with every evaluation ([`super::LimitValues::cases`]);
-//! their largest has a kink where two cases are equal, which is where such an optimum
-//! lies. Each case then gets its own model from the same interpolation system (least
-//! change from the objective's Hessian memory) and the step is the minimax subproblem of
-//! [`super::minimax`]: the least t + ½sᵀHs with every case's linear model below t, H the
-//! Lagrangian's Hessian of the cases that can govern.
-//!
 //! **Counted.** Every evaluation goes through [`Evaluations`] and no batch is larger than
 //! the budget left, so the refiner never exceeds it. It stops when the radius falls below
 //! the tolerance ([`StopReason::Tolerance`]), the budget is spent
 //! ([`StopReason::Budget`]), or no model can be built (too few finite points,
 //! [`StopReason::NoProgress`]).
 
-use super::candidates::{parabola_vertex, poll_candidates};
 use super::evaluations::{
     Evaluations, Point, Refiner, STATIONARY_GAIN, StopReason, clamp01, dist_inf, trust_step,
 };
-use super::minimax::{self, CaseModel};
 use crate::base::error::OptError;
 use crate::base::qp;
 use crate::model::config::RefineConfig;
@@ -535,42 +525,11 @@ impl ModelSearch {
                 }
             }
         }
-        // the property cases, where the objective reads the worst: each case's model from
-        // the same system, with the objective's memory as its Hessian's
-        let cases_of = |p: &Point| p.limits.as_ref().map(|l| l.cases.clone());
-        let mut cases = Vec::new();
-        if let Some(cc) = cases_of(c).filter(|v| v.len() >= 2)
-            && self
-                .points
-                .iter()
-                .all(|p| cases_of(p).is_some_and(|v| v.len() == cc.len()))
-        {
-            for (j, &v0) in cc.iter().enumerate() {
-                let mut rhs = DVector::zeros(n);
-                for k in 0..m {
-                    rhs[k] = (self.points[k].limits.as_ref().expect("checked above").cases[j] - v0)
-                        / scale
-                        - 0.5 * s[k].dot(&(&h0 / scale * &s[k]));
-                }
-                let Ok(x) = svd.solve(&rhs, 1e-12) else {
-                    cases.clear();
-                    break;
-                };
-                let (gj, hj) = quadratic(&x, &h0 / scale);
-                let at = (v0 - fc) / scale;
-                if !(at.is_finite() && gj.iter().chain(hj.iter()).all(|v| v.is_finite())) {
-                    cases.clear();
-                    break;
-                }
-                cases.push(CaseModel { at, g: gj, h: hj });
-            }
-        }
         Some(Fit {
             g,
             h,
             scale,
             limits,
-            cases,
         })
     }
 
@@ -621,29 +580,14 @@ impl ModelSearch {
         // (nalgebra is column-major; H is symmetric, so rows = columns)
         let c = self.centre.clone();
         let (cuts, curvature) = Self::binding_limits(&fit);
-        // the objective's Hessian, or where it is the worst of the property cases, the
-        // Lagrangian's of the cases that can govern
-        let hf = if fit.cases.is_empty() {
-            h.clone()
-        } else {
-            minimax::lagrangian_hessian(&fit.cases, d)
-        };
         let hp = match curvature {
-            Some(hl) => qp::clip_to_psd(&(&hf + hl), 0.0),
-            None => qp::clip_to_psd(&hf, 0.0),
+            Some(hl) => qp::clip_to_psd(&(h + hl), 0.0),
+            None => qp::clip_to_psd(h, 0.0),
         };
-        let step = if fit.cases.is_empty() {
-            trust_step(space, &c.z, delta, &hp, g.as_slice(), &cuts)
-        } else {
-            minimax::step(space, &c.z, delta, &hp, &fit.cases, &cuts)
-        };
+        let step = trust_step(space, &c.z, delta, &hp, g.as_slice(), &cuts);
         let trial = step.and_then(|s| {
             let sv = DVector::from_column_slice(&s);
-            let pred = if fit.cases.is_empty() {
-                -(g.dot(&sv) + 0.5 * sv.dot(&(h * &sv))) * scale
-            } else {
-                -minimax::model_value(&fit.cases, &s) * scale
-            };
+            let pred = -(g.dot(&sv) + 0.5 * sv.dot(&(h * &sv))) * scale;
             let mut z: Vec<f64> = c.z.iter().zip(&s).map(|(c, s)| c + delta * s).collect();
             clamp01(&mut z);
             let len = dist_inf(&z, &c.z);
@@ -811,9 +755,6 @@ struct Fit {
     scale: f64,
     /// The limits' ratios.
     limits: Vec<LimitModel>,
-    /// The objective at each property case, where it reads the worst of them (empty
-    /// otherwise): the step is then [`minimax::step`].
-    cases: Vec<CaseModel>,
 }
 
 /// The least-norm quadratic model of one limit ratio around the centre, in s.
@@ -845,6 +786,88 @@ fn governing_ratio(p: &Point) -> Option<f64> {
         .as_ref()
         .filter(|l| !l.ratios.is_empty())
         .map(|l| l.ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+}
+
+/// The designs a poll around `c` points to (`polled`: coordinate, move, point): the
+/// step of the separable quadratic through each coordinate's two moves (its gradient
+/// and curvature by differences, the curvature at least |g|/(2Δ), so no coordinate moves
+/// more than 2Δ), and the design that takes every move that lowered what the refiner
+/// minimises, each whole and half way. On an objective with kinks (a peak over storeys
+/// and records, the worst of the property cases) one floor moved alone often climbs
+/// where floors moved together descend, and the interpolation model of the whole set
+/// misleads; these steps read only the poll around the present centre (implicit
+/// filtering's difference gradient at the scale Δ, Kelley 2011, and a combined
+/// coordinate move).
+fn poll_candidates(
+    c: &Point,
+    polled: &[(usize, f64, Point)],
+    delta: f64,
+    separable: bool,
+) -> Vec<Vec<f64>> {
+    let d = c.z.len();
+    let fc = c.objective();
+    // each coordinate's moves: (offset, objective) — the objective whether the limits
+    // pass or not, smooth across them
+    let mut per: Vec<Vec<(f64, f64)>> = vec![Vec::new(); d];
+    let mut gain = vec![(0.0, c.f); d];
+    for (i, s, p) in polled {
+        per[*i].push((*s, p.objective()));
+        if p.f < gain[*i].1 {
+            gain[*i] = (*s, p.f);
+        }
+    }
+    let mut newton = vec![0.0; d];
+    for (i, moves) in per.iter().enumerate() {
+        let &[(a, fa), (b, fb)] = &moves[..] else {
+            continue;
+        };
+        if !(fa.is_finite() && fb.is_finite() && fc.is_finite()) || a == b {
+            continue;
+        }
+        // the parabola through (0, fc), (a, fa), (b, fb)
+        let (da, db) = ((fa - fc) / a, (fb - fc) / b);
+        let curvature = 2.0 * (da - db) / (a - b);
+        let g = da - 0.5 * curvature * a;
+        if g != 0.0 {
+            newton[i] =
+                (-g / curvature.max(g.abs() / (2.0 * delta))).clamp(-2.0 * delta, 2.0 * delta);
+        }
+    }
+    let combined: Vec<f64> = gain.iter().map(|(s, _)| *s).collect();
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    let gaining = combined.iter().filter(|s| **s != 0.0).count();
+    // (one gaining move alone: the poll made it whole already, its half is new)
+    for (step, useful) in [
+        (&newton, separable && newton.iter().any(|s| *s != 0.0)),
+        (&combined, gaining >= 1),
+    ] {
+        if !useful {
+            continue;
+        }
+        for t in [1.0, 0.5] {
+            let mut z: Vec<f64> = c.z.iter().zip(step).map(|(z, s)| z + t * s).collect();
+            clamp01(&mut z);
+            if z != c.z && !out.contains(&z) {
+                out.push(z);
+            }
+        }
+    }
+    out
+}
+
+/// The vertex (in log α) of the parabola through three points of a bracket whose middle
+/// point is the lowest; `None` when they are collinear.
+fn parabola_vertex(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> Option<f64> {
+    let (x1, f1) = a;
+    let (x2, f2) = b;
+    let (x3, f3) = c;
+    let num = (x2 - x1).powi(2) * (f2 - f3) - (x2 - x3).powi(2) * (f2 - f1);
+    let den = (x2 - x1) * (f2 - f3) - (x2 - x3) * (f2 - f1);
+    if !(den.abs() > 0.0 && den.is_finite() && num.is_finite()) {
+        return None;
+    }
+    let v = x2 - 0.5 * num / den;
+    (v > x1 && v < x3).then_some(v)
 }
 
 impl Refiner for ModelSearch {
@@ -919,5 +942,44 @@ impl Refiner for ModelSearch {
 
     fn stop_reason(&self) -> StopReason {
         self.stop.unwrap_or(StopReason::Budget)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a separable quadratic f = Σ aᵢ (zᵢ − mᵢ)² with each mᵢ within 2Δ of the centre,
+    /// the separable step of a poll lands on the minimum (to round-off: differences of a
+    /// quadratic are exact), and the combined design takes every gaining move.
+    #[test]
+    fn a_polls_separable_step_lands_on_a_separable_quadratics_minimum() {
+        let (a, m) = ([1.0, 4.0, 0.5], [0.42, 0.55, 0.6]);
+        let f = |z: &[f64]| -> f64 { (0..3).map(|i| a[i] * (z[i] - m[i]).powi(2)).sum() };
+        let (c, delta) = (vec![0.5, 0.5, 0.5], 0.05);
+        let centre = Point::new(c.clone(), f(&c));
+        let mut polled = Vec::new();
+        for i in 0..3 {
+            for s in [delta, -delta] {
+                let mut z = c.clone();
+                z[i] += s;
+                polled.push((i, s, Point::new(z.clone(), f(&z))));
+            }
+        }
+        let cands = poll_candidates(&centre, &polled, delta, true);
+        // the separable step whole, then half way, then the combined moves
+        let step = &cands[0];
+        for i in 0..3 {
+            assert!((step[i] - m[i]).abs() < 1e-12, "{step:?} vs {m:?}");
+        }
+        // floors 1 and 2 gain downward and upward by Δ; floor 3's minimum is 2Δ up
+        let combined = [0.45, 0.55, 0.55];
+        assert!(
+            cands
+                .iter()
+                .any(|z| z.iter().zip(&combined).all(|(a, b)| (a - b).abs() < 1e-15))
+        );
+        // without the separable step (the first poll) only the combined moves
+        assert_eq!(poll_candidates(&centre, &polled, delta, false).len(), 2);
     }
 }
