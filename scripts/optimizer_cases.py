@@ -21,6 +21,7 @@ returns the study (a dict without building and refine settings), the starts (nam
 building file) and the benchmark's rows (refiner, max_evaluations, starts).
 """
 
+import hashlib
 import json
 import os
 
@@ -103,3 +104,20 @@ def write_case(root, case, folder):
     with open(neutral, "w") as f:
         json.dump(building, f, indent=1)
     return study, starts, ROWS[case]
+
+
+def case_key(root, case, folder):
+    """A digest of everything a case's objective depends on: its study (without building
+    and refine settings), its start buildings and its records' bytes. The best design
+    known is kept across runs of the benchmark only while the key is the same."""
+    os.makedirs(folder, exist_ok=True)
+    study, starts, _ = write_case(root, case, folder)
+    h = hashlib.sha256(json.dumps(study, sort_keys=True).encode())
+    for name in sorted(starts):
+        h.update(name.encode())
+        h.update(open(starts[name], "rb").read())
+    records = sorted({r for s in study["suites"] for r in s["records"]})
+    for r in records:
+        h.update(r.encode())
+        h.update(open(os.path.normpath(os.path.join(root, "configs", r)), "rb").read())
+    return h.hexdigest()[:16]
