@@ -107,12 +107,15 @@ def write_case(root, case, folder):
 
 
 def case_key(root, case, folder):
-    """A digest of everything a case's objective depends on: its study (without building
-    and refine settings), its start buildings and its records' bytes. The best design
-    known is kept across runs of the benchmark only while the key is the same."""
+    """A digest of everything a case's objective depends on: its study's suites, property
+    bounds, space, objective and fidelity (not its name, sweep or refine settings), its
+    start buildings and its records' bytes. The best design known is kept across runs of
+    the benchmark only while the key is the same (with the code: a change of the
+    numerics or of the suites' scaling needs the entry removed by hand)."""
     os.makedirs(folder, exist_ok=True)
     study, starts, _ = write_case(root, case, folder)
-    h = hashlib.sha256(json.dumps(study, sort_keys=True).encode())
+    keys = ("suites", "property_bounds", "space", "objective", "fidelity")
+    h = hashlib.sha256(json.dumps({k: study.get(k) for k in keys}, sort_keys=True).encode())
     for name in sorted(starts):
         h.update(name.encode())
         h.update(open(starts[name], "rb").read())
