@@ -83,6 +83,7 @@ fn a_passing_design_ends_with_its_verdict() {
     for f in FILES {
         assert!(dir.join("o").join(f).is_file(), "{f}");
     }
+    assert_eq!(optimum["objective_value_is"], "objective");
 }
 
 #[test]
@@ -114,6 +115,15 @@ fn no_acceptable_design_exits_3_after_writing_its_files() {
     for f in FILES {
         assert!(dir.join("o").join(f).is_file(), "{f}");
     }
+    // optimum.json says which number it gives: the closest design's sum of exceedances
+    let optimum: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("o/optimum.json")).unwrap())
+            .unwrap();
+    assert_eq!(optimum["objective_value_is"], "sum_of_exceedances");
+    assert!(
+        optimum["objective_value"].as_f64().unwrap() > 0.0,
+        "{optimum}"
+    );
     // run again: everything from the journals, the same verdict and exit code
     let again = run_in(
         &dir,

@@ -7,7 +7,7 @@ use crate::model::config::RefineMethod;
 use crate::model::space::OnBound;
 use crate::phases::figures::FigureData;
 use crate::phases::rank::NamedDesign;
-use crate::phases::refinement::OptimizeReport;
+use crate::phases::refinement::{OptimizeReport, RefineTarget};
 use crate::phases::sweep::SweepReport;
 use crate::phases::table::DesignTable;
 use crate::store::folder::StudyFolder;
@@ -149,6 +149,10 @@ struct OptimumFile<'a> {
     on_bound: &'a [OnBound],
     #[serde(with = "crate::base::collapse::objective_serde")]
     objective_value: f64,
+    /// What `objective_value` is: `objective`, or, where no evaluated design meets the
+    /// limits, `sum_of_exceedances` (each limit's Σ max(0, ratio − 1) at its worst case:
+    /// what the refiners minimised to find the closest design).
+    objective_value_is: &'static str,
     #[serde(with = "crate::base::collapse::objective_serde")]
     bare_objective: f64,
     #[serde(with = "crate::base::collapse::objective_serde")]
@@ -254,6 +258,10 @@ impl StudyReport {
                 slip_loads_kn: kn(&r.optimum_loads),
                 on_bound: &self.on_bound,
                 objective_value: r.optimum.f,
+                objective_value_is: match r.target {
+                    RefineTarget::Violation => "sum_of_exceedances",
+                    RefineTarget::Objective | RefineTarget::PassingObjective => "objective",
+                },
                 bare_objective: r.bare_objective,
                 file_objective: r.file_objective,
                 bare_passes: r.bare_passes,
