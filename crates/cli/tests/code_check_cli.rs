@@ -11,13 +11,18 @@ mod common;
 use common::{root, slipload_in as run_in};
 
 fn study(dir: &Path, drift: f64) -> PathBuf {
+    study_with(dir, drift, r#""brace_angle_deg": 40"#)
+}
+
+/// The study with `devices` holding `devices` (JSON members).
+fn study_with(dir: &Path, drift: f64, devices: &str) -> PathBuf {
     let text = format!(
         r#"{{ "name": "check-cli", "building": "{building}",
   "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 2007, "pga_g": 0.4, "duration_s": 4.0 }},
                  "limits": {{ "criteria": [ {{ "metric": "peak_drift_ratio", "statistic": "mean", "max": {drift} }} ],
                               "unacceptable": {{ "max_count": 0 }} }} }} ],
   "property_bounds": {{ "slip_load": {{ "lower": 0.8, "upper": 1.25 }} }},
-  "devices": {{ "brace_angle_deg": 40 }},
+  "devices": {{ {devices} }},
   "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 2000, 2000] }} }},
   "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
   "fidelity": {{ "method": "newmark", "check_method": "newmark", "check_dt_factor": 0.5 }},
@@ -130,4 +135,59 @@ fn no_acceptable_design_exits_3_after_writing_its_files() {
         &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
     );
     assert_eq!(again.status.code(), Some(3));
+}
+
+/// `devices.stroke_capacity_mm`: the device table states each damper's stroke against
+/// it, and the check counts a run past it as an unacceptable response (the check's
+/// arithmetic is tested in `model::check`); a capacity that is no stroke is refused.
+#[test]
+fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
+    let dir = common::scratch("check", "stroke");
+    let s = study_with(
+        &dir,
+        0.012,
+        r#""brace_angle_deg": 40, "stroke_capacity_mm": 500"#,
+    );
+    let out = run_in(
+        &dir,
+        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let md = std::fs::read_to_string(dir.join("o/device-table.md")).unwrap();
+    assert!(
+        md.contains("Stroke capacity 500.0 mm each way (`devices.stroke_capacity_mm`)"),
+        "{md}"
+    );
+    let table: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("o/device-table.json")).unwrap())
+            .unwrap();
+    assert_eq!(table["stroke_capacity_mm"], 500.0);
+    // every damper of the passing design within it
+    for d in table["dampers"].as_array().unwrap() {
+        for s in d["stroke_mm"].as_array().unwrap() {
+            assert!(s.as_f64().unwrap() <= 500.0, "{d}");
+        }
+    }
+    // a number that is no stroke names the field; a text names the line (a JSON type)
+    for (bad, says) in [
+        ("0", "devices.stroke_capacity_mm"),
+        ("-5", "devices.stroke_capacity_mm"),
+        (r#""50 mm""#, "expected f64 at line 6"),
+    ] {
+        let d = dir.join(format!("bad{}", bad.len()));
+        let s = study_with(&d, 0.012, &format!(r#""stroke_capacity_mm": {bad}"#));
+        let out = run_in(
+            &d,
+            &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
+        );
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{bad}: {err}");
+        assert!(err.contains(says), "{bad}: {err}");
+        assert!(!d.join("o").exists());
+    }
 }

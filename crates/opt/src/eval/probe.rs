@@ -327,7 +327,7 @@ impl Study {
     /// at MCE_R (its members would yield; an elastic model's drifts there are not the
     /// drifts the limits mean), and a count of unacceptable responses the study writes
     /// (`unacceptable`) on a frame that cannot collapse (no collapse limit) with no
-    /// per-record limit (the count is then 0 whatever the design). In the words the summary and `code-check.md` print.
+    /// per-record limit and no stroke capacity (the count is then 0 whatever the design). In the words the summary and `code-check.md` print.
     pub fn model_limits(&self) -> Vec<String> {
         let mut out = Vec::new();
         let elastic = !self.building.is_nonlinear_frame();
@@ -348,6 +348,7 @@ impl Study {
             if limits.unacceptable.written
                 && !collapses
                 && limits.unacceptable.record_limits.is_empty()
+                && self.checks.stroke_capacity_m.is_none()
             {
                 out.push(format!(
                     "suites[{i}].limits.unacceptable counts unacceptable responses, but the frame cannot collapse (no collapse limit: it needs yielding storeys or P-Δ, and storey heights) and no `record_limits` is given: the count is 0 for every design"

@@ -278,6 +278,10 @@ pub struct Checks {
     /// Each suite's limits (empty when no suite has any).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub limits: Vec<Option<SuiteLimits>>,
+    /// The dampers' stroke capacity each way, m (`devices.stroke_capacity_mm`): a run
+    /// past it responds unacceptably.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke_capacity_m: Option<f64>,
 }
 
 /// One line of a design's check: a criterion at one suite and property case.
@@ -408,7 +412,14 @@ impl Checks {
         Checks {
             property_bounds: bounds,
             limits,
+            stroke_capacity_m: None,
         }
+    }
+
+    /// These checks with the dampers' stroke capacity (m; `None`: unlimited travel).
+    pub fn with_stroke_capacity(mut self, capacity_m: Option<f64>) -> Checks {
+        self.stroke_capacity_m = capacity_m;
+        self
     }
 
     /// No bounds and no limits: the study runs as one without checks.
@@ -574,7 +585,10 @@ impl Checks {
                 let mut count = 0usize;
                 for r in range.clone() {
                     let m = &runs[r];
-                    let mut bad = m.collapsed();
+                    let mut bad = m.collapsed()
+                        || self
+                            .stroke_capacity_m
+                            .is_some_and(|c| m.stroke.iter().any(|s| *s > c));
                     for rl in &u.record_limits {
                         bad |= rl.metric.value(m)? > rl.max;
                     }
@@ -733,6 +747,41 @@ mod tests {
         // the drift limit at its worst (the upper case, 0.04: ratio 2), and the count of
         // responses past 0.03 (the upper case's two, against two allowed: passes)
         assert!((c.violation() - 1.0).abs() < 1e-12, "{}", c.violation());
+    }
+
+    /// A run in which a damper travels past the stated stroke capacity responds
+    /// unacceptably, beside the collapses and the per-record limits; without a capacity
+    /// the travel is unlimited.
+    #[test]
+    fn a_stroke_past_the_capacity_is_an_unacceptable_response() {
+        let stroke = |s: f64| RecordMetrics {
+            stroke: vec![0.001, s],
+            ..metrics(0.01, false)
+        };
+        // nominal, lower, upper × two records: strokes 20 / 50 mm, 40 / 60 mm, 10 / 20 mm
+        let rows: Vec<RecordMetrics> = [0.02, 0.05, 0.04, 0.06, 0.01, 0.02]
+            .iter()
+            .map(|s| stroke(*s))
+            .collect();
+        let suites = [("s", 0..2)];
+        let count = |c: &DesignCheck| -> Vec<f64> {
+            c.lines
+                .iter()
+                .filter(|l| l.criterion == "unacceptable responses")
+                .map(|l| l.demand)
+                .collect()
+        };
+        let unlimited = checks(1).check(&rows, &suites, 2).unwrap();
+        assert_eq!(count(&unlimited), [0.0, 0.0, 0.0]);
+        // 35 mm: one record past it at the nominal case, both at the lower, none at the
+        // upper; one allowed, so the lower case fails
+        let c = checks(1)
+            .with_stroke_capacity(Some(0.035))
+            .check(&rows, &suites, 2)
+            .unwrap();
+        assert_eq!(count(&c), [1.0, 2.0, 0.0]);
+        assert!(!c.passes());
+        assert_eq!(c.governing().unwrap().case, CaseName::Lower);
     }
 
     #[test]

@@ -81,6 +81,12 @@ pub struct DevicesConfig {
     /// each brace's axial force F/(n cos θ) and stiffness k′/(n cos²θ).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub braces_per_damper: Option<usize>,
+    /// The devices' stroke capacity each way from their neutral position, mm: in every
+    /// suite with limits a run in which any damper's peak |slip| exceeds it responds
+    /// unacceptably (it is counted with the collapses), and the device table states each
+    /// damper's stroke against it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke_capacity_mm: Option<f64>,
 }
 
 /// One suite of records.
@@ -714,6 +720,15 @@ impl StudyConfig {
                     "the braces' forces and stiffnesses need their angle: give devices.brace_angle_deg",
                 ));
             }
+        }
+        if let Some(c) = self.devices.and_then(|d| d.stroke_capacity_mm)
+            && !(c.is_finite() && c > 0.0)
+        {
+            return Err(OptError::invalid(
+                path,
+                "devices.stroke_capacity_mm",
+                format!("must be a finite stroke > 0 mm (each way), got {c}"),
+            ));
         }
         // the device table is written beside the code check, which a study with limits
         // has: without them `devices` would be dropped without a word

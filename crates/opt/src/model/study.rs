@@ -721,6 +721,11 @@ impl Study {
         let checks = Checks::of(
             cfg.property_bounds.clone(),
             cfg.suites.iter().map(|s| s.limits.clone()).collect(),
+        )
+        .with_stroke_capacity(
+            cfg.devices
+                .and_then(|d| d.stroke_capacity_mm)
+                .map(|mm| mm * 1e-3),
         );
         let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {

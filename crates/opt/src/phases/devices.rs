@@ -81,6 +81,10 @@ pub struct DeviceTable {
     /// per brace).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub braces_per_damper: Option<usize>,
+    /// The devices' stroke capacity each way, mm, when the study gives it
+    /// (`devices.stroke_capacity_mm`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stroke_capacity_mm: Option<f64>,
     /// One row per damper, bottom to top.
     pub dampers: Vec<DeviceRow>,
 }
@@ -186,6 +190,7 @@ impl DeviceTable {
             runs: runs.len(),
             brace_angle_deg: angle,
             braces_per_damper: braces,
+            stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
             dampers: rows,
         })
     }
@@ -278,6 +283,20 @@ impl DeviceTable {
                 (None, _) => String::new(),
             }
         );
+        if let Some(c) = self.stroke_capacity_mm {
+            let largest = self
+                .dampers
+                .iter()
+                .map(|r| r.stroke_mm[0].max(r.stroke_mm[1]))
+                .fold(0.0, f64::max);
+            let _ = writeln!(
+                s,
+                "Stroke capacity {} mm each way (`devices.stroke_capacity_mm`): a run in which a damper travels past it is an unacceptable response in the code check. The largest stroke here is {:.1} mm, {:.0} % of it.\n",
+                short(c),
+                largest,
+                100.0 * largest / c
+            );
+        }
         let suites: Vec<String> = self
             .dampers
             .first()
@@ -328,13 +347,16 @@ impl DeviceTable {
             } else if self.brace_angle_deg.is_some() {
                 s.push_str(" — | — |");
             }
+            let past = self
+                .stroke_capacity_mm
+                .is_some_and(|c| r.stroke_mm[0].max(r.stroke_mm[1]) > c);
             let _ = writeln!(
                 s,
                 " {} |",
-                if r.never_slips {
-                    "never slips: acts as a rigid brace at this slip load"
-                } else {
-                    ""
+                match (r.never_slips, past) {
+                    (true, _) => "never slips: acts as a rigid brace at this slip load",
+                    (false, true) => "stroke past the capacity on some run",
+                    (false, false) => "",
                 }
             );
         }
