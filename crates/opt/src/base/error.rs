@@ -92,24 +92,10 @@ pub enum OptError {
         limit: String,
     },
     /// A study would hold more memory than the process's address-space limit leaves
-    /// (`ulimit -v`): refused before its first run, not met by an allocation abort.
-    #[error(
-        "{what}: {estimate} exceeds the {left} the process's address-space limit of {limit} leaves (`ulimit -v`; {mapped} is mapped already); raise the limit{hint}"
-    )]
-    AddressSpace {
-        /// What was estimated.
-        what: String,
-        /// The estimate, for people.
-        estimate: String,
-        /// What the limit leaves, for people.
-        left: String,
-        /// The limit, for people.
-        limit: String,
-        /// What the process has mapped already, for people.
-        mapped: String,
-        /// What else needs less, from `, or`.
-        hint: String,
-    },
+    /// (`ulimit -v`): refused before its first run, not met by an allocation abort. The
+    /// message names what was estimated, the estimate, the limit and what needs less.
+    #[error("{0}")]
+    AddressSpace(String),
     /// An output path is not a regular file (a FIFO, a device, a folder, a dangling link).
     #[error(
         "{path} is {kind}: refusing to replace it with an output file; give the path of a regular file"

@@ -63,23 +63,19 @@ impl MemoryEstimate {
         if need <= left {
             return Ok(());
         }
-        let b = slipload_sim::limits::bytes;
         let mut hint = ", or run fewer threads (`--threads N`; `threads=N` in Python)".to_string();
         if exact_check && self.check_run_bytes >= self.sweep_run_bytes {
             hint.push_str(", or `fidelity.check_method: newmark`");
         }
-        Err(OptError::AddressSpace {
-            what: format!(
+        Err(space.refusal(
+            &format!(
                 "{}: the memory the study holds at once ({})",
                 path.display(),
                 self.text()
             ),
-            estimate: b(need),
-            left: b(left.max(0.0)),
-            limit: b(space.limit),
-            mapped: b(space.mapped),
-            hint,
-        })
+            need,
+            &hint,
+        ))
     }
 
     /// [`OptError::TooLarge`] when the total exceeds `limit` bytes (unless the limits are
@@ -125,18 +121,14 @@ pub fn check_probe_fits(
     if need <= left {
         return Ok(());
     }
-    let b = slipload_sim::limits::bytes;
-    Err(OptError::AddressSpace {
-        what: format!(
+    Err(space.refusal(
+        &format!(
             "{}: one run of exact, to choose the sweep's method",
             path.display()
         ),
-        estimate: b(need),
-        left: b(left.max(0.0)),
-        limit: b(space.limit),
-        mapped: b(space.mapped),
-        hint: ", or name the sweep's method (`fidelity.method: newmark` is not probed)".to_string(),
-    })
+        need,
+        ", or name the sweep's method (`fidelity.method: newmark` is not probed)",
+    ))
 }
 
 /// The process's address-space limit (`ulimit -v`, the soft `RLIMIT_AS`) and what it has
@@ -157,6 +149,19 @@ impl AddressSpace {
         let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
         let status = std::fs::read_to_string("/proc/self/status").ok()?;
         Self::parse(&limits, &status)
+    }
+
+    /// The refusal of `what`, which needs `need` bytes; `hint`: what else needs less,
+    /// from `, or`.
+    fn refusal(&self, what: &str, need: f64, hint: &str) -> OptError {
+        let b = slipload_sim::limits::bytes;
+        OptError::AddressSpace(format!(
+            "{what}: {} exceeds the {} the process's address-space limit of {} leaves (`ulimit -v`; {} is mapped already); raise the limit{hint}",
+            b(need),
+            b((self.limit - self.mapped).max(0.0)),
+            b(self.limit),
+            b(self.mapped)
+        ))
     }
 
     /// [`AddressSpace::read`] from the two files' text.
