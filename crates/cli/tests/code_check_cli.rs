@@ -167,10 +167,21 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("o/device-table.json")).unwrap())
             .unwrap();
     assert_eq!(table["stroke_capacity_mm"], 500.0);
-    // every damper of the passing design within it
+    // every damper of the passing design within it; each suite's mean stroke names the
+    // property case it is taken at, in the JSON and beside the number in the Markdown
     for d in table["dampers"].as_array().unwrap() {
         for s in d["stroke_mm"].as_array().unwrap() {
             assert!(s.as_f64().unwrap() <= 500.0, "{d}");
+        }
+        for st in d["stroke_by_suite"].as_array().unwrap() {
+            let case = st["mean_case"].as_str().unwrap();
+            assert!(["nominal", "lower", "upper"].contains(&case), "{st}");
+            let shown = format!(
+                "{:.1} ({case}) / {:.1}",
+                st["mean_mm"].as_f64().unwrap(),
+                st["max_mm"].as_f64().unwrap()
+            );
+            assert!(md.contains(&shown), "{shown} not in {md}");
         }
     }
     // a number that is no stroke names the field; a text names the line (a JSON type)

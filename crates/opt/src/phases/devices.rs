@@ -12,7 +12,7 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::short;
+use crate::model::check::{CaseName, short};
 use crate::model::study::Study;
 use crate::store::folder::StudyFolder;
 use serde::Serialize;
@@ -25,6 +25,9 @@ pub struct SuiteStroke {
     pub suite: String,
     /// The mean over the suite's records, the largest over the property cases, mm.
     pub mean_mm: f64,
+    /// The property case of that largest mean (the lower bound, where the slip loads are
+    /// least, as a rule).
+    pub mean_case: CaseName,
     /// The largest over the records and cases, mm.
     pub max_mm: f64,
 }
@@ -136,6 +139,7 @@ impl DeviceTable {
                 .iter()
                 .map(|s| {
                     let mut mean = 0.0f64;
+                    let mut mean_case = CaseName::Nominal;
                     let mut top = 0.0f64;
                     for c in 0..cases.len() {
                         let strokes: Vec<f64> = s
@@ -147,12 +151,15 @@ impl DeviceTable {
                             })
                             .collect();
                         let m = strokes.iter().sum::<f64>() / strokes.len().max(1) as f64;
-                        mean = mean.max(m);
+                        if m > mean {
+                            (mean, mean_case) = (m, cases[c].name);
+                        }
                         top = strokes.iter().copied().fold(top, f64::max);
                     }
                     SuiteStroke {
                         suite: s.name.clone(),
                         mean_mm: 1e3 * mean,
+                        mean_case,
                         max_mm: 1e3 * top,
                     }
                 })
@@ -211,7 +218,11 @@ impl DeviceTable {
         );
         if let Some(r) = self.dampers.first() {
             for st in &r.stroke_by_suite {
-                let _ = write!(s, ",stroke_mean_mm_{0},stroke_max_mm_{0}", st.suite);
+                let _ = write!(
+                    s,
+                    ",stroke_mean_mm_{0},stroke_mean_case_{0},stroke_max_mm_{0}",
+                    st.suite
+                );
             }
         }
         s.push_str(",peak_velocity_mm_s,cumulative_travel_m,slip_excursions,cycles,energy_kJ");
@@ -232,7 +243,7 @@ impl DeviceTable {
                 r.stroke_mm[1]
             );
             for st in &r.stroke_by_suite {
-                let _ = write!(s, ",{},{}", st.mean_mm, st.max_mm);
+                let _ = write!(s, ",{},{},{}", st.mean_mm, st.mean_case.as_str(), st.max_mm);
             }
             let _ = write!(
                 s,
@@ -269,7 +280,7 @@ impl DeviceTable {
         let _ = writeln!(s, "# Device table: {}\n", self.study);
         let _ = writeln!(
             s,
-            "What each damper must be specified and prototype-tested for: the largest of each quantity over {} runs (every record at every property case), {}. Stroke: the largest slip displacement each way; per suite, the mean over its records and the largest (the larger way per record).{}\n",
+            "What each damper must be specified and prototype-tested for: the largest of each quantity over {} runs (every record at every property case), {}. Stroke: the largest slip displacement each way; per suite, the mean over its records at the property case where it is largest (named) and the largest (the larger way per record).{}\n",
             self.runs,
             self.fidelity,
             match (self.brace_angle_deg, self.braces_per_damper) {
@@ -332,7 +343,13 @@ impl DeviceTable {
                 r.stroke_mm[1]
             );
             for st in &r.stroke_by_suite {
-                let _ = write!(s, " {:.1} / {:.1} |", st.mean_mm, st.max_mm);
+                let _ = write!(
+                    s,
+                    " {:.1} ({}) / {:.1} |",
+                    st.mean_mm,
+                    st.mean_case.as_str(),
+                    st.max_mm
+                );
             }
             let _ = write!(
                 s,
