@@ -109,6 +109,17 @@ fn a_bad_target_is_refused_naming_the_field() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("suites[0].scale.code_spectrum.period_s"), "{e}");
+    // a period whose range starts below twice the records' coarsest sample interval
+    // (0.2 × 0.05 s = 0.01 s; the RSN records are sampled at 0.005 to 0.02 s): the spectra
+    // are not resolved there
+    let e = study("design", r#", "period_s": 0.05"#)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("suites[0].scale.code_spectrum.period_s")
+            && e.contains("below twice the sample interval of"),
+        "{e}"
+    );
     let e = study("maximum", "").unwrap_err().to_string();
     assert!(e.contains("maximum") || e.contains("hazard"), "{e}");
 }

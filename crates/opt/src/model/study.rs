@@ -8,7 +8,7 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::{CaseName, Checks, DesignCheck, PropertyCase};
+use crate::model::check::{CaseName, Checks, DesignCheck, PropertyCase, short};
 use crate::model::config::{
     CodeSpectrumConfig, Hazard, MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G,
     RecordEntry, SamplerKind, ScaleConfig, StudyConfig, too_large,
@@ -409,6 +409,30 @@ fn scale_to_code(
         )
     })?;
     let (period, range, stuck, mass_90) = scaling_range(building, c.period_s);
+    // a period the study gives: the range's lower end must be one the records resolve
+    // (a response spectrum below twice a record's sample interval reads the sampling, not
+    // the ground motion)
+    if let Some(t) = c.period_s {
+        let coarsest = unscaled
+            .iter()
+            .chain(pairs.iter().flat_map(|p| [p.first(), p.second()]))
+            .max_by(|a, b| a.dt().total_cmp(&b.dt()));
+        if let Some(r) = coarsest
+            && range[0] < 2.0 * r.dt()
+        {
+            return Err(OptError::invalid(
+                path,
+                format!("suites[{i}].scale.code_spectrum.period_s"),
+                format!(
+                    "{t} s puts the range's lower end, 0.2 T = {} s, below twice the sample interval of {} ({} s): its spectrum is not resolved there; give T of at least {} s, or leave period_s out (the range is then built from the building)",
+                    short(range[0]),
+                    r.name(),
+                    r.dt(),
+                    short(10.0 * r.dt())
+                ),
+            ));
+        }
+    }
     let (matched, scaled) = if pairs.is_empty() {
         let a = slipload_motion::scale_suite_over_range(unscaled, &target, range, 0.05)?;
         let m = TargetMatch {
