@@ -126,3 +126,42 @@ fn what_the_model_cannot_show_is_named() {
     assert_eq!(s.model_limits().len(), 1, "{:?}", s.model_limits());
     assert!(s.model_limits()[0].contains("elastic frame"));
 }
+
+/// A record shorter than the bare frame's first period is a pulse to the frame, not
+/// shaking it goes through: named among the warnings, with its length and the period.
+#[test]
+fn a_record_shorter_than_the_first_period_is_named() {
+    let with = |duration: f64| {
+        let text = format!(
+            r#"{{ "name": "short", "building": "ten-story.json",
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 2, "seed": 7, "pga_g": 0.3, "duration_s": {duration} }} }} ],
+  "space": {{ "profile": {{ "shape": "uniform", "scale_kn": [0, 2000] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark", "check_method": "newmark" }},
+  "sweep": {{ "sampler": "halton", "points": 2, "seed": 1 }} }}"#
+        );
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/short.json");
+        Study::from_json(&text, &path).unwrap()
+    };
+    let s = with(1.0);
+    let t1 = s.building.t1();
+    assert!(t1 > 1.0, "the ten-storey frame's T1 = {t1} s");
+    let w: Vec<String> = s
+        .warnings()
+        .into_iter()
+        .filter(|w| w.contains("shorter than the bare frame's first period"))
+        .collect();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(
+        w[0].starts_with("suite syn: record ") && w[0].contains("lasts 1 s"),
+        "{}",
+        w[0]
+    );
+    // ten periods long: nothing to name
+    let s = with(10.0 * t1);
+    assert!(
+        !s.warnings().iter().any(|w| w.contains("first period")),
+        "{:?}",
+        s.warnings()
+    );
+}

@@ -253,7 +253,8 @@ impl Study {
     /// command line prints after "warning: study FILE, ": a slip load of the building file
     /// that looks like kN written as N; a base-shear limit (a number of newtons) below
     /// [`MIN_PLAUSIBLE_BASE_SHEAR_PER_WEIGHT`] of the building's weight — "did you mean
-    /// kN?". Every front gives these.
+    /// kN?"; a record shorter than the bare frame's first period. Every front gives
+    /// these.
     pub fn warnings(&self) -> Vec<String> {
         let mut out: Vec<String> = slipload_sim::building::slip_load_plausibility(&self.building)
             .iter()
@@ -288,6 +289,25 @@ impl Study {
             }
         }
         out.extend(self.model_limits());
+        // a record shorter than one period of the bare frame is a pulse to it: the
+        // building does not go through one cycle of its first mode before the ground stops
+        let t1 = self.building.t1();
+        for suite in &self.suites {
+            for r in suite.range.clone() {
+                let rec = &self.records[r];
+                let lasts = rec.dt() * rec.len().saturating_sub(1) as f64;
+                if lasts < t1 {
+                    out.push(format!(
+                        "suite {}: record {} lasts {} s ({} samples), shorter than the bare frame's first period ({} s): the frame does not go through one cycle of its first mode before the ground stops, so its peaks are a pulse's; check the record",
+                        suite.name,
+                        rec.name(),
+                        n(lasts),
+                        rec.len(),
+                        n(t1)
+                    ));
+                }
+            }
+        }
         // a record scaled far outside the rest of its suite drives the suite's mean
         for suite in &self.suites {
             let pgas: Vec<(usize, f64)> = suite
