@@ -167,6 +167,12 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("o/device-table.json")).unwrap())
             .unwrap();
     assert_eq!(table["stroke_capacity_mm"], 500.0);
+    // the code check says what its count of unacceptable responses counts
+    let check = std::fs::read_to_string(dir.join("o/code-check.md")).unwrap();
+    assert!(
+        check.contains("a damper travels past the devices' stroke capacity of 500.0 mm each way"),
+        "{check}"
+    );
     // every damper of the passing design within it; each suite's mean stroke names the
     // property case it is taken at, in the JSON and beside the number in the Markdown
     for d in table["dampers"].as_array().unwrap() {

@@ -67,6 +67,10 @@ pub struct CodeCheck {
     /// What the model cannot show that the check counts ([`Study::model_limits`]).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub model_limits: Vec<String>,
+    /// The devices' stroke capacity each way, mm, when the study states it: a run past it
+    /// is counted as an unacceptable response.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stroke_capacity_mm: Option<f64>,
 }
 
 impl CodeCheck {
@@ -144,6 +148,7 @@ impl CodeCheck {
             verdict: check.verdict(),
             margin: check.margin(),
             model_limits: study.model_limits(),
+            stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
             check,
         })
     }
@@ -178,6 +183,13 @@ impl CodeCheck {
             .join(", ");
         let _ = writeln!(s, "Design (nominal slip loads, kN): {loads}.\n");
         let _ = writeln!(s, "Chosen as {}.\n", self.chosen_as);
+        if let Some(c) = self.stroke_capacity_mm {
+            let _ = writeln!(
+                s,
+                "Unacceptable responses count the runs that collapse, pass a suite's per-record limits, or in which a damper travels past the devices' stroke capacity of {} mm each way (`devices.stroke_capacity_mm`).\n",
+                short(c)
+            );
+        }
         for w in &self.model_limits {
             let _ = writeln!(s, "**What the model cannot show:** {w}.\n");
         }
