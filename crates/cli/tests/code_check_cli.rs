@@ -36,6 +36,14 @@ fn study_with(dir: &Path, drift: f64, devices: &str) -> PathBuf {
     p
 }
 
+/// `slipload --quiet optimize STUDY --out o` in `dir`.
+fn optimize(dir: &Path, study: &Path) -> std::process::Output {
+    run_in(
+        dir,
+        &["--quiet", "optimize", study.to_str().unwrap(), "--out", "o"],
+    )
+}
+
 const FILES: [&str; 6] = [
     "code-check.csv",
     "code-check.md",
@@ -49,10 +57,7 @@ const FILES: [&str; 6] = [
 fn a_passing_design_ends_with_its_verdict() {
     let dir = common::scratch("check", "pass");
     let s = study(&dir, 0.012);
-    let out = run_in(
-        &dir,
-        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
-    );
+    let out = optimize(&dir, &s);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -95,10 +100,7 @@ fn a_passing_design_ends_with_its_verdict() {
 fn no_acceptable_design_exits_3_after_writing_its_files() {
     let dir = common::scratch("check", "fail");
     let s = study(&dir, 0.001);
-    let out = run_in(
-        &dir,
-        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
-    );
+    let out = optimize(&dir, &s);
     assert_eq!(
         out.status.code(),
         Some(3),
@@ -130,10 +132,7 @@ fn no_acceptable_design_exits_3_after_writing_its_files() {
         "{optimum}"
     );
     // run again: everything from the journals, the same verdict and exit code
-    let again = run_in(
-        &dir,
-        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
-    );
+    let again = optimize(&dir, &s);
     assert_eq!(again.status.code(), Some(3));
 }
 
@@ -148,10 +147,7 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
         0.012,
         r#""brace_angle_deg": 40, "stroke_capacity_mm": 500"#,
     );
-    let out = run_in(
-        &dir,
-        &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
-    );
+    let out = optimize(&dir, &s);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -198,10 +194,7 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
     ] {
         let d = dir.join(format!("bad{}", bad.len()));
         let s = study_with(&d, 0.012, &format!(r#""stroke_capacity_mm": {bad}"#));
-        let out = run_in(
-            &d,
-            &["--quiet", "optimize", s.to_str().unwrap(), "--out", "o"],
-        );
+        let out = optimize(&d, &s);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{bad}: {err}");
         assert!(err.contains(says), "{bad}: {err}");
