@@ -58,24 +58,17 @@ impl MemoryEstimate {
         let Some(space) = space else {
             return Ok(());
         };
-        let need = self.total_bytes() as f64;
-        let left = space.limit - space.mapped;
-        if need <= left {
-            return Ok(());
-        }
         let mut hint = ", or run fewer threads (`--threads N`; `threads=N` in Python)".to_string();
         if exact_check && self.check_run_bytes >= self.sweep_run_bytes {
             hint.push_str(", or `fidelity.check_method: newmark`");
         }
-        Err(space.refusal(
-            &format!(
+        space.hold(self.total_bytes() as f64, &hint, || {
+            format!(
                 "{}: the memory the study holds at once ({})",
                 path.display(),
                 self.text()
-            ),
-            need,
-            &hint,
-        ))
+            )
+        })
     }
 
     /// [`OptError::TooLarge`] when the total exceeds `limit` bytes (unless the limits are
@@ -116,19 +109,16 @@ pub fn check_probe_fits(
     let Some(space) = space else {
         return Ok(());
     };
-    let need = run_bytes as f64;
-    let left = space.limit - space.mapped;
-    if need <= left {
-        return Ok(());
-    }
-    Err(space.refusal(
-        &format!(
-            "{}: one run of exact, to choose the sweep's method",
-            path.display()
-        ),
-        need,
+    space.hold(
+        run_bytes as f64,
         ", or name the sweep's method (`fidelity.method: newmark` is not probed)",
-    ))
+        || {
+            format!(
+                "{}: one run of exact, to choose the sweep's method",
+                path.display()
+            )
+        },
+    )
 }
 
 /// The process's address-space limit (`ulimit -v`, the soft `RLIMIT_AS`) and what it has
@@ -151,17 +141,21 @@ impl AddressSpace {
         Self::parse(&limits, &status)
     }
 
-    /// The refusal of `what`, which needs `need` bytes; `hint`: what else needs less,
-    /// from `, or`.
-    fn refusal(&self, what: &str, need: f64, hint: &str) -> OptError {
+    /// Nothing when `need` bytes fit what the limit leaves (the limit less what is
+    /// mapped), else the refusal of `what`; `hint`: what else needs less, from `, or`.
+    fn hold(&self, need: f64, hint: &str, what: impl FnOnce() -> String) -> Result<(), OptError> {
+        if need <= self.limit - self.mapped {
+            return Ok(());
+        }
         let b = slipload_sim::limits::bytes;
-        OptError::AddressSpace(format!(
-            "{what}: {} exceeds the {} the process's address-space limit of {} leaves (`ulimit -v`; {} is mapped already); raise the limit{hint}",
+        Err(OptError::AddressSpace(format!(
+            "{}: {} exceeds the {} the process's address-space limit of {} leaves (`ulimit -v`; {} is mapped already); raise the limit{hint}",
+            what(),
             b(need),
             b((self.limit - self.mapped).max(0.0)),
             b(self.limit),
             b(self.mapped)
-        ))
+        )))
     }
 
     /// [`AddressSpace::read`] from the two files' text.
