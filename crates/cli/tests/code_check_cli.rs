@@ -36,12 +36,19 @@ fn study_with(dir: &Path, drift: f64, devices: &str) -> PathBuf {
     p
 }
 
-/// `slipload --quiet optimize STUDY --out o` in `dir`.
-fn optimize(dir: &Path, study: &Path) -> std::process::Output {
-    run_in(
+/// `slipload --quiet optimize STUDY --out o` in `dir`, which must exit with `code`.
+fn optimize(dir: &Path, study: &Path, code: i32) -> std::process::Output {
+    let out = run_in(
         dir,
         &["--quiet", "optimize", study.to_str().unwrap(), "--out", "o"],
-    )
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
 }
 
 const FILES: [&str; 6] = [
@@ -57,13 +64,7 @@ const FILES: [&str; 6] = [
 fn a_passing_design_ends_with_its_verdict() {
     let dir = common::scratch("check", "pass");
     let s = study(&dir, 0.012);
-    let out = optimize(&dir, &s);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = optimize(&dir, &s, 0);
     let text = String::from_utf8_lossy(&out.stdout);
     let last = text.lines().last().unwrap();
     assert!(last.starts_with("verdict: PASS (governing: "), "{last}");
@@ -100,13 +101,7 @@ fn a_passing_design_ends_with_its_verdict() {
 fn no_acceptable_design_exits_3_after_writing_its_files() {
     let dir = common::scratch("check", "fail");
     let s = study(&dir, 0.001);
-    let out = optimize(&dir, &s);
-    assert_eq!(
-        out.status.code(),
-        Some(3),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = optimize(&dir, &s, 3);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("no evaluated design meets the study's limits")
@@ -132,8 +127,7 @@ fn no_acceptable_design_exits_3_after_writing_its_files() {
         "{optimum}"
     );
     // run again: everything from the journals, the same verdict and exit code
-    let again = optimize(&dir, &s);
-    assert_eq!(again.status.code(), Some(3));
+    optimize(&dir, &s, 3);
 }
 
 /// `devices.stroke_capacity_mm`: the device table states each damper's stroke against
@@ -147,13 +141,7 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
         0.012,
         r#""brace_angle_deg": 40, "stroke_capacity_mm": 500"#,
     );
-    let out = optimize(&dir, &s);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    optimize(&dir, &s, 0);
     let md = std::fs::read_to_string(dir.join("o/device-table.md")).unwrap();
     assert!(
         md.contains("Stroke capacity 500.0 mm each way (`devices.stroke_capacity_mm`)"),
@@ -194,9 +182,8 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
     ] {
         let d = dir.join(format!("bad{}", bad.len()));
         let s = study_with(&d, 0.012, &format!(r#""stroke_capacity_mm": {bad}"#));
-        let out = optimize(&d, &s);
+        let out = optimize(&d, &s, 1);
         let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{bad}: {err}");
         assert!(err.contains(says), "{bad}: {err}");
         assert!(!d.join("o").exists());
     }
