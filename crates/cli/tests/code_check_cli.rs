@@ -188,3 +188,82 @@ fn a_stated_stroke_capacity_is_in_the_device_table_and_a_bad_one_is_refused() {
         assert!(!d.join("o").exists());
     }
 }
+
+/// `devices.test_protocol`: the device table's protocol takes each damper's amplitude from
+/// the table's own mean stroke of the suite (the only suite here, not at MCE_R, which it
+/// says), its force range from the property bounds, the loop energy 4FA and the velocity
+/// 2πA/T_1M; counts and bands out of range name their field and write nothing.
+#[test]
+fn a_test_protocol_is_computed_from_the_device_tables_strokes() {
+    let dir = common::scratch("check", "protocol");
+    let s = study_with(
+        &dir,
+        0.012,
+        r#""brace_angle_deg": 40, "test_protocol": { "cycles": 5, "band_percent": 15, "production_cycles": 3, "displacement_factor": 1.2 }"#,
+    );
+    optimize(&dir, &s, 0);
+    let md = std::fs::read_to_string(dir.join("o/device-table.md")).unwrap();
+    for says in [
+        "## Test protocol",
+        "5 fully reversed sinusoidal cycles",
+        "within ±15 % of their averages",
+        "no suite is at MCE_R",
+        "times the study's displacement factor 1.2",
+        "**Production test**, every unit: 3 cycles",
+        "the study claims the exemption",
+    ] {
+        assert!(md.contains(says), "{says} not in {md}");
+    }
+    let table: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("o/device-table.json")).unwrap())
+            .unwrap();
+    let p = &table["test_protocol"];
+    assert_eq!(p["suite"], "syn");
+    assert_eq!(p["at_mce_r"], false);
+    let t1m = p["t1m_s"].as_f64().unwrap();
+    // the dampers stiffen the bare frame until they slip: T_1M below the bare T1
+    assert!(t1m > 0.0 && t1m < p["t1_s"].as_f64().unwrap(), "{p}");
+    let rel = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-300);
+    let rows = table["dampers"].as_array().unwrap();
+    let tests = p["dampers"].as_array().unwrap();
+    assert_eq!(rows.len(), tests.len());
+    for (r, t) in rows.iter().zip(tests) {
+        let stroke = r["stroke_by_suite"][0]["mean_mm"].as_f64().unwrap();
+        let a = t["amplitude_mm"].as_f64().unwrap();
+        assert!(rel(a, 1.2 * stroke), "{t} vs {r}");
+        let f = t["force_kn"].as_array().unwrap();
+        let range = r["slip_load_range_kn"].as_array().unwrap();
+        for (got, want) in f.iter().zip([&r["slip_load_kn"], &range[0], &range[1]]) {
+            assert_eq!(got, want, "{t}");
+        }
+        for (e, f) in t["loop_energy_kj"].as_array().unwrap().iter().zip(f) {
+            assert!(
+                rel(e.as_f64().unwrap(), 4.0 * f.as_f64().unwrap() * a / 1e3),
+                "{t}"
+            );
+        }
+        let v = t["velocity_mm_s"].as_f64().unwrap();
+        assert!(rel(v, 2.0 * std::f64::consts::PI * a / t1m), "{t}");
+    }
+    for (bad, says) in [
+        (
+            r#""cycles": 0, "band_percent": 15"#,
+            "devices.test_protocol.cycles",
+        ),
+        (
+            r#""cycles": 5, "band_percent": 0"#,
+            "devices.test_protocol.band_percent",
+        ),
+        (
+            r#""cycles": 5, "band_percent": 15, "displacement_factor": 0.5"#,
+            "devices.test_protocol.displacement_factor",
+        ),
+    ] {
+        let d = dir.join(format!("bad{}", bad.len()));
+        let s = study_with(&d, 0.012, &format!(r#""test_protocol": {{ {bad} }}"#));
+        let out = optimize(&d, &s, 1);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{bad}: {err}");
+        assert!(!d.join("o").exists());
+    }
+}

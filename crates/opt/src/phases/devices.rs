@@ -14,6 +14,7 @@ use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::model::check::{CaseName, short};
 use crate::model::study::Study;
+use crate::phases::protocol::TestProtocol;
 use crate::store::folder::StudyFolder;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -90,6 +91,9 @@ pub struct DeviceTable {
     pub stroke_capacity_mm: Option<f64>,
     /// One row per damper, bottom to top.
     pub dampers: Vec<DeviceRow>,
+    /// The device tests, when the study gives `devices.test_protocol`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub test_protocol: Option<TestProtocol>,
 }
 
 impl DeviceTable {
@@ -191,6 +195,17 @@ impl DeviceTable {
                 never_slips: excursions == 0,
             });
         }
+        let test_protocol = study
+            .config
+            .devices
+            .and_then(|d| d.test_protocol)
+            .map(|config| {
+                let strokes: Vec<Vec<f64>> = rows
+                    .iter()
+                    .map(|r| r.stroke_by_suite.iter().map(|s| s.mean_mm).collect())
+                    .collect();
+                TestProtocol::of(study, config, slip_loads_n, runs, &strokes)
+            });
         Ok(DeviceTable {
             study: study.name.clone(),
             fidelity,
@@ -199,6 +214,7 @@ impl DeviceTable {
             braces_per_damper: braces,
             stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
             dampers: rows,
+            test_protocol,
         })
     }
 
@@ -376,6 +392,10 @@ impl DeviceTable {
                     (false, false) => "",
                 }
             );
+        }
+        if let Some(p) = &self.test_protocol {
+            s.push('\n');
+            s.push_str(&p.to_markdown());
         }
         s
     }

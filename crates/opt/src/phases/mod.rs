@@ -10,6 +10,7 @@ pub mod devices;
 pub mod family;
 pub mod figures;
 pub mod pareto;
+pub mod protocol;
 pub mod rank;
 pub mod refine;
 pub mod refinement;
