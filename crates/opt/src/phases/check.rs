@@ -9,6 +9,7 @@ use crate::base::metrics::RecordMetrics;
 use crate::model::check::{CaseName, DesignCheck, PropertyCase, check_csv, short};
 use crate::model::fidelity::Fidelity;
 use crate::model::study::{CodeScaling, Study};
+use crate::phases::compliance::{self, ComplianceRow};
 use crate::phases::refinement::OptimizeReport;
 use crate::store::folder::StudyFolder;
 use serde::Serialize;
@@ -71,6 +72,9 @@ pub struct CodeCheck {
     /// is counted as an unacceptable response.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stroke_capacity_mm: Option<f64>,
+    /// The compliance matrix: each requirement's clause, value, limit and status
+    /// ([`crate::phases::compliance`]).
+    pub compliance: Vec<ComplianceRow>,
 }
 
 impl CodeCheck {
@@ -149,6 +153,7 @@ impl CodeCheck {
             margin: check.margin(),
             model_limits: study.model_limits(),
             stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
+            compliance: compliance::matrix(study, &check),
             check,
         })
     }
@@ -169,7 +174,7 @@ impl CodeCheck {
     }
 
     /// `code-check.md`: the design, the cases, the suites' scaling, one table per suite
-    /// (criteria × cases) and the verdict.
+    /// (criteria × cases), the verdict and the compliance matrix.
     pub fn to_markdown(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(s, "# Code check: {}\n", self.study);
@@ -287,6 +292,7 @@ impl CodeCheck {
             }
             s.push('\n');
         }
+        s.push_str(&compliance::to_markdown(&self.compliance));
         s
     }
 

@@ -6,6 +6,7 @@
 //! study folder and never opens the folder itself.
 
 pub mod check;
+pub mod compliance;
 pub mod devices;
 pub mod family;
 pub mod figures;
