@@ -64,66 +64,9 @@ pub struct StudyConfig {
     pub devices: Option<DevicesConfig>,
 }
 
-/// Most braces one damper's force is shared by (`devices.braces_per_damper`).
-pub const MAX_BRACES_PER_DAMPER: usize = 8;
-
-/// The study key `devices`: the geometry the device specification needs.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DevicesConfig {
-    /// The brace's angle to the horizontal, degrees (0 ≤ θ < 90): the device table then
-    /// gives the brace's axial force F/cos θ and axial stiffness k′/cos²θ, where F and k′
-    /// are the storey-level (horizontal) force and stiffness the building gives.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub brace_angle_deg: Option<f64>,
-    /// Braces that carry one damper's force, each at the brace angle (1: a single
-    /// diagonal, the default; 2: a chevron or inverted V): the device table then gives
-    /// each brace's axial force F/(n cos θ) and stiffness k′/(n cos²θ).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub braces_per_damper: Option<usize>,
-    /// The devices' stroke capacity each way from their neutral position, mm: in every
-    /// suite with limits a run in which any damper's peak |slip| exceeds it responds
-    /// unacceptably (it is counted with the collapses), and the device table states each
-    /// damper's stroke against it.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stroke_capacity_mm: Option<f64>,
-    /// The prototype and production test protocol the device table writes
-    /// ([`TestProtocolConfig`]); none: no protocol.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub test_protocol: Option<TestProtocolConfig>,
-}
-
-/// The study key `devices.test_protocol`: the numbers of the device tests the study
-/// follows (ASCE 7-16 §18.6.2 asks for a prototype test at the maximum damper
-/// displacement at the frequency 1/T_1M, a wind-cycle test unless exempt, acceptance
-/// bands on each cycle, and production tests; the study states the counts and bands its
-/// specification uses, and the device table computes the amplitudes, frequencies and
-/// velocities from the response history).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TestProtocolConfig {
-    /// Fully reversed sinusoidal cycles of the prototype test at the maximum damper
-    /// displacement.
-    pub cycles: u32,
-    /// Acceptance band, percent: each cycle's largest and smallest force and its loop
-    /// energy within ± this of the test's average.
-    pub band_percent: f64,
-    /// Cycles of the wind test at the frame's first frequency (none: the study claims the
-    /// exemption, which the protocol states with its condition).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub wind_cycles: Option<u32>,
-    /// Factor on the test amplitude (EN 15129's amplification of the design displacement
-    /// where the study follows it); default 1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub displacement_factor: Option<f64>,
-    /// Cycles of each unit's production test at the test amplitude (none: no production
-    /// test sheet).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub production_cycles: Option<u32>,
-}
-
-/// Most cycles a test of `devices.test_protocol` may ask for.
-pub const MAX_TEST_CYCLES: u32 = 100_000;
+pub use crate::model::devices_config::{
+    DevicesConfig, MAX_BRACES_PER_DAMPER, MAX_TEST_CYCLES, TestProtocolConfig,
+};
 
 /// One suite of records.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -728,82 +671,8 @@ impl StudyConfig {
         if let Some(b) = &self.property_bounds {
             b.validate(path)?;
         }
-        if let Some(t) = self.devices.and_then(|d| d.brace_angle_deg)
-            && !(t.is_finite() && (0.0..90.0).contains(&t))
-        {
-            return Err(OptError::invalid(
-                path,
-                "devices.brace_angle_deg",
-                format!("must be in [0, 90) degrees from the horizontal, got {t}"),
-            ));
-        }
-        if let Some(d) = self.devices
-            && let Some(n) = d.braces_per_damper
-        {
-            if !(1..=MAX_BRACES_PER_DAMPER).contains(&n) {
-                return Err(OptError::invalid(
-                    path,
-                    "devices.braces_per_damper",
-                    format!(
-                        "must be 1 (a single diagonal) to {MAX_BRACES_PER_DAMPER} (2: a chevron), got {n}"
-                    ),
-                ));
-            }
-            if d.brace_angle_deg.is_none() {
-                return Err(OptError::invalid(
-                    path,
-                    "devices.braces_per_damper",
-                    "the braces' forces and stiffnesses need their angle: give devices.brace_angle_deg",
-                ));
-            }
-        }
-        if let Some(c) = self.devices.and_then(|d| d.stroke_capacity_mm)
-            && !(c.is_finite() && c > 0.0)
-        {
-            return Err(OptError::invalid(
-                path,
-                "devices.stroke_capacity_mm",
-                format!("must be a finite stroke > 0 mm (each way), got {c}"),
-            ));
-        }
-        if let Some(t) = self.devices.and_then(|d| d.test_protocol) {
-            let field = |f: &str| format!("devices.test_protocol.{f}");
-            for (name, n) in [
-                ("cycles", Some(t.cycles)),
-                ("wind_cycles", t.wind_cycles),
-                ("production_cycles", t.production_cycles),
-            ] {
-                if let Some(n) = n
-                    && !(1..=MAX_TEST_CYCLES).contains(&n)
-                {
-                    return Err(OptError::invalid(
-                        path,
-                        field(name),
-                        format!("must be a count of cycles from 1 to {MAX_TEST_CYCLES}, got {n}"),
-                    ));
-                }
-            }
-            if !(t.band_percent.is_finite() && t.band_percent > 0.0 && t.band_percent < 100.0) {
-                return Err(OptError::invalid(
-                    path,
-                    field("band_percent"),
-                    format!(
-                        "must be a band in (0, 100) percent of the test's average, got {}",
-                        t.band_percent
-                    ),
-                ));
-            }
-            if let Some(f) = t.displacement_factor
-                && !(f.is_finite() && (1.0..=10.0).contains(&f))
-            {
-                return Err(OptError::invalid(
-                    path,
-                    field("displacement_factor"),
-                    format!(
-                        "must be a factor from 1 to 10 on the maximum damper displacement, got {f}"
-                    ),
-                ));
-            }
+        if let Some(d) = &self.devices {
+            d.validate(path)?;
         }
         // the device table is written beside the code check, which a study with limits
         // has: without them `devices` would be dropped without a word

@@ -6,6 +6,7 @@
 pub mod bounds;
 pub mod check;
 pub mod config;
+pub mod devices_config;
 pub mod fidelity;
 pub mod fingerprint;
 pub mod memory;
