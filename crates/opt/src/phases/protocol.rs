@@ -14,8 +14,7 @@
 //!   device table's per-suite column), times the study's `displacement_factor`.
 //! - **T_1M**: the first period of the frame with every storey at its secant stiffness at
 //!   its design drift (the mean peak drift over the same records at the lower-bound case,
-//!   the bound that governs displacement; without storey heights, a damper's storey drifts
-//!   its slip plus its brace's stretch F/k′): a yielding storey's bilinear secant, and a
+//!   the bound that governs displacement): a yielding storey's bilinear secant, and a
 //!   damper in series with its brace as F/δ once it slips (its brace stiffness k′ while
 //!   it does not). Damper masses are left out (they do not set a frame period).
 //! - **Velocity**: the sinusoid's peak 2π f A, beside the largest slip velocity of the
@@ -150,28 +149,21 @@ impl TestProtocol {
         for (k, &floor) in study.space.dampers.iter().enumerate() {
             force[floor] = lo * slip_loads_n[k];
         }
-        let mean = |f: &dyn Fn(&RecordMetrics) -> f64| {
-            range.clone().map(|r| f(&runs[lower * n + r])).sum::<f64>() / count
-        };
+        // the mean peak drift: its ratio times the storey height (a study's building has
+        // storey heights: checked when it loads)
         for (i, d) in drift.iter_mut().enumerate() {
-            // the mean peak drift (its ratio times the storey height), or without heights
-            // a damper's: its slip plus its brace's stretch at the slip load
-            *d = match (
-                heights.and_then(|h| h.get(i)),
-                &study.building.dissipators[i],
-            ) {
-                (Some(h), _) => Some(h * mean(&|m| m.drift_ratio.get(i).copied().unwrap_or(0.0))),
-                (None, Some(b)) => {
-                    let slip = mean(&|m| {
-                        m.dampers
-                            .as_ref()
-                            .and_then(|d| d.get(i))
-                            .map_or(0.0, |d| d.slip_max_pos_m.max(d.slip_max_neg_m))
-                    });
-                    Some(slip + force[i] / b.brace_stiffness)
-                }
-                (None, None) => None,
-            };
+            let ratio = range
+                .clone()
+                .map(|r| {
+                    runs[lower * n + r]
+                        .drift_ratio
+                        .get(i)
+                        .copied()
+                        .unwrap_or(0.0)
+                })
+                .sum::<f64>()
+                / count;
+            *d = heights.and_then(|h| h.get(i)).map(|h| ratio * h);
         }
         let t1m = secant_period(&study.building, &drift, &force);
         let dampers = study
