@@ -267,3 +267,54 @@ fn a_test_protocol_is_computed_from_the_device_tables_strokes() {
         assert!(!d.join("o").exists());
     }
 }
+
+/// A suite with a residual limit and `free_vibration_s`: the code check says where the
+/// residual is read and names every run whose residual alone exceeds the limit (each
+/// named run past it, as many as the runs past it in the suite's responses).
+#[test]
+fn the_code_check_names_the_runs_past_a_residual_limit_after_the_free_vibration() {
+    let dir = common::scratch("check", "residual-tail");
+    let text = format!(
+        r#"{{ "name": "tail", "building": "{building}",
+  "suites": [ {{ "name": "syn", "synthetic": {{ "count": 3, "seed": 11, "pga_g": 0.5, "duration_s": 6.0 }},
+                 "free_vibration_s": 20,
+                 "limits": {{ "criteria": [ {{ "metric": "residual_drift_ratio", "statistic": "mean", "max": 0.5 }},
+                                           {{ "metric": "peak_drift_ratio", "statistic": "mean", "max": 0.05 }} ] }} }} ],
+  "property_bounds": {{ "slip_load": {{ "lower": 0.8, "upper": 1.25 }} }},
+  "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [300, 300, 300] }} }},
+  "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
+  "fidelity": {{ "method": "newmark", "check_method": "newmark", "check_dt_factor": 0.5 }},
+  "sweep": {{ "sampler": "halton", "points": 4, "seed": 2007 }},
+  "refine": {{ "method": "trust-region", "starts": 1, "max_evaluations": 2, "finalists": 1 }} }}"#,
+        building = root().join("configs/benchmark-3story.json").display()
+    );
+    std::fs::create_dir_all(&dir).unwrap();
+    let s = dir.join("study.json");
+    // a limit of 0.5 (50 %) no run reaches
+    std::fs::write(&s, &text).unwrap();
+    optimize(&dir, &s, 0);
+    let md = std::fs::read_to_string(dir.join("o/code-check.md")).unwrap();
+    assert!(
+        md.contains("Residual drift read after 20 s of free vibration; runs whose residual alone exceeds 0.5000: none."),
+        "{md}"
+    );
+    // a limit of 1e-5 most runs pass: every run named is past it, with its value
+    let d2 = dir.join("tight");
+    std::fs::create_dir_all(&d2).unwrap();
+    let s2 = d2.join("study.json");
+    std::fs::write(&s2, text.replace(r#""max": 0.5 }"#, r#""max": 0.00001 }"#)).unwrap();
+    optimize(&d2, &s2, 3);
+    let check: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d2.join("o/code-check.json")).unwrap())
+            .unwrap();
+    let tail = &check["residual_tails"][0];
+    assert_eq!(tail["free_vibration_s"], 20.0);
+    let runs = tail["runs"].as_array().unwrap();
+    assert!(!runs.is_empty(), "{tail}");
+    for r in runs {
+        assert!(r[1].as_f64().unwrap() > 1e-5, "{r}");
+    }
+    let md = std::fs::read_to_string(d2.join("o/code-check.md")).unwrap();
+    let name = runs[0][0].as_str().unwrap();
+    assert!(md.contains(name), "{name} not in {md}");
+}

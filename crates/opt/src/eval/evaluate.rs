@@ -196,11 +196,16 @@ pub fn design_scene(
         }
         b
     };
-    let duration = rec.duration();
-    let dt = fid
-        .dt_s
-        .unwrap_or_else(|| default_dt(fid.method, study.building.t1(), Some(rec.dt()), duration))
-        * fid.dt_factor;
+    let dt = fid.dt_s.unwrap_or_else(|| {
+        default_dt(
+            fid.method,
+            study.building.t1(),
+            Some(rec.dt()),
+            rec.duration(),
+        )
+    }) * fid.dt_factor;
+    // the record, then the suite's rest (the ground still: free vibration)
+    let duration = rec.duration() + study.rest_after(record);
     let alpha = hht_alpha(fid.method);
     Scene {
         name: label.to_string(),

@@ -93,7 +93,15 @@ pub struct SuiteConfig {
     /// The suite's acceptance limits ([`crate::model::check::SuiteLimits`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub limits: Option<crate::model::check::SuiteLimits>,
+    /// Seconds of rest after each record of the suite: every run goes on with the ground
+    /// at rest this long, so the residual drifts are read after the free vibration has
+    /// died out instead of at the record's end (none: the run ends with the record).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_vibration_s: Option<f64>,
 }
+
+/// Longest rest after a record (`suites[].free_vibration_s`), s.
+pub const MAX_FREE_VIBRATION_S: f64 = 600.0;
 
 /// One entry of a suite's `records`: a file or `*` pattern (single components, as before),
 /// or `[first, second]`, the two horizontal components of one event (no patterns). A pair
@@ -582,6 +590,17 @@ impl StudyConfig {
         }
         for (i, s) in self.suites.iter().enumerate() {
             let f = |x: &str| format!("suites[{i}].{x}");
+            if let Some(t) = s.free_vibration_s
+                && !(t.is_finite() && t > 0.0 && t <= MAX_FREE_VIBRATION_S)
+            {
+                return Err(OptError::invalid(
+                    path,
+                    f("free_vibration_s"),
+                    format!(
+                        "must be a rest after each record of more than 0 and at most {MAX_FREE_VIBRATION_S} s, got {t}"
+                    ),
+                ));
+            }
             // Results, statistics and tables are keyed by suite name: an empty name
             // prints as nothing and two suites of one name would be pooled as one.
             if let Some(problem) = label_problem(&s.name) {

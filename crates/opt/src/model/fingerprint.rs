@@ -213,6 +213,10 @@ pub fn of_study(study: &crate::Study, designs: &[crate::model::sampler::Design])
         h.str(&s.name)
             .u64(s.range.start as u64)
             .u64(s.range.end as u64);
+        // (a rest after the records changes every run of the suite; none hashes as before)
+        if s.free_vibration_s > 0.0 {
+            h.f64(s.free_vibration_s);
+        }
     }
     part("records", "record names and suites".into(), &h);
     for (i, r) in study.records.iter().enumerate() {

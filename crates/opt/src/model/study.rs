@@ -37,6 +37,13 @@ pub struct SuiteInfo {
     /// ([`ScaleConfig::CodeSpectrum`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub code_scaling: Option<CodeScaling>,
+    /// Seconds of rest after each of its records (`free_vibration_s`; 0: none).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub free_vibration_s: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 /// A suite scaled to a code spectrum (ASCE 7-16 §16.2.3): one factor for every record,
@@ -256,8 +263,14 @@ fn check_work(
     let method = fid.method.unwrap_or(MethodName::Newmark);
     let t1 = building.t1();
     let mut steps = 0.0;
+    // (the longest rest after a record, on every record: an upper bound of the work)
+    let rest = cfg
+        .suites
+        .iter()
+        .filter_map(|s| s.free_vibration_s)
+        .fold(0.0, f64::max);
     for r in records {
-        let duration = r.duration();
+        let duration = r.duration() + rest;
         let dt = match fid.dt_s {
             Some(dt) => {
                 slipload_sim::scene::check_step_against_record(method, dt, r)
@@ -734,6 +747,7 @@ impl Study {
                 name: s.name.clone(),
                 range: start..records.len(),
                 code_scaling: code_scaling.take(),
+                free_vibration_s: s.free_vibration_s.unwrap_or(0.0),
             });
         }
         check_work(&cfg, path, &building, &space, &records)?;
@@ -791,6 +805,14 @@ impl Study {
     pub fn run(&self, i: usize) -> (PropertyCase, usize) {
         let n = self.records.len();
         (self.checks.cases()[i / n], i % n)
+    }
+
+    /// The seconds of rest after record `r` (its suite's `free_vibration_s`; 0: none).
+    pub fn rest_after(&self, r: usize) -> f64 {
+        self.suites
+            .iter()
+            .find(|s| s.range.contains(&r))
+            .map_or(0.0, |s| s.free_vibration_s)
     }
 
     /// The name of run `i`: the record's, with the case after it (`NAME [lower]`) for a

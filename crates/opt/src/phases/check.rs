@@ -6,7 +6,7 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::{CaseName, DesignCheck, PropertyCase, check_csv, short};
+use crate::model::check::{CaseName, DesignCheck, LimitMetric, PropertyCase, check_csv, short};
 use crate::model::fidelity::Fidelity;
 use crate::model::study::{CodeScaling, Study};
 use crate::phases::compliance::{self, ComplianceRow};
@@ -75,6 +75,59 @@ pub struct CodeCheck {
     /// The compliance matrix: each requirement's clause, value, limit and status
     /// ([`crate::phases::compliance`]).
     pub compliance: Vec<ComplianceRow>,
+    /// Per suite with a limit on a statistic of the residual drift: the runs whose
+    /// residual drift alone exceeds that limit (record and case, value).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub residual_tails: Vec<ResidualTail>,
+}
+
+/// The runs of one suite whose residual drift alone exceeds its limit on a statistic of
+/// the residual drift: the records that make the tail of the statistic.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResidualTail {
+    /// The suite.
+    pub suite: String,
+    /// The limit (a residual drift ratio).
+    pub limit: f64,
+    /// Seconds of rest after each record before the residual is read (0: at the record's
+    /// end).
+    pub free_vibration_s: f64,
+    /// The runs past it: the run's name (record, and case for a bound) and its residual.
+    pub runs: Vec<(String, f64)>,
+}
+
+/// The residual tails of `runs` (every run of `study`).
+fn residual_tails(study: &Study, runs: &[RecordMetrics]) -> Result<Vec<ResidualTail>, OptError> {
+    let n = study.records.len();
+    let cases = study.checks.cases().len();
+    let mut out = Vec::new();
+    for (i, suite) in study.suites.iter().enumerate() {
+        let Some(Some(lim)) = study.checks.limits.get(i) else {
+            continue;
+        };
+        for crit in &lim.criteria {
+            if crit.metric != LimitMetric::ResidualDriftRatio {
+                continue;
+            }
+            let mut past = Vec::new();
+            for c in 0..cases {
+                for r in suite.range.clone() {
+                    let run = c * n + r;
+                    let v = crit.metric.value(&runs[run])?;
+                    if v > crit.max {
+                        past.push((study.run_name(run), v));
+                    }
+                }
+            }
+            out.push(ResidualTail {
+                suite: suite.name.clone(),
+                limit: crit.max,
+                free_vibration_s: suite.free_vibration_s,
+                runs: past,
+            });
+        }
+    }
+    Ok(out)
 }
 
 impl CodeCheck {
@@ -154,6 +207,7 @@ impl CodeCheck {
             model_limits: study.model_limits(),
             stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
             compliance: compliance::matrix(study, &check),
+            residual_tails: residual_tails(study, runs)?,
             check,
         })
     }
@@ -291,6 +345,27 @@ impl CodeCheck {
                 );
             }
             s.push('\n');
+            for t in self.residual_tails.iter().filter(|t| t.suite == suite.name) {
+                let when = if t.free_vibration_s > 0.0 {
+                    format!("after {} s of free vibration", t.free_vibration_s)
+                } else {
+                    "at the record's end".to_string()
+                };
+                let runs = if t.runs.is_empty() {
+                    "none".to_string()
+                } else {
+                    t.runs
+                        .iter()
+                        .map(|(name, v)| format!("{name} ({})", short(*v)))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                let _ = writeln!(
+                    s,
+                    "Residual drift read {when}; runs whose residual alone exceeds {}: {runs}.\n",
+                    short(t.limit)
+                );
+            }
         }
         s.push_str(&compliance::to_markdown(&self.compliance));
         s
