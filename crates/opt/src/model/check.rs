@@ -179,10 +179,12 @@ pub struct RecordLimit {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Unacceptable {
-    /// How many records may respond unacceptably (default 1: ASCE 7-16 §16.4.1.1 for
-    /// Risk Category I and II with at least 11 records; give 0 for III and IV).
-    #[serde(default = "one")]
-    pub max_count: usize,
+    /// How many records may respond unacceptably: as given, or (absent) what the study's
+    /// `risk_category` allows (ASCE 7-16 §16.4.1.1: 1 for Risk Category I and II with at
+    /// least 11 ground motions, else 0), 1 without a risk category. A loaded study holds
+    /// it resolved ([`Unacceptable::resolve`]); [`Unacceptable::allowed`] reads it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_count: Option<usize>,
     /// Per-record limits: a record exceeding any of them responds unacceptably (a run
     /// that collapses always does).
     #[serde(default)]
@@ -197,14 +199,65 @@ fn written() -> bool {
     true
 }
 
-fn one() -> usize {
-    1
+impl Unacceptable {
+    /// The count allowed: the resolved or given `max_count`, else 1.
+    pub fn allowed(&self) -> usize {
+        self.max_count.unwrap_or(1)
+    }
+
+    /// Sets the count allowed for a suite of `motions` ground motions in a study of risk
+    /// category `rc` (none: 1 where the study gives no count); a given count above what
+    /// the category allows is refused with the allowance (`Err`).
+    pub fn resolve(&mut self, rc: Option<RiskCategory>, motions: usize) -> Result<(), usize> {
+        let allowance = rc.map(|rc| rc.allowance(motions));
+        match (self.max_count, allowance) {
+            (Some(n), Some(a)) if n > a => return Err(a),
+            (None, a) => self.max_count = Some(a.unwrap_or(1)),
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+/// A Risk Category (ASCE 7-16 Table 1.5-1), as a study names it (`risk_category`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RiskCategory {
+    /// Risk Category I.
+    I,
+    /// Risk Category II.
+    II,
+    /// Risk Category III.
+    III,
+    /// Risk Category IV.
+    IV,
+}
+
+impl RiskCategory {
+    /// As written.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RiskCategory::I => "I",
+            RiskCategory::II => "II",
+            RiskCategory::III => "III",
+            RiskCategory::IV => "IV",
+        }
+    }
+
+    /// The unacceptable responses a suite of `motions` ground motions may have (ASCE 7-16
+    /// §16.4.1.1: one for Risk Category I and II where the suite has at least 11, none
+    /// otherwise).
+    pub fn allowance(self, motions: usize) -> usize {
+        match self {
+            RiskCategory::I | RiskCategory::II if motions >= 11 => 1,
+            _ => 0,
+        }
+    }
 }
 
 impl Default for Unacceptable {
     fn default() -> Self {
         Unacceptable {
-            max_count: 1,
+            max_count: None,
             record_limits: Vec::new(),
             written: false,
         }
@@ -598,10 +651,10 @@ impl Checks {
                     suite: name.to_string(),
                     case: case.name,
                     criterion: "unacceptable responses".into(),
-                    limit: u.max_count as f64,
+                    limit: u.allowed() as f64,
                     demand: count as f64,
-                    ratio: count as f64 / (u.max_count as f64 + 0.5),
-                    pass: count <= u.max_count,
+                    ratio: count as f64 / (u.allowed() as f64 + 0.5),
+                    pass: count <= u.allowed(),
                     source: format!("suites[{i}].limits.unacceptable"),
                 });
             }
@@ -666,7 +719,7 @@ mod tests {
                     max: 0.02,
                 }],
                 unacceptable: Unacceptable {
-                    max_count,
+                    max_count: Some(max_count),
                     record_limits: vec![RecordLimit {
                         metric: LimitMetric::PeakDriftRatio,
                         max: 0.03,

@@ -62,6 +62,11 @@ pub struct StudyConfig {
     /// What the device table needs beyond the building ([`DevicesConfig`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub devices: Option<DevicesConfig>,
+    /// The building's Risk Category (`"I"` to `"IV"`, ASCE 7-16 Table 1.5-1): each suite's
+    /// count of unacceptable responses follows it where the suite gives none, and a count
+    /// above what it allows is refused (§16.4.1.1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub risk_category: Option<crate::model::check::RiskCategory>,
 }
 
 pub use crate::model::devices_config::{

@@ -756,11 +756,33 @@ impl Study {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_else(|| "study".into())
         });
-        let checks = Checks::of(
-            cfg.property_bounds.clone(),
-            cfg.suites.iter().map(|s| s.limits.clone()).collect(),
-        )
-        .with_stroke_capacity(
+        // each suite's count of unacceptable responses, as given or as its risk category
+        // allows for its number of ground motions (pairs count once)
+        let mut limits: Vec<_> = cfg.suites.iter().map(|s| s.limits.clone()).collect();
+        for (i, (lim, suite)) in limits.iter_mut().zip(&suites).enumerate() {
+            let Some(lim) = lim else {
+                continue;
+            };
+            let motions = suite
+                .code_scaling
+                .as_ref()
+                .and_then(|c| c.pairs)
+                .unwrap_or(suite.range.len());
+            lim.unacceptable
+                .resolve(cfg.risk_category, motions)
+                .map_err(|allowed| {
+                    OptError::invalid(
+                        path,
+                        format!("suites[{i}].limits.unacceptable.max_count"),
+                        format!(
+                            "{} unacceptable responses exceed what Risk Category {} allows a suite of {motions} ground motions: {allowed} (ASCE 7-16 §16.4.1.1); lower the count or leave it out",
+                            lim.unacceptable.max_count.unwrap_or(1),
+                            cfg.risk_category.map_or("", |r| r.as_str())
+                        ),
+                    )
+                })?;
+        }
+        let checks = Checks::of(cfg.property_bounds.clone(), limits).with_stroke_capacity(
             cfg.devices
                 .and_then(|d| d.stroke_capacity_mm)
                 .map(|mm| mm * 1e-3),

@@ -155,7 +155,10 @@ pub fn matrix(study: &Study, check: &DesignCheck) -> Vec<ComplianceRow> {
                     l.case.as_str()
                 ),
                 format!("{:.0}", l.demand),
-                format!("≤ {:.0}", l.limit),
+                match study.config.risk_category {
+                    Some(rc) => format!("≤ {:.0} (Risk Category {})", l.limit, rc.as_str()),
+                    None => format!("≤ {:.0}", l.limit),
+                },
                 if l.pass { Status::Pass } else { Status::Fail },
             ));
         }
