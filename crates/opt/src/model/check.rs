@@ -176,7 +176,7 @@ pub struct RecordLimit {
 }
 
 /// The count of unacceptable responses a suite allows (`suites[i].limits.unacceptable`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Unacceptable {
     /// How many records may respond unacceptably: as given, or (absent) what the study's
@@ -254,15 +254,6 @@ impl RiskCategory {
     }
 }
 
-impl Default for Unacceptable {
-    fn default() -> Self {
-        Unacceptable {
-            max_count: None,
-            record_limits: Vec::new(),
-            written: false,
-        }
-    }
-}
 
 /// The acceptance limits of one suite (`suites[i].limits`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
