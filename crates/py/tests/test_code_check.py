@@ -68,3 +68,36 @@ def test_no_passing_design_is_a_verdict_not_an_error(tmp_path):
     assert out.returncode == 3, out.stderr
     assert "no evaluated design meets the study's limits" in out.stderr
     assert (tmp_path / "cli" / "code-check.json").read_text() == (tmp_path / "py" / "code-check.json").read_text()
+
+
+def test_the_submittal_keys_from_python_give_the_command_lines_files(tmp_path):
+    """A risk category, a rest after the records and a test protocol: Python takes the
+    study file's keys and writes the command line's bytes; the compliance matrix and the
+    test protocol come back as DataFrames."""
+    spec = study(0.012)
+    spec["risk_category"] = "III"
+    del spec["suites"][0]["limits"]["unacceptable"]
+    spec["suites"][0]["free_vibration_s"] = 5
+    spec["devices"] = {"brace_angle_deg": 40, "test_protocol": {"cycles": 5, "band_percent": 15}}
+    report = slipload.optimize(spec, tmp_path / "py")
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(spec))
+    out = run_cli("--quiet", "optimize", path, "--out", tmp_path / "cli", check=False)
+    assert out.returncode == report_code(report), out.stderr
+    for name in ("code-check.json", "device-table.json"):
+        assert (tmp_path / "cli" / name).read_text() == (tmp_path / "py" / name).read_text()
+    # risk category III with two records: no unacceptable response allowed
+    counts = [l for l in report.code_check["check"]["lines"] if l["criterion"] == "unacceptable responses"]
+    assert counts and all(l["limit"] == 0 for l in counts)
+    pd = pytest.importorskip("pandas")
+    matrix = report.compliance_frame()
+    assert "§16.4.1.1" in set(matrix["clause"])
+    assert set(matrix["status"]) <= {"pass", "fail", "stated", "not_checked", "not_covered"}
+    tests = report.protocol_frame()
+    assert list(tests.index) == [1, 2, 3]
+    assert bool((tests["force_kn_lower"] < tests["force_kn_nominal"]).all())
+
+
+def report_code(report):
+    """The command line's exit code for a report: 0 when the design passes, 3 when none does."""
+    return 0 if report.passes else 3

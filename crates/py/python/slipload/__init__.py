@@ -484,10 +484,11 @@ class StudyReport:
         code_check: ``code-check.json`` (``optimize`` of a study with ``limits``): the
             recommended design, every criterion at every suite and property case, the
             verdict (``passes``, ``verdict``, ``margin``); :meth:`check_frame` gives its
-            lines as a pandas DataFrame.
+            lines as a pandas DataFrame, :meth:`compliance_frame` its compliance matrix.
         device_table: ``device-table.json`` (``optimize`` of a study with ``limits``): per
             damper the slip load's range, force, stroke, velocity, travel, cycles and energy
-            the device must be specified for; :meth:`device_frame` gives a DataFrame.
+            the device must be specified for; :meth:`device_frame` gives a DataFrame, and
+            :meth:`protocol_frame` the tests of ``devices.test_protocol``.
         details: everything else the call reported (simulations run and reused, …).
     """
 
@@ -536,6 +537,34 @@ class StudyReport:
         if self.device_table is None:
             raise InputError("this report has no device table (optimize writes one for a study with limits)")
         return pd.DataFrame(self.device_table["dampers"]).set_index("floor")
+
+    def compliance_frame(self) -> Any:
+        """The code check's compliance matrix as a pandas DataFrame: one row per
+        requirement with its clause, value, limit and status (``pass``, ``fail``,
+        ``stated``, ``not_checked``, ``not_covered``; needs pandas)."""
+        import pandas as pd
+
+        if self.code_check is None:
+            raise InputError("this report has no code check (optimize writes one for a study with limits)")
+        return pd.DataFrame(self.code_check["compliance"])
+
+    def protocol_frame(self) -> Any:
+        """The device tests of ``devices.test_protocol`` as a pandas DataFrame, one row per
+        damper: amplitude, the sinusoid's velocity, and the force at zero displacement and
+        loop energy with their bounds (needs pandas)."""
+        import pandas as pd
+
+        protocol = None if self.device_table is None else self.device_table.get("test_protocol")
+        if protocol is None:
+            raise InputError("this report has no test protocol (give the study devices.test_protocol)")
+        rows = []
+        for d in protocol["dampers"]:
+            row = {"floor": d["floor"], "amplitude_mm": d["amplitude_mm"], "velocity_mm_s": d.get("velocity_mm_s")}
+            for i, case in enumerate(("nominal", "lower", "upper")):
+                row[f"force_kn_{case}"] = d["force_kn"][i]
+                row[f"loop_energy_kj_{case}"] = d["loop_energy_kj"][i]
+            rows.append(row)
+        return pd.DataFrame(rows).set_index("floor")
 
     def design_table_frame(self) -> Any:
         """The design table as a pandas DataFrame, one row per design, indexed by the
