@@ -247,6 +247,7 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
         periods_s: vec![0.24, 0.675, 2.4],
         mean_sa_g: vec![1.1, 0.81, 0.3],
         target_sa_g: vec![1.2, 0.9, 0.19],
+        record_factors: vec![],
     };
     let data = FigureData {
         map: None,

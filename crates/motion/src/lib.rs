@@ -46,7 +46,9 @@ pub use error::{MotionError, readable};
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
-pub use pair::{PairScaling, RecordPair, rotd100_spectrum, scale_pairs_over_range};
+pub use pair::{
+    PairScaling, RecordPair, rotd100_spectrum, scale_pairs_over_range, scale_pairs_over_range_each,
+};
 pub use reader::{RecordFormat, read_record};
 pub use record::{
     MAX_ABS_ACCEL_G, MAX_RECORD_DT_S, MIN_RECORD_DT_S, Record, StepSampler, check_record_dt,
@@ -54,8 +56,8 @@ pub use record::{
 };
 pub use scaling::{
     ASCE7_FRACTION, Asce7Scaling, REFINE_MARGIN, SCALING_POINTS_PER_DECADE, ScaledSuite,
-    TargetMatch, scale_suite_asce7, scale_suite_over_range, scale_to_spectral_acceleration,
-    smallest_factor,
+    TargetMatch, fit_to_target, scale_suite_asce7, scale_suite_over_range,
+    scale_suite_over_range_each, scale_to_spectral_acceleration, smallest_factor,
 };
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,

@@ -168,3 +168,54 @@ pub fn scale_pairs_over_range(
         .collect::<Result<Vec<_>, _>>()?;
     Ok(PairScaling { matched, pairs })
 }
+
+/// Scales `pairs` as the per-record option of a code-scaled suite does: each pair first by
+/// its own factor, the fit of its RotD100 spectrum to `target` over `range_s`
+/// ([`crate::fit_to_target`]), then all by one common factor, the smallest for which the
+/// mean of the fitted RotD100 spectra is at least 90 % of the target at every period of
+/// the range. `matched.factor` is the common factor; each scaled component's
+/// [`Record::scale_factor`] the product of the two.
+///
+/// Errors: as [`scale_pairs_over_range`].
+pub fn scale_pairs_over_range_each(
+    pairs: &[RecordPair],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<PairScaling, MotionError> {
+    if pairs.is_empty() {
+        return Err(MotionError::InvalidArgument {
+            what: "number of record pairs",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let own = pairs
+        .iter()
+        .map(|p| {
+            crate::fit_to_target(
+                |t: &[f64]| Ok(rotd100_spectrum(p, damping, t)?.psa_m_s2),
+                target,
+                range_s,
+            )
+        })
+        .collect::<Result<Vec<f64>, _>>()?;
+    let n = pairs.len() as f64;
+    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
+        let mut sum = vec![0.0; periods.len()];
+        for (p, a) in pairs.iter().zip(&own) {
+            let s = rotd100_spectrum(p, damping, periods)?;
+            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
+                *m += a * sa;
+            }
+        }
+        Ok(sum.into_iter().map(|m| m / n).collect())
+    };
+    let matched = smallest_factor(mean, target, range_s)?;
+    let pairs = pairs
+        .iter()
+        .zip(&own)
+        .map(|(p, a)| p.try_scaled(a * matched.factor))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(PairScaling { matched, pairs })
+}

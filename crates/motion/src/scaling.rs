@@ -215,11 +215,13 @@ pub struct Asce7Scaling {
     pub controlling_period_s: f64,
     /// The periods the mean was computed at, s ([`TargetMatch::periods_s`]).
     pub periods_s: Vec<f64>,
-    /// Mean pseudo-spectral acceleration of the unscaled suite there, m/s².
+    /// Mean pseudo-spectral acceleration of the unscaled suite there (each record at its
+    /// own factor, with per-record factors), m/s².
     pub mean_psa_m_s2: Vec<f64>,
     /// Target spectrum there, m/s².
     pub target_psa_m_s2: Vec<f64>,
-    /// The scaled records (every factor equal to `factor`).
+    /// The scaled records (every factor equal to `factor`, or with per-record factors
+    /// each record's own times it).
     pub suite: ScaledSuite,
 }
 
@@ -287,6 +289,102 @@ pub fn scale_suite_over_range(
         target_psa_m_s2: m.target_psa_m_s2,
         suite: ScaledSuite {
             factors: vec![m.factor; scaled.len()],
+            records: scaled,
+        },
+    })
+}
+
+/// The factor that fits a spectrum to `target` over `range_s` (s): exp of the mean of
+/// ln(target/Sa) on the scaling grid's periods (log-spaced, [`SCALING_POINTS_PER_DECADE`]
+/// a decade), the least-squares fit of ln Sa — each record's own factor before a suite's
+/// common one ([`scale_suite_over_range_each`]). `spectrum` gives Sa, m/s², at a list of
+/// periods.
+///
+/// Errors: [`MotionError::InvalidArgument`] for a bad range, [`MotionError::ZeroMeasure`]
+/// when the spectrum vanishes at a period of the range, and whatever `spectrum` returns.
+pub fn fit_to_target(
+    spectrum: impl Fn(&[f64]) -> Result<Vec<f64>, MotionError>,
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+) -> Result<f64, MotionError> {
+    let [lo, hi] = range_s;
+    let count = if lo == hi {
+        1
+    } else {
+        ((SCALING_POINTS_PER_DECADE as f64 * (hi / lo).log10()).ceil() as usize + 1).max(2)
+    };
+    let grid = log_spaced_periods(lo, hi, count)?;
+    let sa = spectrum(&grid)?;
+    let mut sum = 0.0;
+    for (&t, &a) in grid.iter().zip(&sa) {
+        if a.is_nan() || a <= 0.0 {
+            return Err(MotionError::ZeroMeasure {
+                file: format!("record spectrum at T = {t} s"),
+                measure: "spectral acceleration",
+            });
+        }
+        sum += (target.sa_m_s2(t) / a).ln();
+    }
+    Ok((sum / grid.len() as f64).exp())
+}
+
+/// Scales `records` as the per-record option of a code-scaled suite does: each first by
+/// its own factor aᵢ, the fit of its spectrum (damping ratio `damping`) to `target` over
+/// `range_s` ([`fit_to_target`]), then all by one common factor, the smallest for which the
+/// mean of the fitted spectra is at least 90 % of the target at every period of the range
+/// ([`smallest_factor`]). `factor` is that common factor; `suite.factors` each record's
+/// product of the two.
+///
+/// Errors: as [`scale_suite_over_range`].
+pub fn scale_suite_over_range_each(
+    records: &[Record],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<Asce7Scaling, MotionError> {
+    if records.is_empty() {
+        return Err(MotionError::InvalidArgument {
+            what: "number of records",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let own = records
+        .iter()
+        .map(|r| {
+            fit_to_target(
+                |t: &[f64]| Ok(Spectrum::compute(r, damping, t)?.psa_m_s2),
+                target,
+                range_s,
+            )
+        })
+        .collect::<Result<Vec<f64>, _>>()?;
+    let n = records.len() as f64;
+    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
+        let mut sum = vec![0.0; periods.len()];
+        for (r, a) in records.iter().zip(&own) {
+            let s = Spectrum::compute(r, damping, periods)?;
+            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
+                *m += a * sa;
+            }
+        }
+        Ok(sum.into_iter().map(|m| m / n).collect())
+    };
+    let m = smallest_factor(mean, target, range_s)?;
+    let factors: Vec<f64> = own.iter().map(|a| a * m.factor).collect();
+    let scaled = records
+        .iter()
+        .zip(&factors)
+        .map(|(r, f)| r.try_scaled(*f))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Asce7Scaling {
+        factor: m.factor,
+        controlling_period_s: m.controlling_period_s,
+        periods_s: m.periods_s,
+        mean_psa_m_s2: m.mean_psa_m_s2,
+        target_psa_m_s2: m.target_psa_m_s2,
+        suite: ScaledSuite {
+            factors,
             records: scaled,
         },
     })

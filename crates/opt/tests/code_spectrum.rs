@@ -167,3 +167,31 @@ fn a_code_spectrum_given_as_an_array_is_refused() {
     )
     .unwrap();
 }
+
+/// `per_record`: each record runs at its own factor (its fit to the target times the
+/// suite's), which the suite's scaling lists in record order; the scaled mean still meets
+/// 90 % of the target at every period kept; without the key every record has the suite's
+/// one factor and none is listed.
+#[test]
+fn per_record_factors_are_the_records_own_and_listed() {
+    let st = study("design", r#", "per_record": true"#).unwrap();
+    let c = st.suites[0].code_scaling.as_ref().unwrap();
+    let n = st.suites[0].range.len();
+    assert_eq!(c.record_factors.len(), n);
+    for (r, f) in st.records[st.suites[0].range.clone()]
+        .iter()
+        .zip(&c.record_factors)
+    {
+        assert_eq!(r.scale_factor(), *f, "{}", r.name());
+    }
+    assert!(c.record_factors.iter().any(|f| *f != c.record_factors[0]));
+    for (m, t) in c.mean_sa_g.iter().zip(&c.target_sa_g) {
+        assert!(m / t >= 0.9 * (1.0 - 1e-12), "{m} vs {t}");
+    }
+    let plain = study("design", "").unwrap();
+    let p = plain.suites[0].code_scaling.as_ref().unwrap();
+    assert!(p.record_factors.is_empty());
+    for r in &plain.records[plain.suites[0].range.clone()] {
+        assert_eq!(r.scale_factor(), p.factor);
+    }
+}

@@ -254,7 +254,6 @@ impl RiskCategory {
     }
 }
 
-
 /// The acceptance limits of one suite (`suites[i].limits`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

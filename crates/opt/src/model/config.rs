@@ -167,6 +167,11 @@ pub struct CodeSpectrumConfig {
     /// another rule says so here.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_records: Option<usize>,
+    /// Each record (pair) first fitted to the target by its own factor — the geometric
+    /// mean of target/spectrum over the period range — then the suite by one common
+    /// factor (default false: one factor for every record).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub per_record: bool,
 }
 
 /// A hazard level of a code-scaled suite.

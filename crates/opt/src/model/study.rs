@@ -90,6 +90,11 @@ pub struct CodeScaling {
     pub mean_sa_g: Vec<f64>,
     /// The target spectrum there (the design spectrum × the hazard's factor), g.
     pub target_sa_g: Vec<f64>,
+    /// With `per_record`: each record's factor (its own fit to the target times the
+    /// suite's `factor`; both components of a pair alike), in the suite's order; empty
+    /// otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub record_factors: Vec<f64>,
 }
 
 /// A validated study with its building and records loaded.
@@ -447,7 +452,11 @@ fn scale_to_code(
         }
     }
     let (matched, scaled) = if pairs.is_empty() {
-        let a = slipload_motion::scale_suite_over_range(unscaled, &target, range, 0.05)?;
+        let a = if c.per_record {
+            slipload_motion::scale_suite_over_range_each(unscaled, &target, range, 0.05)?
+        } else {
+            slipload_motion::scale_suite_over_range(unscaled, &target, range, 0.05)?
+        };
         let m = TargetMatch {
             factor: a.factor,
             controlling_period_s: a.controlling_period_s,
@@ -457,7 +466,11 @@ fn scale_to_code(
         };
         (m, a.suite.records)
     } else {
-        let a = slipload_motion::scale_pairs_over_range(pairs, &target, range, 0.05)?;
+        let a = if c.per_record {
+            slipload_motion::scale_pairs_over_range_each(pairs, &target, range, 0.05)?
+        } else {
+            slipload_motion::scale_pairs_over_range(pairs, &target, range, 0.05)?
+        };
         let records = a
             .pairs
             .into_iter()
@@ -479,7 +492,22 @@ fn scale_to_code(
             ));
         }
     }
+    // each record's factor from its own scale before and after (pairs: both components)
+    let record_factors = if c.per_record {
+        let before = unscaled
+            .iter()
+            .chain(pairs.iter().flat_map(|p| [p.first(), p.second()]))
+            .map(|r| r.scale_factor());
+        scaled
+            .iter()
+            .zip(before)
+            .map(|(r, b)| r.scale_factor() / b)
+            .collect()
+    } else {
+        Vec::new()
+    };
     let scaling = CodeScaling {
+        record_factors,
         hazard,
         sds_g: c.sds_g,
         sd1_g: c.sd1_g,

@@ -297,6 +297,16 @@ impl CodeCheck {
                     c.range_s[1],
                     c.controlling_period_s
                 );
+                if let (Some(lo), Some(hi)) = (
+                    c.record_factors.iter().copied().reduce(f64::min),
+                    c.record_factors.iter().copied().reduce(f64::max),
+                ) {
+                    let _ = writeln!(
+                        s,
+                        "Each record (pair) was first fitted to the target by its own factor (the geometric mean of target / spectrum over the range), then the suite by {:.4}: record factors from {lo:.4} to {hi:.4} (`code_scaling.record_factors` of code-check.json, in the suite's order).\n",
+                        c.factor
+                    );
+                }
                 if let Some(n) = c.pairs {
                     let _ = writeln!(
                         s,
