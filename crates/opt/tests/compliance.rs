@@ -112,6 +112,31 @@ fn the_matrix_states_each_requirement_from_the_check() {
     let md = to_markdown(&rows);
     assert!(md.starts_with("## Compliance matrix"), "{md}");
     assert!(md.contains("| §16.4.1.1 | code: unacceptable responses (at the worst property case, lower) | 2 | ≤ 1 | **FAIL** |"), "{md}");
+    // equal counts everywhere: the nominal case is named (the first of equals)
+    let mut tied = check();
+    for l in &mut tied.lines {
+        if l.source.ends_with("unacceptable") {
+            l.demand = 0.0;
+            l.ratio = 0.0;
+            l.pass = true;
+        }
+    }
+    let rows = matrix(&st, &tied);
+    let count = rows.iter().find(|r| r.clause == "§16.4.1.1").unwrap();
+    assert!(
+        count
+            .requirement
+            .ends_with("(at the worst property case, nominal)"),
+        "{count:?}"
+    );
+    let bounds = rows
+        .iter()
+        .find(|r| r.clause.starts_with("Ch. 18"))
+        .unwrap();
+    assert_eq!(
+        bounds.value,
+        "slip load × 0.85 and × 1.15, given as numbers"
+    );
     // with a test protocol the prototype tests are stated
     let st = study(r#""test_protocol": { "cycles": 5, "band_percent": 15 }"#);
     let rows = matrix(&st, &check());

@@ -71,9 +71,13 @@ fn row(
     }
 }
 
-/// The worst line (largest ratio) among `lines`.
+/// The worst line (largest ratio; the first of equals, the nominal case before the
+/// bounds) among `lines`.
 fn worst<'a>(lines: impl Iterator<Item = &'a CheckLine>) -> Option<&'a CheckLine> {
-    lines.max_by(|a, b| a.ratio.total_cmp(&b.ratio))
+    lines.fold(None, |w: Option<&CheckLine>, l| match w {
+        Some(w) if w.ratio >= l.ratio => Some(w),
+        _ => Some(l),
+    })
 }
 
 /// The matrix of the design whose check is `check` in `study`.
@@ -202,9 +206,7 @@ pub fn matrix(study: &Study, check: &DesignCheck) -> Vec<ComplianceRow> {
         "damper properties analysed at their upper and lower bounds".into(),
         if cases.len() > 1 {
             format!(
-                "slip load × {} and × {}{}",
-                short(lo),
-                short(hi),
+                "slip load × {lo} and × {hi}{}",
                 if derived {
                     ", built from their parts"
                 } else {
