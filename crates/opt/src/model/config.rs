@@ -67,11 +67,37 @@ pub struct StudyConfig {
     /// above what it allows is refused (§16.4.1.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub risk_category: Option<crate::model::check::RiskCategory>,
+    /// The check of the frame's strength without its dampers against a fraction of the
+    /// equivalent-lateral-force demand of a frame without a damping system
+    /// ([`FrameStrengthConfig`]; ASCE 7-16 §18.2.1.1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame_strength: Option<FrameStrengthConfig>,
 }
 
 pub use crate::model::devices_config::{
     DevicesConfig, MAX_BRACES_PER_DAMPER, MAX_TEST_CYCLES, TestProtocolConfig,
 };
+
+/// The study key `frame_strength`: what the equivalent-lateral-force demand of the frame
+/// without dampers needs beyond the design spectrum (taken from the study's first suite
+/// scaled to a code spectrum).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameStrengthConfig {
+    /// The response modification coefficient R of the seismic force-resisting system
+    /// (ASCE 7-16 Table 12.2-1).
+    pub response_modification: f64,
+    /// The importance factor I_e (Table 1.5-2); default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub importance: Option<f64>,
+    /// The fraction of the demand the frame without dampers must reach; default 0.75
+    /// (1 for an irregular structure, which the study states).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fraction: Option<f64>,
+    /// The period of the demand, s; default the bare frame's first period.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub period_s: Option<f64>,
+}
 
 /// One suite of records.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -702,6 +728,50 @@ impl StudyConfig {
         }
         if let Some(d) = &self.devices {
             d.validate(path)?;
+        }
+        if let Some(f) = &self.frame_strength {
+            let bad = |field: &str, msg: String| {
+                Err(OptError::invalid(
+                    path,
+                    format!("frame_strength.{field}"),
+                    msg,
+                ))
+            };
+            let r = f.response_modification;
+            if !(r.is_finite() && (1.0..=10.0).contains(&r)) {
+                return bad(
+                    "response_modification",
+                    format!("must be R from 1 to 10 (ASCE 7-16 Table 12.2-1), got {r}"),
+                );
+            }
+            if let Some(i) = f.importance
+                && !(i.is_finite() && (1.0..=1.5).contains(&i))
+            {
+                return bad(
+                    "importance",
+                    format!("must be I_e from 1 to 1.5 (ASCE 7-16 Table 1.5-2), got {i}"),
+                );
+            }
+            if let Some(x) = f.fraction
+                && !(x.is_finite() && x > 0.0 && x <= 1.0)
+            {
+                return bad("fraction", format!("must be in (0, 1], got {x}"));
+            }
+            if let Some(t) = f.period_s
+                && !(t.is_finite() && t > 0.0)
+            {
+                return bad("period_s", format!("must be a period > 0 s, got {t}"));
+            }
+            if !self
+                .suites
+                .iter()
+                .any(|s| matches!(s.scale, Some(ScaleConfig::CodeSpectrum(_))))
+            {
+                return bad(
+                    "response_modification",
+                    "the demand needs the design spectrum: scale a suite to `code_spectrum` (S_DS, S_D1, T_L are read from the first)".into(),
+                );
+            }
         }
         // the device table is written beside the code check, which a study with limits
         // has: without them `devices` would be dropped without a word

@@ -11,6 +11,7 @@ use crate::model::fidelity::Fidelity;
 use crate::model::study::{CodeScaling, Study};
 use crate::phases::compliance::{self, ComplianceRow};
 use crate::phases::refinement::OptimizeReport;
+use crate::phases::strength::FrameStrength;
 use crate::store::folder::StudyFolder;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -79,6 +80,10 @@ pub struct CodeCheck {
     /// residual drift alone exceeds that limit (record and case, value).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub residual_tails: Vec<ResidualTail>,
+    /// The frame's strength without dampers, where the study asks for it
+    /// (`frame_strength`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frame_strength: Option<FrameStrength>,
 }
 
 /// The runs of one suite whose residual drift alone exceeds its limit on a statistic of
@@ -208,6 +213,7 @@ impl CodeCheck {
             stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
             compliance: compliance::matrix(study, &check),
             residual_tails: residual_tails(study, runs)?,
+            frame_strength: FrameStrength::of(study),
             check,
         })
     }
@@ -376,6 +382,9 @@ impl CodeCheck {
                     short(t.limit)
                 );
             }
+        }
+        if let Some(f) = &self.frame_strength {
+            s.push_str(&f.to_markdown());
         }
         s.push_str(&compliance::to_markdown(&self.compliance));
         s

@@ -8,6 +8,7 @@
 use crate::model::check::{CheckLine, DesignCheck, short};
 use crate::model::config::{ScaleConfig, TestProtocolConfig};
 use crate::model::study::Study;
+use crate::phases::strength::FrameStrength;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -241,13 +242,39 @@ pub fn matrix(study: &Study, check: &DesignCheck) -> Vec<ComplianceRow> {
             Status::NotChecked
         },
     ));
-    for (clause, requirement, why, status) in [
-        (
-            "§18.2.1",
-            "the frame without dampers has at least 75 % of the strength required without a damping system",
-            "the study gives no required strength",
+    let strength = FrameStrength::of(study);
+    let requirement = format!(
+        "the frame without dampers has at least {} % of the strength required without a damping system",
+        strength.as_ref().map_or(75.0, |f| 100.0 * f.fraction)
+    );
+    rows.push(match strength.as_ref().map(|f| (f, f.least())) {
+        Some((_, Some((ratio, storey)))) => row(
+            "§18.2.1.1",
+            requirement,
+            format!("yield shear / required {ratio:.2} at storey {storey}, the least"),
+            "≥ 1".into(),
+            if ratio >= 1.0 {
+                Status::Pass
+            } else {
+                Status::Fail
+            },
+        ),
+        Some((_, None)) => row(
+            "§18.2.1.1",
+            requirement,
+            "no storey has a yield shear (the model's frame is elastic)".into(),
+            "—".into(),
             Status::NotChecked,
         ),
+        None => row(
+            "§18.2.1.1",
+            requirement,
+            "the study gives no `frame_strength`".into(),
+            "—".into(),
+            Status::NotChecked,
+        ),
+    });
+    for (clause, requirement, why, status) in [
         (
             "§16.1.2",
             "drifts of deformation-sensitive nonstructural components (150 % flag)",

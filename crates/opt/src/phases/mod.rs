@@ -15,6 +15,7 @@ pub mod protocol;
 pub mod rank;
 pub mod refine;
 pub mod refinement;
+pub mod strength;
 pub mod sweep;
 pub mod table;
 pub mod tolerance;
