@@ -64,7 +64,7 @@ fn check() -> DesignCheck {
 #[test]
 fn the_matrix_states_each_requirement_from_the_check() {
     let st = study(r#""brace_angle_deg": 35"#);
-    let rows = matrix(&st, &check());
+    let rows = matrix(&st, &check(), &[]);
     let find = |clause: &str| {
         rows.iter()
             .find(|r| r.clause == clause)
@@ -121,7 +121,7 @@ fn the_matrix_states_each_requirement_from_the_check() {
             l.pass = true;
         }
     }
-    let rows = matrix(&st, &tied);
+    let rows = matrix(&st, &tied, &[]);
     let count = rows.iter().find(|r| r.clause == "§16.4.1.1").unwrap();
     assert!(
         count
@@ -139,7 +139,7 @@ fn the_matrix_states_each_requirement_from_the_check() {
     );
     // with a test protocol the prototype tests are stated
     let st = study(r#""test_protocol": { "cycles": 5, "band_percent": 15 }"#);
-    let rows = matrix(&st, &check());
+    let rows = matrix(&st, &check(), &[]);
     let p = rows.iter().find(|r| r.clause == "§18.6.2").unwrap();
     assert_eq!(p.status, Status::Stated);
     assert_eq!(p.value, "5 cycles, ±15 % band (device-table.md)");

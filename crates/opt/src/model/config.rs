@@ -72,6 +72,9 @@ pub struct StudyConfig {
     /// ([`FrameStrengthConfig`]; ASCE 7-16 §18.2.1.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame_strength: Option<FrameStrengthConfig>,
+    /// The design wind's storey shears: no damper may slip under them ([`WindConfig`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wind: Option<WindConfig>,
 }
 
 pub use crate::model::devices_config::{
@@ -97,6 +100,19 @@ pub struct FrameStrengthConfig {
     /// The period of the demand, s; default the bare frame's first period.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub period_s: Option<f64>,
+}
+
+/// The study key `wind`: the design wind's storey shears, which no damper may slip under
+/// (design practice: a slip load at its lower property bound of at least `factor` × its
+/// storey's wind shear).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WindConfig {
+    /// The design wind's storey shear of each storey, kN, bottom to top.
+    pub storey_shears_kn: Vec<f64>,
+    /// The margin over the wind shear; default 1.3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub factor: Option<f64>,
 }
 
 /// One suite of records.
@@ -728,6 +744,29 @@ impl StudyConfig {
         }
         if let Some(d) = &self.devices {
             d.validate(path)?;
+        }
+        if let Some(w) = &self.wind {
+            if let Some((i, v)) = w
+                .storey_shears_kn
+                .iter()
+                .enumerate()
+                .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
+            {
+                return Err(OptError::invalid(
+                    path,
+                    format!("wind.storey_shears_kn[{i}]"),
+                    format!("must be a storey shear ≥ 0 kN, got {v}"),
+                ));
+            }
+            if let Some(f) = w.factor
+                && !(f.is_finite() && (1.0..=5.0).contains(&f))
+            {
+                return Err(OptError::invalid(
+                    path,
+                    "wind.factor",
+                    format!("must be a margin from 1 to 5 over the wind shear, got {f}"),
+                ));
+            }
         }
         if let Some(f) = &self.frame_strength {
             let bad = |field: &str, msg: String| {

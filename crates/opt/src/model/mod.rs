@@ -5,6 +5,7 @@
 
 pub mod bounds;
 pub mod check;
+pub mod code_scaling;
 pub mod config;
 pub mod devices_config;
 pub mod fidelity;

@@ -211,7 +211,7 @@ impl CodeCheck {
             margin: check.margin(),
             model_limits: study.model_limits(),
             stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
-            compliance: compliance::matrix(study, &check),
+            compliance: compliance::matrix(study, &check, slip_loads_n),
             residual_tails: residual_tails(study, runs)?,
             frame_strength: FrameStrength::of(study),
             check,

@@ -63,6 +63,10 @@ pub struct TestProtocol {
     pub t1m_s: Option<f64>,
     /// One test per damper, bottom to top.
     pub dampers: Vec<DeviceTest>,
+    /// With the study's `wind`: the least ratio of a damper's lower-bound slip load to its
+    /// storey's design wind shear, and that damper's floor (the wind test's exemption).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wind_margin: Option<(f64, usize)>,
 }
 
 /// The secant first period of `building` with storey `i` at drift `drift[i]` (m; `None`:
@@ -191,6 +195,7 @@ impl TestProtocol {
             t1_s: study.building.t1(),
             t1m_s: t1m,
             dampers,
+            wind_margin: crate::phases::compliance::wind_margin(study, slip_loads_n),
         }
     }
 
@@ -236,7 +241,12 @@ impl TestProtocol {
                     "{w} fully reversed cycles at the design wind's damper force and displacement, at {:.3} Hz (1/T1).",
                     1.0 / self.t1_s
                 ),
-                None => "not made: the study claims the exemption of dampers that do not slip in the design wind — show that each storey's design wind shear is below its lower-bound slip load (the `range` of the device table).".to_string(),
+                None => match self.wind_margin {
+                    Some((r, floor)) => format!(
+                        "not made: every damper's lower-bound slip load is at least {r:.2} × its storey's design wind shear (the least at floor {floor}; the study's `wind`), so no damper slips in the design wind — the exemption."
+                    ),
+                    None => "not made: the study claims the exemption of dampers that do not slip in the design wind — show that each storey's design wind shear is below its lower-bound slip load (the `range` of the device table), or give the study its `wind`.".to_string(),
+                },
             }
         );
         if let Some(p) = c.production_cycles {
