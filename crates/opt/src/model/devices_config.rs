@@ -9,7 +9,7 @@ use std::path::Path;
 pub const MAX_BRACES_PER_DAMPER: usize = 8;
 
 /// The study key `devices`: the geometry the device specification needs.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DevicesConfig {
     /// The brace's angle to the horizontal, degrees (0 ≤ θ < 90): the device table then
@@ -28,6 +28,13 @@ pub struct DevicesConfig {
     /// damper's stroke against it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke_capacity_mm: Option<f64>,
+    /// Each damper's brace's axial design strength, kN, one per damper bottom to top
+    /// (needs `brace_angle_deg`): the brace is a force-controlled element, and the force
+    /// the damper can put into it is its slip load at the upper property bound, so every
+    /// design of the space must keep λ_max F / (n cos θ) within it (a space that does not
+    /// is refused naming the bound), and the check states each brace's demand.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brace_capacity_kn: Option<Vec<f64>>,
     /// The prototype and production test protocol the device table writes
     /// ([`TestProtocolConfig`]); none: no protocol.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -104,6 +111,26 @@ impl DevicesConfig {
                 "devices.stroke_capacity_mm",
                 format!("must be a finite stroke > 0 mm (each way), got {c}"),
             ));
+        }
+        if let Some(caps) = &self.brace_capacity_kn {
+            if self.brace_angle_deg.is_none() {
+                return Err(OptError::invalid(
+                    path,
+                    "devices.brace_capacity_kn",
+                    "a brace's axial force needs its angle: give devices.brace_angle_deg",
+                ));
+            }
+            if let Some((i, c)) = caps
+                .iter()
+                .enumerate()
+                .find(|(_, c)| !(c.is_finite() && **c > 0.0))
+            {
+                return Err(OptError::invalid(
+                    path,
+                    format!("devices.brace_capacity_kn[{i}]"),
+                    format!("must be an axial strength > 0 kN, got {c}"),
+                ));
+            }
         }
         if let Some(t) = self.test_protocol {
             let field = |f: &str| format!("devices.test_protocol.{f}");

@@ -276,6 +276,60 @@ pub const BENCHMARK_STUDY: &str = include_str!("../../../../configs/study-benchm
 /// How errors name the embedded benchmark study.
 pub const BENCHMARK_STUDY_ORIGIN: &str = "configs/study-benchmark.json (embedded)";
 
+/// Each brace's largest force over the design space, λ_max F / (n cos θ) at the space's
+/// upper corner, against its axial design strength (`devices.brace_capacity_kn`): a space
+/// whose slip loads could overload a brace is refused naming the bound to lower.
+fn check_braces(
+    d: &crate::model::config::DevicesConfig,
+    space: &DesignSpace,
+    checks: &Checks,
+    path: &Path,
+) -> Result<(), OptError> {
+    let (Some(caps), Some(angle)) = (&d.brace_capacity_kn, d.brace_angle_deg) else {
+        return Ok(());
+    };
+    if caps.len() != space.dampers.len() {
+        return Err(OptError::invalid(
+            path,
+            "devices.brace_capacity_kn",
+            format!(
+                "gives {} capacities for {} dampers: one per damper, bottom to top",
+                caps.len(),
+                space.dampers.len()
+            ),
+        ));
+    }
+    let hi = checks
+        .cases()
+        .iter()
+        .map(|c| c.slip_load)
+        .fold(1.0, f64::max);
+    let per = d.braces_per_damper.unwrap_or(1) as f64 * angle.to_radians().cos();
+    let most = space.slip_loads(&vec![1.0; space.dim()]);
+    for (k, (&floor, &f)) in space.dampers.iter().zip(&most).enumerate() {
+        let allowed = caps[k] * 1e3 * per / hi;
+        if f > allowed * (1.0 + 1e-9) {
+            let field = match space.shape {
+                None => format!("space.free.upper_kn[{k}]"),
+                Some(_) => "space.profile.scale_kn[1]".to_string(),
+            };
+            return Err(OptError::invalid(
+                path,
+                field,
+                format!(
+                    "lets floor {}'s damper overload its brace: at its largest slip load in the space, {} kN, ×{hi} at the upper property bound, the brace carries {} kN against its {} kN (devices.brace_capacity_kn[{k}]); the slip load may be at most {} kN",
+                    floor + 1,
+                    short(f / 1e3),
+                    short(hi * f / per / 1e3),
+                    short(caps[k]),
+                    short(allowed / 1e3)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The design wind against the design space: one shear per storey, and the space's least
 /// slip load of each damper (its lower corner) at the lower property bound at least
 /// `factor` × its storey's wind shear — else the study is refused naming the bound to
@@ -614,11 +668,15 @@ impl Study {
         }
         let checks = Checks::of(cfg.property_bounds.clone(), limits).with_stroke_capacity(
             cfg.devices
+                .as_ref()
                 .and_then(|d| d.stroke_capacity_mm)
                 .map(|mm| mm * 1e-3),
         );
         if let Some(w) = &cfg.wind {
             check_wind(w, &building, &space, &checks, path)?;
+        }
+        if let Some(d) = &cfg.devices {
+            check_braces(d, &space, &checks, path)?;
         }
         let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {

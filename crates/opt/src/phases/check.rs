@@ -210,7 +210,11 @@ impl CodeCheck {
             verdict: check.verdict(),
             margin: check.margin(),
             model_limits: study.model_limits(),
-            stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
+            stroke_capacity_mm: study
+                .config
+                .devices
+                .as_ref()
+                .and_then(|d| d.stroke_capacity_mm),
             compliance: compliance::matrix(study, &check, slip_loads_n),
             residual_tails: residual_tails(study, runs)?,
             frame_strength: FrameStrength::of(study),

@@ -107,6 +107,32 @@ pub fn wind_margin(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> 
         })
 }
 
+/// The largest ratio, over the dampers, of the brace's axial force at the upper-bound slip
+/// load, λ_max F / (n cos θ), to its strength (`devices.brace_capacity_kn`), with the
+/// damper's floor (from 1); `None` without brace strengths.
+pub fn brace_ratio(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> {
+    let d = study.config.devices.as_ref()?;
+    let (caps, angle) = (d.brace_capacity_kn.as_ref()?, d.brace_angle_deg?);
+    let hi = study
+        .checks
+        .cases()
+        .iter()
+        .map(|c| c.slip_load)
+        .fold(1.0, f64::max);
+    let per = d.braces_per_damper.unwrap_or(1) as f64 * angle.to_radians().cos();
+    study
+        .space
+        .dampers
+        .iter()
+        .zip(slip_loads_n)
+        .zip(caps)
+        .map(|((&floor, f), c)| (hi * f / per / (c * 1e3), floor + 1))
+        .fold(None, |m: Option<(f64, usize)>, x| match m {
+            Some(m) if m.0 >= x.0 => Some(m),
+            _ => Some(x),
+        })
+}
+
 /// The matrix of the design of slip loads `slip_loads_n` (N per damper) whose check is
 /// `check` in `study`.
 pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<ComplianceRow> {
@@ -251,7 +277,8 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
             Status::NotChecked
         },
     ));
-    let protocol: Option<TestProtocolConfig> = study.config.devices.and_then(|d| d.test_protocol);
+    let protocol: Option<TestProtocolConfig> =
+        study.config.devices.as_ref().and_then(|d| d.test_protocol);
     rows.push(row(
         "§18.6.2",
         "prototype tests of each damper type at the maximum damper displacement".into(),
@@ -297,6 +324,28 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
             "§18.2.1.1",
             requirement,
             "the study gives no `frame_strength`".into(),
+            "—".into(),
+            Status::NotChecked,
+        ),
+    });
+    rows.push(match brace_ratio(study, slip_loads_n) {
+        Some((ratio, floor)) => row(
+            "Ch. 18 (force-controlled)",
+            "braces carry the damper's force at the upper-bound slip load within their strength"
+                .into(),
+            format!("brace force / strength {ratio:.2} at floor {floor}, the largest"),
+            "≤ 1".into(),
+            if ratio <= 1.0 + 1e-9 {
+                Status::Pass
+            } else {
+                Status::Fail
+            },
+        ),
+        None => row(
+            "Ch. 18 (force-controlled)",
+            "braces carry the damper's force at the upper-bound slip load within their strength"
+                .into(),
+            "the study gives no brace strength (`devices.brace_capacity_kn`)".into(),
             "—".into(),
             Status::NotChecked,
         ),

@@ -114,8 +114,16 @@ impl DeviceTable {
             cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
         );
         let n = study.records.len();
-        let angle = study.config.devices.and_then(|d| d.brace_angle_deg);
-        let braces = study.config.devices.and_then(|d| d.braces_per_damper);
+        let angle = study
+            .config
+            .devices
+            .as_ref()
+            .and_then(|d| d.brace_angle_deg);
+        let braces = study
+            .config
+            .devices
+            .as_ref()
+            .and_then(|d| d.braces_per_damper);
         // n braces at θ share the storey-level force and stiffness: each carries
         // F/(n cos θ) axially and has k′/(n cos²θ)
         let per_brace = braces.unwrap_or(1) as f64;
@@ -198,6 +206,7 @@ impl DeviceTable {
         let test_protocol = study
             .config
             .devices
+            .as_ref()
             .and_then(|d| d.test_protocol)
             .map(|config| {
                 let strokes: Vec<Vec<f64>> = rows
@@ -212,7 +221,11 @@ impl DeviceTable {
             runs: runs.len(),
             brace_angle_deg: angle,
             braces_per_damper: braces,
-            stroke_capacity_mm: study.config.devices.and_then(|d| d.stroke_capacity_mm),
+            stroke_capacity_mm: study
+                .config
+                .devices
+                .as_ref()
+                .and_then(|d| d.stroke_capacity_mm),
             dampers: rows,
             test_protocol,
         })
