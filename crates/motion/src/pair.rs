@@ -143,6 +143,19 @@ pub fn scale_pairs_over_range(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<PairScaling, MotionError> {
+    scale_pairs_weighted(pairs, &vec![1.0; pairs.len()], target, range_s, damping)
+}
+
+/// `pairs`, pair i first × `own[i]`, then all by the smallest common factor for which their
+/// mean RotD100 spectrum meets 90 % of `target` over `range_s` (× 1 is exact: with every
+/// `own` 1 this is one factor for all, to the bit).
+fn scale_pairs_weighted(
+    pairs: &[RecordPair],
+    own: &[f64],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<PairScaling, MotionError> {
     if pairs.is_empty() {
         return Err(MotionError::InvalidArgument {
             what: "number of record pairs",
@@ -153,10 +166,10 @@ pub fn scale_pairs_over_range(
     let n = pairs.len() as f64;
     let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
         let mut sum = vec![0.0; periods.len()];
-        for p in pairs {
+        for (p, a) in pairs.iter().zip(own) {
             let s = rotd100_spectrum(p, damping, periods)?;
             for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += sa;
+                *m += a * sa;
             }
         }
         Ok(sum.into_iter().map(|m| m / n).collect())
@@ -164,7 +177,8 @@ pub fn scale_pairs_over_range(
     let matched = smallest_factor(mean, target, range_s)?;
     let pairs = pairs
         .iter()
-        .map(|p| p.try_scaled(matched.factor))
+        .zip(own)
+        .map(|(p, a)| p.try_scaled(a * matched.factor))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(PairScaling { matched, pairs })
 }
@@ -183,13 +197,6 @@ pub fn scale_pairs_over_range_each(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<PairScaling, MotionError> {
-    if pairs.is_empty() {
-        return Err(MotionError::InvalidArgument {
-            what: "number of record pairs",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
     let own = pairs
         .iter()
         .map(|p| {
@@ -200,22 +207,5 @@ pub fn scale_pairs_over_range_each(
             )
         })
         .collect::<Result<Vec<f64>, _>>()?;
-    let n = pairs.len() as f64;
-    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
-        let mut sum = vec![0.0; periods.len()];
-        for (p, a) in pairs.iter().zip(&own) {
-            let s = rotd100_spectrum(p, damping, periods)?;
-            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += a * sa;
-            }
-        }
-        Ok(sum.into_iter().map(|m| m / n).collect())
-    };
-    let matched = smallest_factor(mean, target, range_s)?;
-    let pairs = pairs
-        .iter()
-        .zip(&own)
-        .map(|(p, a)| p.try_scaled(a * matched.factor))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(PairScaling { matched, pairs })
+    scale_pairs_weighted(pairs, &own, target, range_s, damping)
 }

@@ -258,6 +258,19 @@ pub fn scale_suite_over_range(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<Asce7Scaling, MotionError> {
+    scale_weighted(records, &vec![1.0; records.len()], target, range_s, damping)
+}
+
+/// `records`, record i first × `own[i]`, then all by the smallest common factor for which
+/// their mean spectrum meets 90 % of `target` over `range_s` (× 1 is exact: with every
+/// `own` 1 this is one factor for all, to the bit).
+fn scale_weighted(
+    records: &[Record],
+    own: &[f64],
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<Asce7Scaling, MotionError> {
     if records.is_empty() {
         return Err(MotionError::InvalidArgument {
             what: "number of records",
@@ -268,18 +281,20 @@ pub fn scale_suite_over_range(
     let n = records.len() as f64;
     let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
         let mut sum = vec![0.0; periods.len()];
-        for r in records {
+        for (r, a) in records.iter().zip(own) {
             let s = Spectrum::compute(r, damping, periods)?;
             for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += sa;
+                *m += a * sa;
             }
         }
         Ok(sum.into_iter().map(|m| m / n).collect())
     };
     let m = smallest_factor(mean, target, range_s)?;
+    let factors: Vec<f64> = own.iter().map(|a| a * m.factor).collect();
     let scaled = records
         .iter()
-        .map(|r| r.try_scaled(m.factor))
+        .zip(&factors)
+        .map(|(r, f)| r.try_scaled(*f))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Asce7Scaling {
         factor: m.factor,
@@ -288,7 +303,7 @@ pub fn scale_suite_over_range(
         mean_psa_m_s2: m.mean_psa_m_s2,
         target_psa_m_s2: m.target_psa_m_s2,
         suite: ScaledSuite {
-            factors: vec![m.factor; scaled.len()],
+            factors,
             records: scaled,
         },
     })
@@ -342,13 +357,6 @@ pub fn scale_suite_over_range_each(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<Asce7Scaling, MotionError> {
-    if records.is_empty() {
-        return Err(MotionError::InvalidArgument {
-            what: "number of records",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
     let own = records
         .iter()
         .map(|r| {
@@ -359,33 +367,5 @@ pub fn scale_suite_over_range_each(
             )
         })
         .collect::<Result<Vec<f64>, _>>()?;
-    let n = records.len() as f64;
-    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
-        let mut sum = vec![0.0; periods.len()];
-        for (r, a) in records.iter().zip(&own) {
-            let s = Spectrum::compute(r, damping, periods)?;
-            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += a * sa;
-            }
-        }
-        Ok(sum.into_iter().map(|m| m / n).collect())
-    };
-    let m = smallest_factor(mean, target, range_s)?;
-    let factors: Vec<f64> = own.iter().map(|a| a * m.factor).collect();
-    let scaled = records
-        .iter()
-        .zip(&factors)
-        .map(|(r, f)| r.try_scaled(*f))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Asce7Scaling {
-        factor: m.factor,
-        controlling_period_s: m.controlling_period_s,
-        periods_s: m.periods_s,
-        mean_psa_m_s2: m.mean_psa_m_s2,
-        target_psa_m_s2: m.target_psa_m_s2,
-        suite: ScaledSuite {
-            factors,
-            records: scaled,
-        },
-    })
+    scale_weighted(records, &own, target, range_s, damping)
 }

@@ -498,6 +498,16 @@ impl Checks {
         out
     }
 
+    /// The least and the largest slip-load factor over the property cases (λ_min, λ_max;
+    /// 1 and 1 without bounds).
+    pub fn slip_load_range(&self) -> (f64, f64) {
+        let cases = self.cases();
+        (
+            cases.iter().map(|c| c.slip_load).fold(1.0, f64::min),
+            cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
+        )
+    }
+
     /// How the property bounds were built from their parts, for the report (empty where
     /// the study gave the factors as numbers).
     pub fn derivations(&self) -> Vec<String> {

@@ -299,11 +299,7 @@ fn check_braces(
             ),
         ));
     }
-    let hi = checks
-        .cases()
-        .iter()
-        .map(|c| c.slip_load)
-        .fold(1.0, f64::max);
+    let hi = checks.slip_load_range().1;
     let per = d.braces_per_damper.unwrap_or(1) as f64 * angle.to_radians().cos();
     let most = space.slip_loads(&vec![1.0; space.dim()]);
     for (k, (&floor, &f)) in space.dampers.iter().zip(&most).enumerate() {
@@ -352,11 +348,7 @@ fn check_wind(
             ),
         ));
     }
-    let lo = checks
-        .cases()
-        .iter()
-        .map(|c| c.slip_load)
-        .fold(1.0, f64::min);
+    let lo = checks.slip_load_range().0;
     let factor = w.factor.unwrap_or(1.3);
     let least = space.slip_loads(&vec![0.0; space.dim()]);
     for (k, (&floor, &f)) in space.dampers.iter().zip(&least).enumerate() {

@@ -6,6 +6,7 @@
 //! itself is named as the study's.
 
 use crate::model::check::{CheckLine, DesignCheck, short};
+use crate::model::code_scaling::{MIN_CODE_PAIRS, MIN_CODE_RECORDS};
 use crate::model::config::{ScaleConfig, TestProtocolConfig};
 use crate::model::study::Study;
 use crate::phases::strength::FrameStrength;
@@ -86,12 +87,7 @@ fn worst<'a>(lines: impl Iterator<Item = &'a CheckLine>) -> Option<&'a CheckLine
 /// damper's floor (from 1); `None` without `wind` or without a storey under wind.
 pub fn wind_margin(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> {
     let w = study.config.wind.as_ref()?;
-    let lo = study
-        .checks
-        .cases()
-        .iter()
-        .map(|c| c.slip_load)
-        .fold(1.0, f64::min);
+    let lo = study.checks.slip_load_range().0;
     study
         .space
         .dampers
@@ -113,12 +109,7 @@ pub fn wind_margin(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> 
 pub fn brace_ratio(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> {
     let d = study.config.devices.as_ref()?;
     let (caps, angle) = (d.brace_capacity_kn.as_ref()?, d.brace_angle_deg?);
-    let hi = study
-        .checks
-        .cases()
-        .iter()
-        .map(|c| c.slip_load)
-        .fold(1.0, f64::max);
+    let hi = study.checks.slip_load_range().1;
     let per = d.braces_per_damper.unwrap_or(1) as f64 * angle.to_radians().cos();
     study
         .space
@@ -146,8 +137,8 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
         match (&suite.code_scaling, code) {
             (Some(sc), Some(c)) => {
                 let (count, what, standard) = match sc.pairs {
-                    Some(p) => (p, "pairs", 7),
-                    None => (suite.range.len(), "records", 11),
+                    Some(p) => (p, "pairs", MIN_CODE_PAIRS),
+                    None => (suite.range.len(), "records", MIN_CODE_RECORDS),
                 };
                 let needed = c.min_records.unwrap_or(standard);
                 rows.push(row(
@@ -250,10 +241,7 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
         }
     }
     let cases = study.checks.cases();
-    let (lo, hi) = (
-        cases.iter().map(|c| c.slip_load).fold(1.0, f64::min),
-        cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
-    );
+    let (lo, hi) = study.checks.slip_load_range();
     let derived = !study.checks.derivations().is_empty();
     rows.push(row(
         "Ch. 18 (Eq. 17.2-1, 17.2-2)",

@@ -109,10 +109,7 @@ impl DeviceTable {
         fidelity: String,
     ) -> Result<DeviceTable, OptError> {
         let cases = study.checks.cases();
-        let (lo, hi) = (
-            cases.iter().map(|c| c.slip_load).fold(1.0, f64::min),
-            cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
-        );
+        let (lo, hi) = study.checks.slip_load_range();
         let n = study.records.len();
         let angle = study
             .config

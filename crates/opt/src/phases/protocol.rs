@@ -134,10 +134,7 @@ impl TestProtocol {
                 .max_by(|&a, &b| total(a).total_cmp(&total(b)))
                 .unwrap_or(0)
         });
-        let (lo, hi) = (
-            cases.iter().map(|c| c.slip_load).fold(1.0, f64::min),
-            cases.iter().map(|c| c.slip_load).fold(1.0, f64::max),
-        );
+        let (lo, hi) = study.checks.slip_load_range();
         let lower = cases
             .iter()
             .position(|c| c.name == CaseName::Lower)
