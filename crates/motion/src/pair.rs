@@ -17,7 +17,7 @@
 //!   range (ASCE 7-22 §16.2.3.2, as [`crate::smallest_factor`] finds it).
 
 use crate::spectrum::integrate_components;
-use crate::{DesignSpectrum, MotionError, Record, Spectrum, TargetMatch, smallest_factor};
+use crate::{DesignSpectrum, MotionError, Record, Spectrum, TargetMatch};
 
 /// The two horizontal components of one event.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -163,18 +163,12 @@ fn scale_pairs_weighted(
             expected: "at least 1",
         });
     }
-    let n = pairs.len() as f64;
-    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
-        let mut sum = vec![0.0; periods.len()];
-        for (p, a) in pairs.iter().zip(own) {
-            let s = rotd100_spectrum(p, damping, periods)?;
-            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += a * sa;
-            }
-        }
-        Ok(sum.into_iter().map(|m| m / n).collect())
-    };
-    let matched = smallest_factor(mean, target, range_s)?;
+    let matched = crate::scaling::weighted_match(
+        own,
+        |i, periods| Ok(rotd100_spectrum(&pairs[i], damping, periods)?.psa_m_s2),
+        target,
+        range_s,
+    )?;
     let pairs = pairs
         .iter()
         .zip(own)

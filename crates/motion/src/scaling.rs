@@ -57,6 +57,41 @@ pub struct TargetMatch {
     pub target_psa_m_s2: Vec<f64>,
 }
 
+/// The scaling grid of `range_s` (s): [`SCALING_POINTS_PER_DECADE`] log-spaced periods a
+/// decade, both ends included (one period for a range of one).
+fn scaling_grid(range_s: [f64; 2]) -> Result<Vec<f64>, MotionError> {
+    let [lo, hi] = range_s;
+    let count = if lo == hi {
+        1
+    } else {
+        let decades = (hi / lo).log10();
+        ((SCALING_POINTS_PER_DECADE as f64 * decades).ceil() as usize + 1).max(2)
+    };
+    log_spaced_periods(lo, hi, count)
+}
+
+/// The smallest factor, over `count` spectra each × `own[i]` (`spectrum(i, periods)` gives
+/// spectrum i, m/s²), that lifts their mean to 90 % of `target` over `range_s`: the mean
+/// summed in index order ([`smallest_factor`]).
+pub(crate) fn weighted_match(
+    own: &[f64],
+    spectrum: impl Fn(usize, &[f64]) -> Result<Vec<f64>, MotionError>,
+    target: &DesignSpectrum,
+    range_s: [f64; 2],
+) -> Result<TargetMatch, MotionError> {
+    let n = own.len() as f64;
+    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
+        let mut sum = vec![0.0; periods.len()];
+        for (i, a) in own.iter().enumerate() {
+            for (m, sa) in sum.iter_mut().zip(&spectrum(i, periods)?) {
+                *m += a * sa;
+            }
+        }
+        Ok(sum.into_iter().map(|m| m / n).collect())
+    };
+    smallest_factor(mean, target, range_s)
+}
+
 /// The smallest factor f with f·mean(T) ≥ 0.9·target(T) for every T of `range_s`
 /// (s, 0 < lower ≤ upper), where `mean` gives the (unscaled) mean spectrum, m/s², at a
 /// list of periods (see the module docs for the search).
@@ -69,13 +104,7 @@ pub fn smallest_factor(
     range_s: [f64; 2],
 ) -> Result<TargetMatch, MotionError> {
     let [lo, hi] = range_s;
-    let count = if lo == hi {
-        1
-    } else {
-        let decades = (hi / lo).log10();
-        ((SCALING_POINTS_PER_DECADE as f64 * decades).ceil() as usize + 1).max(2)
-    };
-    let mut grid = log_spaced_periods(lo, hi, count)?;
+    let mut grid = scaling_grid(range_s)?;
     for corner in [target.t0_s(), target.ts_s(), target.tl_s()] {
         if corner > lo && corner < hi {
             grid.push(corner);
@@ -278,18 +307,12 @@ fn scale_weighted(
             expected: "at least 1",
         });
     }
-    let n = records.len() as f64;
-    let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
-        let mut sum = vec![0.0; periods.len()];
-        for (r, a) in records.iter().zip(own) {
-            let s = Spectrum::compute(r, damping, periods)?;
-            for (m, sa) in sum.iter_mut().zip(&s.psa_m_s2) {
-                *m += a * sa;
-            }
-        }
-        Ok(sum.into_iter().map(|m| m / n).collect())
-    };
-    let m = smallest_factor(mean, target, range_s)?;
+    let m = weighted_match(
+        own,
+        |i, periods| Ok(Spectrum::compute(&records[i], damping, periods)?.psa_m_s2),
+        target,
+        range_s,
+    )?;
     let factors: Vec<f64> = own.iter().map(|a| a * m.factor).collect();
     let scaled = records
         .iter()
@@ -322,13 +345,7 @@ pub fn fit_to_target(
     target: &DesignSpectrum,
     range_s: [f64; 2],
 ) -> Result<f64, MotionError> {
-    let [lo, hi] = range_s;
-    let count = if lo == hi {
-        1
-    } else {
-        ((SCALING_POINTS_PER_DECADE as f64 * (hi / lo).log10()).ceil() as usize + 1).max(2)
-    };
-    let grid = log_spaced_periods(lo, hi, count)?;
+    let grid = scaling_grid(range_s)?;
     let sa = spectrum(&grid)?;
     let mut sum = 0.0;
     for (&t, &a) in grid.iter().zip(&sa) {
