@@ -315,6 +315,14 @@ fn the_code_check_names_the_runs_past_a_residual_limit_after_the_free_vibration(
         assert!(r[1].as_f64().unwrap() > 1e-5, "{r}");
     }
     let md = std::fs::read_to_string(d2.join("o/code-check.md")).unwrap();
+    // named as Markdown text (punctuation escaped: a record's name is a file name)
     let name = runs[0][0].as_str().unwrap();
-    assert!(md.contains(name), "{name} not in {md}");
+    let escaped: String = name
+        .chars()
+        .flat_map(|c| {
+            let esc = c.is_ascii_punctuation().then_some('\\');
+            esc.into_iter().chain(std::iter::once(c))
+        })
+        .collect();
+    assert!(md.contains(&escaped), "{escaped} not in {md}");
 }

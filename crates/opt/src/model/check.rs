@@ -683,9 +683,40 @@ pub fn check_csv(check: &DesignCheck) -> String {
     s
 }
 
+/// `text` (a name the user chose: a record's file name, a suite's) as Markdown text,
+/// never markup:
+/// every ASCII punctuation character backslash-escaped (CommonMark then shows it as
+/// itself, `<` and `|` included), a control character shown as U+FFFD.
+pub fn md_text(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.push('\u{fffd}');
+        } else {
+            if c.is_ascii_punctuation() {
+                out.push('\\');
+            }
+            out.push(c);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A file name is text in Markdown: markup, table bars and HTML come out escaped, so
+    /// CommonMark shows them as written; letters, digits and spaces stay.
+    #[test]
+    fn a_record_name_is_markdown_text_never_markup() {
+        assert_eq!(md_text("RSN6 I-ELC180"), "RSN6 I\\-ELC180");
+        assert_eq!(
+            md_text("<img src=x onerror=alert(1)>|*b*"),
+            "\\<img src\\=x onerror\\=alert\\(1\\)\\>\\|\\*b\\*"
+        );
+        assert_eq!(md_text("a\nb`c"), "a\u{fffd}b\\`c");
+    }
 
     fn metrics(drift: f64, collapsed: bool) -> RecordMetrics {
         RecordMetrics {

@@ -6,7 +6,9 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::{CaseName, DesignCheck, LimitMetric, PropertyCase, check_csv, short};
+use crate::model::check::{
+    CaseName, DesignCheck, LimitMetric, PropertyCase, check_csv, md_text, short,
+};
 use crate::model::fidelity::Fidelity;
 use crate::model::study::{CodeScaling, Study};
 use crate::phases::compliance::{self, ComplianceRow};
@@ -376,7 +378,7 @@ impl CodeCheck {
                 } else {
                     t.runs
                         .iter()
-                        .map(|(name, v)| format!("{name} ({})", short(*v)))
+                        .map(|(name, v)| format!("{} ({})", md_text(name), short(*v)))
                         .collect::<Vec<_>>()
                         .join(", ")
                 };

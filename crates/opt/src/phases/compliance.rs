@@ -5,7 +5,7 @@
 //! one component cannot show it). Clauses are ASCE 7-16's; a criterion the study sets
 //! itself is named as the study's.
 
-use crate::model::check::{CheckLine, DesignCheck, short};
+use crate::model::check::{CheckLine, DesignCheck, md_text, short};
 use crate::model::code_scaling::{MIN_CODE_PAIRS, MIN_CODE_RECORDS};
 use crate::model::config::{ScaleConfig, TestProtocolConfig};
 use crate::model::study::Study;
@@ -129,7 +129,8 @@ pub fn brace_ratio(study: &Study, slip_loads_n: &[f64]) -> Option<(f64, usize)> 
 pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<ComplianceRow> {
     let mut rows = Vec::new();
     for (i, suite) in study.suites.iter().enumerate() {
-        let name = &suite.name;
+        // (a suite's name as Markdown text: the user's)
+        let name = md_text(&suite.name);
         let code = study.config.suites.get(i).and_then(|s| match &s.scale {
             Some(ScaleConfig::CodeSpectrum(c)) => Some(c),
             _ => None,
@@ -190,7 +191,11 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
                 Status::NotChecked,
             )),
         }
-        let lines: Vec<&CheckLine> = check.lines.iter().filter(|l| l.suite == *name).collect();
+        let lines: Vec<&CheckLine> = check
+            .lines
+            .iter()
+            .filter(|l| l.suite == suite.name)
+            .collect();
         if let Some(l) = worst(
             lines
                 .iter()

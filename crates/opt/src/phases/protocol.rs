@@ -24,7 +24,7 @@
 //!   dissipates 4 F A per cycle.
 
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::{CaseName, short};
+use crate::model::check::{CaseName, md_text, short};
 use crate::model::config::{Hazard, TestProtocolConfig};
 use crate::model::study::Study;
 use serde::Serialize;
@@ -204,7 +204,7 @@ impl TestProtocol {
         let _ = writeln!(
             s,
             "The counts and bands are the study's (`devices.test_protocol`); amplitudes, frequencies and velocities come from the response histories. Amplitude A: the mean stroke over the records of suite {}{} at the property case where it is largest{}. T_1M = {}: the first period of the frame with each storey at its secant stiffness at its mean peak drift in that suite at the lower bound (a damper F/δ once it slips). Bare frame T1 = {} s.\n",
-            self.suite,
+            md_text(&self.suite),
             if self.at_mce_r {
                 " (MCE_R)"
             } else {
