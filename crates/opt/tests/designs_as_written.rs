@@ -75,6 +75,7 @@ fn as_written(study: &Study, r: usize, fid: &Fidelity) -> RecordMetrics {
             energies: fid.energies,
             histories: false,
             dampers: false,
+            sensitivities: false,
         },
         reduce: true,
         notes: Vec::new(),

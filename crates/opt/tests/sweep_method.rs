@@ -53,6 +53,7 @@ fn probe_work(study: &Study) -> (u64, u64) {
             dt_factor: 1.0,
             energies: study.needs_energies(),
             dampers: false,
+            sensitivities: false,
         };
         simulate_one(study, &study.file_slip_loads(), 0, &fid, "probe")
             .unwrap()

@@ -206,12 +206,16 @@ impl Plan {
         if bilinear && b.dissipators.iter().flatten().any(|d| d.mass > 0.0) {
             notes.push("method bilinear: dissipator masses ignored (m' -> 0), each brace + damper is one elastic-perfectly plastic spring".into());
         }
+        // A damper at zero slip load is a bare storey, unless the run carries the
+        // derivatives with respect to the slip loads: then it stays a contact whose bounds
+        // are zero (the derivative at F = 0 is the one-sided one of a damper that slips).
+        let drop_free = |d: &Dissipator| d.is_free() && !scene.outputs.sensitivities;
         // First pass: which floors keep a dissipator DOF.
         let mut dof_of = vec![None; n];
         let mut n_dof = n;
         for (f, d) in dissipators.iter().enumerate() {
             let Some(d) = d else { continue };
-            let keep = !reduce || !(d.is_free() || d.is_locked() || d.mass == 0.0);
+            let keep = !reduce || !(drop_free(d) || d.is_locked() || d.mass == 0.0);
             if keep {
                 dof_of[f] = Some(n_dof);
                 n_dof += 1;
@@ -238,7 +242,7 @@ impl Plan {
                 notes.push(format!("floor {storey}: no dissipator"));
                 continue;
             };
-            if reduce && d.is_free() {
+            if reduce && drop_free(d) {
                 notes.push(format!("floor {storey}: slip load 0 -> brace disconnected, no dissipator DOF (bare storey)"));
                 continue;
             }
@@ -547,6 +551,12 @@ impl Plan {
     /// - `exact`: zero-mass dissipator DOFs, which it cannot integrate (it needs M⁻¹).
     pub fn check_method(&self) -> Result<(), SimError> {
         let name = self.method.name;
+        if self.outputs.sensitivities && matches!(name, MethodName::Delacruz | MethodName::Exact) {
+            return Err(SimError::Scene(format!(
+                "outputs.sensitivities: the derivatives with respect to the slip loads are computed by newmark, hht and bilinear, not by {}",
+                name.as_str()
+            )));
+        }
         if name == MethodName::Delacruz && self.has_yielding_storeys() {
             return Err(SimError::Scene(
                 "delacruz does not model yielding storeys; use exact (the reference) or newmark, which treat a storey's plastic element like a massless dissipator".into(),

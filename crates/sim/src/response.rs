@@ -98,6 +98,32 @@ pub struct Response {
     /// damper, as in `peak_slip`); present only when the scene's `outputs.dampers` asks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dampers: Option<Vec<DamperDemand>>,
+    /// The derivatives of the peaks with respect to the dampers' slip loads; present only
+    /// when the scene's `outputs.sensitivities` asks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensitivity: Option<Sensitivity>,
+}
+
+/// The derivatives of a run's peak responses with respect to each damper's slip load F
+/// (its friction bounds ∓F), from the tangent of the `newmark` step (docs/MODEL.md §
+/// Sensitivities). Each row holds one derivative per damper, in the order of `dampers`.
+/// The step is a projection (the friction box QP), so the response is continuous and
+/// piecewise smooth in F: the tangent is the derivative of the piece the run is on, and a
+/// peak's derivative is the drift's at the step where the peak was reached.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Sensitivity {
+    /// The floor (from 0) of each damper, the columns' order.
+    pub dampers: Vec<usize>,
+    /// ∂(peak |drift|)/∂F per storey, m/N.
+    pub peak_drift: Vec<Vec<f64>>,
+    /// ∂(|drift| at the end)/∂F per storey, m/N.
+    pub residual_drift: Vec<Vec<f64>>,
+    /// ∂(peak |displacement|)/∂F per floor, m/N.
+    pub peak_displacement: Vec<Vec<f64>>,
+    /// ∂(peak |absolute acceleration|)/∂F per floor, m/s²/N.
+    pub peak_abs_acceleration: Vec<Vec<f64>>,
+    /// ∂(peak |base shear|)/∂F, N/N.
+    pub peak_base_shear: Vec<f64>,
 }
 
 /// What one damper went through in a run: the figures a device is specified and
@@ -628,6 +654,7 @@ impl Peaks {
             peak_plastic_drift: None,
             collapse: None,
             dampers: self.dampers.map(DamperRecorder::finish),
+            sensitivity: None,
         }
     }
 }

@@ -611,6 +611,7 @@ mod tests {
                 energies: false,
                 histories: true,
                 dampers: false,
+                sensitivities: false,
             },
             reduce: false,
         };

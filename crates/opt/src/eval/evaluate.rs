@@ -226,6 +226,7 @@ pub fn design_scene(
             energies: fid.energies,
             histories: false,
             dampers: fid.dampers,
+            sensitivities: fid.sensitivities,
         },
         reduce: true,
         notes: Vec::new(),

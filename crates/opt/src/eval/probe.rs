@@ -53,6 +53,7 @@ fn probe_methods(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> 
             dt_factor: 1.0,
             energies: study.needs_energies(),
             dampers: false,
+            sensitivities: false,
         };
         // the building file's design as written (a locked or asymmetric damper as such)
         simulate_design(
@@ -74,6 +75,7 @@ fn probe_methods(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> 
         dt_factor: 1.0,
         energies: study.needs_energies(),
         dampers: false,
+        sensitivities: false,
     };
     let exact_plan = design_plan(
         study,

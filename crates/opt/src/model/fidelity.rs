@@ -36,6 +36,9 @@ pub struct Fidelity {
     /// Record the per-damper demands (a study with limits, at the check fidelity: the
     /// device table reads them).
     pub dampers: bool,
+    /// Compute the derivatives of the responses with respect to the slip loads (the
+    /// `sqp` refiner's evaluations; `newmark`, `hht` and `bilinear` only).
+    pub sensitivities: bool,
 }
 
 impl Fidelity {
@@ -51,6 +54,11 @@ impl Fidelity {
             self.dt_factor.to_bits(),
             self.energies
         ) + if self.dampers { " dampers" } else { "" }
+            + if self.sensitivities {
+                " sensitivities"
+            } else {
+                ""
+            }
     }
 }
 

@@ -383,6 +383,7 @@ impl Fidelity {
             dt_factor: 1.0,
             energies: study.needs_energies(),
             dampers: false,
+            sensitivities: false,
         }
     }
     /// The study's reference check fidelity (energies on; the per-damper demands for a
@@ -394,6 +395,7 @@ impl Fidelity {
             dt_factor: study.config.fidelity.check_dt_factor,
             energies: true,
             dampers: study.checks.has_limits(),
+            sensitivities: false,
         }
     }
 }

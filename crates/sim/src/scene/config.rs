@@ -241,6 +241,11 @@ pub struct OutputsConfig {
     /// (`Response::dampers`; default false: not computed, and not written back).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub dampers: bool,
+    /// The derivatives of the peak responses with respect to each damper's slip load
+    /// (`Response::sensitivity`; `newmark` only; default false: not computed). The run then
+    /// steps on the general dense loop, which carries the tangent of its state.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub sensitivities: bool,
 }
 
 impl Default for OutputsConfig {
@@ -249,6 +254,7 @@ impl Default for OutputsConfig {
             energies: true,
             histories: false,
             dampers: false,
+            sensitivities: false,
         }
     }
 }

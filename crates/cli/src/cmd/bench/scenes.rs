@@ -121,6 +121,7 @@ pub(super) fn scene(building: &BuildingConfig, o: SceneOpts) -> anyhow::Result<S
             energies: o.energies,
             histories: false,
             dampers: false,
+            sensitivities: false,
         },
         reduce: o.reduce,
     };
@@ -189,6 +190,7 @@ pub(super) fn record_plan(
             energies: false,
             histories: false,
             dampers: false,
+            sensitivities: false,
         },
         reduce: true,
     };

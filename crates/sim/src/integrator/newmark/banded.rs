@@ -80,7 +80,7 @@ pub struct BandedStats {
 /// the ground) with a finite box of positive width, and
 /// banded operators (half-bandwidth at most [`MAX_HALF_BANDWIDTH`]).
 pub(super) fn eligible(plan: &Plan) -> Option<usize> {
-    if plan.outputs.histories {
+    if plan.outputs.histories || plan.outputs.sensitivities {
         return None;
     }
     let epp_only = plan.contacts.iter().all(|c| {

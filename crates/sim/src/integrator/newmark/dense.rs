@@ -7,6 +7,7 @@ use super::fixed;
 use super::link::{EppPred, links};
 use super::operators::{Operators, StepConstants};
 use super::outcome::{non_finite, outcome};
+use super::tangent::Tangent;
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -37,6 +38,7 @@ macro_rules! fixed_dispatch {
 /// The run on the dense operators: the fixed-size loop of its sizes, or the general loop.
 pub(super) fn run_dense(plan: &Plan) -> Result<Outcome, SimError> {
     let ops = Operators::build(plan)?;
+    // (the fixed-size loop carries no tangent: `applies` is false with sensitivities)
     if fixed::applies(plan) {
         let links = links(plan, &ops);
         let run = fixed_dispatch!(plan, &ops, &links;
@@ -149,6 +151,8 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         record_row(plan, hist, 0.0, ag0, &start.u, &f_old, &w_old, &epp, e);
     }
 
+    let mut tangent = plan.outputs.sensitivities.then(|| Tangent::new(plan, ops));
+
     let mut qp_iter_total: u64 = 0;
     let mut qp_iter_max: u32 = 0;
     for step in 0..plan.steps {
@@ -250,6 +254,16 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
                 );
             }
         }
+        if let Some(tg) = tangent.as_mut() {
+            if let Some(qp) = qp.as_ref() {
+                tg.step(ops, &links, &k, |c| qp.status(c), &w_new);
+            }
+            let mut shear = msum * ag1 - p1;
+            for (m, a) in mr.iter().zip(a_now) {
+                shear += m * a;
+            }
+            tg.observe(&peaks, (u_now, a_now, ag1), shear, mr);
+        }
         state::observe_dampers(plan, &mut peaks, t1, u_now, &f_new, &w_new, &epp);
         peaks.observe_floors(u_now, a_now, ag1);
         peaks.observe_base_shear(base_shear(a_now, ag1, p1));
@@ -283,12 +297,14 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let (u_end, rest) = s.split_at(n);
     let v_end = &rest[..n];
     let energy = energies.then(|| acc.finish(plan, u_end, v_end, &epp));
-    Ok(outcome(
+    let mut out = outcome(
         plan,
         peaks,
         &acc,
         energy,
         (qp_iter_total, qp_iter_max),
         history,
-    ))
+    );
+    out.response.sensitivity = tangent.map(|tg| tg.finish(u_end));
+    Ok(out)
 }

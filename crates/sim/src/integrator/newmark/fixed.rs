@@ -124,6 +124,7 @@ impl<const N: usize> EnergyMatrices<N> {
 pub(super) fn applies(plan: &Plan) -> bool {
     !plan.outputs.histories
         && !plan.outputs.dampers
+        && !plan.outputs.sensitivities
         && plan
             .contacts
             .iter()

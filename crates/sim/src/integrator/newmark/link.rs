@@ -189,7 +189,12 @@ impl Link {
     /// velocity and the contact's slip rate. A product by 1/(γΔt), not a division: the
     /// update sits on the step-to-step dependency chain.
     #[inline(always)]
-    fn epp_update(k: &StepConstants, pred: EppPred, v_floor: f64, slip_rate: f64) -> EppState {
+    pub(super) fn epp_update(
+        k: &StepConstants,
+        pred: EppPred,
+        v_floor: f64,
+        slip_rate: f64,
+    ) -> EppState {
         let v = v_floor - slip_rate;
         let a = (v - pred.vp) * k.inv_gdt;
         EppState {

@@ -29,9 +29,9 @@
 //!
 //! Files, each importing only those listed before it: `operators` (the run's fixed
 //! operators and step constants), `link` (one contact as the loops read it), `outcome`
-//! (how a loop ends), `fixed` (the fixed-size loop), `dense` (the dense run and the general
-//! loop), `band` (band matrices and their LDLᵀ factorisation), `banded` (the banded step),
-//! `run` (the integrator and the choice of step).
+//! (how a loop ends), `fixed` (the fixed-size loop), `tangent` (the step's derivatives
+//! with respect to the slip loads), `dense` (the dense run and the general loop), `band` (band matrices and their LDLᵀ factorisation),
+//! `banded` (the banded step), `run` (the integrator and the choice of step).
 
 mod band;
 mod banded;
@@ -41,6 +41,7 @@ mod link;
 mod operators;
 mod outcome;
 mod run;
+mod tangent;
 
 pub use banded::BandedStats;
 pub use run::{Newmark, StepPath, run_on_path};
