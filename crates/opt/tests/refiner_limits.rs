@@ -48,13 +48,7 @@ impl Problem {
         let cost: f64 = z.iter().sum();
         let r = self.ratio(z);
         let f = if r <= 1.0 { cost } else { f64::INFINITY };
-        (
-            f,
-            Some(LimitValues {
-                objective: cost,
-                ratios: vec![r, 0.5 * r],
-            }),
-        )
+        (f, Some(LimitValues::new(cost, vec![r, 0.5 * r])))
     }
 }
 
@@ -130,13 +124,7 @@ fn a_limit_far_from_binding_leaves_the_refiner_as_without_limits() {
         let (_, l) = p.value(z);
         let l = l.unwrap();
         let ratios: Vec<f64> = l.ratios.iter().map(|r| 0.01 * r).collect();
-        (
-            l.objective,
-            Some(LimitValues {
-                objective: l.objective,
-                ratios,
-            }),
-        )
+        (l.objective, Some(LimitValues::new(l.objective, ratios)))
     };
     let z0 = vec![0.7; n];
     let (f, limits) = value(&z0);

@@ -160,7 +160,12 @@ fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> Strin
         let _ = std::fmt::Write::write_fmt(
             &mut text,
             format_args!(
-                "; post-check of {} single-floor and profile moves of ±{:.1} % of the range{}: {}",
+                "; {}post-check of {} single-floor and profile moves of ±{:.1} % of the range{}: {}",
+                if s.polls == 0 {
+                    "first-order (from the derivatives, no simulation) "
+                } else {
+                    ""
+                },
                 s.moves,
                 pct(s.step),
                 if s.polls > 1 {
@@ -174,6 +179,12 @@ fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> Strin
                         s.best_move,
                         -pct(s.best_gain),
                         pct(slipload_opt::phases::refine::STATIONARY_GAIN)
+                    )
+                } else if s.polls == 0 {
+                    format!(
+                        "not stationary: {} lowers the objective by {:.3} % to first order",
+                        s.best_move,
+                        pct(s.best_gain)
                     )
                 } else {
                     format!(

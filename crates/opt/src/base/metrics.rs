@@ -41,6 +41,40 @@ pub struct RecordMetrics {
     /// recorded them (a study with limits, at the check fidelity).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dampers: Option<Vec<slipload_sim::response::DamperDemand>>,
+    /// The derivatives of these responses with respect to the design's slip loads, when
+    /// the run computed them (the `sqp` refiner's evaluations).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<MetricTangents>,
+}
+
+/// The derivatives of one run's responses with respect to the design's slip loads (N),
+/// one per damper of the design space in its order, at the run's property case (a bound
+/// case's factor on the slip loads included): what the `sqp` refiner reads, from the
+/// run's [`slipload_sim::response::Sensitivity`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MetricTangents {
+    /// ∂(peak drift ratio)/∂F per storey, one per damper, 1/N.
+    pub drift_ratio: Vec<Vec<f64>>,
+    /// ∂(residual drift ratio)/∂F per storey, 1/N.
+    pub residual_drift_ratio: Vec<Vec<f64>>,
+    /// ∂(peak absolute floor acceleration)/∂F at the floor of the peak, m/s²/N.
+    pub peak_floor_acceleration: Vec<f64>,
+    /// ∂(peak base shear)/∂F.
+    pub peak_base_shear: Vec<f64>,
+    /// ∂(peak floor displacement)/∂F at the floor of the peak, m/N.
+    pub peak_displacement: Vec<f64>,
+}
+
+/// Index of the first largest value (0 for an empty slice).
+fn argmax(v: &[f64]) -> usize {
+    let mut at = 0;
+    for (i, x) in v.iter().enumerate() {
+        if *x > v[at] {
+            at = i;
+        }
+    }
+    at
 }
 
 impl RecordMetrics {
@@ -76,7 +110,73 @@ impl RecordMetrics {
             energy_plastic: energy.and_then(|e| e.plastic),
             collapse: r.collapse.map(|c| (c.storey, c.time)),
             dampers: r.dampers.clone(),
+            tangent: None,
         }
+    }
+
+    /// With the derivatives of the run's sensitivities (when it computed them): the
+    /// design's damper k sits on floor `dampers[k]`, and the run's slip loads are the
+    /// design's times `factor` (its property case). A damper the run does not carry
+    /// has derivative 0.
+    pub fn with_tangents(
+        mut self,
+        out: &Outcome,
+        heights: &[f64],
+        dampers: &[usize],
+        factor: f64,
+    ) -> RecordMetrics {
+        let r = &out.response;
+        let Some(s) = &r.sensitivity else {
+            return self;
+        };
+        let col: Vec<Option<usize>> = dampers
+            .iter()
+            .map(|f| s.dampers.iter().position(|g| g == f))
+            .collect();
+        let pick = |row: &[f64]| -> Vec<f64> {
+            col.iter()
+                .map(|c| c.map_or(0.0, |c| factor * row[c]))
+                .collect()
+        };
+        let per_storey = |rows: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            rows.iter()
+                .zip(heights)
+                .map(|(row, h)| pick(row).into_iter().map(|v| v / h).collect())
+                .collect()
+        };
+        self.tangent = Some(MetricTangents {
+            drift_ratio: per_storey(&s.peak_drift),
+            residual_drift_ratio: per_storey(&s.residual_drift),
+            peak_floor_acceleration: pick(
+                &s.peak_abs_acceleration[argmax(&r.peak_abs_acceleration)],
+            ),
+            peak_base_shear: pick(&s.peak_base_shear),
+            peak_displacement: pick(&s.peak_displacement[argmax(&r.peak_displacement)]),
+        });
+        self
+    }
+
+    /// These responses moved by `eps` times their derivative with respect to damper `k`
+    /// (unchanged where the run carries no derivatives): what a statistic of the
+    /// responses is differentiated through.
+    pub fn moved(&self, k: usize, eps: f64) -> RecordMetrics {
+        let mut m = self.clone();
+        if let Some(t) = &self.tangent {
+            for (v, row) in m.drift_ratio.iter_mut().zip(&t.drift_ratio) {
+                *v += eps * row[k];
+            }
+            for (v, row) in m
+                .residual_drift_ratio
+                .iter_mut()
+                .zip(&t.residual_drift_ratio)
+            {
+                *v += eps * row[k];
+            }
+            m.peak_floor_acceleration += eps * t.peak_floor_acceleration[k];
+            m.peak_base_shear += eps * t.peak_base_shear[k];
+            m.peak_displacement += eps * t.peak_displacement[k];
+        }
+        m
     }
 
     /// Largest peak ductility over the storeys (`None` for an elastic frame).

@@ -54,6 +54,18 @@ pub fn solve(
     a: &DMatrix<f64>,
     b: &[f64],
 ) -> Result<Vec<f64>, OptError> {
+    solve_with_duals(p, q, lo, hi, a, b).map(|(x, _)| x)
+}
+
+/// As [`solve`], with the multipliers (≥ 0) of the rows A x ≤ b.
+pub fn solve_with_duals(
+    p: &DMatrix<f64>,
+    q: &[f64],
+    lo: &[f64],
+    hi: &[f64],
+    a: &DMatrix<f64>,
+    b: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>), OptError> {
     let n = q.len();
     let m = a.nrows();
     let pc = csc_from_columns(n, n, |i, j| p[(i, j)], true);
@@ -86,13 +98,19 @@ pub fn solve(
         .map_err(|e| OptError::Subproblem(format!("{e:?}")))?;
     solver.solve();
     match solver.solution.status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver
-            .solution
-            .x
-            .iter()
-            .zip(lo.iter().zip(hi))
-            .map(|(x, (l, h))| x.clamp(*l, *h))
-            .collect()),
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok((
+            solver
+                .solution
+                .x
+                .iter()
+                .zip(lo.iter().zip(hi))
+                .map(|(x, (l, h))| x.clamp(*l, *h))
+                .collect(),
+            solver.solution.z[2 * n..]
+                .iter()
+                .map(|v| v.max(0.0))
+                .collect(),
+        )),
         other => Err(OptError::Subproblem(format!("clarabel status {other:?}"))),
     }
 }

@@ -110,7 +110,13 @@ pub fn run_design(
         .storey_heights
         .as_deref()
         .expect("a study's building has storey heights (checked when loading)");
-    let m = RecordMetrics::from_outcome(&out, heights);
+    let (case, _) = study.run(run);
+    let m = RecordMetrics::from_outcome(&out, heights).with_tangents(
+        &out,
+        heights,
+        &study.space.dampers,
+        case.slip_load,
+    );
     if let Some(quantity) = m.first_non_finite() {
         return Err(OptError::NonFinite {
             design: label.to_string(),

@@ -30,6 +30,17 @@ pub fn choose_sweep_method(study: &Study) -> Result<SweepMethod, OptError> {
 /// whichever way the sweep's method was chosen.
 fn probe_sweep(study: &Study) -> Result<(SweepMethod, Option<f64>), OptError> {
     let Some(method) = study.config.fidelity.method else {
+        if study.config.refine.method == crate::model::config::RefineMethod::Sqp {
+            // (whether the check probes exact is decided as for a named method)
+            let named = SweepMethod {
+                method: MethodName::Newmark,
+                reason: "the sqp refiner reads newmark's sensitivities".into(),
+            };
+            if study.config.fidelity.check_method != MethodName::Exact {
+                return Ok((named, None));
+            }
+            return Ok((named, probe_methods(study)?.1));
+        }
         return probe_methods(study);
     };
     let named = SweepMethod {

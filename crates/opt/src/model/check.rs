@@ -576,6 +576,33 @@ impl Checks {
         Ok(response + objective.cost_value(loads_n))
     }
 
+    /// The objective of each case the objective reads (the nominal case alone, or every
+    /// case for the worst reading, whose objective is their largest), each with the
+    /// design's cost: the pieces a refiner that knows the objective is a maximum models
+    /// one by one.
+    pub fn case_objectives(
+        &self,
+        objective: &Objective,
+        rows: &[RecordMetrics],
+        bare: Option<&[RecordMetrics]>,
+        suites: &[Range<usize>],
+        records: usize,
+        loads_n: &[f64],
+    ) -> Result<Vec<f64>, OptError> {
+        let cases = if self.reading() == BoundReading::Worst {
+            self.cases().len()
+        } else {
+            1
+        };
+        let cost = objective.cost_value(loads_n);
+        (0..cases)
+            .map(|c| {
+                let span = c * records..(c + 1) * records;
+                Ok(objective.value(&rows[span.clone()], bare.map(|b| &b[span]), suites)? + cost)
+            })
+            .collect()
+    }
+
     /// Each term's value at the case the objective reads (for the worst reading: at the
     /// case whose objective is the worst).
     pub fn terms(
@@ -733,6 +760,7 @@ mod tests {
             energy_plastic: None,
             collapse: collapsed.then_some((1, 1.0)),
             dampers: None,
+            tangent: None,
         }
     }
 

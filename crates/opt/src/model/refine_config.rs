@@ -10,6 +10,9 @@ pub enum RefineMethod {
     /// Profile line searches, then a trust region on a least-change quadratic
     /// interpolation model (the refiner for many slip loads; `phases::refine::ModelSearch`).
     Model,
+    /// A trust-region SQP on the derivatives of the runs (`newmark`'s sensitivities): the
+    /// cases of the worst reading and the limits as constraints (`phases::refine::Sqp`).
+    Sqp,
     /// Trust region on a fitted quadratic model, subproblem solved by clarabel.
     TrustRegion,
     /// Nelder–Mead simplex.
@@ -23,11 +26,12 @@ impl std::str::FromStr for RefineMethod {
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "model" => Ok(RefineMethod::Model),
+            "sqp" => Ok(RefineMethod::Sqp),
             "trust-region" => Ok(RefineMethod::TrustRegion),
             "nelder-mead" => Ok(RefineMethod::NelderMead),
             "random" => Ok(RefineMethod::Random),
             o => Err(format!(
-                "unknown refiner {o:?}: expected model, trust-region, nelder-mead or random"
+                "unknown refiner {o:?}: expected model, sqp, trust-region, nelder-mead or random"
             )),
         }
     }
@@ -38,6 +42,7 @@ impl RefineMethod {
     pub fn as_str(self) -> &'static str {
         match self {
             RefineMethod::Model => "model",
+            RefineMethod::Sqp => "sqp",
             RefineMethod::TrustRegion => "trust-region",
             RefineMethod::NelderMead => "nelder-mead",
             RefineMethod::Random => "random",

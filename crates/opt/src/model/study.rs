@@ -326,6 +326,62 @@ fn check_braces(
     Ok(())
 }
 
+/// The `sqp` refiner differentiates the objective and the limits through the runs'
+/// sensitivities, which `newmark` computes for the peak drift, residual drift, floor
+/// acceleration and base shear: a study whose objective or limits read another response
+/// (an energy, a ductility), or whose sweep names a method without sensitivities, is
+/// refused naming the field.
+fn check_sqp(
+    cfg: &StudyConfig,
+    objective: &Objective,
+    checks: &Checks,
+    path: &Path,
+) -> Result<(), OptError> {
+    let smooth = |m: Metric| {
+        matches!(
+            m,
+            Metric::PeakDriftRatio
+                | Metric::ResidualDriftRatio
+                | Metric::PeakFloorAcceleration
+                | Metric::BaseShear
+        )
+    };
+    let why = "the sqp refiner differentiates the peak drift ratio, residual drift ratio, peak floor acceleration and base shear; use refine.method \"model\" for";
+    for (i, t) in objective.terms.iter().enumerate() {
+        if !smooth(t.metric) {
+            return Err(OptError::invalid(
+                path,
+                format!("objective.terms[{i}].metric"),
+                format!("{why} {}", t.metric.as_str()),
+            ));
+        }
+    }
+    for (i, lim) in checks.limits.iter().enumerate() {
+        for (j, c) in lim.iter().flat_map(|l| l.criteria.iter()).enumerate() {
+            if !smooth(c.metric.metric()) {
+                return Err(OptError::invalid(
+                    path,
+                    format!("suites[{i}].limits.criteria[{j}].metric"),
+                    format!("{why} {}", c.metric.as_str()),
+                ));
+            }
+        }
+    }
+    if let Some(m) = cfg.fidelity.method
+        && matches!(m, MethodName::Exact | MethodName::Delacruz)
+    {
+        return Err(OptError::invalid(
+            path,
+            "fidelity.method",
+            format!(
+                "the sqp refiner reads the sensitivities of newmark, hht or bilinear, which {} does not compute; name one of those, or refine.method \"model\"",
+                m.as_str()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The design wind against the design space: one shear per storey, and the space's least
 /// slip load of each damper (its lower corner) at the lower property bound at least
 /// `factor` × its storey's wind shear — else the study is refused naming the bound to
@@ -672,6 +728,9 @@ impl Study {
         if let Some(d) = &cfg.devices {
             check_braces(d, &space, &checks, path)?;
         }
+        if cfg.refine.method == crate::model::config::RefineMethod::Sqp {
+            check_sqp(&cfg, &objective, &checks, path)?;
+        }
         let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {
             name,
@@ -751,6 +810,25 @@ impl Study {
     ) -> Result<f64, OptError> {
         let ranges: Vec<Range<usize>> = self.suites.iter().map(|s| s.range.clone()).collect();
         self.checks.objective(
+            &self.objective,
+            rows,
+            Some(bare),
+            &ranges,
+            self.records.len(),
+            loads_n,
+        )
+    }
+
+    /// The objective of each property case the objective reads, with the design's cost
+    /// ([`Checks::case_objectives`]; [`Study::objective_value`] is their largest).
+    pub fn case_objectives(
+        &self,
+        rows: &[RecordMetrics],
+        bare: &[RecordMetrics],
+        loads_n: &[f64],
+    ) -> Result<Vec<f64>, OptError> {
+        let ranges: Vec<Range<usize>> = self.suites.iter().map(|s| s.range.clone()).collect();
+        self.checks.case_objectives(
             &self.objective,
             rows,
             Some(bare),

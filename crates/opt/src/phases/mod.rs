@@ -1,5 +1,6 @@
 //! The phases of a study, above [`crate::eval`], each importing only the phases listed
-//! before it: the sweep ([`sweep`]), the refiners ([`refine`]) and the refinement with its
+//! before it: the sweep ([`sweep`]), the refiners ([`refine`]), the derivatives of a design's
+//! objective and limits ([`gradient`]) and the refinement with its
 //! checked finalists ([`refinement`]), the design table ([`table`]), the front search
 //! ([`pareto`]), the ranking ([`rank`]), the design family ([`family`]) and the data of
 //! the study figures ([`figures`]). A phase takes the paths of its journals from the
@@ -10,6 +11,7 @@ pub mod compliance;
 pub mod devices;
 pub mod family;
 pub mod figures;
+pub mod gradient;
 pub mod pareto;
 pub mod protocol;
 pub mod rank;

@@ -9,8 +9,10 @@ use crate::model::check::DesignCheck;
 use crate::model::config::RefineMethod;
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
+use crate::phases::gradient::gradient;
 use crate::phases::refine::{
-    Evaluations, LimitValues, Point, Stationarity, StopReason, post_check, refine_starts,
+    Evaluations, LimitValues, Point, Stationarity, StopReason, first_order_check, post_check,
+    refine_starts,
 };
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
@@ -79,10 +81,9 @@ impl RefineTarget {
     /// the other targets.
     pub fn limit_values(self, f: f64, check: Option<&DesignCheck>) -> Option<LimitValues> {
         match (self, check) {
-            (RefineTarget::PassingObjective, Some(c)) => Some(LimitValues {
-                objective: f,
-                ratios: c.smooth_ratios(),
-            }),
+            (RefineTarget::PassingObjective, Some(c)) => {
+                Some(LimitValues::new(f, c.smooth_ratios()))
+            }
             _ => None,
         }
     }
@@ -181,10 +182,16 @@ fn values_of(
                 RefineTarget::Objective => None,
                 _ => Some(study.check_design(rows)?),
             };
-            Ok((
-                target.value(f, check.as_ref()),
-                target.limit_values(f, check.as_ref()),
-            ))
+            let mut limits = target.limit_values(f, check.as_ref());
+            // runs that carry derivatives (the `sqp` refiner's) give the design's
+            if target != RefineTarget::Violation
+                && let Some(g) = gradient(study, rows, bare, loads, check.is_some())?
+            {
+                limits
+                    .get_or_insert_with(|| LimitValues::new(f, Vec::new()))
+                    .gradient = Some(g);
+            }
+            Ok((target.value(f, check.as_ref()), limits))
         })
         .collect()
 }
@@ -414,6 +421,18 @@ pub fn refine_sweep(
             known.len()
         )));
     }
+    // the `sqp` refiner reads the derivatives of every evaluation; without a design that
+    // meets the limits there is no objective to differentiate, and the `model` refiner
+    // looks for the closest design
+    let method = if method == RefineMethod::Sqp && target == RefineTarget::Violation {
+        RefineMethod::Model
+    } else {
+        method
+    };
+    let sweep_fid = Fidelity {
+        sensitivities: method == RefineMethod::Sqp,
+        ..sweep_fid
+    };
     // a study with a front keeps the runs of the evaluations: they are its candidates
     let keep_runs = !study.objectives.is_empty();
     let kept = Mutex::new(RefinedRuns::default());
@@ -480,6 +499,12 @@ pub fn refine_sweep(
             polls += 1;
         }
         s.map(|s| Stationarity { polls, ..s })
+    } else if method == RefineMethod::Sqp {
+        // the sqp refiner's design carries its derivatives: its moves are judged by them
+        // (the re-evaluated point, which holds them, not the sweep's copy)
+        let best = ev.best().expect("the sweep gave points");
+        ev.point(&best.z)
+            .and_then(|at| first_order_check(&study.space, &at, cfg.tolerance.max(0.01)))
     } else {
         None
     };

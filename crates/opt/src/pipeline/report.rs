@@ -132,7 +132,8 @@ struct StationarityEntry<'a> {
     stationary: bool,
     /// The threshold, relative.
     threshold: f64,
-    /// Polls made (more than one when the budget had room after a poll that gained).
+    /// Polls made (more than one when the budget had room after a poll that gained; 0:
+    /// the `sqp` refiner's first-order check, from the derivatives, no simulation).
     #[serde(skip_serializing_if = "is_one")]
     polls: usize,
 }

@@ -99,6 +99,34 @@ pub struct LimitValues {
     /// unacceptable responses left out: they are steps, not smooth functions); ≤ 1
     /// passes.
     pub ratios: Vec<f64>,
+    /// Their derivatives, where the evaluation computed them (the `sqp` refiner's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gradient: Option<Gradient>,
+}
+
+impl LimitValues {
+    /// The objective and the ratios, without derivatives.
+    pub fn new(objective: f64, ratios: Vec<f64>) -> LimitValues {
+        LimitValues {
+            objective,
+            ratios,
+            gradient: None,
+        }
+    }
+}
+
+/// The derivatives of a design's objective and limit ratios with respect to the scaled
+/// variables z, from the sensitivities of its runs (`phases::gradient`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Gradient {
+    /// The objective of each property case the objective reads (the nominal case alone,
+    /// or every case when it reads the worst: the objective is their largest), each with
+    /// the design's cost.
+    pub cases: Vec<f64>,
+    /// ∂/∂z of each case's objective.
+    pub case_grads: Vec<Vec<f64>>,
+    /// ∂/∂z of each of [`LimitValues::ratios`].
+    pub ratio_grads: Vec<Vec<f64>>,
 }
 
 /// An objective value in a journal: a JSON number, or `"inf"` for +∞ (a collapsed
@@ -160,6 +188,9 @@ pub struct Evaluations<'a> {
     /// would pass it evaluates the points that fit and answers
     /// [`OptError::BudgetSpent`].
     limit: Option<usize>,
+    /// A known point without derivatives is evaluated again when asked for (set by a
+    /// refiner that reads them, [`Evaluations::require_gradients`]).
+    gradients: bool,
 }
 
 fn key(z: &[f64]) -> Vec<u64> {
@@ -193,6 +224,7 @@ impl<'a> Evaluations<'a> {
             known,
             log: Vec::new(),
             limit: None,
+            gradients: false,
         }
     }
 
@@ -207,6 +239,24 @@ impl<'a> Evaluations<'a> {
         self
     }
 
+    /// From now on a point known without derivatives (a sweep point) is evaluated again
+    /// when asked for, by the oracle that gives them: the `sqp` refiner reads them.
+    pub fn require_gradients(&mut self) {
+        self.gradients = true;
+    }
+
+    /// Whether `z` is known, with derivatives when they are required.
+    fn knows(&self, z: &[f64]) -> bool {
+        match self.cache.get(&key(z)) {
+            None => false,
+            Some((f, limits)) => {
+                !self.gradients
+                    || !f.is_finite() && limits.as_ref().is_none_or(|l| !l.objective.is_finite())
+                    || limits.as_ref().is_some_and(|l| l.gradient.is_some())
+            }
+        }
+    }
+
     /// Sets the most new evaluations in all (`None`: no limit).
     pub fn set_limit(&mut self, limit: Option<usize>) {
         self.limit = limit;
@@ -218,7 +268,7 @@ impl<'a> Evaluations<'a> {
     pub fn eval(&mut self, zs: &[Vec<f64>]) -> Result<Vec<f64>, OptError> {
         let mut fresh: Vec<Vec<f64>> = Vec::new();
         for z in zs {
-            if !self.cache.contains_key(&key(z)) && !fresh.contains(z) {
+            if !self.knows(z) && !fresh.contains(z) {
                 fresh.push(z.clone());
             }
         }

@@ -12,15 +12,17 @@ mod evaluations;
 mod model;
 mod nelder_mead;
 mod random;
+mod sqp;
 mod trust_region;
 
 pub use evaluations::{
-    Evaluations, Hook, LimitOracle, LimitValues, Oracle, Point, Refiner, STATIONARY_GAIN,
+    Evaluations, Gradient, Hook, LimitOracle, LimitValues, Oracle, Point, Refiner, STATIONARY_GAIN,
     StopReason,
 };
 pub use model::{LINE_EVALUATIONS, ModelSearch};
 pub use nelder_mead::NelderMead;
 pub use random::RandomSearch;
+pub use sqp::Sqp;
 pub use trust_region::TrustRegion;
 
 use crate::base::error::OptError;
@@ -97,6 +99,7 @@ pub fn refine(
 ) -> Result<Refined, OptError> {
     let mut r: Box<dyn Refiner> = match method {
         RefineMethod::Model => Box::new(ModelSearch::new(cfg, budget)),
+        RefineMethod::Sqp => Box::new(Sqp::new(cfg, budget)),
         RefineMethod::TrustRegion => Box::new(TrustRegion::new(cfg, budget)),
         RefineMethod::NelderMead => Box::new(NelderMead::new(cfg)),
         RefineMethod::Random => Box::new(RandomSearch::new(cfg)),
@@ -167,8 +170,80 @@ pub struct Stationarity {
     /// Whether no move gains more than [`STATIONARY_GAIN`].
     pub stationary: bool,
     /// Polls made: the first, and each one more the budget had room for after a poll
-    /// whose best move gained (that move taken).
+    /// whose best move gained (that move taken); 0 for the first-order check of the
+    /// `sqp` refiner, which evaluates no move.
     pub polls: usize,
+}
+
+/// The first-order post-check of the `sqp` refiner's design (no simulation): the moves
+/// of [`post_check`], each judged by the linearisation its derivatives give — the
+/// objective max_k(f_k + g_kᵀm), a move whose linearised limit ratios pass 1 left out.
+/// The objective is a maximum of pieces (cases, storeys, records, time steps), each
+/// convex near its kinks, so a linearised gain bounds what the move gains to first order.
+/// `None` when `at` carries no derivatives or no move fits in the space.
+pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<Stationarity> {
+    let l = at.limits.as_ref()?;
+    let g = l.gradient.as_ref()?;
+    if !at.f.is_finite() {
+        return None;
+    }
+    let d = space.dim();
+    let mut moves: Vec<(String, Vec<f64>)> = Vec::new();
+    for i in 0..d {
+        for (sign, name) in [(1.0, "+"), (-1.0, "-")] {
+            let mut z = at.z.clone();
+            z[i] = (z[i] + sign * step).clamp(0.0, 1.0);
+            if z != at.z && space.is_feasible(&z) {
+                moves.push((format!("{} {name}", space.names[i]), z));
+            }
+        }
+    }
+    let loads = space.slip_loads(&at.z);
+    for (factor, name) in [(1.0 + step, "profile +"), (1.0 - step, "profile -")] {
+        let scaled: Vec<f64> = loads.iter().map(|v| v * factor).collect();
+        if let Some(z) = space.point_of(&scaled)
+            && z != at.z
+        {
+            moves.push((name.to_string(), z));
+        }
+    }
+    let dot = |a: &[f64], m: &[f64]| -> f64 {
+        a.iter()
+            .zip(m.iter().zip(&at.z))
+            .map(|(a, (z, c))| a * (z - c))
+            .sum()
+    };
+    let scale = at.f.abs().max(f64::MIN_POSITIVE);
+    let mut best: Option<(usize, f64)> = None;
+    for (k, (_, z)) in moves.iter().enumerate() {
+        let passes = l
+            .ratios
+            .iter()
+            .zip(&g.ratio_grads)
+            .all(|(r, a)| r + dot(a, z) <= 1.0);
+        if !passes {
+            continue;
+        }
+        let f = g
+            .cases
+            .iter()
+            .zip(&g.case_grads)
+            .map(|(f, a)| f + dot(a, z))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let gain = (at.f - f) / scale;
+        if best.is_none_or(|(_, b)| gain > b) {
+            best = Some((k, gain));
+        }
+    }
+    let (k, gain) = best?;
+    Some(Stationarity {
+        step,
+        moves: moves.len(),
+        best_gain: gain,
+        best_move: moves[k].0.clone(),
+        stationary: gain <= STATIONARY_GAIN,
+        polls: 0,
+    })
 }
 
 /// Polls the moves of [`Stationarity`] around `at` (their evaluations join `ev`, so a

@@ -200,7 +200,7 @@ impl ModelSearch {
 
     /// The scaled point of slip loads `loads`, clamped into the box (least squares on the
     /// space's basis: exact for a free space).
-    fn z_of(space: &DesignSpace, loads: &[f64]) -> Option<Vec<f64>> {
+    pub(super) fn z_of(space: &DesignSpace, loads: &[f64]) -> Option<Vec<f64>> {
         let mut z = space.least_squares_point(loads)?;
         if z.iter().any(|v| !v.is_finite()) {
             return None;
@@ -656,7 +656,7 @@ impl ModelSearch {
     /// is finite): the fraction t of the step at which the first ratio, linear between
     /// the centre and p, reaches 1 − [`LIMIT_MARGIN`], kept within [0.1, 0.9]. `None`
     /// when p met the limits, collapsed, or carries no ratios.
-    fn back_to_limit(c: &Point, p: &Point) -> Option<f64> {
+    pub(super) fn back_to_limit(c: &Point, p: &Point) -> Option<f64> {
         let (lc, lp) = (c.limits.as_ref()?, p.limits.as_ref()?);
         if p.f.is_finite() || !lp.objective.is_finite() || lc.ratios.len() != lp.ratios.len() {
             return None;

@@ -24,6 +24,10 @@ use crate::integrator::state::EppState;
 use crate::plan::{ContactRole, Plan};
 use crate::response::{Peaks, Sensitivity};
 use nalgebra::DMatrix;
+use std::collections::HashMap;
+
+/// Most stick/slip patterns whose factor is kept (past it the cache starts again).
+const MAX_PATTERNS: usize = 4096;
 
 /// The tangent state of a run, one column per damper.
 pub(super) struct Tangent {
@@ -38,25 +42,31 @@ pub(super) struct Tangent {
     fixed: Vec<bool>,
     /// The floor of each damper.
     floors: Vec<usize>,
-    /// ∂u, ∂v, ∂a, column j at `j * n`.
-    du: Vec<f64>,
-    dv: Vec<f64>,
-    da: Vec<f64>,
-    /// ∂ũ, ∂ṽ, ∂a_free, and the weighted predictors (2n per column).
-    dut: Vec<f64>,
-    dvt: Vec<f64>,
-    daf: Vec<f64>,
-    dz: Vec<f64>,
-    /// Per contact and column (`c * p + j`): the EPP element's state and predictors, the
-    /// free slip rate, the forces of the step and of the step before.
+    /// ∂u, ∂v, ∂a (n × p, column j for damper j).
+    du: DMatrix<f64>,
+    dv: DMatrix<f64>,
+    da: DMatrix<f64>,
+    /// ∂ũ, ∂ṽ, ∂a_free (n × p), and the weighted predictors (2n × p).
+    dut: DMatrix<f64>,
+    dvt: DMatrix<f64>,
+    daf: DMatrix<f64>,
+    dz: DMatrix<f64>,
+    /// Per contact and column (`c * p + j`): the EPP element's state and predictors.
     depp: Vec<EppState>,
     dpred: Vec<EppPred>,
-    dwfree: Vec<f64>,
-    df: Vec<f64>,
-    df_old: Vec<f64>,
-    /// The free set of the last factorisation of W_FF, and the factor.
-    free: Vec<bool>,
-    chol: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+    /// ∂w_free, ∂F of the step and of the step before, and W ∂F (nc × p).
+    dwfree: DMatrix<f64>,
+    df: DMatrix<f64>,
+    df_old: DMatrix<f64>,
+    wdf: DMatrix<f64>,
+    /// The step's stick/slip pattern: each contact stuck, and the stuck ones.
+    is_free: Vec<bool>,
+    free_idx: Vec<usize>,
+    /// W_FF's Cholesky factor L (row-major, lower) per pattern met (`None`: W_FF
+    /// singular).
+    patterns: HashMap<Vec<bool>, Option<Vec<f64>>>,
+    /// Right-hand sides of the stuck forces, column-major.
+    rhs: Vec<f64>,
     /// Peak tangents, `k * p + j` for storey or floor k.
     peak_drift: Vec<f64>,
     peak_displacement: Vec<f64>,
@@ -90,20 +100,23 @@ impl Tangent {
             param,
             fixed: plan.contacts.iter().map(|c| c.lower == c.upper).collect(),
             floors,
-            du: vec![0.0; n * p],
-            dv: vec![0.0; n * p],
-            da: vec![0.0; n * p],
-            dut: vec![0.0; n * p],
-            dvt: vec![0.0; n * p],
-            daf: vec![0.0; n * p],
-            dz: vec![0.0; 2 * n],
+            du: DMatrix::zeros(n, p),
+            dv: DMatrix::zeros(n, p),
+            da: DMatrix::zeros(n, p),
+            dut: DMatrix::zeros(n, p),
+            dvt: DMatrix::zeros(n, p),
+            daf: DMatrix::zeros(n, p),
+            dz: DMatrix::zeros(2 * n, p),
             depp: vec![EppState::default(); nc * p],
             dpred: vec![EppPred::default(); nc * p],
-            dwfree: vec![0.0; nc * p],
-            df: vec![0.0; nc * p],
-            df_old: vec![0.0; nc * p],
-            free: Vec::new(),
-            chol: None,
+            dwfree: DMatrix::zeros(nc, p),
+            df: DMatrix::zeros(nc, p),
+            df_old: DMatrix::zeros(nc, p),
+            wdf: DMatrix::zeros(nc, p),
+            is_free: vec![false; nc],
+            free_idx: Vec::with_capacity(nc),
+            patterns: HashMap::new(),
+            rhs: Vec::new(),
             peak_drift: vec![0.0; nf * p],
             peak_displacement: vec![0.0; nf * p],
             peak_acceleration: vec![0.0; nf * p],
@@ -122,88 +135,89 @@ impl Tangent {
         status: impl Fn(usize) -> Bound,
         rate: &[f64],
     ) {
-        let (n, nc, p, alpha) = (self.n, self.nc, self.p, self.alpha);
+        let (n, p, alpha) = (self.n, self.p, self.alpha);
         if p == 0 {
             return;
         }
-        for idx in 0..n * p {
-            let (u, v, a) = (self.du[idx], self.dv[idx], self.da[idx]);
-            self.dut[idx] = u + k.dt * v + k.c_u * a;
-            self.dvt[idx] = v + k.c_v * a;
+        {
+            let (du, dv, da) = (self.du.as_slice(), self.dv.as_slice(), self.da.as_slice());
+            let (dut, dvt) = (self.dut.as_mut_slice(), self.dvt.as_mut_slice());
+            for i in 0..n * p {
+                dut[i] = du[i] + k.dt * dv[i] + k.c_u * da[i];
+                dvt[i] = dv[i] + k.c_v * da[i];
+            }
         }
-        let q = ops.q.as_slice();
-        let g = ops.g.as_slice();
+        let x = 1.0 + alpha;
+        for j in 0..p {
+            for i in 0..n {
+                self.dz[(i, j)] = x * self.dut[(i, j)] - alpha * self.du[(i, j)];
+                self.dz[(n + i, j)] = x * self.dvt[(i, j)] - alpha * self.dv[(i, j)];
+            }
+        }
+        // ∂a_free = Q ∂z (+ the HHT memory of the forces)
+        self.daf.gemm(1.0, &ops.q, &self.dz, 0.0);
+        if alpha != 0.0 {
+            self.daf
+                .gemm(alpha / (1.0 + alpha), &ops.g, &self.df_old, 1.0);
+        }
         for j in 0..p {
             let col = j * n..(j + 1) * n;
-            for i in 0..n {
-                let (c, x) = (col.start + i, 1.0 + alpha);
-                self.dz[i] = x * self.dut[c] - alpha * self.du[c];
-                self.dz[n + i] = x * self.dvt[c] - alpha * self.dv[c];
-            }
-            let daf = &mut self.daf[col.clone()];
-            daf.fill(0.0);
-            for (m, &zm) in self.dz.iter().enumerate() {
-                if zm != 0.0 {
-                    for (d, qv) in daf.iter_mut().zip(&q[m * n..(m + 1) * n]) {
-                        *d += qv * zm;
-                    }
-                }
-            }
-            if alpha != 0.0 {
-                let w = alpha / (1.0 + alpha);
-                for c in 0..nc {
-                    let f = self.df_old[c * p + j];
-                    if f != 0.0 {
-                        for (d, gv) in daf.iter_mut().zip(&g[c * n..(c + 1) * n]) {
-                            *d += w * f * gv;
-                        }
-                    }
-                }
-            }
             for (c, l) in links.iter().enumerate() {
                 let (w, pred) = l.free_slip_rate(
                     k,
                     self.depp[c * p + j],
                     (
-                        &self.du[col.clone()],
-                        &self.dut[col.clone()],
-                        &self.dvt[col.clone()],
+                        &self.du.as_slice()[col.clone()],
+                        &self.dut.as_slice()[col.clone()],
+                        &self.dvt.as_slice()[col.clone()],
                     ),
-                    &self.daf[col.clone()],
+                    &self.daf.as_slice()[col.clone()],
                 );
-                self.dwfree[c * p + j] = w;
+                self.dwfree[(c, j)] = w;
                 self.dpred[c * p + j] = pred;
             }
         }
         self.forces(ops, &status, rate);
-        let wm = ops.w.as_slice();
-        for j in 0..p {
-            let col = j * n..(j + 1) * n;
-            for c in 0..nc {
-                let f = self.df[c * p + j];
-                if f != 0.0 {
-                    for (d, gv) in self.daf[col.clone()].iter_mut().zip(&g[c * n..(c + 1) * n]) {
-                        *d -= f * gv;
-                    }
-                }
+        // ∂a = ∂a_free − G ∂F, then the Newmark update
+        self.daf.gemm(-1.0, &ops.g, &self.df, 1.0);
+        {
+            let (dut, dvt, daf) = (
+                self.dut.as_slice(),
+                self.dvt.as_slice(),
+                self.daf.as_slice(),
+            );
+            let (du, dv, da) = (
+                self.du.as_mut_slice(),
+                self.dv.as_mut_slice(),
+                self.da.as_mut_slice(),
+            );
+            for i in 0..n * p {
+                da[i] = daf[i];
+                du[i] = dut[i] + k.bdt2 * daf[i];
+                dv[i] = dvt[i] + k.gdt * daf[i];
             }
-            for i in col.clone() {
-                let a = self.daf[i];
-                self.da[i] = a;
-                self.du[i] = self.dut[i] + k.bdt2 * a;
-                self.dv[i] = self.dvt[i] + k.gdt * a;
+        }
+        // a sliding EPP element's slip moves with ∂w = ∂w_free − W ∂F; a stuck one's stays
+        // zero (W_FF ∂F_F + W_FA ∂F_A = ∂w_free,F)
+        let sliding_epp = links
+            .iter()
+            .enumerate()
+            .any(|(c, l)| l.epp && !self.is_free[c]);
+        if sliding_epp {
+            self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
+        }
+        for (c, l) in links.iter().enumerate() {
+            if !l.epp {
+                continue;
             }
-            for (c, l) in links.iter().enumerate() {
-                if !l.epp {
-                    continue;
-                }
-                let mut wf = 0.0;
-                for m in 0..nc {
-                    wf += wm[c * nc + m] * self.df[m * p + j];
-                }
-                let dw = self.dwfree[c * p + j] - wf;
+            for j in 0..p {
+                let dw = if self.is_free[c] {
+                    0.0
+                } else {
+                    self.dwfree[(c, j)] - self.wdf[(c, j)]
+                };
                 let pred = self.dpred[c * p + j];
-                let (uf, vf) = (self.du[col.start + l.floor], self.dv[col.start + l.floor]);
+                let (uf, vf) = (self.du[(l.floor, j)], self.dv[(l.floor, j)]);
                 self.depp[c * p + j] = if l.algebraic {
                     l.algebraic_update(k, (pred.base, dw), uf, vf).0
                 } else {
@@ -214,53 +228,91 @@ impl Tangent {
         std::mem::swap(&mut self.df, &mut self.df_old);
     }
 
-    /// The forces' tangent of the step into `df` (see the module doc).
+    /// The forces' tangent of the step into `df` (see the module doc): a sliding
+    /// damper's moves with its bound, a yielding storey's not at all, the stuck ones solve
+    /// W_FF ∂F_F = ∂w_free,F − W_FA ∂F_A with W_FF's Cholesky factor, kept per stick/slip
+    /// pattern (a run visits few patterns, and returns to them).
     fn forces(&mut self, ops: &Operators, status: &impl Fn(usize) -> Bound, rate: &[f64]) {
-        let (nc, p) = (self.nc, self.p);
-        let mut free = vec![false; nc];
-        for c in 0..nc {
+        let p = self.p;
+        self.free_idx.clear();
+        self.df.fill(0.0);
+        let mut any_sliding = false;
+        for (c, &rate_c) in rate.iter().enumerate().take(self.nc) {
             let side = match status(c) {
                 Bound::Free => {
-                    free[c] = true;
-                    0.0
+                    self.is_free[c] = true;
+                    self.free_idx.push(c);
+                    continue;
                 }
-                _ if self.fixed[c] => rate[c].signum() * f64::from(rate[c] != 0.0),
+                _ if self.fixed[c] => rate_c.signum() * f64::from(rate_c != 0.0),
                 Bound::Lower => -1.0,
                 Bound::Upper => 1.0,
             };
-            let row = &mut self.df[c * p..(c + 1) * p];
-            row.fill(0.0);
+            self.is_free[c] = false;
             if let Some(q) = self.param[c] {
-                row[q] = side;
+                self.df[(c, q)] = side;
+                any_sliding |= side != 0.0;
             }
         }
-        let idx: Vec<usize> = (0..nc).filter(|&c| free[c]).collect();
-        if idx.is_empty() {
+        let m = self.free_idx.len();
+        if m == 0 {
             return;
         }
-        if free != self.free {
-            let wff = DMatrix::from_fn(idx.len(), idx.len(), |a, b| ops.w[(idx[a], idx[b])]);
-            self.chol = wff.cholesky();
-            self.free = free;
+        if self.patterns.len() > MAX_PATTERNS {
+            self.patterns.clear();
         }
-        let mut rhs = DMatrix::from_fn(idx.len(), p, |a, j| {
-            let c = idx[a];
-            let mut r = self.dwfree[c * p + j];
-            for m in 0..nc {
-                if !self.free[m] {
-                    r -= ops.w[(c, m)] * self.df[m * p + j];
-                }
-            }
-            r
-        });
+        if !self.patterns.contains_key(&self.is_free[..]) {
+            let idx = &self.free_idx;
+            let wff: Vec<f64> = (0..m * m)
+                .map(|e| ops.w[(idx[e / m], idx[e % m])])
+                .collect();
+            self.patterns
+                .insert(self.is_free.clone(), cholesky(&wff, m));
+        }
         // (W_FF is positive definite wherever the QP's solution is unique; a singular one
         // leaves the stuck forces' tangent at zero)
-        if let Some(ch) = &self.chol {
-            ch.solve_mut(&mut rhs);
-            for (a, &c) in idx.iter().enumerate() {
-                for j in 0..p {
-                    self.df[c * p + j] = rhs[(a, j)];
+        let Some(Some(l)) = self.patterns.get(&self.is_free[..]) else {
+            return;
+        };
+        if any_sliding {
+            self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
+        }
+        // right-hand sides row by row (m × p), solved by L Lᵀ in place
+        self.rhs.resize(m * p, 0.0);
+        for (a, &c) in self.free_idx.iter().enumerate() {
+            for j in 0..p {
+                let coupling = if any_sliding { self.wdf[(c, j)] } else { 0.0 };
+                self.rhs[a * p + j] = self.dwfree[(c, j)] - coupling;
+            }
+        }
+        let x = &mut self.rhs[..m * p];
+        for i in 0..m {
+            let (done, rest) = x.split_at_mut(i * p);
+            let row = &mut rest[..p];
+            for k in 0..i {
+                let lik = l[i * m + k];
+                for (r, v) in row.iter_mut().zip(&done[k * p..(k + 1) * p]) {
+                    *r -= lik * v;
                 }
+            }
+            let d = 1.0 / l[i * m + i];
+            row.iter_mut().for_each(|r| *r *= d);
+        }
+        for i in (0..m).rev() {
+            let (head, tail) = x.split_at_mut((i + 1) * p);
+            let row = &mut head[i * p..];
+            for k in i + 1..m {
+                let lki = l[k * m + i];
+                for (r, v) in row.iter_mut().zip(&tail[(k - i - 1) * p..(k - i) * p]) {
+                    *r -= lki * v;
+                }
+            }
+            let d = 1.0 / l[i * m + i];
+            row.iter_mut().for_each(|r| *r *= d);
+        }
+        for (a, &c) in self.free_idx.iter().enumerate() {
+            for j in 0..p {
+                self.df[(c, j)] = x[a * p + j];
             }
         }
     }
@@ -281,25 +333,31 @@ impl Tangent {
             let d = u[i] - below;
             if d.abs() > peaks.drift[i] {
                 for j in 0..p {
-                    let db = if i > 0 { self.du[j * n + i - 1] } else { 0.0 };
-                    self.peak_drift[i * p + j] = d.signum() * (self.du[j * n + i] - db);
+                    let db = if i > 0 {
+                        self.du.as_slice()[j * n + i - 1]
+                    } else {
+                        0.0
+                    };
+                    self.peak_drift[i * p + j] = d.signum() * (self.du.as_slice()[j * n + i] - db);
                 }
             }
             if u[i].abs() > peaks.displacement[i] {
                 for j in 0..p {
-                    self.peak_displacement[i * p + j] = u[i].signum() * self.du[j * n + i];
+                    self.peak_displacement[i * p + j] =
+                        u[i].signum() * self.du.as_slice()[j * n + i];
                 }
             }
             let acc = a[i] + ag;
             if acc.abs() > peaks.abs_acceleration[i] {
                 for j in 0..p {
-                    self.peak_acceleration[i * p + j] = acc.signum() * self.da[j * n + i];
+                    self.peak_acceleration[i * p + j] =
+                        acc.signum() * self.da.as_slice()[j * n + i];
                 }
             }
         }
         if shear.abs() > peaks.base_shear {
             for j in 0..p {
-                let col = &self.da[j * n..(j + 1) * n];
+                let col = &self.da.as_slice()[j * n..(j + 1) * n];
                 let d: f64 = mr.iter().zip(col).map(|(m, a)| m * a).sum();
                 self.peak_base_shear[j] = shear.signum() * d;
             }
@@ -317,8 +375,12 @@ impl Tangent {
                 let d = u[i] - if i > 0 { u[i - 1] } else { 0.0 };
                 (0..p)
                     .map(|j| {
-                        let db = if i > 0 { self.du[j * n + i - 1] } else { 0.0 };
-                        d.signum() * (self.du[j * n + i] - db)
+                        let db = if i > 0 {
+                            self.du.as_slice()[j * n + i - 1]
+                        } else {
+                            0.0
+                        };
+                        d.signum() * (self.du.as_slice()[j * n + i] - db)
                     })
                     .collect()
             })
@@ -332,4 +394,27 @@ impl Tangent {
             peak_base_shear: self.peak_base_shear,
         }
     }
+}
+
+/// The Cholesky factor L (row-major, lower triangle) of the symmetric m × m matrix `a`
+/// (row-major); `None` when it is not positive definite.
+fn cholesky(a: &[f64], m: usize) -> Option<Vec<f64>> {
+    let mut l = vec![0.0; m * m];
+    for i in 0..m {
+        for j in 0..=i {
+            let mut sum = a[i * m + j];
+            for k in 0..j {
+                sum -= l[i * m + k] * l[j * m + k];
+            }
+            if i == j {
+                if sum.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                    return None;
+                }
+                l[i * m + i] = sum.sqrt();
+            } else {
+                l[i * m + j] = sum / l[j * m + j];
+            }
+        }
+    }
+    Some(l)
 }
