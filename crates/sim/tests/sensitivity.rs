@@ -18,6 +18,17 @@ use slipload_sim::{Scene, SceneOverrides, simulate};
 /// dashpot (floors 1 and 3, the return mapping), massless with a brace dashpot (floor 2)
 /// and with mass (floor 4, a dissipator DOF); `method` its method object.
 fn scene(method: &str) -> Scene {
+    scene_with(method, ("2e5", "\"2000 kg\""))
+}
+
+/// The same frame with every damper massless on a brace without dashpot (every contact an
+/// algebraic elastic–perfectly plastic element: the tangent's lane loop).
+fn algebraic_scene(method: &str) -> Scene {
+    scene_with(method, ("0", "0"))
+}
+
+/// The frame with floor 2's brace dashpot and floor 4's damper mass as given.
+fn scene_with(method: &str, (dashpot, mass): (&str, &str)) -> Scene {
     let text = format!(
         r#"{{ "name": "sensitivity",
              "building": {{ "name": "four", "floor_masses": ["4e5 kg", "4e5 kg", "4e5 kg", "3e5 kg"],
@@ -26,9 +37,9 @@ fn scene(method: &str) -> Scene {
                            "damping": {{ "rayleigh": {{ "alpha": 0.3, "beta": 0.002 }} }},
                            "dissipators": [
                              {{ "floor": 1, "brace_stiffness": "3e8 N/m", "mass": 0, "slip_load": "300 kN" }},
-                             {{ "floor": 2, "brace_stiffness": "2.5e8 N/m", "mass": 0, "brace_damping": 2e5, "slip_load": "250 kN" }},
+                             {{ "floor": 2, "brace_stiffness": "2.5e8 N/m", "mass": 0, "brace_damping": {dashpot}, "slip_load": "250 kN" }},
                              {{ "floor": 3, "brace_stiffness": "2e8 N/m", "mass": 0, "slip_load": "200 kN" }},
-                             {{ "floor": 4, "brace_stiffness": "1.5e8 N/m", "mass": "2000 kg", "slip_load": "120 kN" }} ],
+                             {{ "floor": 4, "brace_stiffness": "1.5e8 N/m", "mass": {mass}, "slip_load": "120 kN" }} ],
                            "storey_yield": [ {{ "storey": 1, "yield_drift": "0.02 m", "post_yield_ratio": 0.1 }},
                                              {{ "storey": 2, "yield_drift": "0.018 m", "post_yield_ratio": 0.05 }} ] }},
              "excitation": {{ "synthetic": {{ "seed": 7, "duration": 12, "dt": 0.01, "pga_g": 0.4 }} }},
@@ -129,6 +140,14 @@ fn check(s: &Scene) {
 #[test]
 fn newmark_tangent_matches_central_differences() {
     check(&scene(r#"{ "name": "newmark", "dt": 0.005 }"#));
+}
+
+#[test]
+fn the_algebraic_lane_loop_matches_central_differences() {
+    check(&algebraic_scene(r#"{ "name": "newmark", "dt": 0.005 }"#));
+    check(&algebraic_scene(
+        r#"{ "name": "hht", "alpha": -0.1, "dt": 0.005 }"#,
+    ));
 }
 
 #[test]

@@ -3,6 +3,8 @@
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 #![allow(dead_code)] // each test binary uses its own subset of these helpers
 
+pub mod valley;
+
 use slipload_opt::store::folder::{FolderRequest, StudyFolder};
 use std::path::Path;
 

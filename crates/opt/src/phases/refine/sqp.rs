@@ -93,6 +93,19 @@ pub struct Sqp {
     /// B was started again at the present centre (see `next_iter`).
     #[serde(default)]
     pub reset: bool,
+    /// The radius the steps start with (after the ray search).
+    #[serde(default)]
+    pub first_radius: f64,
+    /// Starts again from a better centre ([`Sqp::shrink`]).
+    #[serde(default)]
+    pub restarts: usize,
+    /// The centre's value at the last start (+∞: none yet).
+    #[serde(default = "infinity")]
+    pub restarted_at: f64,
+}
+
+fn infinity() -> f64 {
+    f64::INFINITY
 }
 
 /// One solved step: s, the model's decrease over the scale, and the multipliers of the
@@ -119,6 +132,9 @@ impl Sqp {
             steps: 0,
             rejected: 0,
             reset: false,
+            first_radius: cfg.initial_radius * RADIUS_AFTER_RAY,
+            restarts: 0,
+            restarted_at: f64::INFINITY,
         }
     }
 
@@ -348,7 +364,8 @@ impl Refiner for Sqp {
         self.ray(space, ev)?;
         // the ray placed the overall scale; one floor against the others is the valley's
         // steep side, so the steps start at a third of the initial radius
-        self.radius *= RADIUS_AFTER_RAY;
+        self.radius = self.first_radius;
+        self.restarted_at = self.centre.f;
         Ok(())
     }
 
@@ -592,10 +609,22 @@ impl Sqp {
         self.update(&s, &y, &before);
     }
 
+    /// Sets the radius to `to`; below the tolerance the refiner starts again from its
+    /// centre with B = σI and the first radius when the centre improved since the last
+    /// start (across kinks B and the radius are what the steps failed on, not the
+    /// centre), and stops on the tolerance when it did not.
     fn shrink(&mut self, to: f64) {
         self.radius = to;
         if self.radius < self.tolerance {
-            self.stop = Some(StopReason::Tolerance);
+            if self.centre.f < self.restarted_at {
+                self.restarted_at = self.centre.f;
+                self.restarts += 1;
+                self.hessian.clear();
+                self.reset = false;
+                self.radius = self.first_radius;
+            } else {
+                self.stop = Some(StopReason::Tolerance);
+            }
         }
     }
 }

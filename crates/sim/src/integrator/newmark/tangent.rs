@@ -17,7 +17,7 @@
 //! raised (the same strict comparison as [`Peaks`]); the residual drift's is the last
 //! step's. The run starts from rest, which the slip loads do not change.
 
-use super::link::{EppPred, Link};
+use super::link::{EppPred, GROUND, Link};
 use super::operators::{Operators, StepConstants};
 use crate::friction::box_qp::Bound;
 use crate::integrator::state::EppState;
@@ -62,11 +62,12 @@ pub(super) struct Tangent {
     /// The step's stick/slip pattern: each contact stuck, and the stuck ones.
     is_free: Vec<bool>,
     free_idx: Vec<usize>,
-    /// W_FF's Cholesky factor L (row-major, lower) per pattern met (`None`: W_FF
+    /// W_FF⁻¹ (row-major) per pattern met, from its Cholesky factor (`None`: W_FF
     /// singular).
     patterns: HashMap<Vec<bool>, Option<Vec<f64>>>,
-    /// Right-hand sides of the stuck forces, column-major.
+    /// Right-hand sides of the stuck forces and their solution, row-major (m × p).
     rhs: Vec<f64>,
+    sol: Vec<f64>,
     /// Peak tangents, `k * p + j` for storey or floor k.
     peak_drift: Vec<f64>,
     peak_displacement: Vec<f64>,
@@ -117,6 +118,7 @@ impl Tangent {
             free_idx: Vec::with_capacity(nc),
             patterns: HashMap::new(),
             rhs: Vec::new(),
+            sol: Vec::new(),
             peak_drift: vec![0.0; nf * p],
             peak_displacement: vec![0.0; nf * p],
             peak_acceleration: vec![0.0; nf * p],
@@ -160,7 +162,11 @@ impl Tangent {
             self.daf
                 .gemm(alpha / (1.0 + alpha), &ops.g, &self.df_old, 1.0);
         }
-        for j in 0..p {
+        let lanes = links.iter().all(|l| l.epp && l.algebraic);
+        if lanes {
+            self.algebraic_free_rates(links, k);
+        }
+        for j in (0..p).filter(|_| !lanes) {
             let col = j * n..(j + 1) * n;
             for (c, l) in links.iter().enumerate() {
                 let (w, pred) = l.free_slip_rate(
@@ -206,6 +212,11 @@ impl Tangent {
         if sliding_epp {
             self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
         }
+        if lanes {
+            self.algebraic_updates(links);
+            std::mem::swap(&mut self.df, &mut self.df_old);
+            return;
+        }
         for (c, l) in links.iter().enumerate() {
             if !l.epp {
                 continue;
@@ -226,6 +237,53 @@ impl Tangent {
             }
         }
         std::mem::swap(&mut self.df, &mut self.df_old);
+    }
+
+    /// The free slip rates' tangent when every contact is an algebraic EPP element (a
+    /// chain of massless dampers on braces without dashpots and yielding storeys: the
+    /// studies' frames), all dampers' columns of a contact at once: the linear map of
+    /// [`Link::free_slip_rate`]'s algebraic branch, (∂ũ_floor − ∂ũ_below + ∂u′ − ∂u_floor)
+    /// k′/κ + γΔt (∂a_floor − ∂a_below), with ∂u′ the condensed DOF's tangent (`depp[..].u`)
+    /// and ∂u′ − ∂u_floor kept as the step's base.
+    fn algebraic_free_rates(&mut self, links: &[Link], k: &StepConstants) {
+        let (n, p) = (self.n, self.p);
+        let (du, dut, daf) = (self.du.as_slice(), self.dut.as_slice(), self.daf.as_slice());
+        for (c, l) in links.iter().enumerate() {
+            let (f, kk) = (l.floor, l.k_over_kappa);
+            for j in 0..p {
+                let col = j * n;
+                let (ub, ab) = if l.other == GROUND {
+                    (0.0, 0.0)
+                } else {
+                    (dut[col + l.other], daf[col + l.other])
+                };
+                let base = self.depp[c * p + j].u - du[col + f];
+                self.dpred[c * p + j].base = base;
+                self.dwfree[(c, j)] = (dut[col + f] - ub + base) * kk + k.gdt * (daf[col + f] - ab);
+            }
+        }
+    }
+
+    /// The EPP elements' tangent after the step when every contact is algebraic: the
+    /// linear map of [`Link::algebraic_update`], ∂u′ = ∂u_floor + base − ∂w k′⁻¹κ with
+    /// ∂w = 0 for a stuck element (its slip rate stays zero) and ∂w_free − W ∂F for a
+    /// sliding one.
+    fn algebraic_updates(&mut self, links: &[Link]) {
+        let (n, p) = (self.n, self.p);
+        let du = self.du.as_slice();
+        for (c, l) in links.iter().enumerate() {
+            let free = self.is_free[c];
+            let inv = 1.0 / l.k_over_kappa;
+            for j in 0..p {
+                let dw = if free {
+                    0.0
+                } else {
+                    self.dwfree[(c, j)] - self.wdf[(c, j)]
+                };
+                let e = &mut self.depp[c * p + j];
+                e.u = du[j * n + l.floor] + self.dpred[c * p + j].base - dw * inv;
+            }
+        }
     }
 
     /// The forces' tangent of the step into `df` (see the module doc): a sliding
@@ -266,18 +324,17 @@ impl Tangent {
             let wff: Vec<f64> = (0..m * m)
                 .map(|e| ops.w[(idx[e / m], idx[e % m])])
                 .collect();
-            self.patterns
-                .insert(self.is_free.clone(), cholesky(&wff, m));
+            self.patterns.insert(self.is_free.clone(), inverse(&wff, m));
         }
         // (W_FF is positive definite wherever the QP's solution is unique; a singular one
         // leaves the stuck forces' tangent at zero)
-        let Some(Some(l)) = self.patterns.get(&self.is_free[..]) else {
+        let Some(Some(inv)) = self.patterns.get(&self.is_free[..]) else {
             return;
         };
         if any_sliding {
             self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
         }
-        // right-hand sides row by row (m × p), solved by L Lᵀ in place
+        // right-hand sides row by row (m × p)
         self.rhs.resize(m * p, 0.0);
         for (a, &c) in self.free_idx.iter().enumerate() {
             for j in 0..p {
@@ -285,31 +342,19 @@ impl Tangent {
                 self.rhs[a * p + j] = self.dwfree[(c, j)] - coupling;
             }
         }
-        let x = &mut self.rhs[..m * p];
-        for i in 0..m {
-            let (done, rest) = x.split_at_mut(i * p);
-            let row = &mut rest[..p];
-            for k in 0..i {
-                let lik = l[i * m + k];
-                for (r, v) in row.iter_mut().zip(&done[k * p..(k + 1) * p]) {
-                    *r -= lik * v;
+        // ∂F_F = W_FF⁻¹ (right-hand sides), row by row over the dampers' columns
+        self.sol.clear();
+        self.sol.resize(m * p, 0.0);
+        for a in 0..m {
+            let out = &mut self.sol[a * p..(a + 1) * p];
+            for b in 0..m {
+                let w = inv[a * m + b];
+                for (o, r) in out.iter_mut().zip(&self.rhs[b * p..(b + 1) * p]) {
+                    *o += w * r;
                 }
             }
-            let d = 1.0 / l[i * m + i];
-            row.iter_mut().for_each(|r| *r *= d);
         }
-        for i in (0..m).rev() {
-            let (head, tail) = x.split_at_mut((i + 1) * p);
-            let row = &mut head[i * p..];
-            for k in i + 1..m {
-                let lki = l[k * m + i];
-                for (r, v) in row.iter_mut().zip(&tail[(k - i - 1) * p..(k - i) * p]) {
-                    *r -= lki * v;
-                }
-            }
-            let d = 1.0 / l[i * m + i];
-            row.iter_mut().for_each(|r| *r *= d);
-        }
+        let x = &self.sol;
         for (a, &c) in self.free_idx.iter().enumerate() {
             for j in 0..p {
                 self.df[(c, j)] = x[a * p + j];
@@ -394,6 +439,32 @@ impl Tangent {
             peak_base_shear: self.peak_base_shear,
         }
     }
+}
+
+/// The inverse (row-major) of the symmetric positive definite m × m matrix `a`
+/// (row-major), by its Cholesky factor; `None` when it is not positive definite.
+fn inverse(a: &[f64], m: usize) -> Option<Vec<f64>> {
+    let l = cholesky(a, m)?;
+    let mut inv = vec![0.0; m * m];
+    for e in 0..m {
+        // L y = e_e, then Lᵀ x = y
+        let mut y = vec![0.0; m];
+        for i in 0..m {
+            let mut v = if i == e { 1.0 } else { 0.0 };
+            for k in 0..i {
+                v -= l[i * m + k] * y[k];
+            }
+            y[i] = v / l[i * m + i];
+        }
+        for i in (0..m).rev() {
+            let mut v = y[i];
+            for k in i + 1..m {
+                v -= l[k * m + i] * inv[k * m + e];
+            }
+            inv[i * m + e] = v / l[i * m + i];
+        }
+    }
+    Some(inv)
 }
 
 /// The Cholesky factor L (row-major, lower triangle) of the symmetric m × m matrix `a`
