@@ -422,3 +422,31 @@ pub(crate) fn clamp01(z: &mut [f64]) {
         *v = v.clamp(0.0, 1.0);
     }
 }
+
+/// Where a search along the building's storey-shear profile α·profile starts, for a start
+/// whose slip loads are `own`: α₀ at the start's total slip load, or (a start without
+/// slip load, which has no direction) half the largest α the box holds; `None` when the
+/// start already has the profile's shape (cosine above 0.999) or the profile is empty.
+pub(crate) fn profile_start(space: &DesignSpace, own: &[f64]) -> Option<f64> {
+    let profile = &space.profile;
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let dot: f64 = own.iter().zip(profile).map(|(a, b)| a * b).sum();
+    let cos = dot / (norm(own) * norm(profile));
+    let psum: f64 = profile.iter().sum();
+    if psum.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || cos > 0.999 {
+        return None;
+    }
+    let total: f64 = own.iter().sum();
+    let alpha0 = if total > 0.0 {
+        total / psum
+    } else {
+        let upper = space.slip_loads(&vec![1.0; space.dim()]);
+        0.5 * profile
+            .iter()
+            .zip(&upper)
+            .filter(|(p, _)| **p > 0.0)
+            .map(|(p, u)| u / p)
+            .fold(f64::INFINITY, f64::min)
+    };
+    (alpha0 > 0.0 && alpha0.is_finite()).then_some(alpha0)
+}

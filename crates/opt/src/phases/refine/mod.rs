@@ -187,26 +187,7 @@ pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<S
     if !at.f.is_finite() {
         return None;
     }
-    let d = space.dim();
-    let mut moves: Vec<(String, Vec<f64>)> = Vec::new();
-    for i in 0..d {
-        for (sign, name) in [(1.0, "+"), (-1.0, "-")] {
-            let mut z = at.z.clone();
-            z[i] = (z[i] + sign * step).clamp(0.0, 1.0);
-            if z != at.z && space.is_feasible(&z) {
-                moves.push((format!("{} {name}", space.names[i]), z));
-            }
-        }
-    }
-    let loads = space.slip_loads(&at.z);
-    for (factor, name) in [(1.0 + step, "profile +"), (1.0 - step, "profile -")] {
-        let scaled: Vec<f64> = loads.iter().map(|v| v * factor).collect();
-        if let Some(z) = space.point_of(&scaled)
-            && z != at.z
-        {
-            moves.push((name.to_string(), z));
-        }
-    }
+    let moves = stationarity_moves(space, &at.z, step);
     let dot = |a: &[f64], m: &[f64]| -> f64 {
         a.iter()
             .zip(m.iter().zip(&at.z))
@@ -258,26 +239,7 @@ pub fn post_check(
     if !at.f.is_finite() {
         return Ok(None);
     }
-    let d = space.dim();
-    let mut moves: Vec<(String, Vec<f64>)> = Vec::new();
-    for i in 0..d {
-        for (sign, name) in [(1.0, "+"), (-1.0, "-")] {
-            let mut z = at.z.clone();
-            z[i] = (z[i] + sign * step).clamp(0.0, 1.0);
-            if z != at.z && space.is_feasible(&z) {
-                moves.push((format!("{} {name}", space.names[i]), z));
-            }
-        }
-    }
-    let loads = space.slip_loads(&at.z);
-    for (factor, name) in [(1.0 + step, "profile +"), (1.0 - step, "profile -")] {
-        let scaled: Vec<f64> = loads.iter().map(|l| l * factor).collect();
-        if let Some(z) = space.point_of(&scaled)
-            && z != at.z
-        {
-            moves.push((name.to_string(), z));
-        }
-    }
+    let moves = stationarity_moves(space, &at.z, step);
     if moves.is_empty() {
         return Ok(None);
     }
@@ -298,4 +260,29 @@ pub fn post_check(
         stationary: gain <= STATIONARY_GAIN,
         polls: 1,
     }))
+}
+
+/// The moves of the post-checks around `z`: every single-variable move ±`step` that stays
+/// in the space, and the profile moves (every slip load × (1 ± `step`)), each named.
+fn stationarity_moves(space: &DesignSpace, z: &[f64], step: f64) -> Vec<(String, Vec<f64>)> {
+    let mut moves: Vec<(String, Vec<f64>)> = Vec::new();
+    for i in 0..space.dim() {
+        for (sign, name) in [(1.0, "+"), (-1.0, "-")] {
+            let mut m = z.to_vec();
+            m[i] = (m[i] + sign * step).clamp(0.0, 1.0);
+            if m != z && space.is_feasible(&m) {
+                moves.push((format!("{} {name}", space.names[i]), m));
+            }
+        }
+    }
+    let loads = space.slip_loads(z);
+    for (factor, name) in [(1.0 + step, "profile +"), (1.0 - step, "profile -")] {
+        let scaled: Vec<f64> = loads.iter().map(|v| v * factor).collect();
+        if let Some(m) = space.point_of(&scaled)
+            && m != z
+        {
+            moves.push((name.to_string(), m));
+        }
+    }
+    moves
 }

@@ -69,7 +69,8 @@
 //! [`StopReason::NoProgress`]).
 
 use super::evaluations::{
-    Evaluations, Point, Refiner, STATIONARY_GAIN, StopReason, clamp01, dist_inf, trust_step,
+    Evaluations, Point, Refiner, STATIONARY_GAIN, StopReason, clamp01, dist_inf, profile_start,
+    trust_step,
 };
 use crate::base::error::OptError;
 use crate::base::qp;
@@ -882,31 +883,10 @@ impl Refiner for ModelSearch {
         // the start's own profile, then the building's storey-shear profile at the same
         // total slip load (or, from a start without slip load, at half the box)
         let own = space.slip_loads(&start.z);
-        let total: f64 = own.iter().sum();
         self.line_search(space, ev, &own, 1.0)?;
-        let profile = &space.profile;
-        let cos = {
-            let (a, b) = (
-                DVector::from_column_slice(&own),
-                DVector::from_column_slice(profile),
-            );
-            a.dot(&b) / (a.norm() * b.norm())
-        };
-        // (a start without slip load has no direction: cos is NaN)
-        if cos.is_nan() || cos <= 0.999 {
-            let upper = space.slip_loads(&vec![1.0; space.dim()]);
-            let full = profile
-                .iter()
-                .zip(&upper)
-                .filter(|(p, _)| **p > 0.0)
-                .map(|(p, u)| u / p)
-                .fold(f64::INFINITY, f64::min);
-            let alpha0 = if total > 0.0 {
-                total / profile.iter().sum::<f64>()
-            } else {
-                0.5 * full
-            };
-            self.line_search(space, ev, profile, alpha0)?;
+        if let Some(alpha0) = profile_start(space, &own) {
+            let profile = space.profile.clone();
+            self.line_search(space, ev, &profile, alpha0)?;
         }
         if self.room(ev) == 0 {
             self.stop = Some(StopReason::Budget);

@@ -35,7 +35,9 @@
 //! ([`StopReason::Budget`]), or when a design carries no derivatives (a collapse:
 //! [`StopReason::NoProgress`]). Every evaluation is counted, and no batch passes the budget.
 
-use super::evaluations::{Evaluations, Gradient, Point, Refiner, StopReason, clamp01, dist_inf};
+use super::evaluations::{
+    Evaluations, Gradient, Point, Refiner, StopReason, clamp01, dist_inf, profile_start,
+};
 use super::model::{LIMIT_MARGIN, ModelSearch};
 use crate::base::error::OptError;
 use crate::base::qp;
@@ -481,30 +483,9 @@ impl Sqp {
     fn ray(&mut self, space: &DesignSpace, ev: &mut Evaluations<'_>) -> Result<(), OptError> {
         let profile = &space.profile;
         let own = space.slip_loads(&self.centre.z);
-        let cos = {
-            let dot: f64 = own.iter().zip(profile).map(|(a, b)| a * b).sum();
-            let n = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-            dot / (n(&own) * n(profile))
-        };
-        let psum: f64 = profile.iter().sum();
-        if psum.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || cos > 0.999 {
+        let Some(alpha0) = profile_start(space, &own) else {
             return Ok(());
-        }
-        let total: f64 = own.iter().sum();
-        let alpha0 = if total > 0.0 {
-            total / psum
-        } else {
-            let upper = space.slip_loads(&vec![1.0; space.dim()]);
-            0.5 * profile
-                .iter()
-                .zip(&upper)
-                .filter(|(p, _)| **p > 0.0)
-                .map(|(p, u)| u / p)
-                .fold(f64::INFINITY, f64::min)
         };
-        if !(alpha0 > 0.0 && alpha0.is_finite()) {
-            return Ok(());
-        }
         let at = |la: f64| {
             ModelSearch::z_of(
                 space,
