@@ -140,4 +140,19 @@ fn a_study_the_sqp_refiner_cannot_differentiate_is_refused_naming_the_field() {
     })
     .unwrap_err();
     assert!(e.contains("fidelity.method") && e.contains("exact"), "{e}");
+    // a refiner named on the command line is held to the same
+    let st = study(4, |v| {
+        v["refine"]["method"] = "model".into();
+        v["objective"]["terms"][0]["metric"] = "energy_ratio".into();
+    })
+    .unwrap();
+    let e = st
+        .check_refiner(slipload_opt::model::config::RefineMethod::Sqp)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("objective.terms[0].metric"), "{e}");
+    assert!(
+        st.check_refiner(slipload_opt::model::config::RefineMethod::Model)
+            .is_ok()
+    );
 }

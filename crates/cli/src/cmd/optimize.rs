@@ -24,7 +24,7 @@ pub struct OptimizeArgs {
     /// finished sweep in it is reused, journalled refinement points are replayed
     #[arg(long, default_value = "out/optimize")]
     pub out: PathBuf,
-    /// Refiner: model, trust-region, nelder-mead or random (default: the study's)
+    /// Refiner: model, sqp, trust-region, nelder-mead or random (default: the study's)
     #[arg(long)]
     pub refine: Option<RefineMethod>,
     /// Also draw the objective map over two floors' slip loads (the others at the

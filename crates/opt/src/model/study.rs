@@ -838,6 +838,32 @@ impl Study {
         )
     }
 
+    /// Whether `method` can refine this study: the `sqp` refiner needs an objective and
+    /// limits it can differentiate and a sweep run by a method with sensitivities (a
+    /// refiner named on the command line is held to what the study file's would be).
+    pub fn check_refiner(
+        &self,
+        method: crate::model::config::RefineMethod,
+    ) -> Result<(), OptError> {
+        if method != crate::model::config::RefineMethod::Sqp {
+            return Ok(());
+        }
+        check_sqp(&self.config, &self.objective, &self.checks, &self.path)?;
+        let m = self.sweep_method.method;
+        if matches!(m, MethodName::Exact | MethodName::Delacruz) {
+            return Err(OptError::invalid(
+                &self.path,
+                "fidelity.method",
+                format!(
+                    "the sweep runs {} ({}), which computes no sensitivities; the sqp refiner needs newmark, hht or bilinear: name one in fidelity.method",
+                    m.as_str(),
+                    self.sweep_method.reason
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The check of one design's runs against every limit at every property case.
     pub fn check_design(&self, rows: &[RecordMetrics]) -> Result<DesignCheck, OptError> {
         let suites: Vec<(&str, Range<usize>)> = self
