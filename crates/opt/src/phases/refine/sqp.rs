@@ -21,19 +21,30 @@
 //! centre and at every trial, scaled by yᵀy/sᵀy at the first update; before it, B = σI
 //! with σ chosen so that the first step is a steepest-descent step to the radius.
 //!
+//! **First the profile.** From a start without the building's storey-shear profile's
+//! shape, the refiner first searches the ray α·profile from the start's total slip load:
+//! each point's derivative along the ray tells the side of the minimum, the step doubles
+//! until a neighbour brackets it, and the cubic through the bracket's values and
+//! derivatives places it (at most [`RAY_EVALUATIONS`] designs; consecutive points update
+//! B). The steps then start at a third of the study's `initial_radius`.
+//!
 //! **Trust region.** The trial c + s is accepted when it meets the limits and achieves at
 //! least 0.1 of the model's predicted decrease; the radius doubles (to at most 0.5) when
-//! the step reached it and achieved 0.75, and falls to half the step when it achieved less
-//! than 0.25. A trial that misses a limit is followed back along the step to where the
+//! the step reached it and achieved 0.75, and halves when it achieved less than 0.25 or
+//! was rejected. A trial that misses a limit is followed back along the step to where the
 //! limits' ratios, linear between the centre and the trial, reach the margin (one
 //! evaluation), as the `model` refiner does. Values are divided by the start's objective,
 //! so the QP and B are of order one whatever the objective's units.
 //!
-//! **Stops.** When the model predicts no decrease (the centre satisfies the first-order
-//! conditions of the linearised problem: [`StopReason::Tolerance`]), when the radius
-//! falls below the tolerance (the same), when the budget is spent
-//! ([`StopReason::Budget`]), or when a design carries no derivatives (a collapse:
-//! [`StopReason::NoProgress`]). Every evaluation is counted, and no batch passes the budget.
+//! **Stops.** When the model predicts no decrease the centre satisfies the first-order
+//! conditions of the linearised problem — unless B was learnt across kinks (a jump of the
+//! gradient reads as a large curvature), so B starts again once per centre before the
+//! refiner stops ([`StopReason::Tolerance`]). When the radius falls below the tolerance
+//! the refiner starts again from its centre with the first B and radius if the centre
+//! improved since the last start, and stops on the tolerance if it did not. It stops too
+//! when the budget is spent ([`StopReason::Budget`]) or a design carries no derivatives
+//! (a collapse: [`StopReason::NoProgress`]). Every evaluation is counted, and no batch
+//! passes the budget.
 
 use super::evaluations::{
     Evaluations, Gradient, Point, Refiner, StopReason, clamp01, dist_inf, profile_start,
@@ -98,7 +109,7 @@ pub struct Sqp {
     /// The radius the steps start with (after the ray search).
     #[serde(default)]
     pub first_radius: f64,
-    /// Starts again from a better centre ([`Sqp::shrink`]).
+    /// Starts again from a better centre (when the radius falls below the tolerance).
     #[serde(default)]
     pub restarts: usize,
     /// The centre's value at the last start (+∞: none yet).
