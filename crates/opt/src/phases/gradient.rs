@@ -21,7 +21,7 @@ const MOVE: f64 = 1e-6;
 
 /// The derivatives of the design `loads_n` (N per damper) whose runs are `rows` (`bare`:
 /// the bare frame's), with the ratios of its check when `limits`; `None` when a run
-/// carries no derivatives.
+/// carries no derivatives or one of them is not finite (a collapsed design's objective).
 pub fn gradient(
     study: &Study,
     rows: &[RecordMetrics],
@@ -73,9 +73,18 @@ pub fn gradient(
             .map(|i| (0..p).map(|q| basis[(q, i)] * d[q]).sum())
             .collect()
     };
-    Ok(Some(Gradient {
+    let g = Gradient {
         cases,
         case_grads: d_cases.iter().map(|d| to_z(d)).collect(),
         ratio_grads: d_ratios.iter().map(|d| to_z(d)).collect(),
-    }))
+    };
+    // a derivative that is not a number is none (a refiner then reads the design's value
+    // alone): never a NaN in a step
+    let finite = g.cases.iter().all(|v| v.is_finite())
+        && g.case_grads
+            .iter()
+            .chain(&g.ratio_grads)
+            .flatten()
+            .all(|v| v.is_finite());
+    Ok(finite.then_some(g))
 }
