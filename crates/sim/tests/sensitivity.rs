@@ -191,9 +191,19 @@ fn a_damper_at_zero_slip_load_has_its_one_sided_derivative() {
     (d.lower, d.upper) = (0.0, 0.0);
     let out = simulate(&s).unwrap();
     let sens = out.response.sensitivity.unwrap();
-    assert_eq!(sens.dampers, vec![0, 1, 2, 3], "the zero-load damper stays a column");
+    assert_eq!(
+        sens.dampers,
+        vec![0, 1, 2, 3],
+        "the zero-load damper stays a column"
+    );
     let mut moved = s.clone();
-    let d = moved.building.dissipators.iter_mut().flatten().nth(2).unwrap();
+    let d = moved
+        .building
+        .dissipators
+        .iter_mut()
+        .flatten()
+        .nth(2)
+        .unwrap();
     let delta = 1e-3;
     (d.lower, d.upper) = (-delta, delta);
     let hi = simulate(&moved).unwrap().response;
