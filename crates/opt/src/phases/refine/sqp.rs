@@ -99,10 +99,6 @@ pub struct Sqp {
     pub hessian: Vec<f64>,
     /// Why it stopped, once it has.
     pub stop: Option<StopReason>,
-    /// Steps taken and trials rejected.
-    pub steps: usize,
-    /// Trials rejected.
-    pub rejected: usize,
     /// B was started again at the present centre (see `next_iter`).
     #[serde(default)]
     pub reset: bool,
@@ -142,8 +138,6 @@ impl Sqp {
             scale: 1.0,
             hessian: Vec::new(),
             stop: None,
-            steps: 0,
-            rejected: 0,
             reset: false,
             first_radius: cfg.initial_radius * RADIUS_AFTER_RAY,
             restarts: 0,
@@ -184,7 +178,13 @@ impl Sqp {
     }
 
     /// The step of the minimax QP around the centre (see the module doc).
-    fn step(&self, space: &DesignSpace, g: &Gradient, ratios: &[f64]) -> Option<Step> {
+    fn step(
+        &self,
+        space: &DesignSpace,
+        g: &Gradient,
+        ratios: &[f64],
+        b: &DMatrix<f64>,
+    ) -> Option<Step> {
         let c = &self.centre.z;
         let d = c.len();
         let delta = self.radius;
@@ -195,15 +195,8 @@ impl Sqp {
             .iter()
             .map(|v| v.iter().map(|x| x / fs).collect())
             .collect();
-        let active = gs
-            .iter()
-            .zip(&g.cases)
-            .max_by(|a, b| a.1.total_cmp(b.1))
-            .map(|(v, _)| v.clone())
-            .unwrap_or_default();
-        let b = self.b(d, &active);
         let mut p = DMatrix::zeros(d + 1, d + 1);
-        p.view_mut((0, 0), (d, d)).copy_from(&b);
+        p.view_mut((0, 0), (d, d)).copy_from(b);
         let mut q = vec![0.0; d + 1];
         q[d] = 1.0;
         let mut lo: Vec<f64> = c.iter().map(|z| (-delta).max(-z)).collect();
@@ -252,7 +245,7 @@ impl Sqp {
             .zip(&g.cases)
             .map(|(v, f)| (f - fc) / fs + v.iter().zip(&s).map(|(a, b)| a * b).sum::<f64>())
             .fold(f64::NEG_INFINITY, f64::max);
-        let pred = -(model_max + 0.5 * sv.dot(&(&b * &sv)));
+        let pred = -(model_max + 0.5 * sv.dot(&(b * &sv)));
         Some(Step {
             s,
             pred,
@@ -394,15 +387,12 @@ impl Refiner for Sqp {
         };
         let rc = ratios(&c);
         let d = c.z.len();
-        let active = gc
+        let active: Vec<f64> = gc
             .case_grads
-            .iter()
-            .zip(&gc.cases)
-            .max_by(|a, b| a.1.total_cmp(b.1))
-            .map(|(v, _)| v.iter().map(|x| x / self.scale).collect::<Vec<_>>())
-            .unwrap_or_default();
+            .get(worst_case(&gc))
+            .map_or_else(Vec::new, |v| v.iter().map(|x| x / self.scale).collect());
         let b_before = self.b(d, &active);
-        let Some(step) = self.step(space, &gc, &rc) else {
+        let Some(step) = self.step(space, &gc, &rc, &b_before) else {
             // a QP clarabel cannot solve: a smaller region is a better-conditioned one
             self.shrink(0.5 * self.radius);
             return Ok(());
@@ -442,7 +432,6 @@ impl Refiner for Sqp {
         }
         if p.f.is_finite() && rho >= ACCEPT {
             self.centre = p;
-            self.steps += 1;
             self.reset = false;
             if rho >= 0.75 && len >= 0.9 * self.radius {
                 self.radius = (2.0 * self.radius).min(MAX_RADIUS);
@@ -451,7 +440,6 @@ impl Refiner for Sqp {
             }
             return Ok(());
         }
-        self.rejected += 1;
         // a step that missed a limit: back along it to where the ratios reach the margin
         if let Some(t) = ModelSearch::back_to_limit(&c, &p)
             && self.room(ev) > 0
@@ -463,7 +451,6 @@ impl Refiner for Sqp {
                 && gradient(&pb).is_some()
             {
                 self.centre = pb;
-                self.steps += 1;
                 self.reset = false;
                 self.shrink(0.5 * self.radius);
                 return Ok(());

@@ -151,7 +151,10 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         record_row(plan, hist, 0.0, ag0, &start.u, &f_old, &w_old, &epp, e);
     }
 
-    let mut tangent = plan.outputs.sensitivities.then(|| Tangent::new(plan, ops));
+    let mut tangent = plan
+        .outputs
+        .sensitivities
+        .then(|| Tangent::new(plan, ops, &links));
 
     let mut qp_iter_total: u64 = 0;
     let mut qp_iter_max: u32 = 0;

@@ -40,6 +40,9 @@ pub(super) struct Tangent {
     param: Vec<Option<usize>>,
     /// Bounds of each contact coincide (a damper at zero slip load).
     fixed: Vec<bool>,
+    /// Every contact is an algebraic EPP element: the lane loops serve (see
+    /// [`Tangent::algebraic_free_rates`]).
+    lanes: bool,
     /// The floor of each damper.
     floors: Vec<usize>,
     /// ∂u, ∂v, ∂a (n × p, column j for damper j).
@@ -77,7 +80,7 @@ pub(super) struct Tangent {
 
 impl Tangent {
     /// The zero tangent of a run from rest of `plan`.
-    pub(super) fn new(plan: &Plan, ops: &Operators) -> Tangent {
+    pub(super) fn new(plan: &Plan, ops: &Operators, links: &[Link]) -> Tangent {
         let (n, nf, nc) = (ops.n, plan.floors, plan.contacts.len());
         let mut floors = Vec::new();
         let param: Vec<Option<usize>> = plan
@@ -100,6 +103,7 @@ impl Tangent {
             alpha: ops.alpha,
             param,
             fixed: plan.contacts.iter().map(|c| c.lower == c.upper).collect(),
+            lanes: links.iter().all(|l| l.epp && l.algebraic),
             floors,
             du: DMatrix::zeros(n, p),
             dv: DMatrix::zeros(n, p),
@@ -162,7 +166,7 @@ impl Tangent {
             self.daf
                 .gemm(alpha / (1.0 + alpha), &ops.g, &self.df_old, 1.0);
         }
-        let lanes = links.iter().all(|l| l.epp && l.algebraic);
+        let lanes = self.lanes;
         if lanes {
             self.algebraic_free_rates(links, k);
         }
