@@ -65,9 +65,15 @@ pub(super) struct Tangent {
     /// The step's stick/slip pattern: each contact stuck, and the stuck ones.
     is_free: Vec<bool>,
     free_idx: Vec<usize>,
-    /// W_FF⁻¹ (row-major) per pattern met, from its Cholesky factor (`None`: W_FF
-    /// singular).
-    patterns: HashMap<Vec<bool>, Option<Vec<f64>>>,
+    /// The contact of each damper's column that slides this step (its ∂F entry ±1).
+    sliding: Vec<Option<usize>>,
+    /// The slot in `factors` of each pattern met, and W_FF⁻¹ (row-major) per slot, from
+    /// its Cholesky factor (`None`: W_FF singular).
+    patterns: HashMap<Vec<bool>, usize>,
+    factors: Vec<Option<Vec<f64>>>,
+    /// The pattern of the last step that had stuck forces, and its slot.
+    last_pattern: Vec<bool>,
+    last_slot: usize,
     /// Right-hand sides of the stuck forces and their solution, row-major (m × p).
     rhs: Vec<f64>,
     sol: Vec<f64>,
@@ -120,7 +126,11 @@ impl Tangent {
             wdf: DMatrix::zeros(nc, p),
             is_free: vec![false; nc],
             free_idx: Vec::with_capacity(nc),
+            sliding: vec![None; p],
             patterns: HashMap::new(),
+            factors: Vec::new(),
+            last_pattern: Vec::new(),
+            last_slot: 0,
             rhs: Vec::new(),
             sol: Vec::new(),
             peak_drift: vec![0.0; nf * p],
@@ -209,12 +219,25 @@ impl Tangent {
         }
         // a sliding EPP element's slip moves with ∂w = ∂w_free − W ∂F; a stuck one's stays
         // zero (W_FF ∂F_F + W_FA ∂F_A = ∂w_free,F)
-        let sliding_epp = links
-            .iter()
-            .enumerate()
-            .any(|(c, l)| l.epp && !self.is_free[c]);
-        if sliding_epp {
-            self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
+        // (row c of W ∂F for the sliding EPP elements alone, over ∂F's nonzero rows: the
+        // stuck forces and each column's sliding damper; W is symmetric, so its column c
+        // is read)
+        for (c, l) in links.iter().enumerate() {
+            if !l.epp || self.is_free[c] {
+                continue;
+            }
+            let wc = ops.w.column(c);
+            for j in 0..p {
+                let dfj = self.df.column(j);
+                let mut v = 0.0;
+                for &f in &self.free_idx {
+                    v += wc[f] * dfj[f];
+                }
+                if let Some(cq) = self.sliding[j] {
+                    v += wc[cq] * dfj[cq];
+                }
+                self.wdf[(c, j)] = v;
+            }
         }
         if lanes {
             self.algebraic_updates(links);
@@ -298,6 +321,7 @@ impl Tangent {
         let p = self.p;
         self.free_idx.clear();
         self.df.fill(0.0);
+        self.sliding.fill(None);
         let mut any_sliding = false;
         for (c, &rate_c) in rate.iter().enumerate().take(self.nc) {
             let side = match status(c) {
@@ -313,37 +337,55 @@ impl Tangent {
             self.is_free[c] = false;
             if let Some(q) = self.param[c] {
                 self.df[(c, q)] = side;
-                any_sliding |= side != 0.0;
+                if side != 0.0 {
+                    any_sliding = true;
+                    self.sliding[q] = Some(c);
+                }
             }
         }
         let m = self.free_idx.len();
         if m == 0 {
             return;
         }
-        if self.patterns.len() > MAX_PATTERNS {
-            self.patterns.clear();
-        }
-        if !self.patterns.contains_key(&self.is_free[..]) {
-            let idx = &self.free_idx;
-            let wff: Vec<f64> = (0..m * m)
-                .map(|e| ops.w[(idx[e / m], idx[e % m])])
-                .collect();
-            self.patterns.insert(self.is_free.clone(), inverse(&wff, m));
+        // most steps keep the step before's pattern: it is compared before it is hashed
+        if self.last_pattern != self.is_free {
+            if self.patterns.len() > MAX_PATTERNS {
+                self.patterns.clear();
+                self.factors.clear();
+            }
+            let next = self.factors.len();
+            let slot = *self.patterns.entry(self.is_free.clone()).or_insert(next);
+            if slot == next {
+                let idx = &self.free_idx;
+                let wff: Vec<f64> = (0..m * m)
+                    .map(|e| ops.w[(idx[e / m], idx[e % m])])
+                    .collect();
+                self.factors.push(inverse(&wff, m));
+            }
+            self.last_pattern.clone_from(&self.is_free);
+            self.last_slot = slot;
         }
         // (W_FF is positive definite wherever the QP's solution is unique; a singular one
         // leaves the stuck forces' tangent at zero)
-        let Some(Some(inv)) = self.patterns.get(&self.is_free[..]) else {
+        let Some(inv) = &self.factors[self.last_slot] else {
             return;
         };
-        if any_sliding {
-            self.wdf.gemm(1.0, &ops.w, &self.df, 0.0);
-        }
-        // right-hand sides row by row (m × p)
+        // right-hand sides row by row (m × p); a column of ∂F_A holds at most its own
+        // damper's ±1, so W_FA ∂F_A is that damper's column of W times ±1 (exactly the
+        // product a full W ∂F would form)
         self.rhs.resize(m * p, 0.0);
         for (a, &c) in self.free_idx.iter().enumerate() {
             for j in 0..p {
-                let coupling = if any_sliding { self.wdf[(c, j)] } else { 0.0 };
-                self.rhs[a * p + j] = self.dwfree[(c, j)] - coupling;
+                self.rhs[a * p + j] = self.dwfree[(c, j)];
+            }
+        }
+        if any_sliding {
+            for (q, &cq) in self.sliding.iter().enumerate() {
+                let Some(cq) = cq else { continue };
+                let side = self.df[(cq, q)];
+                for (a, &c) in self.free_idx.iter().enumerate() {
+                    self.rhs[a * p + q] -= ops.w[(c, cq)] * side;
+                }
             }
         }
         // ∂F_F = W_FF⁻¹ (right-hand sides), row by row over the dampers' columns
