@@ -4,7 +4,8 @@
 //! refiner needs; on the maximum of two valleys (the worst of two property cases, whose
 //! optimum is the kink where they tie) it reaches the tie; a limit is kept to; it never
 //! makes more evaluations than its budget; the same start gives the same bits; the
-//! first-order post-check says a reached minimum is stationary.
+//! first-order post-check says a reached minimum is stationary, and its screened form
+//! simulates only the moves the derivatives flag and judges them by their values.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -12,7 +13,8 @@ mod common;
 use common::valley::Valley;
 use slipload_opt::model::config::{RefineConfig, RefineMethod};
 use slipload_opt::phases::refine::{
-    Evaluations, Gradient, LimitValues, Point, StopReason, first_order_check, refine,
+    Evaluations, Gradient, LimitValues, Point, STATIONARY_GAIN, StopReason, first_order_check,
+    refine, screened_check,
 };
 
 /// A point of `cases` (value and gradient of each piece; the objective is their largest)
@@ -209,4 +211,83 @@ fn the_first_order_check_tells_a_minimum_from_a_start() {
     assert!(s.stationary && s.polls == 0, "{s:?}");
     let s = first_order_check(&sp, &at(vec![0.5; n]), 0.01).unwrap();
     assert!(!s.stationary && s.best_gain > 1e-3, "{s:?}");
+}
+
+/// The screened post-check on f = 1 + Σ(zᵢ − cᵢ)²: at z = c + h e₀ the first-order gain of
+/// the move −s on variable 0 is 2hs, what the move gains is 2hs − s²; with 2hs above the
+/// threshold and 2hs − s² below it the derivatives flag the move and its simulation
+/// clears it (the move, which gains a little, is the better design all the same). Only
+/// flagged moves are simulated (one here), and with h larger the
+/// simulated gain passes the threshold: the design is not stationary and the move, now
+/// an evaluated point, is the best one known.
+#[test]
+fn the_screened_check_simulates_the_flagged_moves_alone_and_judges_by_their_values() {
+    let n = 10;
+    let c = vec![0.5; n];
+    let bowl = |z: &[f64]| -> (f64, Option<LimitValues>) {
+        let f = 1.0 + z.iter().zip(&c).map(|(a, b)| (a - b).powi(2)).sum::<f64>();
+        let g = z.iter().zip(&c).map(|(a, b)| 2.0 * (a - b)).collect();
+        point(z, vec![(f, g)], Vec::new())
+    };
+    let sp = common::free_space(n);
+    let s = 0.03;
+    // 2hs = 1.5 × threshold (flagged), s² = 9e-4 > 0.5 × threshold × f (cleared)
+    let check = |h: f64| {
+        let mut z = c.clone();
+        z[0] += h;
+        let (f, limits) = bowl(&z);
+        let at = Point { z, f, limits };
+        let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| bowl(z)).collect());
+        let mut ev = Evaluations::with_limits(Box::new(oracle), vec![at.clone()]);
+        let out = screened_check(&sp, &at, &mut ev, s).unwrap().unwrap();
+        (out, ev.count(), ev.best().unwrap(), at)
+    };
+    let h = 1.5 * STATIONARY_GAIN / (2.0 * s);
+    let (out, count, best, at) = check(h);
+    assert_eq!(out.screened, 2 * n + 2, "{out:?}");
+    assert_eq!((out.moves, count, out.polls), (1, 1, 1), "{out:?}");
+    assert_eq!(out.best_move, "floor1 -", "{out:?}");
+    let first = 2.0 * h * s / at.f;
+    assert!(first > STATIONARY_GAIN, "first-order gain {first}");
+    assert!(out.stationary && out.best_gain < STATIONARY_GAIN, "{out:?}");
+    assert!(
+        (out.best_gain - (2.0 * h * s - s * s) / at.f).abs() < 1e-12,
+        "{out:?}"
+    );
+    // a move that gains, if less than the threshold, is still the better design
+    assert!(
+        best.f < at.f && (best.z[0] - (at.z[0] - s)).abs() < 1e-15,
+        "{best:?}"
+    );
+    // a larger offset: the simulated gain passes the threshold, the move is the best point
+    let h = 3.0 * STATIONARY_GAIN / (2.0 * s);
+    let (out, count, best, at) = check(h);
+    // (the profile move −, half as steep here, is flagged too)
+    assert_eq!(
+        (out.moves, count, out.best_move.as_str()),
+        (2, 2, "floor1 -"),
+        "{out:?}"
+    );
+    assert!(
+        !out.stationary && out.best_gain > STATIONARY_GAIN,
+        "{out:?}"
+    );
+    assert!(
+        best.f < at.f && (best.z[0] - (at.z[0] - s)).abs() < 1e-15,
+        "{best:?}"
+    );
+    // at the minimum nothing is flagged and nothing simulated: the first-order answer
+    let (f, limits) = bowl(&c);
+    let at = Point {
+        z: c.clone(),
+        f,
+        limits,
+    };
+    let oracle = |zs: &[Vec<f64>]| Ok(zs.iter().map(|z| bowl(z)).collect());
+    let mut ev = Evaluations::with_limits(Box::new(oracle), vec![at.clone()]);
+    let out = screened_check(&sp, &at, &mut ev, s).unwrap().unwrap();
+    assert!(
+        out.stationary && out.polls == 0 && ev.count() == 0,
+        "{out:?}"
+    );
 }

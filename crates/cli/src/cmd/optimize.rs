@@ -160,14 +160,26 @@ fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> Strin
         let _ = std::fmt::Write::write_fmt(
             &mut text,
             format_args!(
-                "; {}post-check of {} single-floor and profile moves of ±{:.1} % of the range{}: {}",
+                "; {}post-check of {} single-floor and profile moves of ±{:.1} % of the range{}{}: {}",
                 if s.polls == 0 {
                     "first-order (from the derivatives, no simulation) "
                 } else {
                     ""
                 },
-                s.moves,
+                if s.screened > 0 && s.polls > 0 {
+                    s.screened
+                } else {
+                    s.moves
+                },
                 pct(s.step),
+                if s.screened > 0 && s.polls > 0 {
+                    format!(
+                        " (screened by the derivatives; the {} they flag simulated)",
+                        s.moves
+                    )
+                } else {
+                    String::new()
+                },
                 if s.polls > 1 {
                     format!(" (poll {}: each earlier one's best move taken)", s.polls)
                 } else {

@@ -11,14 +11,15 @@ use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
 use crate::phases::gradient::gradient;
 use crate::phases::refine::{
-    Evaluations, LimitValues, Point, Stationarity, StopReason, first_order_check, post_check,
-    refine_starts,
+    Evaluations, LimitValues, Point, Stationarity, StopReason, post_check, refine_starts,
+    screened_check,
 };
 use crate::phases::sweep::Manifest;
 use slipload_sim::scene::MethodName;
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Finalists differ by at least this much in some scaled variable (5 % of its range), so
 /// that the check compares designs, not round-off around one design.
@@ -429,10 +430,8 @@ pub fn refine_sweep(
     } else {
         method
     };
-    let sweep_fid = Fidelity {
-        sensitivities: method == RefineMethod::Sqp,
-        ..sweep_fid
-    };
+    // (the refiner's evaluations carry derivatives; its post-check's do not)
+    let derivatives = AtomicBool::new(method == RefineMethod::Sqp);
     // a study with a front keeps the runs of the evaluations: they are its candidates
     let keep_runs = !study.objectives.is_empty();
     let kept = Mutex::new(RefinedRuns::default());
@@ -440,9 +439,14 @@ pub fn refine_sweep(
         let bare = &bare;
         let kept = &kept;
         let sweep_fid = &sweep_fid;
+        let derivatives = &derivatives;
         move |zs: &[Vec<f64>]| -> Result<Vec<(f64, Option<LimitValues>)>, OptError> {
             let designs: Vec<Vec<f64>> = zs.iter().map(|z| study.space.slip_loads(z)).collect();
-            let runs = run_designs_journalled(study, &designs, sweep_fid, front.journal, tick)?;
+            let fid = Fidelity {
+                sensitivities: derivatives.load(Ordering::Relaxed),
+                ..*sweep_fid
+            };
+            let runs = run_designs_journalled(study, &designs, &fid, front.journal, tick)?;
             let values = values_of(study, &designs, &runs, bare, target)?;
             if keep_runs {
                 let mut k = kept
@@ -500,11 +504,16 @@ pub fn refine_sweep(
         }
         s.map(|s| Stationarity { polls, ..s })
     } else if method == RefineMethod::Sqp {
-        // the sqp refiner's design carries its derivatives: its moves are judged by them
-        // (the re-evaluated point, which holds them, not the sweep's copy)
+        // the sqp refiner's design carries its derivatives: its moves are screened by them
+        // (the re-evaluated point, which holds them, not the sweep's copy), and the moves
+        // they flag are simulated, without derivatives
         let best = ev.best().expect("the sweep gave points");
-        ev.point(&best.z)
-            .and_then(|at| first_order_check(&study.space, &at, cfg.tolerance.max(0.01)))
+        derivatives.store(false, Ordering::Relaxed);
+        ev.release_gradients();
+        match ev.point(&best.z) {
+            Some(at) => screened_check(&study.space, &at, &mut ev, cfg.tolerance.max(0.01))?,
+            None => None,
+        }
     } else {
         None
     };

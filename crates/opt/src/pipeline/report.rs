@@ -136,6 +136,10 @@ struct StationarityEntry<'a> {
     /// the `sqp` refiner's first-order check, from the derivatives, no simulation).
     #[serde(skip_serializing_if = "is_one")]
     polls: usize,
+    /// Moves the `sqp` refiner's derivatives screened (with a poll, `moves` are those
+    /// they flagged and that were simulated; absent for the other refiners).
+    #[serde(skip_serializing_if = "is_zero")]
+    screened: usize,
 }
 
 /// `optimum.json`.
@@ -183,6 +187,10 @@ struct OptimumFile<'a> {
 
 fn is_one(v: &usize) -> bool {
     *v == 1
+}
+
+fn is_zero(v: &usize) -> bool {
+    *v == 0
 }
 
 /// Pretty JSON with a final newline; through a [`serde_json::Value`], so object keys are
@@ -278,6 +286,7 @@ impl StudyReport {
                     stationary: s.stationary,
                     threshold: crate::phases::refine::STATIONARY_GAIN,
                     polls: s.polls,
+                    screened: s.screened,
                 }),
                 finalists: r
                     .finalists

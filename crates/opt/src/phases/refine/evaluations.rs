@@ -245,6 +245,12 @@ impl<'a> Evaluations<'a> {
         self.gradients = true;
     }
 
+    /// From now on a known point serves as it is, derivatives or not (the post-check of
+    /// the `sqp` refiner reads values alone); the caller's oracle stops computing them.
+    pub fn release_gradients(&mut self) {
+        self.gradients = false;
+    }
+
     /// Whether `z` is known, with derivatives when they are required.
     fn knows(&self, z: &[f64]) -> bool {
         match self.cache.get(&key(z)) {

@@ -173,6 +173,9 @@ pub struct Stationarity {
     /// whose best move gained (that move taken); 0 for the first-order check of the
     /// `sqp` refiner, which evaluates no move.
     pub polls: usize,
+    /// Moves the `sqp` refiner's derivatives judged before any was simulated (0 for the
+    /// polls, which simulate every move): with a poll, `moves` are those they flagged.
+    pub screened: usize,
 }
 
 /// The first-order post-check of the `sqp` refiner's design (no simulation): the moves
@@ -182,41 +185,19 @@ pub struct Stationarity {
 /// convex near its kinks, so a linearised gain bounds what the move gains to first order.
 /// `None` when `at` carries no derivatives or no move fits in the space.
 pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<Stationarity> {
-    let l = at.limits.as_ref()?;
-    let g = l.gradient.as_ref()?;
-    if !at.f.is_finite() {
-        return None;
-    }
     let moves = stationarity_moves(space, &at.z, step);
-    let dot = |a: &[f64], m: &[f64]| -> f64 {
-        a.iter()
-            .zip(m.iter().zip(&at.z))
-            .map(|(a, (z, c))| a * (z - c))
-            .sum()
-    };
-    let scale = at.f.abs().max(f64::MIN_POSITIVE);
-    let mut best: Option<(usize, f64)> = None;
-    for (k, (_, z)) in moves.iter().enumerate() {
-        let passes = l
-            .ratios
-            .iter()
-            .zip(&g.ratio_grads)
-            .all(|(r, a)| r + dot(a, z) <= 1.0);
-        if !passes {
-            continue;
-        }
-        let f = g
-            .cases
-            .iter()
-            .zip(&g.case_grads)
-            .map(|(f, a)| f + dot(a, z))
-            .fold(f64::NEG_INFINITY, f64::max);
-        let gain = (at.f - f) / scale;
-        if best.is_none_or(|(_, b)| gain > b) {
-            best = Some((k, gain));
-        }
-    }
-    let (k, gain) = best?;
+    let gains = first_order_gains(at, &moves)?;
+    let (k, gain) = gains
+        .iter()
+        .enumerate()
+        .filter_map(|(k, g)| g.map(|g| (k, g)))
+        .fold(None, |best: Option<(usize, f64)>, (k, g)| {
+            if best.is_none_or(|(_, b)| g > b) {
+                Some((k, g))
+            } else {
+                best
+            }
+        })?;
     Some(Stationarity {
         step,
         moves: moves.len(),
@@ -224,7 +205,93 @@ pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<S
         best_move: moves[k].0.clone(),
         stationary: gain <= STATIONARY_GAIN,
         polls: 0,
+        screened: moves.len(),
     })
+}
+
+/// The post-check of the `sqp` refiner's design: [`first_order_check`] screens the moves,
+/// and those whose first-order gain passes [`STATIONARY_GAIN`] are simulated in one batch
+/// (their evaluations join `ev`, so a move that gains becomes the refinement's best
+/// point). A first-order gain is a bound only near a kink of the maximum it reads, and a
+/// linearised limit can pass where the simulated one does not, so a flagged move is
+/// judged by what it gives. With no move flagged the first-order check is the answer.
+pub fn screened_check(
+    space: &DesignSpace,
+    at: &Point,
+    ev: &mut Evaluations<'_>,
+    step: f64,
+) -> Result<Option<Stationarity>, OptError> {
+    let Some(first) = first_order_check(space, at, step) else {
+        return Ok(None);
+    };
+    if first.stationary {
+        return Ok(Some(first));
+    }
+    let moves = stationarity_moves(space, &at.z, step);
+    let gains = first_order_gains(at, &moves).unwrap_or_default();
+    let flagged: Vec<(String, Vec<f64>)> = moves
+        .into_iter()
+        .zip(gains)
+        .filter(|(_, g)| g.is_some_and(|g| g > STATIONARY_GAIN))
+        .map(|(m, _)| m)
+        .collect();
+    let zs: Vec<Vec<f64>> = flagged.iter().map(|(_, z)| z.clone()).collect();
+    let values = ev.eval(&zs)?;
+    let scale = at.f.abs().max(f64::MIN_POSITIVE);
+    let (k, gain) = values
+        .iter()
+        .map(|f| (at.f - f) / scale)
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("the first-order check flagged a move");
+    Ok(Some(Stationarity {
+        step,
+        moves: flagged.len(),
+        best_gain: gain,
+        best_move: flagged[k].0.clone(),
+        stationary: gain <= STATIONARY_GAIN,
+        polls: 1,
+        screened: first.moves,
+    }))
+}
+
+/// The first-order gain of each move (see [`first_order_check`]): `None` for a move whose
+/// linearised limit ratios do not all pass; `None` in all when `at` carries no
+/// derivatives or is not finite.
+fn first_order_gains(at: &Point, moves: &[(String, Vec<f64>)]) -> Option<Vec<Option<f64>>> {
+    let l = at.limits.as_ref()?;
+    let g = l.gradient.as_ref()?;
+    if !at.f.is_finite() {
+        return None;
+    }
+    let dot = |a: &[f64], m: &[f64]| -> f64 {
+        a.iter()
+            .zip(m.iter().zip(&at.z))
+            .map(|(a, (z, c))| a * (z - c))
+            .sum()
+    };
+    let scale = at.f.abs().max(f64::MIN_POSITIVE);
+    Some(
+        moves
+            .iter()
+            .map(|(_, z)| {
+                let passes = l
+                    .ratios
+                    .iter()
+                    .zip(&g.ratio_grads)
+                    .all(|(r, a)| r + dot(a, z) <= 1.0);
+                passes.then(|| {
+                    let f = g
+                        .cases
+                        .iter()
+                        .zip(&g.case_grads)
+                        .map(|(f, a)| f + dot(a, z))
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    (at.f - f) / scale
+                })
+            })
+            .collect(),
+    )
 }
 
 /// Polls the moves of [`Stationarity`] around `at` (their evaluations join `ev`, so a
@@ -259,6 +326,7 @@ pub fn post_check(
         best_move: moves[k].0.clone(),
         stationary: gain <= STATIONARY_GAIN,
         polls: 1,
+        screened: 0,
     }))
 }
 

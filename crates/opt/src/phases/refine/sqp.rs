@@ -40,8 +40,11 @@
 //! conditions of the linearised problem — unless B was learnt across kinks (a jump of the
 //! gradient reads as a large curvature), so B starts again once per centre before the
 //! refiner stops ([`StopReason::Tolerance`]). When the radius falls below the tolerance
-//! the refiner starts again from its centre with the first B and radius if the centre
-//! improved since the last start, and stops on the tolerance if it did not. It stops too
+//! the refiner starts again from its centre with the first B if the centre improved since
+//! the last start, at twice the longest step accepted since (at most the first radius):
+//! the valley's width the last steps found, where the first radius would spend
+//! evaluations halving down to it again. It stops on the tolerance if the centre did not
+//! improve. It stops too
 //! when the budget is spent ([`StopReason::Budget`]) or a design carries no derivatives
 //! (a collapse: [`StopReason::NoProgress`]). Every evaluation is counted, and no batch
 //! passes the budget.
@@ -111,6 +114,9 @@ pub struct Sqp {
     /// The centre's value at the last start (+∞: none yet).
     #[serde(default = "infinity")]
     pub restarted_at: f64,
+    /// The longest step accepted since the last start (scaled variables, ∞-norm).
+    #[serde(default)]
+    pub longest: f64,
 }
 
 fn infinity() -> f64 {
@@ -142,6 +148,7 @@ impl Sqp {
             first_radius: cfg.initial_radius * RADIUS_AFTER_RAY,
             restarts: 0,
             restarted_at: f64::INFINITY,
+            longest: 0.0,
         }
     }
 
@@ -433,6 +440,7 @@ impl Refiner for Sqp {
         if p.f.is_finite() && rho >= ACCEPT {
             self.centre = p;
             self.reset = false;
+            self.longest = self.longest.max(len);
             if rho >= 0.75 && len >= 0.9 * self.radius {
                 self.radius = (2.0 * self.radius).min(MAX_RADIUS);
             } else if rho < 0.25 {
@@ -450,6 +458,7 @@ impl Refiner for Sqp {
                 && pb.f < c.f
                 && gradient(&pb).is_some()
             {
+                self.longest = self.longest.max(dist_inf(&pb.z, &c.z));
                 self.centre = pb;
                 self.reset = false;
                 self.shrink(0.5 * self.radius);
@@ -600,7 +609,14 @@ impl Sqp {
                 self.restarts += 1;
                 self.hessian.clear();
                 self.reset = false;
-                self.radius = self.first_radius;
+                // the steps that gained since the last start say how far the valley lets
+                // a step go: twice the longest, not the first radius again
+                self.radius = if self.longest > 0.0 {
+                    (2.0 * self.longest).clamp(2.0 * self.tolerance, self.first_radius)
+                } else {
+                    self.first_radius
+                };
+                self.longest = 0.0;
             } else {
                 self.stop = Some(StopReason::Tolerance);
             }
