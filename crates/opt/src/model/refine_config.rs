@@ -7,6 +7,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RefineMethod {
+    /// The default: `sqp` where the study can be differentiated (its objective and limits
+    /// read peak or residual drift, floor acceleration or base shear, and its sweep method
+    /// computes sensitivities), else `model`. Resolved when the study loads
+    /// ([`RefineMethod::resolve`]); a refiner never sees it.
+    Auto,
     /// Profile line searches, then a trust region on a least-change quadratic
     /// interpolation model (the refiner for many slip loads; `phases::refine::ModelSearch`).
     Model,
@@ -25,22 +30,34 @@ impl std::str::FromStr for RefineMethod {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
+            "auto" => Ok(RefineMethod::Auto),
             "model" => Ok(RefineMethod::Model),
             "sqp" => Ok(RefineMethod::Sqp),
             "trust-region" => Ok(RefineMethod::TrustRegion),
             "nelder-mead" => Ok(RefineMethod::NelderMead),
             "random" => Ok(RefineMethod::Random),
             o => Err(format!(
-                "unknown refiner {o:?}: expected model, sqp, trust-region, nelder-mead or random"
+                "unknown refiner {o:?}: expected auto, model, sqp, trust-region, nelder-mead or random"
             )),
         }
     }
 }
 
 impl RefineMethod {
+    /// The refiner `auto` stands for: `sqp` when `differentiable`, else `model`; any
+    /// other refiner is itself.
+    pub fn resolve(self, differentiable: bool) -> RefineMethod {
+        match self {
+            RefineMethod::Auto if differentiable => RefineMethod::Sqp,
+            RefineMethod::Auto => RefineMethod::Model,
+            m => m,
+        }
+    }
+
     /// The name as written.
     pub fn as_str(self) -> &'static str {
         match self {
+            RefineMethod::Auto => "auto",
             RefineMethod::Model => "model",
             RefineMethod::Sqp => "sqp",
             RefineMethod::TrustRegion => "trust-region",
@@ -54,7 +71,7 @@ impl RefineMethod {
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RefineConfig {
-    /// Refiner (default model: profile searches, then a least-change model trust region).
+    /// Refiner (default `auto`: `sqp` where the study can be differentiated, else `model`).
     #[serde(default = "default_refiner")]
     pub method: RefineMethod,
     /// Refine from this many of the best sweep points (default 2).
@@ -84,7 +101,7 @@ pub struct RefineConfig {
 }
 
 fn default_refiner() -> RefineMethod {
-    RefineMethod::Model
+    RefineMethod::Auto
 }
 fn default_starts() -> usize {
     2

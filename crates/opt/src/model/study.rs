@@ -509,7 +509,7 @@ impl Study {
     /// Validates and resolves a config: building, space, constraints, then records; the
     /// sweep method is left for [`crate::eval::probe`] to choose (every public constructor,
     /// [`Study::from_config`] among them, goes through it).
-    pub(crate) fn described(cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
+    pub(crate) fn described(mut cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         cfg.validate(path)?;
         let base = path.parent().unwrap_or(Path::new("."));
         let mut building = match &cfg.building {
@@ -731,6 +731,13 @@ impl Study {
         if cfg.refine.method == crate::model::config::RefineMethod::Sqp {
             check_sqp(&cfg, &objective, &checks, path)?;
         }
+        // `auto` becomes the refiner the study can use: the one written to the manifest
+        let differentiable = check_sqp(&cfg, &objective, &checks, path).is_ok()
+            && !matches!(
+                cfg.fidelity.method,
+                Some(MethodName::Exact | MethodName::Delacruz)
+            );
+        cfg.refine.method = cfg.refine.method.resolve(differentiable);
         let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {
             name,
@@ -844,9 +851,16 @@ impl Study {
     pub fn check_refiner(
         &self,
         method: crate::model::config::RefineMethod,
-    ) -> Result<(), OptError> {
-        if method != crate::model::config::RefineMethod::Sqp {
-            return Ok(());
+    ) -> Result<crate::model::config::RefineMethod, OptError> {
+        use crate::model::config::RefineMethod;
+        if method == RefineMethod::Auto {
+            // the study resolved its own `auto` when it loaded; `--refine auto` asks the
+            // same of this study
+            let sqp = self.check_refiner(RefineMethod::Sqp).is_ok();
+            return Ok(method.resolve(sqp));
+        }
+        if method != RefineMethod::Sqp {
+            return Ok(method);
         }
         check_sqp(&self.config, &self.objective, &self.checks, &self.path)?;
         let m = self.sweep_method.method;
@@ -861,7 +875,7 @@ impl Study {
                 ),
             ));
         }
-        Ok(())
+        Ok(method)
     }
 
     /// The check of one design's runs against every limit at every property case.

@@ -116,7 +116,7 @@ fn run_phases(
 ) -> Result<StudyReport, OptError> {
     let out = folder.dir();
     let method = options.refine.unwrap_or(study.config.refine.method);
-    study.check_refiner(method)?;
+    let method = study.check_refiner(method)?;
     // every journal of the folder must be this study's: never mix another study's numbers
     let manifest = Manifest::of(study);
     folder

@@ -51,7 +51,7 @@ pub fn family_study(
     StudyFolder::check_path(request.option, request.path)?;
     check_scales(study, period_scales, intensity_scales)?;
     let method = refine.unwrap_or(study.config.refine.method);
-    study.check_refiner(method)?;
+    let method = study.check_refiner(method)?;
     let (folder, discarded) = StudyFolder::open(request)?;
     if let Some(d) = &discarded {
         progress.discarded(folder.dir(), d);

@@ -98,7 +98,9 @@ pub fn refine(
     budget: usize,
 ) -> Result<Refined, OptError> {
     let mut r: Box<dyn Refiner> = match method {
-        RefineMethod::Model => Box::new(ModelSearch::new(cfg, budget)),
+        // (`auto` is resolved where the study is known; without one it is `model`, which
+        // reads no derivatives)
+        RefineMethod::Model | RefineMethod::Auto => Box::new(ModelSearch::new(cfg, budget)),
         RefineMethod::Sqp => Box::new(Sqp::new(cfg, budget)),
         RefineMethod::TrustRegion => Box::new(TrustRegion::new(cfg, budget)),
         RefineMethod::NelderMead => Box::new(NelderMead::new(cfg)),
