@@ -2,7 +2,7 @@
 //! runs' sensitivities and the study's own statistics) are those of its objective, by
 //! central differences of plain runs; the refinement takes the same path to the bit on
 //! pools of one and two threads; a study it cannot differentiate is refused naming the
-//! field.
+//! field; the default refiner `auto` becomes it where the study can be differentiated.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -162,4 +162,36 @@ fn a_study_the_sqp_refiner_cannot_differentiate_is_refused_naming_the_field() {
         st.check_refiner(slipload_opt::model::config::RefineMethod::Model)
             .is_ok()
     );
+}
+
+/// The default refiner, `auto`: the study resolves it when it loads — `sqp` for an
+/// objective it can differentiate, `model` for an energy objective or an `exact` sweep —
+/// and `--refine auto` asks the same of a loaded study.
+#[test]
+fn the_default_refiner_is_sqp_where_the_study_can_be_differentiated() {
+    use slipload_opt::model::config::RefineMethod;
+    let unnamed = |edit: &dyn Fn(&mut serde_json::Value)| {
+        study(4, |v| {
+            v["refine"].as_object_mut().unwrap().remove("method");
+            edit(v);
+        })
+        .unwrap()
+    };
+    let st = unnamed(&|_| {});
+    assert_eq!(st.config.refine.method, RefineMethod::Sqp);
+    assert_eq!(
+        st.check_refiner(RefineMethod::Auto).unwrap(),
+        RefineMethod::Sqp
+    );
+    let energy = unnamed(&|v| v["objective"]["terms"][0]["metric"] = "energy_ratio".into());
+    assert_eq!(energy.config.refine.method, RefineMethod::Model);
+    assert_eq!(
+        energy.check_refiner(RefineMethod::Auto).unwrap(),
+        RefineMethod::Model
+    );
+    let exact = unnamed(&|v| v["fidelity"]["method"] = "exact".into());
+    assert_eq!(exact.config.refine.method, RefineMethod::Model);
+    // a refiner the study names is kept
+    let named = study(4, |v| v["refine"]["method"] = "trust-region".into()).unwrap();
+    assert_eq!(named.config.refine.method, RefineMethod::TrustRegion);
 }
