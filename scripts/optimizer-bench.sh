@@ -130,7 +130,7 @@ with open(os.path.join(out, name + ".md"), "w") as f:
         st = r["stationarity"]
         first = st is not None and st.get("polls", 1) == 0
         flagged = st is not None and st.get("screened", 0) > 0 and not first
-        how = " (first order)" if first else (f' (first order, {st["moves"]} flagged moves simulated)' if flagged else "")
+        how = " (first order)" if first else (f' (screened by the derivatives, the {st["moves"]} flagged moves simulated)' if flagged else "")
         stat = "—" if st is None else ("yes" + how if st["stationary"] else f'no ({st["best_move"]}: {100*st["best_gain"]:.2f} %, {"first order" if first else "taken"})')
         f.write(f'| {r["start"]} | {r["refiner"]} | {r["max_evaluations"]} | {r["sweep_designs"]} | {r["refine_designs"]} | {r["objective"]:.6f} | {r["gap_percent"]:+.2f} % | {r["simulations"]} | {r["seconds"]:.1f} s | {", ".join(r["stops"] or [])} | {stat} |\n')
 print(open(os.path.join(out, name + ".md")).read())
