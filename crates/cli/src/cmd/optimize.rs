@@ -24,7 +24,7 @@ pub struct OptimizeArgs {
     /// finished sweep in it is reused, journalled refinement points are replayed
     #[arg(long, default_value = "out/optimize")]
     pub out: PathBuf,
-    /// Refiner: model, sqp, trust-region, nelder-mead or random (default: the study's)
+    /// Refiner: auto, model, sqp, trust-region, nelder-mead or random (default: the study's)
     #[arg(long)]
     pub refine: Option<RefineMethod>,
     /// Also draw the objective map over two floors' slip loads (the others at the
@@ -143,7 +143,7 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
     super::check_summary::outcome(run.report.code_check.as_ref())
 }
 
-/// Why the refiners stopped and, for the `model` refiner, whether the optimum is
+/// Why the refiners stopped and, for the `model` and `sqp` refiners, whether the optimum is
 /// stationary (its post-check of single-floor and profile moves).
 fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> String {
     let stops: Vec<&str> = r.stops.iter().map(|s| s.as_str()).collect();

@@ -621,7 +621,7 @@ def optimize(
         study: see :func:`load_study` (``None``: the embedded benchmark study).
         out: output folder (created if missing). A finished sweep there is reused and
             journalled refinement points replayed; a folder of another study is refused.
-        refine: ``"model"``, ``"sqp"``, ``"trust-region"``, ``"nelder-mead"`` or ``"random"``
+        refine: ``"auto"``, ``"model"``, ``"sqp"``, ``"trust-region"``, ``"nelder-mead"`` or ``"random"``
             (default: the study's).
         map_floors: also draw the objective map over these two floors' slip loads (from 1).
         map_grid: grid points per axis of the map.
