@@ -187,6 +187,14 @@ pub struct Stationarity {
 /// convex near its kinks, so a linearised gain bounds what the move gains to first order.
 /// `None` when `at` carries no derivatives or no move fits in the space.
 pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<Stationarity> {
+    first_order(space, at, step).map(|(s, _)| s)
+}
+
+/// Each move of the post-checks (its name and point) with its first-order gain.
+type Judged = Vec<((String, Vec<f64>), Option<f64>)>;
+
+/// [`first_order_check`], with the moves and their first-order gains.
+fn first_order(space: &DesignSpace, at: &Point, step: f64) -> Option<(Stationarity, Judged)> {
     let moves = stationarity_moves(space, &at.z, step);
     let gains = first_order_gains(at, &moves)?;
     let (k, gain) = gains
@@ -200,7 +208,7 @@ pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<S
                 best
             }
         })?;
-    Some(Stationarity {
+    let s = Stationarity {
         step,
         moves: moves.len(),
         best_gain: gain,
@@ -208,7 +216,8 @@ pub fn first_order_check(space: &DesignSpace, at: &Point, step: f64) -> Option<S
         stationary: gain <= STATIONARY_GAIN,
         polls: 0,
         screened: moves.len(),
-    })
+    };
+    Some((s, moves.into_iter().zip(gains).collect()))
 }
 
 /// The post-check of the `sqp` refiner's design: [`first_order_check`] screens the moves,
@@ -223,17 +232,14 @@ pub fn screened_check(
     ev: &mut Evaluations<'_>,
     step: f64,
 ) -> Result<Option<Stationarity>, OptError> {
-    let Some(first) = first_order_check(space, at, step) else {
+    let Some((first, judged)) = first_order(space, at, step) else {
         return Ok(None);
     };
     if first.stationary {
         return Ok(Some(first));
     }
-    let moves = stationarity_moves(space, &at.z, step);
-    let gains = first_order_gains(at, &moves).unwrap_or_default();
-    let flagged: Vec<(String, Vec<f64>)> = moves
+    let flagged: Vec<(String, Vec<f64>)> = judged
         .into_iter()
-        .zip(gains)
         .filter(|(_, g)| g.is_some_and(|g| g > STATIONARY_GAIN))
         .map(|(m, _)| m)
         .collect();

@@ -44,8 +44,7 @@
 //! the last start, at twice the longest step accepted since (at most the first radius):
 //! the valley's width the last steps found, where the first radius would spend
 //! evaluations halving down to it again. It stops on the tolerance if the centre did not
-//! improve. It stops too
-//! when the budget is spent ([`StopReason::Budget`]) or a design carries no derivatives
+//! improve, and when the budget is spent ([`StopReason::Budget`]) or a design carries no derivatives
 //! (a collapse: [`StopReason::NoProgress`]). Every evaluation is counted, and no batch
 //! passes the budget.
 
@@ -598,9 +597,10 @@ impl Sqp {
     }
 
     /// Sets the radius to `to`; below the tolerance the refiner starts again from its
-    /// centre with B = σI and the first radius when the centre improved since the last
-    /// start (across kinks B and the radius are what the steps failed on, not the
-    /// centre), and stops on the tolerance when it did not.
+    /// centre with B = σI, at twice the longest step accepted since the last start (at
+    /// most the first radius), when the centre improved since that start (across kinks B
+    /// is what the steps failed on, not the centre), and stops on the tolerance when it
+    /// did not.
     fn shrink(&mut self, to: f64) {
         self.radius = to;
         if self.radius < self.tolerance {
