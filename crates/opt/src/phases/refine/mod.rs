@@ -243,7 +243,21 @@ pub fn screened_check(
         .filter(|(_, g)| g.is_some_and(|g| g > STATIONARY_GAIN))
         .map(|(m, _)| m)
         .collect();
-    let zs: Vec<Vec<f64>> = flagged.iter().map(|(_, z)| z.clone()).collect();
+    // (the first-order check flagged at least one move)
+    Ok(Some(Stationarity {
+        screened: first.moves,
+        ..simulated(at, &flagged, ev, step)?
+    }))
+}
+
+/// Simulates `moves` (not empty) around `at` in one batch: the poll's [`Stationarity`].
+fn simulated(
+    at: &Point,
+    moves: &[(String, Vec<f64>)],
+    ev: &mut Evaluations<'_>,
+    step: f64,
+) -> Result<Stationarity, OptError> {
+    let zs: Vec<Vec<f64>> = moves.iter().map(|(_, z)| z.clone()).collect();
     let values = ev.eval(&zs)?;
     let scale = at.f.abs().max(f64::MIN_POSITIVE);
     let (k, gain) = values
@@ -251,16 +265,16 @@ pub fn screened_check(
         .map(|f| (at.f - f) / scale)
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("the first-order check flagged a move");
-    Ok(Some(Stationarity {
+        .expect("at least one move");
+    Ok(Stationarity {
         step,
-        moves: flagged.len(),
+        moves: moves.len(),
         best_gain: gain,
-        best_move: flagged[k].0.clone(),
+        best_move: moves[k].0.clone(),
         stationary: gain <= STATIONARY_GAIN,
         polls: 1,
-        screened: first.moves,
-    }))
+        screened: 0,
+    })
 }
 
 /// The first-order gain of each move (see [`first_order_check`]): `None` for a move whose
@@ -318,24 +332,7 @@ pub fn post_check(
     if moves.is_empty() {
         return Ok(None);
     }
-    let zs: Vec<Vec<f64>> = moves.iter().map(|(_, z)| z.clone()).collect();
-    let values = ev.eval(&zs)?;
-    let scale = at.f.abs().max(f64::MIN_POSITIVE);
-    let (k, gain) = values
-        .iter()
-        .map(|f| (at.f - f) / scale)
-        .enumerate()
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("at least one move");
-    Ok(Some(Stationarity {
-        step,
-        moves: moves.len(),
-        best_gain: gain,
-        best_move: moves[k].0.clone(),
-        stationary: gain <= STATIONARY_GAIN,
-        polls: 1,
-        screened: 0,
-    }))
+    simulated(at, &moves, ev, step).map(Some)
 }
 
 /// The moves of the post-checks around `z`: every single-variable move ±`step` that stays
