@@ -12,6 +12,8 @@
 #   - trust-region, 12 evaluations: the example's setting before the model refiner;
 #   - trust-region and nelder-mead at 70 evaluations: the model row's refinement designs;
 #   - model, 120 evaluations, 2 starts: the long run that sets the best-known design.
+#   - sqp, 22 evaluations after the example's 4-point sweep (the example's setting), and
+#     sqp at the project's default budget, 2 starts of 40 (what `auto` runs here).
 # twenty: a twenty-storey yielding frame written here (storey stiffness 900 to 520 MN/m,
 # yield at 0.75 % drift, post-yield 2 %, P-Delta, modal damping 2 %, a massless damper per
 # floor on a brace as stiff as its storey, slip loads 0-6000 kN) under the example's
