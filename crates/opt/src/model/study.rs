@@ -728,15 +728,14 @@ impl Study {
         if let Some(d) = &cfg.devices {
             check_braces(d, &space, &checks, path)?;
         }
-        if cfg.refine.method == crate::model::config::RefineMethod::Sqp {
-            check_sqp(&cfg, &objective, &checks, path)?;
-        }
-        // `auto` becomes the refiner the study can use: the one written to the manifest
-        let differentiable = check_sqp(&cfg, &objective, &checks, path).is_ok()
-            && !matches!(
-                cfg.fidelity.method,
-                Some(MethodName::Exact | MethodName::Delacruz)
-            );
+        // a study that names sqp must be one it can differentiate; `auto` becomes the
+        // refiner the study can use (the one written to the manifest)
+        let differentiable = match check_sqp(&cfg, &objective, &checks, path) {
+            Err(e) if cfg.refine.method == crate::model::config::RefineMethod::Sqp => {
+                return Err(e);
+            }
+            r => r.is_ok(),
+        };
         cfg.refine.method = cfg.refine.method.resolve(differentiable);
         let cfg_check_method = cfg.fidelity.check_method;
         let study = Study {
