@@ -85,16 +85,55 @@ impl RecordPair {
     /// a₁ cos θ + a₂ sin θ, as long as the longer component (the shorter is zero after its
     /// end), named `NAME@θ°`.
     pub fn rotated(&self, theta_rad: f64) -> Result<Record, MotionError> {
+        self.along(
+            theta_rad.cos(),
+            theta_rad.sin(),
+            format!("{}@{}deg", self.name, theta_rad.to_degrees()),
+        )
+    }
+
+    /// The component along azimuth `theta_deg` degrees, as [`RecordPair::rotated`], with
+    /// cos θ and sin θ exact (0 or ±1) at multiples of 90°, so that 0° is the first
+    /// component and 90° the second to the bit; named `NAME@θdeg`.
+    pub fn rotated_deg(&self, theta_deg: f64) -> Result<Record, MotionError> {
+        let quarter = theta_deg / 90.0;
+        let (c, s) = if quarter == quarter.round() && quarter.abs() < 1e6 {
+            // the quarter turn's index mod 4: (cos, sin) of 0°, 90°, 180°, 270°
+            match (quarter as i64).rem_euclid(4) {
+                0 => (1.0, 0.0),
+                1 => (0.0, 1.0),
+                2 => (-1.0, 0.0),
+                _ => (0.0, -1.0),
+            }
+        } else {
+            let t = theta_deg.to_radians();
+            (t.cos(), t.sin())
+        };
+        self.along(c, s, format!("{}@{}deg", self.name, theta_deg))
+    }
+
+    /// a₁ c + a₂ s over the longer component's length, named `name`; its scale factor is
+    /// the components' when they share one (a scaled pair's), else 1.
+    fn along(&self, c: f64, s: f64, name: String) -> Result<Record, MotionError> {
         let (a, b) = (self.first.samples(), self.second.samples());
-        let (c, s) = (theta_rad.cos(), theta_rad.sin());
         let len = a.len().max(b.len());
         let at = |x: &[f64], j: usize| x.get(j).copied().unwrap_or(0.0);
         let samples = (0..len).map(|j| at(a, j) * c + at(b, j) * s).collect();
-        Record::new(
-            format!("{}@{}deg", self.name, theta_rad.to_degrees()),
-            self.first.dt(),
-            samples,
-        )
+        let (f1, f2) = (self.first.scale_factor(), self.second.scale_factor());
+        let factor = if (f1 - f2).abs() <= 1e-12 * f1.abs() {
+            f1
+        } else {
+            1.0
+        };
+        let provenance = format!(
+            "{} × {c} + {} × {s} (the pair {} rotated)",
+            self.first.name(),
+            self.second.name(),
+            self.name
+        );
+        Ok(Record::new(name, self.first.dt(), samples)?
+            .with_scale_factor(factor)
+            .with_provenance(provenance))
     }
 }
 

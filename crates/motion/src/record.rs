@@ -143,6 +143,13 @@ impl Record {
         self
     }
 
+    /// Returns the record with scale factor `factor` (a record combined from records
+    /// scaled alike, as a pair's rotated component is).
+    pub(crate) fn with_scale_factor(mut self, factor: f64) -> Record {
+        self.scale_factor = factor;
+        self
+    }
+
     /// A record derived from this one: new samples (and a processing note), the same
     /// name, step and notes, the scale factor multiplied by `factor`.
     fn derived(&self, samples: Vec<f64>, factor: f64, what: &str) -> Result<Record, MotionError> {

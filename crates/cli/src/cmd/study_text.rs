@@ -43,8 +43,14 @@ pub(crate) fn loads_text(study: &Study, loads: &[f64]) -> String {
 pub(crate) fn runs_text(m: &slipload_opt::phases::sweep::Manifest) -> String {
     let cases = m.checks.cases();
     let records = m.record_count();
+    // how the pairs of a suite ran, where the study said
+    let pairs: String = m
+        .suites
+        .iter()
+        .filter_map(|s| Some(format!(" (suite {}: {})", s.name, s.pair_run.as_ref()?)))
+        .collect();
     if cases.len() == 1 {
-        format!("{records} records")
+        format!("{records} records{pairs}")
     } else {
         format!(
             "{records} records × {} property cases ({})",
@@ -54,7 +60,7 @@ pub(crate) fn runs_text(m: &slipload_opt::phases::sweep::Manifest) -> String {
                 .map(|c| c.name.as_str())
                 .collect::<Vec<_>>()
                 .join(", ")
-        )
+        ) + &pairs
     }
 }
 

@@ -179,6 +179,104 @@ impl RecordMetrics {
         m
     }
 
+    /// The envelope of two runs of one ground motion (a pair at two orientations,
+    /// [`crate::model::orientation`]): each response its larger value, and with it its
+    /// derivative (ties keep `self`'s). A damper's largest slips each way are both the
+    /// larger of the four (the response to the opposite orientation is the mirror, which
+    /// swaps them); its other demands, the energies and the ductilities are each the
+    /// larger; a collapse of either run is the envelope's (`self`'s first).
+    pub fn envelope(mut self, other: &RecordMetrics) -> RecordMetrics {
+        let take = |a: &mut f64, b: f64| -> bool {
+            let more = b > *a;
+            if more {
+                *a = b;
+            }
+            more
+        };
+        let mut tangent = self.tangent.take();
+        let theirs = other.tangent.as_ref();
+        for (s, (v, w)) in self
+            .drift_ratio
+            .iter_mut()
+            .zip(&other.drift_ratio)
+            .enumerate()
+        {
+            if take(v, *w)
+                && let (Some(t), Some(o)) = (tangent.as_mut(), theirs)
+            {
+                t.drift_ratio[s].clone_from(&o.drift_ratio[s]);
+            }
+        }
+        for (s, (v, w)) in self
+            .residual_drift_ratio
+            .iter_mut()
+            .zip(&other.residual_drift_ratio)
+            .enumerate()
+        {
+            if take(v, *w)
+                && let (Some(t), Some(o)) = (tangent.as_mut(), theirs)
+            {
+                t.residual_drift_ratio[s].clone_from(&o.residual_drift_ratio[s]);
+            }
+        }
+        if take(
+            &mut self.peak_floor_acceleration,
+            other.peak_floor_acceleration,
+        ) && let (Some(t), Some(o)) = (tangent.as_mut(), theirs)
+        {
+            t.peak_floor_acceleration
+                .clone_from(&o.peak_floor_acceleration);
+        }
+        if take(&mut self.peak_base_shear, other.peak_base_shear)
+            && let (Some(t), Some(o)) = (tangent.as_mut(), theirs)
+        {
+            t.peak_base_shear.clone_from(&o.peak_base_shear);
+        }
+        if take(&mut self.peak_displacement, other.peak_displacement)
+            && let (Some(t), Some(o)) = (tangent.as_mut(), theirs)
+        {
+            t.peak_displacement.clone_from(&o.peak_displacement);
+        }
+        self.tangent = tangent;
+        for (v, w) in self.stroke.iter_mut().zip(&other.stroke) {
+            take(v, *w);
+        }
+        let larger = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        self.energy_input = larger(self.energy_input, other.energy_input);
+        self.energy_friction = larger(self.energy_friction, other.energy_friction);
+        self.strain_energy_area = larger(self.strain_energy_area, other.strain_energy_area);
+        self.energy_plastic = larger(self.energy_plastic, other.energy_plastic);
+        if let (Some(mu), Some(nu)) = (self.ductility.as_mut(), other.ductility.as_ref()) {
+            for (v, w) in mu.iter_mut().zip(nu) {
+                take(v, *w);
+            }
+        }
+        if self.collapse.is_none() {
+            self.collapse = other.collapse;
+        }
+        if let (Some(ds), Some(es)) = (self.dampers.as_mut(), other.dampers.as_ref()) {
+            for (d, e) in ds.iter_mut().zip(es) {
+                let slip = d
+                    .slip_max_pos_m
+                    .max(d.slip_max_neg_m)
+                    .max(e.slip_max_pos_m)
+                    .max(e.slip_max_neg_m);
+                d.slip_max_pos_m = slip;
+                d.slip_max_neg_m = slip;
+                take(&mut d.peak_slip_velocity_m_s, e.peak_slip_velocity_m_s);
+                take(&mut d.cumulative_travel_m, e.cumulative_travel_m);
+                d.slip_excursions = d.slip_excursions.max(e.slip_excursions);
+                take(&mut d.cycles, e.cycles);
+                take(&mut d.peak_force_n, e.peak_force_n);
+                take(&mut d.energy_j, e.energy_j);
+            }
+        }
+        self
+    }
+
     /// Largest peak ductility over the storeys (`None` for an elastic frame).
     pub fn peak_ductility(&self) -> Option<f64> {
         self.ductility

@@ -96,7 +96,9 @@ impl DesignLoads {
 }
 
 /// Simulates `design` in run `run` of the study (a record at a property case,
-/// [`Study::run`]): its responses.
+/// [`Study::run`]): its responses. A record with further orientations (a pair run
+/// `worst`) runs at each of them, and its responses are their envelope
+/// ([`RecordMetrics::envelope`]).
 pub fn run_design(
     study: &Study,
     design: &DesignLoads,
@@ -104,27 +106,55 @@ pub fn run_design(
     fid: &Fidelity,
     label: &str,
 ) -> Result<RecordMetrics, OptError> {
-    let out = simulate_design(study, design, run, fid, label)?;
+    let (case, record) = study.run(run);
     let heights = study
         .building
         .storey_heights
         .as_deref()
         .expect("a study's building has storey heights (checked when loading)");
-    let (case, _) = study.run(run);
-    let m = RecordMetrics::from_outcome(&out, heights).with_tangents(
-        &out,
-        heights,
-        &study.space.dampers,
-        case.slip_load,
-    );
-    if let Some(quantity) = m.first_non_finite() {
-        return Err(OptError::NonFinite {
-            design: label.to_string(),
-            record: study.run_name(run),
-            quantity,
+    let runs = match study.orientations.get(record) {
+        Some(o) if !o.is_empty() => &o[..],
+        _ => std::slice::from_ref(&study.records[record]),
+    };
+    let mut m: Option<RecordMetrics> = None;
+    for rec in runs {
+        let scene = design_scene_of(study, design, run, rec, fid, label);
+        let out = simulate_scene(study, &scene, run, label)?;
+        let one = RecordMetrics::from_outcome(&out, heights).with_tangents(
+            &out,
+            heights,
+            &study.space.dampers,
+            case.slip_load,
+        );
+        if let Some(quantity) = one.first_non_finite() {
+            return Err(OptError::NonFinite {
+                design: label.to_string(),
+                record: format!("{} ({})", study.run_name(run), rec.name()),
+                quantity,
+            });
+        }
+        m = Some(match m {
+            None => one,
+            Some(m) => m.envelope(&one),
         });
     }
-    Ok(m)
+    Ok(m.expect("a run simulates its record at least once"))
+}
+
+/// Compiles and runs one scene of run `run`.
+fn simulate_scene(
+    study: &Study,
+    scene: &Scene,
+    run: usize,
+    label: &str,
+) -> Result<slipload_sim::Outcome, OptError> {
+    let wrap = |source| OptError::Simulation {
+        design: label.to_string(),
+        record: study.run_name(run),
+        source: Box::new(source),
+    };
+    let plan = Plan::compile(scene).map_err(wrap)?;
+    run_plan(&plan).map_err(wrap)
 }
 
 /// The simulation of [`run_one`], whole (responses and diagnostics).
@@ -190,8 +220,21 @@ pub fn design_scene(
     fid: &Fidelity,
     label: &str,
 ) -> Scene {
+    let (_, record) = study.run(run);
+    design_scene_of(study, design, run, &study.records[record], fid, label)
+}
+
+/// [`design_scene`] with record `rec` in place of the run's own (one of its
+/// orientations, [`Study::orientations`]).
+pub fn design_scene_of(
+    study: &Study,
+    design: &DesignLoads,
+    run: usize,
+    rec: &std::sync::Arc<slipload_motion::Record>,
+    fid: &Fidelity,
+    label: &str,
+) -> Scene {
     let (case, record) = study.run(run);
-    let rec = &study.records[record];
     let n = study.building.floors();
     let building = if case.is_nominal() {
         design.building(study)

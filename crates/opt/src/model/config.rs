@@ -75,45 +75,17 @@ pub struct StudyConfig {
     /// The design wind's storey shears: no damper may slip under them ([`WindConfig`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wind: Option<WindConfig>,
+    /// The drift deformation-sensitive nonstructural components are designed for, and
+    /// the flag on the storeys whose drift passes it ([`NonstructuralConfig`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nonstructural: Option<NonstructuralConfig>,
 }
 
 pub use crate::model::devices_config::{
     DevicesConfig, MAX_BRACES_PER_DAMPER, MAX_TEST_CYCLES, TestProtocolConfig,
 };
 
-/// The study key `frame_strength`: what the equivalent-lateral-force demand of the frame
-/// without dampers needs beyond the design spectrum (taken from the study's first suite
-/// scaled to a code spectrum).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FrameStrengthConfig {
-    /// The response modification coefficient R of the seismic force-resisting system
-    /// (ASCE 7-16 Table 12.2-1).
-    pub response_modification: f64,
-    /// The importance factor I_e (Table 1.5-2); default 1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub importance: Option<f64>,
-    /// The fraction of the demand the frame without dampers must reach; default 0.75
-    /// (1 for an irregular structure, which the study states).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub fraction: Option<f64>,
-    /// The period of the demand, s; default the bare frame's first period.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub period_s: Option<f64>,
-}
-
-/// The study key `wind`: the design wind's storey shears, which no damper may slip under
-/// (design practice: a slip load at its lower property bound of at least `factor` × its
-/// storey's wind shear).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WindConfig {
-    /// The design wind's storey shear of each storey, kN, bottom to top.
-    pub storey_shears_kn: Vec<f64>,
-    /// The margin over the wind shear; default 1.3.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub factor: Option<f64>,
-}
+pub use crate::model::checks_config::{FrameStrengthConfig, NonstructuralConfig, WindConfig};
 
 /// One suite of records.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -145,15 +117,17 @@ pub struct SuiteConfig {
     /// died out instead of at the record's end (none: the run ends with the record).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub free_vibration_s: Option<f64>,
+    /// How its pairs run ([`crate::model::orientation`]; none: each component a run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pairs: Option<crate::model::orientation::PairsConfig>,
 }
 
 /// Longest rest after a record (`suites[].free_vibration_s`), s.
 pub const MAX_FREE_VIBRATION_S: f64 = 600.0;
 
-/// One entry of a suite's `records`: a file or `*` pattern (single components, as before),
-/// or `[first, second]`, the two horizontal components of one event (no patterns). A pair
-/// runs each component as its own record (the planar model takes one direction at a
-/// time); a suite scaled to a code spectrum scales pairs by their mean maximum-direction
+/// One entry of a suite's `records`: a file or `*` pattern (single components), or
+/// `[first, second]`, the two horizontal components of one event (no patterns), run as
+/// the suite's `pairs` says and scaled to a code spectrum by their maximum-direction
 /// spectrum (docs/MODEL.md § Ground motions in code form).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]

@@ -222,6 +222,10 @@ pub fn of_study(study: &crate::Study, designs: &[crate::model::sampler::Design])
     for (i, r) in study.records.iter().enumerate() {
         let mut h = Fnv64::default();
         h.f64(r.dt()).f64s(r.samples());
+        // a `worst` pair's orientations; none hashes as before
+        for o in study.orientations.get(i).into_iter().flatten() {
+            h.f64(o.dt()).f64s(o.samples());
+        }
         part(
             &format!("record {}", i + 1),
             format!("record {} samples ({})", i + 1, r.name()),

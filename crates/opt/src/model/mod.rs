@@ -5,6 +5,7 @@
 
 pub mod bounds;
 pub mod check;
+pub mod checks_config;
 pub mod code_scaling;
 pub mod config;
 pub mod devices_config;
@@ -13,7 +14,9 @@ pub mod fingerprint;
 pub mod memory;
 pub mod objective;
 pub mod objectives;
+pub mod orientation;
 pub mod refine_config;
 pub mod sampler;
 pub mod space;
 pub mod study;
+pub mod suites;

@@ -9,42 +9,20 @@
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::model::check::{CaseName, Checks, DesignCheck, PropertyCase, short};
-use crate::model::code_scaling::scale_to_code;
 pub use crate::model::code_scaling::{CodeScaling, MIN_CODE_PAIRS, MIN_CODE_RECORDS};
 use crate::model::config::{
-    MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, MIN_STUDY_PGA_G, RecordEntry, SamplerKind,
-    ScaleConfig, StudyConfig, too_large,
+    MAX_DESIGNS, MAX_SWEEP_STEPS, MAX_TASKS, SamplerKind, StudyConfig, too_large,
 };
 use crate::model::fidelity::{Fidelity, SweepMethod};
 use crate::model::objective::{Metric, Objective};
 use crate::model::space::DesignSpace;
-use serde::{Deserialize, Serialize};
-use slipload_motion::{G, Record, RecordPair, SuiteTarget, Synthetic, Units};
+pub use crate::model::suites::SuiteInfo;
+use slipload_motion::Record;
 use slipload_sim::Building;
 use slipload_sim::scene::{BuildingRef, MethodName};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-/// A suite, resolved: its name and the range of its records in [`Study::records`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SuiteInfo {
-    /// Name.
-    pub name: String,
-    /// Indices into the study's records.
-    pub range: Range<usize>,
-    /// How the suite was scaled to a code spectrum, when it was
-    /// ([`ScaleConfig::CodeSpectrum`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub code_scaling: Option<CodeScaling>,
-    /// Seconds of rest after each of its records (`free_vibration_s`; 0: none).
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub free_vibration_s: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
-}
 
 /// A validated study with its building and records loaded.
 #[derive(Debug, Clone)]
@@ -59,6 +37,10 @@ pub struct Study {
     pub building: Building,
     /// All records of all suites, suite after suite.
     pub records: Vec<Arc<Record>>,
+    /// Per record, the orientations whose responses envelope into its run (a pair run
+    /// `worst`, [`crate::model::orientation`]; the record is the first of them, named for
+    /// the pair); empty for a record that runs alone (every record but those).
+    pub orientations: Vec<Vec<Arc<Record>>>,
     /// The suites.
     pub suites: Vec<SuiteInfo>,
     /// The design space.
@@ -85,91 +67,6 @@ pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
         "study",
         slipload_motion::limits::MAX_CONFIG_BYTES,
     )?)
-}
-
-/// `*` matching of one file name (no other wildcards); a pattern's extension matches in
-/// any case (`*.AT2` takes `x.at2`: PEER files come with either).
-fn wildcard(pattern: &str, name: &str) -> bool {
-    if let (Some((pstem, pext)), Some((nstem, next))) =
-        (pattern.rsplit_once('.'), name.rsplit_once('.'))
-        && !pext.contains('*')
-    {
-        return pext.eq_ignore_ascii_case(next) && wildcard_exact(pstem, nstem);
-    }
-    wildcard_exact(pattern, name)
-}
-
-/// `*` matching of one file name, case as written.
-fn wildcard_exact(pattern: &str, name: &str) -> bool {
-    let parts: Vec<&str> = pattern.split('*').collect();
-    if parts.len() == 1 {
-        return pattern == name;
-    }
-    let (first, last) = (parts[0], parts[parts.len() - 1]);
-    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
-        return false;
-    }
-    let mut rest = &name[first.len()..name.len() - last.len()];
-    for mid in &parts[1..parts.len() - 1] {
-        match rest.find(mid) {
-            Some(i) => rest = &rest[i + mid.len()..],
-            None => return false,
-        }
-    }
-    true
-}
-
-/// Files of one record entry: the file itself, or the sorted matches of a `*` pattern
-/// (whose extension matches in any case: [`wildcard`]).
-fn expand(base: &Path, entry: &str, path: &Path, field: &str) -> Result<Vec<PathBuf>, OptError> {
-    let full = base.join(entry);
-    let name = full
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    if !name.contains('*') {
-        if !full.is_file() {
-            let what = if full.is_dir() {
-                "is a folder, not a record file (name the files, or a pattern such as folder/*.AT2, which takes .at2 too)"
-            } else if full.exists() {
-                "is not a regular file"
-            } else {
-                "does not exist"
-            };
-            return Err(OptError::invalid(
-                path,
-                field,
-                format!("record file {} {what}", full.display()),
-            ));
-        }
-        return Ok(vec![full]);
-    }
-    let dir = full.parent().unwrap_or(Path::new("."));
-    if dir.to_string_lossy().contains('*') {
-        return Err(OptError::invalid(
-            path,
-            field,
-            "`*` is allowed in the file name only, not in folder names",
-        ));
-    }
-    let listing = std::fs::read_dir(dir).map_err(|source| OptError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut found: Vec<PathBuf> = listing
-        .filter_map(|e| e.ok())
-        .filter(|e| e.path().is_file() && wildcard(&name, &e.file_name().to_string_lossy()))
-        .map(|e| e.path())
-        .collect();
-    found.sort();
-    if found.is_empty() {
-        return Err(OptError::invalid(
-            path,
-            field,
-            format!("pattern {} matches no file", full.display()),
-        ));
-    }
-    Ok(found)
 }
 
 /// Estimates the sweep's designs, tasks and steps and each record's run before anything
@@ -544,147 +441,22 @@ impl Study {
             terms: cfg.objective.terms.clone(),
             cost: cfg.objective.cost,
         };
-        let t1 = building.t1();
-        let mut records = Vec::new();
-        let mut suites = Vec::new();
-        for (i, s) in cfg.suites.iter().enumerate() {
-            let start = records.len();
-            let mut code_scaling = None;
-            if let Some(syn) = &s.synthetic {
-                let params = Synthetic {
-                    duration_s: syn.duration_s,
-                    ..Synthetic::default()
-                };
-                let rs = slipload_motion::synthetic_suite(
-                    &params,
-                    syn.count,
-                    syn.seed,
-                    SuiteTarget::Pga {
-                        pga_m_s2: syn.pga_g * G,
-                    },
-                )?;
-                records.extend(rs.into_iter().map(Arc::new));
-            } else {
-                let units = match &s.units {
-                    Some(u) => Some(u.parse::<Units>().map_err(|e| {
-                        OptError::invalid(path, format!("suites[{i}].units"), e.to_string())
-                    })?),
-                    None => None,
-                };
-                // one file twice in a suite would count its record twice in every statistic
-                let mut seen: Vec<(PathBuf, usize)> = Vec::new();
-                // a suite scaled to a code spectrum: read whole, then one factor for all
-                let mut unscaled: Vec<Record> = Vec::new();
-                // pairs of components, when the suite is scaled to a code spectrum
-                let mut pairs: Vec<RecordPair> = Vec::new();
-                let code = matches!(&s.scale, Some(ScaleConfig::CodeSpectrum(_)));
-                for (j, entry) in s.records.iter().enumerate() {
-                    let field = format!("suites[{i}].records[{j}]");
-                    let (files, is_pair) = match entry {
-                        RecordEntry::File(e) => (expand(base, e, path, &field)?, false),
-                        RecordEntry::Pair(two) => {
-                            let mut files = Vec::with_capacity(2);
-                            for (c, e) in two.iter().enumerate() {
-                                let f = format!("{field}[{c}]");
-                                if e.contains('*') {
-                                    return Err(OptError::invalid(
-                                        path,
-                                        f,
-                                        format!(
-                                            "{e:?}: a pair names the two component files of one event, not a `*` pattern"
-                                        ),
-                                    ));
-                                }
-                                files.extend(expand(base, e, path, &f)?);
-                            }
-                            (files, true)
-                        }
-                    };
-                    let mut components: Vec<Record> = Vec::new();
-                    for file in files {
-                        let key = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
-                        if let Some((_, k)) = seen.iter().find(|(f, _)| *f == key) {
-                            return Err(OptError::invalid(
-                                path,
-                                field,
-                                format!(
-                                    "{} is already in this suite (suites[{i}].records[{k}]): a record counts once in a suite's statistics; name it once",
-                                    file.display()
-                                ),
-                            ));
-                        }
-                        seen.push((key, j));
-                        let r = slipload_motion::read_record(&file, units, s.dt_s)?;
-                        let r = match &s.scale {
-                            Some(ScaleConfig::CodeSpectrum(_)) => {
-                                if is_pair {
-                                    components.push(r);
-                                } else {
-                                    unscaled.push(r);
-                                }
-                                continue;
-                            }
-                            None => r,
-                            Some(ScaleConfig::Factor(f)) => {
-                                let r = r.try_scaled(*f)?;
-                                let pga_g = r.pga() / G;
-                                if pga_g < MIN_STUDY_PGA_G {
-                                    return Err(OptError::invalid(
-                                        path,
-                                        format!("suites[{i}].scale.factor"),
-                                        format!(
-                                            "scales {} to a PGA of {pga_g:.3e} g, below {MIN_STUDY_PGA_G} g: no dissipator slips and every design is the bare frame (give scale.pga_g, or check the factor)",
-                                            file.display()
-                                        ),
-                                    ));
-                                }
-                                r
-                            }
-                            Some(ScaleConfig::PgaG(p)) => r.scaled_to_pga(*p * G)?,
-                            Some(ScaleConfig::SaT1G(sa)) => {
-                                slipload_motion::scale_to_spectral_acceleration(
-                                    std::slice::from_ref(&r),
-                                    t1,
-                                    0.05,
-                                    sa * G,
-                                )?
-                                .records
-                                .remove(0)
-                            }
-                        };
-                        records.push(Arc::new(r));
-                    }
-                    if code && is_pair {
-                        let mut two = components.into_iter();
-                        if let (Some(a), Some(b)) = (two.next(), two.next()) {
-                            let stem = |r: &Record| {
-                                Path::new(r.name()).file_name().map_or_else(
-                                    || r.name().to_string(),
-                                    |n| n.to_string_lossy().into_owned(),
-                                )
-                            };
-                            let name = format!("{}+{}", stem(&a), stem(&b));
-                            let pair = RecordPair::new(name, a, b)
-                                .map_err(|e| OptError::invalid(path, &field, e.to_string()))?;
-                            pairs.push(pair);
-                        }
-                    }
+        let (records, orientations, suites) =
+            crate::model::suites::load_suites(&cfg, &building, base, path)?;
+        // every simulation a design costs: a record, or each of its orientations
+        let simulated: Vec<Arc<Record>> = records
+            .iter()
+            .zip(&orientations)
+            .flat_map(|(r, o)| {
+                if o.is_empty() {
+                    std::slice::from_ref(r)
+                } else {
+                    &o[..]
                 }
-                if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
-                    let (scaled, scaling) =
-                        scale_to_code(&unscaled, &pairs, c, &building, path, i)?;
-                    records.extend(scaled.into_iter().map(Arc::new));
-                    code_scaling = Some(scaling);
-                }
-            }
-            suites.push(SuiteInfo {
-                name: s.name.clone(),
-                range: start..records.len(),
-                code_scaling: code_scaling.take(),
-                free_vibration_s: s.free_vibration_s.unwrap_or(0.0),
-            });
-        }
-        check_work(&cfg, path, &building, &space, &records)?;
+            })
+            .cloned()
+            .collect();
+        check_work(&cfg, path, &building, &space, &simulated)?;
         let name = cfg.name.clone().unwrap_or_else(|| {
             path.file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -697,11 +469,7 @@ impl Study {
             let Some(lim) = lim else {
                 continue;
             };
-            let motions = suite
-                .code_scaling
-                .as_ref()
-                .and_then(|c| c.pairs)
-                .unwrap_or(suite.range.len());
+            let motions = suite.motions();
             lim.unacceptable
                 .resolve(cfg.risk_category, motions)
                 .map_err(|allowed| {
@@ -725,6 +493,9 @@ impl Study {
         if let Some(w) = &cfg.wind {
             check_wind(w, &building, &space, &checks, path)?;
         }
+        if let Some(c) = &cfg.nonstructural {
+            crate::model::checks_config::validate_nonstructural(c, building.floors(), path)?;
+        }
         if let Some(d) = &cfg.devices {
             check_braces(d, &space, &checks, path)?;
         }
@@ -744,6 +515,7 @@ impl Study {
             config: cfg,
             building,
             records,
+            orientations,
             suites,
             space,
             objective,
@@ -951,24 +723,5 @@ impl Study {
                     .unwrap_or(0.0)
             })
             .collect()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::wildcard;
-
-    #[test]
-    fn wildcard_matches_like_a_shell() {
-        assert!(wildcard("*.AT2", "RSN6.AT2"));
-        assert!(wildcard("RSN*_*.AT2", "RSN6_IMPVALL.AT2"));
-        assert!(!wildcard("RSN*.AT2", "ELC.AT2"));
-        // the extension in any case, the rest as written
-        assert!(wildcard("*.AT2", "x.at2"));
-        assert!(wildcard("RSN*.at2", "RSN6.AT2"));
-        assert!(!wildcard("RSN*.AT2", "rsn6.AT2"));
-        assert!(!wildcard("*.AT2", "x.AT2.bak"));
-        assert!(wildcard("a*a", "aa"));
-        assert!(!wildcard("a*a", "a"));
     }
 }

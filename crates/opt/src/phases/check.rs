@@ -12,6 +12,7 @@ use crate::model::check::{
 use crate::model::fidelity::Fidelity;
 use crate::model::study::{CodeScaling, Study};
 use crate::phases::compliance::{self, ComplianceRow};
+use crate::phases::nonstructural::{self, DriftFlag};
 use crate::phases::refinement::OptimizeReport;
 use crate::phases::strength::FrameStrength;
 use crate::store::folder::StudyFolder;
@@ -28,6 +29,9 @@ pub struct CheckedSuite {
     /// How it was scaled to a code spectrum, when it was.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub code_scaling: Option<CodeScaling>,
+    /// How its pairs ran, when the study said (`pairs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pair_run: Option<String>,
 }
 
 /// The code check of one design.
@@ -82,6 +86,10 @@ pub struct CodeCheck {
     /// residual drift alone exceeds that limit (record and case, value).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub residual_tails: Vec<ResidualTail>,
+    /// Per suite, the drift flag for deformation-sensitive nonstructural components,
+    /// when the study names `nonstructural`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub nonstructural: Vec<DriftFlag>,
     /// The frame's strength without dampers, where the study asks for it
     /// (`frame_strength`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -178,6 +186,7 @@ impl CodeCheck {
         chosen_as: String,
     ) -> Result<CodeCheck, OptError> {
         let check = study.check_design(runs)?;
+        let flags = nonstructural::drift_flags(study, runs);
         let fid = Fidelity::check(study);
         let reading = study.checks.reading();
         Ok(CodeCheck {
@@ -206,6 +215,7 @@ impl CodeCheck {
                     name: s.name.clone(),
                     records: s.range.len(),
                     code_scaling: s.code_scaling.clone(),
+                    pair_run: s.pair_run.clone(),
                 })
                 .collect(),
             passes: check.passes(),
@@ -217,7 +227,12 @@ impl CodeCheck {
                 .devices
                 .as_ref()
                 .and_then(|d| d.stroke_capacity_mm),
-            compliance: compliance::matrix(study, &check, slip_loads_n),
+            compliance: {
+                let mut rows = compliance::matrix(study, &check, slip_loads_n);
+                nonstructural::into_matrix(&mut rows, &flags);
+                rows
+            },
+            nonstructural: flags,
             residual_tails: residual_tails(study, runs)?,
             frame_strength: FrameStrength::of(study),
             check,
@@ -296,6 +311,14 @@ impl CodeCheck {
         }
         for suite in &self.suites {
             let _ = writeln!(s, "## {} ({} records)\n", suite.name, suite.records);
+            if let Some(run) = &suite.pair_run
+                && suite
+                    .code_scaling
+                    .as_ref()
+                    .is_none_or(|c| c.pairs.is_none())
+            {
+                let _ = writeln!(s, "The planar model runs {run}.\n");
+            }
             if let Some(c) = &suite.code_scaling {
                 let _ = writeln!(
                     s,
@@ -322,7 +345,11 @@ impl CodeCheck {
                 if let Some(n) = c.pairs {
                     let _ = writeln!(
                         s,
-                        "The suite is {n} pairs of horizontal components, scaled by their mean maximum-direction (RotD100) spectrum (ASCE 7-22 §16.2.3.2); the planar model runs each component of a pair as its own record.\n"
+                        "The suite is {n} pairs of horizontal components, scaled by their mean maximum-direction (RotD100) spectrum (ASCE 7-22 §16.2.3.2); the planar model runs {}.\n",
+                        suite
+                            .pair_run
+                            .as_deref()
+                            .unwrap_or("each component of a pair as its own record")
                     );
                 }
                 if let (Some(stuck), Some(m90)) = (c.stuck_period_s, c.mass_90_period_s) {
@@ -392,6 +419,7 @@ impl CodeCheck {
         if let Some(f) = &self.frame_strength {
             s.push_str(&f.to_markdown());
         }
+        s.push_str(&nonstructural::to_markdown(&self.nonstructural));
         s.push_str(&compliance::to_markdown(&self.compliance));
         s
     }

@@ -27,6 +27,8 @@ pub enum Status {
     NotChecked,
     /// The planar model cannot show it.
     NotCovered,
+    /// Past a flag the study set: to be reviewed, not a failure of the verdict.
+    Flagged,
 }
 
 impl Status {
@@ -38,6 +40,7 @@ impl Status {
             Status::Stated => "stated",
             Status::NotChecked => "not checked",
             Status::NotCovered => "not covered",
+            Status::Flagged => "**flagged**",
         }
     }
 }
@@ -411,7 +414,7 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
 /// The matrix as a section of `code-check.md`.
 pub fn to_markdown(rows: &[ComplianceRow]) -> String {
     let mut s = String::from(
-        "## Compliance matrix\n\nASCE 7-16 clauses as this check reads them: `pass`/`FAIL` checked on the runs above, `stated` documented by the study's own numbers, `not checked` where the study gives no data for it, `not covered` where a planar model of one component cannot show it.\n\n| clause | requirement | value | limit | status |\n|---|---|---|---|---|\n",
+        "## Compliance matrix\n\nASCE 7-16 clauses as this check reads them: `pass`/`FAIL` checked on the runs above, `stated` documented by the study's own numbers, `not checked` where the study gives no data for it, `not covered` where a planar model of one component cannot show it, `flagged` past a flag the study set (to be reviewed; the verdict does not read it).\n\n| clause | requirement | value | limit | status |\n|---|---|---|---|---|\n",
     );
     for r in rows {
         let _ = writeln!(

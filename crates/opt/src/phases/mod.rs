@@ -12,6 +12,7 @@ pub mod devices;
 pub mod family;
 pub mod figures;
 pub mod gradient;
+pub mod nonstructural;
 pub mod pareto;
 pub mod protocol;
 pub mod rank;

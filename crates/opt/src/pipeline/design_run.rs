@@ -4,7 +4,7 @@
 //! without anybody copying slip loads from a table or a factor from a manifest.
 
 use crate::base::error::OptError;
-use crate::eval::evaluate::design_scene;
+use crate::eval::evaluate::{design_scene, design_scene_of};
 use crate::model::fidelity::Fidelity;
 use crate::model::study::Study;
 use crate::phases::rank::{load_designs, to_newtons};
@@ -96,6 +96,38 @@ fn find_run(
     }
 }
 
+/// The run and the record of `asked` when it names one orientation of a pair run
+/// `worst` (`PAIR@30deg`, or `PAIR@30deg [upper]` at a bound), in suite `suite` (any when
+/// `None`).
+fn find_orientation(
+    study: &Study,
+    asked: &str,
+    suite: Option<&str>,
+) -> Option<(usize, std::sync::Arc<slipload_motion::Record>)> {
+    let (base, case) = match asked.rsplit_once(" [") {
+        Some((b, c)) if c.ends_with(']') => (b, Some(&c[..c.len() - 1])),
+        _ => (asked, None),
+    };
+    (0..study.runs()).find_map(|i| {
+        let (c, r) = study.run(i);
+        let same_case = match case {
+            None => c.is_nominal(),
+            Some(name) => !c.is_nominal() && c.name.as_str() == name,
+        };
+        let in_suite = suite.is_none_or(|s| {
+            study
+                .suites
+                .iter()
+                .any(|x| x.name == s && x.range.contains(&r))
+        });
+        if !(same_case && in_suite) {
+            return None;
+        }
+        let o = study.orientations.get(r)?;
+        o.iter().find(|x| x.name() == base).map(|x| (i, x.clone()))
+    })
+}
+
 fn suite_names(study: &Study) -> String {
     study
         .suites
@@ -161,6 +193,32 @@ pub fn design_run_scene(study: &Study, req: &DesignRun<'_>) -> Result<Scene, Opt
         )));
     };
     let names = study.run_names();
+    // one orientation of a pair run `worst` (`PAIR@30deg`, with its case after it)
+    if let Some((run, rec)) = find_orientation(study, req.run, req.suite) {
+        let check = Fidelity::check(study);
+        let fid = Fidelity {
+            method: req.method.unwrap_or(check.method),
+            ..check
+        };
+        let mut scene = design_scene_of(study, &loads[d], run, &rec, &fid, req.design);
+        scene.name = format!(
+            "{}, design {} under {} (one orientation of {})",
+            study.name, req.design, req.run, names[run]
+        );
+        return Ok(scene);
+    }
+    if let Some(run) = find_run(study, &names, req.run, req.suite)?
+        && let (_, record) = study.run(run)
+        && let Some(o) = study.orientations.get(record)
+        && !o.is_empty()
+    {
+        return Err(OptError::Argument(format!(
+            "--run {:?} is the envelope of {} runs (its pair at each orientation); name one orientation: {}",
+            req.run,
+            o.len(),
+            o.iter().map(|r| r.name()).collect::<Vec<_>>().join(", ")
+        )));
+    }
     let found = find_run(study, &names, req.run, req.suite)?;
     let Some(run) = found else {
         let shown: Vec<&str> = names.iter().take(NAMES_SHOWN).map(String::as_str).collect();
