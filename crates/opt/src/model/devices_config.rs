@@ -39,6 +39,112 @@ pub struct DevicesConfig {
     /// ([`TestProtocolConfig`]); none: no protocol.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub test_protocol: Option<TestProtocolConfig>,
+    /// How many devices make up each storey's damper, and the redundancy rule that
+    /// raises their design values when they are few ([`RedundancyConfig`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub redundancy: Option<RedundancyConfig>,
+}
+
+/// The study key `devices.redundancy`: the devices each storey's damper stands for, and
+/// the rule that raises the design values of few devices (docs/MODEL.md § Redundancy).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RedundancyConfig {
+    /// Devices per storey in the direction analysed (the model's damper is their sum).
+    pub devices_per_storey: u32,
+    /// Devices on each side of the storey's centre of rigidity (the fewer side), when
+    /// the study states it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub devices_per_side: Option<u32>,
+    /// Fewer devices per storey than this raise the design values; default 4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_per_storey: Option<u32>,
+    /// Fewer devices on a side than this raise them; default 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_per_side: Option<u32>,
+    /// The factor on the design displacement and velocity; default 1.3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub factor: Option<f64>,
+}
+
+impl RedundancyConfig {
+    /// Fewer devices per storey than this raise the design values (default 4).
+    pub const MIN_PER_STOREY: u32 = 4;
+    /// Fewer devices on a side than this raise them (default 2).
+    pub const MIN_PER_SIDE: u32 = 2;
+    /// The factor on the design values (default 1.3).
+    pub const FACTOR: f64 = 1.3;
+
+    /// Whether the rule raises the design values, and why (in words).
+    pub fn applies(&self) -> (bool, String) {
+        let min_storey = self.min_per_storey.unwrap_or(Self::MIN_PER_STOREY);
+        let min_side = self.min_per_side.unwrap_or(Self::MIN_PER_SIDE);
+        let mut why = Vec::new();
+        if self.devices_per_storey < min_storey {
+            why.push(format!(
+                "{} devices per storey, fewer than {min_storey}",
+                self.devices_per_storey
+            ));
+        }
+        if let Some(side) = self.devices_per_side
+            && side < min_side
+        {
+            why.push(format!(
+                "{side} on a side of the centre of rigidity, fewer than {min_side}"
+            ));
+        }
+        if why.is_empty() {
+            (
+                false,
+                format!(
+                    "{} devices per storey{}: at least {min_storey} per storey{}",
+                    self.devices_per_storey,
+                    self.devices_per_side
+                        .map_or(String::new(), |s| format!(", {s} on each side")),
+                    if self.devices_per_side.is_some() {
+                        format!(" and {min_side} per side")
+                    } else {
+                        String::new()
+                    }
+                ),
+            )
+        } else {
+            (true, why.join("; "))
+        }
+    }
+
+    fn validate(&self, path: &Path) -> Result<(), OptError> {
+        let bad = |field: &str, why: String| {
+            Err(OptError::invalid(
+                path,
+                format!("devices.redundancy.{field}"),
+                why,
+            ))
+        };
+        if self.devices_per_storey == 0 {
+            return bad(
+                "devices_per_storey",
+                "at least 1: the devices each storey's damper stands for".into(),
+            );
+        }
+        if let Some(s) = self.devices_per_side
+            && (s == 0 || 2 * s > self.devices_per_storey)
+        {
+            return bad(
+                "devices_per_side",
+                format!(
+                    "{s}: the devices on the fewer side, at least 1 and at most half of devices_per_storey ({})",
+                    self.devices_per_storey
+                ),
+            );
+        }
+        if let Some(f) = self.factor
+            && !(f.is_finite() && (1.0..=3.0).contains(&f))
+        {
+            return bad("factor", format!("{f}: a factor from 1 to 3 (default 1.3)"));
+        }
+        Ok(())
+    }
 }
 
 /// The study key `devices.test_protocol`: the numbers of the device tests the study
@@ -102,6 +208,9 @@ impl DevicesConfig {
                     "the braces' forces and stiffnesses need their angle: give devices.brace_angle_deg",
                 ));
             }
+        }
+        if let Some(r) = &self.redundancy {
+            r.validate(path)?;
         }
         if let Some(c) = self.stroke_capacity_mm
             && !(c.is_finite() && c > 0.0)

@@ -13,6 +13,7 @@
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::model::check::{CaseName, short};
+use crate::model::devices_config::RedundancyConfig;
 use crate::model::study::Study;
 use crate::phases::protocol::TestProtocol;
 use crate::store::folder::StudyFolder;
@@ -94,6 +95,47 @@ pub struct DeviceTable {
     /// The device tests, when the study gives `devices.test_protocol`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub test_protocol: Option<TestProtocol>,
+    /// Each device's design values under the redundancy rule, when the study gives
+    /// `devices.redundancy`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub redundancy: Option<RedundancyDesign>,
+}
+
+/// The devices' design values under the redundancy rule (`devices.redundancy`): each
+/// storey's damper stands for `devices_per_storey` devices, which share its force and
+/// each take its stroke; with fewer devices than the rule's minimum their design
+/// displacement and velocity are × `factor`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RedundancyDesign {
+    /// Devices per storey.
+    pub devices_per_storey: u32,
+    /// Devices on the fewer side of the centre of rigidity, when stated.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub devices_per_side: Option<u32>,
+    /// Whether the rule raises the design values.
+    pub applies: bool,
+    /// Why (or why not), in words.
+    pub why: String,
+    /// The factor on the design displacement and velocity (1 when the rule does not
+    /// apply).
+    pub factor: f64,
+    /// One row per damper, bottom to top.
+    pub devices: Vec<DeviceDesign>,
+}
+
+/// One device's design values.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DeviceDesign {
+    /// Floor (from 1).
+    pub floor: usize,
+    /// Each device's slip load at the upper property bound (the storey's over its
+    /// devices), kN: the force it and its connections are designed for.
+    pub device_force_kn: f64,
+    /// Per suite, the design displacement: the suite's mean stroke at its governing case
+    /// × the factor, mm.
+    pub design_stroke_mm: Vec<f64>,
+    /// The design velocity: the largest slip velocity × the factor, mm/s.
+    pub design_velocity_mm_s: f64,
 }
 
 impl DeviceTable {
@@ -200,6 +242,42 @@ impl DeviceTable {
                 never_slips: excursions == 0,
             });
         }
+        let redundancy = study
+            .config
+            .devices
+            .as_ref()
+            .and_then(|d| d.redundancy)
+            .map(|r| {
+                let (applies, why) = r.applies();
+                let factor = if applies {
+                    r.factor.unwrap_or(RedundancyConfig::FACTOR)
+                } else {
+                    1.0
+                };
+                let per = f64::from(r.devices_per_storey);
+                RedundancyDesign {
+                    devices_per_storey: r.devices_per_storey,
+                    devices_per_side: r.devices_per_side,
+                    applies,
+                    why,
+                    factor,
+                    devices: rows
+                        .iter()
+                        .map(|row| DeviceDesign {
+                            floor: row.floor,
+                            device_force_kn: row.slip_load_range_kn[1] / per,
+                            design_stroke_mm: row
+                                .stroke_by_suite
+                                .iter()
+                                .map(|s| factor * s.mean_mm)
+                                .collect(),
+                            design_velocity_mm_s: factor * row.peak_velocity_mm_s,
+                        })
+                        .collect(),
+                }
+            });
+        // the tests' amplitudes are the design displacements: × the redundancy factor
+        let raised = redundancy.as_ref().map_or(1.0, |r| r.factor);
         let test_protocol = study
             .config
             .devices
@@ -208,7 +286,12 @@ impl DeviceTable {
             .map(|config| {
                 let strokes: Vec<Vec<f64>> = rows
                     .iter()
-                    .map(|r| r.stroke_by_suite.iter().map(|s| s.mean_mm).collect())
+                    .map(|r| {
+                        r.stroke_by_suite
+                            .iter()
+                            .map(|s| raised * s.mean_mm)
+                            .collect()
+                    })
                     .collect();
                 TestProtocol::of(study, config, slip_loads_n, runs, &strokes)
             });
@@ -225,6 +308,7 @@ impl DeviceTable {
                 .and_then(|d| d.stroke_capacity_mm),
             dampers: rows,
             test_protocol,
+            redundancy,
         })
     }
 
@@ -403,6 +487,10 @@ impl DeviceTable {
                 }
             );
         }
+        if let Some(r) = &self.redundancy {
+            s.push('\n');
+            s.push_str(&r.to_markdown(&suites));
+        }
         if let Some(p) = &self.test_protocol {
             s.push('\n');
             s.push_str(&p.to_markdown());
@@ -416,5 +504,48 @@ impl DeviceTable {
         folder.write("device-table.md", self.to_markdown().as_bytes())?;
         folder.write("device-table.json", self.to_json()?.as_bytes())?;
         Ok(())
+    }
+}
+
+impl RedundancyDesign {
+    /// The section of `device-table.md`; `suites` names the design displacements'
+    /// columns.
+    pub fn to_markdown(&self, suites: &[String]) -> String {
+        let mut s = String::from(
+            "## Devices and the redundancy rule
+
+",
+        );
+        let _ = writeln!(
+            s,
+            "Each storey's damper is {} devices (`devices.redundancy`), which share its force and each take its stroke. {}: {}. The minimum counts (4 per storey, 2 on each side of the centre of rigidity) and the factor 1.3 are the project's reading of ASCE 7-16 Ch. 18's redundancy rule for damping devices, whose text was not available to check; the study can give its own.\n",
+            self.devices_per_storey,
+            if self.applies {
+                format!(
+                    "The rule raises the design displacement and velocity × {}",
+                    short(self.factor)
+                )
+            } else {
+                "The rule does not raise the design values".to_string()
+            },
+            self.why
+        );
+        s.push_str("| floor | device force at λ_max (kN) |");
+        for su in suites {
+            let _ = write!(s, " design stroke {su} (mm) |");
+        }
+        s.push_str(" design velocity (mm/s) |\n|---:|---:|");
+        for _ in suites {
+            s.push_str("---:|");
+        }
+        s.push_str("---:|\n");
+        for d in &self.devices {
+            let _ = write!(s, "| {} | {:.1} |", d.floor, d.device_force_kn);
+            for v in &d.design_stroke_mm {
+                let _ = write!(s, " {v:.1} |");
+            }
+            let _ = writeln!(s, " {:.1} |", d.design_velocity_mm_s);
+        }
+        s
     }
 }
