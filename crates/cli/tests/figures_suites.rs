@@ -2,7 +2,8 @@
 //! scatter once per suite (`drift-profiles-SUITE`, `records-scatter-SUITE`; no figure
 //! over both suites), each profile with the drift limits its suite states as vertical
 //! lines at their values in percent, named in the legend; every row of a scatter's CSV
-//! names its suite; the report inlines each suite's figures.
+//! names its suite; the report inlines each suite's figures. With property bounds every
+//! objective value of the summary names the case it is read at.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 mod common;
@@ -12,7 +13,8 @@ use std::path::{Path, PathBuf};
 
 /// The benchmark building at two levels of 2 synthetic records of 3 s each, the
 /// `design` suite limited to a mean peak drift ratio of 2 % (and 3 % on any record), the
-/// `mce_r` suite to 4 %; a short sweep and refinement.
+/// `mce_r` suite to 4 %; slip loads × 0.85 and × 1.15, the objective read at the worst;
+/// a short sweep and refinement.
 fn two_suites(dir: &Path) -> PathBuf {
     let building = root().join("configs/benchmark-3story.json");
     let text = format!(
@@ -26,6 +28,7 @@ fn two_suites(dir: &Path) -> PathBuf {
     {{ "name": "mce_r", "synthetic": {{ "count": 3, "seed": 4, "pga_g": 0.45, "duration_s": 3 }},
        "limits": {{ "criteria": [ {{ "metric": "peak_drift_ratio", "statistic": "mean", "max": 0.04 }} ] }} }}
   ],
+  "property_bounds": {{ "slip_load": {{ "lower": 0.85, "upper": 1.15 }}, "objective_reads": "worst" }},
   "space": {{ "free": {{ "lower_kn": [0, 0, 0], "upper_kn": [2000, 1500, 1000] }} }},
   "objective": {{ "terms": [ {{ "metric": "peak_drift_ratio", "statistic": "mean" }} ] }},
   "sweep": {{ "sampler": "halton", "points": 4, "seed": 5 }},
@@ -66,7 +69,9 @@ fn suites_of_rows(path: &Path) -> Vec<String> {
         .collect()
 }
 
-fn check_folder(out: &Path, what: &str) {
+/// Checks the per-suite figures of `out`; each record is `cases` runs in the scatter (a
+/// sweep's figures show the bound runs too, named `RECORD [lower]`, `RECORD [upper]`).
+fn check_folder(out: &Path, what: &str, cases: usize) {
     for plain in ["drift-profiles", "records-scatter"] {
         for ext in ["svg", "png", "csv"] {
             assert!(
@@ -104,14 +109,18 @@ fn check_folder(out: &Path, what: &str) {
             );
         }
         let rows = suites_of_rows(&out.join(format!("records-scatter-{suite}.csv")));
-        assert_eq!(rows.len(), records, "{what} {suite}: one row per record");
+        assert_eq!(
+            rows.len(),
+            records * cases,
+            "{what} {suite}: one row per run"
+        );
         assert!(rows.iter().all(|s| s == suite), "{what} {suite}: {rows:?}");
         let (title, p, _) = panel(out, &format!("records-scatter-{suite}"));
         assert!(
             title.ends_with(&format!("suite {suite}")),
             "{what}: {title}"
         );
-        assert_eq!(p.series[0].points, records);
+        assert_eq!(p.series[0].points, records * cases);
     }
 }
 
@@ -127,12 +136,20 @@ fn optimize_and_sweep_draw_each_suite_apart_with_its_limits() {
         stdout.contains("drift-profiles-design,records-scatter-design,drift-profiles-mce_r,records-scatter-mce_r"),
         "{stdout}"
     );
-    check_folder(&dir.join("o"), "optimize");
+    check_folder(&dir.join("o"), "optimize", 1);
+    assert!(
+        stdout.contains("\nobjective at the worst properties 0."),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains(" kN: objective at the worst properties 0."),
+        "the finalists: {stdout}"
+    );
     run(
         &dir,
         &["--quiet", "sweep", study.to_str().unwrap(), "--out", "s"],
     );
-    check_folder(&dir.join("s"), "sweep");
+    check_folder(&dir.join("s"), "sweep", 3);
 
     // the report inlines every suite's figures; --fresh removes them as slipload's own
     run(&dir, &["report", "o"]);
@@ -151,6 +168,6 @@ fn optimize_and_sweep_draw_each_suite_apart_with_its_limits() {
             "--fresh",
         ],
     );
-    check_folder(&dir.join("s"), "sweep --fresh");
+    check_folder(&dir.join("s"), "sweep --fresh", 3);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -256,3 +256,49 @@ fn costs(table: &serde_json::Value, case: &str) -> String {
         )
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_objective_value_names_its_case_where_the_study_has_bounds() {
+        let optimum = serde_json::json!({
+            "objective": "mean peak_drift_ratio",
+            "objective_value": 0.0064,
+            "bare_objective": 0.0113,
+            "slip_loads_kN": [2746.856, 464.46],
+            "damper_floors": [1, 2]
+        });
+        let bounds = |reads: &str| {
+            serde_json::json!({
+                "objective": { "terms": [] },
+                "checks": { "property_bounds": { "slip_load": { "lower": 0.85, "upper": 1.15 }, "objective_reads": reads } }
+            })
+        };
+        let worst = key_results(&optimum, None, Some(&bounds("worst")));
+        assert!(
+            worst.contains("objective at the optimum at the worst properties"),
+            "{worst}"
+        );
+        assert!(
+            worst.contains("bare frame at the worst properties"),
+            "{worst}"
+        );
+        assert!(
+            worst.contains("2746.9 / 464.5"),
+            "slip loads to 0.1 kN: {worst}"
+        );
+        let nominal = key_results(&optimum, None, Some(&bounds("nominal")));
+        assert!(nominal.contains("objective at the optimum at nominal properties"));
+        // one case (no bounds), a cost objective: no label
+        let none = serde_json::json!({ "objective": { "terms": [] }, "checks": {} });
+        assert_eq!(objective_case(Some(&none)), None);
+        let cost = serde_json::json!({
+            "objective": { "terms": [], "cost": { "per_kn": 1.0 } },
+            "checks": { "property_bounds": { "objective_reads": "worst" } }
+        });
+        assert_eq!(objective_case(Some(&cost)), None);
+        assert!(key_results(&optimum, None, None).contains("<th>objective at the optimum</th>"));
+    }
+}
