@@ -295,7 +295,7 @@ fn the_code_check_names_the_runs_past_a_residual_limit_after_the_free_vibration(
     optimize(&dir, &s, 0);
     let md = std::fs::read_to_string(dir.join("o/code-check.md")).unwrap();
     assert!(
-        md.contains("Residual drift read after 20 s of free vibration; runs whose residual alone exceeds 0.5000: none."),
+        md.contains("Residual drift (the largest storey drift ratio left when the run ends) read after 20 s of free vibration; runs whose residual alone exceeds 50.00 %: none."),
         "{md}"
     );
     // a limit of 1e-5 most runs pass: every run named is past it, with its value

@@ -5,14 +5,19 @@
 //!   (opt-in);
 //! - the refiners' convergence: best objective so far vs simulations;
 //! - peak drift-ratio profiles over the storeys of the ranked designs (mean and 84th
-//!   percentile over the suite);
+//!   percentile over the suite), with the peak drift ratio limits the suite states as
+//!   dotted vertical lines;
 //! - per-record peak drift ratio of the best design vs the bare frame;
 //! - each code-scaled suite's mean spectrum against its target (`code-spectra`).
+//!
+//! A study of several suites draws the profiles and the scatter once per suite
+//! (`drift-profiles-SUITE`, `records-scatter-SUITE`); a study of one suite under the plain
+//! names.
 
 use crate::FigureError;
 use slipload_opt::base::collapse::objective_text;
 use slipload_opt::phases::figures::{
-    Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter,
+    Convergence, DriftLimit, DriftProfile, FigureData, ObjectiveMap, RecordScatter, SuiteFigures,
 };
 use std::fmt::Write as _;
 use std::path::Path;
@@ -63,16 +68,39 @@ pub fn drift_profiles_csv(profiles: &[DriftProfile]) -> String {
     s
 }
 
-/// `record,bare_peak_drift_ratio,DESIGN_peak_drift_ratio`.
+/// `record,bare_peak_drift_ratio,DESIGN_peak_drift_ratio,suite`: every row names the
+/// suite of its record.
 pub fn scatter_csv(sc: &RecordScatter) -> String {
     let mut s = format!(
-        "record,bare_peak_drift_ratio,{}_peak_drift_ratio\n",
+        "record,bare_peak_drift_ratio,{}_peak_drift_ratio,suite\n",
         sc.design
     );
-    for ((r, b), d) in sc.records.iter().zip(&sc.bare).zip(&sc.design_values) {
-        let _ = writeln!(s, "{},{b},{d}", csv_field(r));
+    for (((r, b), d), suite) in sc
+        .records
+        .iter()
+        .zip(&sc.bare)
+        .zip(&sc.design_values)
+        .zip(&sc.suites)
+    {
+        let _ = writeln!(s, "{},{b},{d},{}", csv_field(r), csv_field(suite));
     }
     s
+}
+
+/// A number as a design states it: at most `digits` decimals, no trailing zeros
+/// (`2`, `0.5`, `1.25`).
+pub fn trimmed(v: f64, digits: usize) -> String {
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// The legend name of a drift limit on a profile: `limit, mean: 2 %`.
+pub fn limit_label(l: &DriftLimit) -> String {
+    format!("limit, {}: {} %", l.applies_to, trimmed(100.0 * l.ratio, 3))
 }
 
 /// The palette colour of each design of a figure by what the design is, not where it
@@ -185,66 +213,19 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
         let fig = Figure::new("Refiner convergence").panel(panel);
         put("convergence", convergence_csv(&data.convergence), fig)?;
     }
-    if !data.profiles.is_empty() {
-        let storeys = data
-            .profiles
-            .iter()
-            .map(|p| p.mean.len())
-            .max()
-            .unwrap_or(1);
-        let mut panel = Panel::new("peak drift ratio (%)", "storey (-)")
-            .title(format!(
-                "solid: mean, dashed: 84th percentile; {}",
-                data.fidelity
-            ))
-            .x_from_zero()
-            .y_range(0.5, storeys as f64 + 0.5)
-            .y_integer()
-            // outside the axes: the profiles span the whole height, and the bare frame's
-            // reaches the right edge, so no corner inside is free
-            .legend(Legend::Right);
-        let names: Vec<&str> = data.profiles.iter().map(|p| p.design.as_str()).collect();
-        let colors = design_colors(&names);
-        for (p, &color) in data.profiles.iter().zip(&colors) {
-            let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();
-            let pct = |v: &[f64]| v.iter().map(|x| 100.0 * x).collect::<Vec<_>>();
-            panel = panel
-                .series(
-                    Series::line(p.design.clone(), pct(&p.mean), storeys.clone())
-                        .rgb(color)
-                        .marker(Marker::Circle),
-                )
-                .series(
-                    Series::line(format!("{} p84", p.design), pct(&p.p84), storeys)
-                        .rgb(color)
-                        .dashed()
-                        .no_legend(),
-                );
+    for sf in &data.suites {
+        let several = !sf.suffix.is_empty();
+        if let Some(fig) = profiles_figure(sf, &data.fidelity, several) {
+            put(
+                &sf.stem("drift-profiles"),
+                drift_profiles_csv(&sf.profiles),
+                fig,
+            )?;
         }
-        let fig = Figure::new("Peak drift-ratio profiles of the ranked designs").panel(panel);
-        put("drift-profiles", drift_profiles_csv(&data.profiles), fig)?;
-    }
-    if let Some(sc) = &data.scatter {
-        let x: Vec<f64> = sc.bare.iter().map(|v| 100.0 * v).collect();
-        let y: Vec<f64> = sc.design_values.iter().map(|v| 100.0 * v).collect();
-        let top = x.iter().chain(&y).copied().fold(0.0, f64::max);
-        let fig = Figure::new(format!("Per record: {} vs bare frame", sc.design)).panel(
-            Panel::new(
-                "bare frame: peak drift ratio (%)",
-                format!("{}: peak drift ratio (%)", sc.design),
-            )
-            .title(data.fidelity.clone())
-            .x_from_zero()
-            .y_from_zero()
-            .legend(Legend::UpperLeft)
-            .series(Series::scatter("records", x, y).color(0))
-            .series(
-                Series::line("1:1", vec![0.0, top], vec![0.0, top])
-                    .dashed()
-                    .rgb(style::INK),
-            ),
-        );
-        put("records-scatter", scatter_csv(sc), fig)?;
+        if let Some(sc) = &sf.scatter {
+            let fig = scatter_figure(sc, &sf.suite, &data.fidelity, several);
+            put(&sf.stem("records-scatter"), scatter_csv(sc), fig)?;
+        }
     }
     if !data.spectra.is_empty() {
         let mut panel = Panel::new("period (s)", "pseudo-spectral acceleration, 5 % (g)")
@@ -273,19 +254,119 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
                 )
                 .series(
                     Series::line(
-                        format!("{name} 90 %"),
+                        format!("{name} 90 % of target"),
                         c.periods_s.clone(),
                         c.target_sa_g.iter().map(|v| 0.9 * v).collect(),
                     )
                     .color(k)
-                    .dashed()
-                    .no_legend(),
+                    .dotted(),
                 );
         }
         let fig = Figure::new("Code-scaled suites against their target spectra").panel(panel);
         put("code-spectra", spectra_csv(&data.spectra), fig)?;
     }
     Ok(names)
+}
+
+/// The drift profiles of one suite's ranked designs (mean solid, 84th percentile dashed)
+/// with the suite's drift limits as dotted vertical lines, in percent; `None` without a
+/// profile.
+fn profiles_figure(
+    sf: &SuiteFigures,
+    fidelity: &str,
+    several: bool,
+) -> Option<crate::plot::Figure> {
+    use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
+    if sf.profiles.is_empty() {
+        return None;
+    }
+    let storeys = sf.profiles.iter().map(|p| p.mean.len()).max().unwrap_or(1);
+    let mut panel = Panel::new("peak drift ratio (%)", "storey (-)")
+        .title(format!(
+            "solid: mean, dashed: 84th percentile{}; {fidelity}",
+            if sf.limits.is_empty() {
+                ""
+            } else {
+                ", dotted: limit"
+            }
+        ))
+        .x_from_zero()
+        .y_range(0.5, storeys as f64 + 0.5)
+        .y_integer()
+        // outside the axes: the profiles span the whole height, and the bare frame's
+        // reaches the right edge, so no corner inside is free
+        .legend(Legend::Right);
+    let names: Vec<&str> = sf.profiles.iter().map(|p| p.design.as_str()).collect();
+    let colors = design_colors(&names);
+    for (p, &color) in sf.profiles.iter().zip(&colors) {
+        let storeys: Vec<f64> = (1..=p.mean.len()).map(|i| i as f64).collect();
+        let pct = |v: &[f64]| v.iter().map(|x| 100.0 * x).collect::<Vec<_>>();
+        panel = panel
+            .series(
+                Series::line(p.design.clone(), pct(&p.mean), storeys.clone())
+                    .rgb(color)
+                    .marker(Marker::Circle),
+            )
+            .series(
+                Series::line(format!("{} p84", p.design), pct(&p.p84), storeys)
+                    .rgb(color)
+                    .dashed()
+                    .no_legend(),
+            );
+    }
+    // the suite's limits over the whole height, in the axis' unit (percent)
+    for l in &sf.limits {
+        let x = 100.0 * l.ratio;
+        panel = panel.series(
+            Series::line(limit_label(l), vec![x, x], vec![0.5, storeys as f64 + 0.5])
+                .rgb(style::INK)
+                .width(style::REF_WIDTH)
+                .dotted(),
+        );
+    }
+    let title = if several {
+        format!(
+            "Peak drift-ratio profiles of the ranked designs, suite {}",
+            sf.suite
+        )
+    } else {
+        "Peak drift-ratio profiles of the ranked designs".to_string()
+    };
+    Some(Figure::new(title).panel(panel))
+}
+
+/// One suite's best design vs the bare frame, per record, in percent, with the 1:1 line.
+fn scatter_figure(
+    sc: &RecordScatter,
+    suite: &str,
+    fidelity: &str,
+    several: bool,
+) -> crate::plot::Figure {
+    use crate::plot::{Figure, Legend, Panel, Series, style};
+    let x: Vec<f64> = sc.bare.iter().map(|v| 100.0 * v).collect();
+    let y: Vec<f64> = sc.design_values.iter().map(|v| 100.0 * v).collect();
+    let top = x.iter().chain(&y).copied().fold(0.0, f64::max);
+    let title = if several {
+        format!("Per record: {} vs bare frame, suite {suite}", sc.design)
+    } else {
+        format!("Per record: {} vs bare frame", sc.design)
+    };
+    Figure::new(title).panel(
+        Panel::new(
+            "bare frame: peak drift ratio (%)",
+            format!("{}: peak drift ratio (%)", sc.design),
+        )
+        .title(fidelity.to_string())
+        .x_from_zero()
+        .y_from_zero()
+        .legend(Legend::UpperLeft)
+        .series(Series::scatter("records", x, y).color(0))
+        .series(
+            Series::line("1:1", vec![0.0, top], vec![0.0, top])
+                .dashed()
+                .rgb(style::INK),
+        ),
+    )
 }
 
 /// `suite,hazard,factor,period_s,mean_sa_g,target_sa_g`, one line per suite and period.

@@ -10,7 +10,7 @@ use slipload_figures::plot::{Figure, HeatMap, Panel};
 use slipload_figures::{FigureError, check_fonts, study};
 use slipload_opt::base::collapse::objective_text;
 use slipload_opt::phases::figures::{
-    Convergence, DriftProfile, FigureData, ObjectiveMap, RecordScatter,
+    Convergence, DriftLimit, DriftProfile, FigureData, ObjectiveMap, RecordScatter, SuiteFigures,
 };
 use std::path::{Path, PathBuf};
 
@@ -43,6 +43,18 @@ fn data() -> FigureData {
                 points: vec![(12, 0.8, 0.8), (15, 0.75, 0.75)],
             },
         ],
+        suites: vec![one_suite("", "")],
+        fidelity: "newmark, dt 0.01 s".into(),
+        spectra: vec![],
+    }
+}
+
+/// Two profiles over three storeys and three records, of the suite `suite` whose
+/// figures' names add `suffix`.
+fn one_suite(suite: &str, suffix: &str) -> SuiteFigures {
+    SuiteFigures {
+        suite: suite.into(),
+        suffix: suffix.into(),
         profiles: vec![
             DriftProfile {
                 design: "best".into(),
@@ -58,11 +70,11 @@ fn data() -> FigureData {
         scatter: Some(RecordScatter {
             design: "best".into(),
             records: vec!["a".into(), "b".into(), "c".into()],
+            suites: vec![suite.into(); 3],
             bare: vec![0.010, 0.020, 0.015],
             design_values: vec![0.004, 0.008, 0.006],
         }),
-        fidelity: "newmark, dt 0.01 s".into(),
-        spectra: vec![],
+        limits: vec![],
     }
 }
 
@@ -137,7 +149,7 @@ fn every_figure_is_written_with_its_data_and_named() {
     let sc = String::from_utf8(read(&dir.join("records-scatter.csv"))).unwrap();
     assert_eq!(
         sc.lines().next(),
-        Some("record,bare_peak_drift_ratio,best_peak_drift_ratio")
+        Some("record,bare_peak_drift_ratio,best_peak_drift_ratio,suite")
     );
 
     let svg = String::from_utf8(read(&dir.join("drift-profiles.svg"))).unwrap();
@@ -167,8 +179,7 @@ fn no_figure_data_writes_nothing() {
     let empty = FigureData {
         map: None,
         convergence: vec![],
-        profiles: vec![],
-        scatter: None,
+        suites: vec![],
         fidelity: String::new(),
         spectra: vec![],
     };
@@ -252,8 +263,7 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
     let data = FigureData {
         map: None,
         convergence: vec![],
-        profiles: vec![],
-        scatter: None,
+        suites: vec![],
         fidelity: String::new(),
         spectra: vec![("mce".into(), c)],
     };
@@ -269,7 +279,22 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
     );
     assert_eq!(lines[2], "mce,mce_r,1.04,0.675,0.81,0.9");
     assert_eq!(lines.len(), 4);
-    assert!(dir.join("code-spectra.svg").is_file());
+    // the 90 % line the panel title names as dotted is drawn and in the legend
+    let svg = String::from_utf8(read(&dir.join("code-spectra.svg"))).unwrap();
+    let p = &FigureMeta::from_svg(&svg).unwrap().panels[0];
+    assert!(p.title.contains("dotted: 90 % of it"), "{}", p.title);
+    let ninety = p
+        .series
+        .iter()
+        .find(|s| s.name == "mce 90 % of target")
+        .unwrap_or_else(|| panic!("no 90 % series in {:?}", p.series));
+    assert_eq!(ninety.drawn, 3);
+    let [lo, hi] = ninety.y.map(Option::unwrap);
+    assert!((lo - 0.9 * 0.19).abs() < 1e-12 && (hi - 0.9 * 1.2).abs() < 1e-12);
+    assert!(
+        svg.contains(">\nmce 90 % of target\n</text>"),
+        "named in the legend"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -305,8 +330,7 @@ fn the_objective_maps_legend_never_covers_the_optimum_marker() {
     {
         let mut d = data();
         d.convergence.clear();
-        d.profiles.clear();
-        d.scatter = None;
+        d.suites.clear();
         if let Some(m) = d.map.as_mut() {
             m.loads_a_kn = grid(1000.0);
             m.loads_b_kn = grid(400.0);
@@ -366,10 +390,11 @@ fn each_design_keeps_its_colour_whatever_its_rank() {
     }
 
     // the figure draws them so: the bare frame is black wherever it ranks
-    for profiles in [data().profiles, data().profiles.into_iter().rev().collect()] {
+    let profiles = || one_suite("", "").profiles;
+    for profiles in [profiles(), profiles().into_iter().rev().collect()] {
         let mut d = data();
         d.map = None;
-        d.profiles = profiles
+        d.suites[0].profiles = profiles
             .into_iter()
             .map(|mut p| {
                 if p.design == "best" {
@@ -388,4 +413,105 @@ fn each_design_keeps_its_colour_whatever_its_rank() {
         assert!(svg.contains("stroke=\"#0072B2\""), "the optimum is blue");
         std::fs::remove_dir_all(&dir).unwrap();
     }
+}
+
+#[test]
+fn several_suites_draw_their_figures_apart_with_their_limits() {
+    check_fonts().unwrap();
+    let dir = scratch("suites");
+    let mut design = one_suite("design", "-design");
+    design.limits = vec![DriftLimit {
+        applies_to: "mean".into(),
+        ratio: 0.02,
+    }];
+    let mut mce = one_suite("mce_r", "-mce_r");
+    mce.limits = vec![
+        DriftLimit {
+            applies_to: "mean".into(),
+            ratio: 0.04,
+        },
+        DriftLimit {
+            applies_to: "per record".into(),
+            ratio: 0.06,
+        },
+    ];
+    let d = FigureData {
+        map: None,
+        convergence: vec![],
+        suites: vec![design, mce],
+        fidelity: "newmark, dt 0.01 s".into(),
+        spectra: vec![],
+    };
+    assert_eq!(
+        d.suite_stems(),
+        [
+            "drift-profiles-design",
+            "records-scatter-design",
+            "drift-profiles-mce_r",
+            "records-scatter-mce_r"
+        ]
+    );
+    let names = study::write(&d, &dir).unwrap();
+    assert_eq!(names, d.suite_stems(), "no figure over both suites");
+    // each limit is a vertical line at its value in percent, named in the legend
+    for (stem, limits) in [
+        ("drift-profiles-design", vec![("limit, mean: 2 %", 2.0)]),
+        (
+            "drift-profiles-mce_r",
+            vec![("limit, mean: 4 %", 4.0), ("limit, per record: 6 %", 6.0)],
+        ),
+    ] {
+        let svg = String::from_utf8(read(&dir.join(format!("{stem}.svg")))).unwrap();
+        let m = FigureMeta::from_svg(&svg).unwrap();
+        let suite = stem.trim_start_matches("drift-profiles-");
+        assert!(m.title.ends_with(&format!("suite {suite}")), "{}", m.title);
+        let p = &m.panels[0];
+        assert!(p.title.contains("dotted: limit"), "{}", p.title);
+        for (name, x) in limits {
+            let s = p
+                .series
+                .iter()
+                .find(|s| s.name == name)
+                .unwrap_or_else(|| panic!("{stem}: no series {name:?} in {:?}", p.series));
+            assert_eq!(s.x, [Some(x), Some(x)], "{stem}: {name}");
+            assert_eq!(s.y, [Some(0.5), Some(3.5)], "{stem}: the whole height");
+            assert!(p.x.max >= x, "{stem}: the axis shows the limit");
+            assert!(
+                svg.contains(&format!(">\n{name}\n</text>")),
+                "{stem}: {name} in the legend"
+            );
+        }
+    }
+    // each scatter's rows name their suite
+    for suite in ["design", "mce_r"] {
+        let csv =
+            String::from_utf8(read(&dir.join(format!("records-scatter-{suite}.csv")))).unwrap();
+        let mut lines = csv.lines();
+        assert_eq!(
+            lines.next(),
+            Some("record,bare_peak_drift_ratio,best_peak_drift_ratio,suite")
+        );
+        let rows: Vec<&str> = lines.collect();
+        assert_eq!(rows.len(), 3);
+        assert!(
+            rows.iter().all(|r| r.ends_with(&format!(",{suite}"))),
+            "{csv}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn one_suite_without_limits_draws_no_limit_line() {
+    check_fonts().unwrap();
+    let dir = scratch("one-suite");
+    study::write(&data(), &dir).unwrap();
+    let svg = String::from_utf8(read(&dir.join("drift-profiles.svg"))).unwrap();
+    let p = &FigureMeta::from_svg(&svg).unwrap().panels[0];
+    assert_eq!(
+        p.title,
+        "solid: mean, dashed: 84th percentile; newmark, dt 0.01 s"
+    );
+    assert!(!p.series.iter().any(|s| s.name.starts_with("limit")));
+    std::fs::remove_dir_all(&dir).unwrap();
 }

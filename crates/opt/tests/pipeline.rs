@@ -178,8 +178,9 @@ fn optimize_study_runs_the_phases_and_resumes_them_from_their_journals() {
 
     // the figure data
     let fig = &r.figures;
-    assert_eq!(fig.profiles.len(), r.designs.len());
-    assert_eq!(fig.scatter.as_ref().unwrap().bare.len(), nr);
+    assert_eq!(fig.suites.len(), 1, "one suite: the plain figures");
+    assert_eq!(fig.suites[0].profiles.len(), r.designs.len());
+    assert_eq!(fig.suites[0].scatter.as_ref().unwrap().bare.len(), nr);
     assert_eq!(fig.convergence.len(), 1);
     assert_eq!(fig.convergence[0].points.len(), evaluations + 1);
     assert_eq!(fig.map.as_ref().unwrap().objective.len(), 4);
@@ -312,7 +313,11 @@ fn merged_shards_give_the_figure_data_of_one_whole_sweep() {
     assert_eq!(progress.order(), [Phase::Sweep]);
     assert_eq!(progress.of(Phase::Sweep), (tasks, tasks));
     let whole_figures = one.figures.unwrap();
-    assert_eq!(whole_figures.profiles.len(), 5, "3 best, file, bare");
+    assert_eq!(
+        whole_figures.suites[0].profiles.len(),
+        5,
+        "3 best, file, bare"
+    );
 
     let dirs: Vec<PathBuf> = (0..2).map(|i| scratch(&format!("shard{i}"))).collect();
     for (i, d) in dirs.iter().enumerate() {

@@ -61,13 +61,17 @@ def test_optimize_writes_the_cli_bytes(tmp_path, cli_optimized):
     out = tmp_path / "opt"
     report = slipload.optimize(str(STUDY), out, progress=False)
     files = same_folders(out, cli_optimized)
-    assert "design-table.json" in files and "convergence.svg" in files and "drift-profiles.png" in files
+    # two suites: the drift profiles and the scatter per suite, none over both
+    assert "design-table.json" in files and "convergence.svg" in files
+    assert "drift-profiles-near-fault-0.4g.png" in files and "drift-profiles.png" not in files
     # the report is the files' content, as Python objects
     assert report.optimum == json.loads((out / "optimum.json").read_text())
     assert [r["design"] for r in report.design_table][0] == "optimum"
     assert report.candidates[0]["name"] == "optimum"
     assert report.details["work"]["sweep"][0] > 0
-    assert set(report.figures) >= {"convergence", "drift-profiles", "records-scatter"}
+    per_suite = {f"{stem}-{suite}" for stem in ("drift-profiles", "records-scatter")
+                 for suite in ("synthetic-0.4g-8s", "near-fault-0.4g")}
+    assert set(report.figures) >= {"convergence"} | per_suite
 
 
 def test_a_rerun_reuses_everything_and_writes_the_same_bytes(tmp_path, cli_optimized):

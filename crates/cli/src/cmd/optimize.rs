@@ -310,6 +310,12 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     // prices) to a tenth
     let digits = if study.objective.cost.is_some() { 1 } else { 6 };
     let obj = |f: f64| objective_text(f, Some(digits));
+    // with property bounds every objective value says the case it was read at (a cost
+    // is the same in every case)
+    let case = match study.checks.objective_case() {
+        Some(c) if study.objective.cost.is_none() => format!(" {c}"),
+        _ => String::new(),
+    };
     // "collapsed", or the value and how much lower the optimum is
     let against = |g: f64| {
         if g.is_finite() {
@@ -354,7 +360,7 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
         );
     } else {
         outln!(
-            "objective {} — bare frame {}, {file_design}: {}",
+            "objective{case} {} — bare frame {}, {file_design}: {}",
             obj(r.optimum.f),
             against(r.bare_objective),
             against(r.file_objective)
@@ -397,7 +403,7 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
     }
     for f in &r.finalists {
         outln!(
-            "  {}: objective {} ({} {}){}",
+            "  {}: objective{case} {} ({} {}){}",
             loads_text(study, &f.slip_loads_n),
             obj(f.f_check),
             if r.target == RefineTarget::Violation {

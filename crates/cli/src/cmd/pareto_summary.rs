@@ -20,7 +20,7 @@ fn value(o: &ParetoObjective, v: f64) -> String {
     match o.metric {
         ParetoMetric::PeakFloorAcceleration => format!("{v:.2} m/s²"),
         ParetoMetric::BaseShear => format!("{:.2} MN", v / 1e6),
-        ParetoMetric::DamperSize => format!("{:.0} kN", v / 1e3),
+        ParetoMetric::DamperSize => format!("{:.1} kN", v / 1e3),
         ParetoMetric::PeakDriftRatio | ParetoMetric::ResidualDriftRatio => format!("{v:.5}"),
         _ => format!("{v:.4}"),
     }

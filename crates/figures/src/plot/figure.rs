@@ -106,6 +106,9 @@ pub struct Series {
     pub color: Option<RGBColor>,
     /// Dashed line (reference lines: thresholds, targets).
     pub dashed: bool,
+    /// Dotted line (a second kind of reference line: limits, a fraction of a target);
+    /// takes precedence over `dashed`.
+    pub dotted: bool,
     /// Markers at the points (always for `Scatter`; default circle).
     pub marker: Option<Marker>,
     /// Hollow markers.
@@ -231,6 +234,7 @@ impl Series {
             kind,
             color: None,
             dashed: false,
+            dotted: false,
             marker: None,
             hollow: false,
             width: style::LINE_WIDTH,
@@ -278,6 +282,12 @@ impl Series {
     /// Dashed line.
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
+        self
+    }
+
+    /// Dotted line.
+    pub fn dotted(mut self) -> Self {
+        self.dotted = true;
         self
     }
 

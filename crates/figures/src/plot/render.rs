@@ -390,7 +390,14 @@ fn draw_line(
     let flush = |seg: &mut Vec<(f64, f64)>, chart: &mut Chart| -> Result<(), FigureError> {
         if seg.len() >= 2 {
             let pts = thin(seg, sx, width_px);
-            if s.dashed {
+            if s.dotted {
+                chart.draw_series(DashedLineSeries::new(
+                    pts,
+                    style::DOT.0,
+                    style::DOT.1,
+                    line_style(s, color),
+                ))?;
+            } else if s.dashed {
                 chart.draw_series(DashedLineSeries::new(
                     pts,
                     style::DASH.0,
@@ -555,7 +562,11 @@ fn draw_legend(
             }
             Kind::Line => {
                 let st = line_style(s, *color);
-                if s.dashed {
+                if s.dotted {
+                    for a in (0..glyph).step_by(6) {
+                        root.draw(&PathElement::new(vec![(gx + a, cy), (gx + a + 2, cy)], st))?;
+                    }
+                } else if s.dashed {
                     for (a, b) in [(0, 8), (13, 21)] {
                         root.draw(&PathElement::new(vec![(gx + a, cy), (gx + b, cy)], st))?;
                     }

@@ -42,6 +42,8 @@ pub const REF_WIDTH: u32 = 2;
 pub const MARKER_RADIUS: i32 = 4;
 /// Dash and gap of dashed lines, px.
 pub const DASH: (u32, u32) = (7, 5);
+/// Dot and gap of dotted lines, px.
+pub const DOT: (u32, u32) = (2, 4);
 /// Opacity of stacked-area fills.
 pub const AREA_OPACITY: f64 = 0.55;
 

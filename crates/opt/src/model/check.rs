@@ -526,6 +526,18 @@ impl Checks {
         out
     }
 
+    /// The property case an objective value is read at, as the summary and the report
+    /// label it (`at the worst properties`, `at nominal properties`); `None` for a study
+    /// without property bounds, whose one case needs no label.
+    pub fn objective_case(&self) -> Option<&'static str> {
+        self.property_bounds
+            .as_ref()
+            .map(|b| match b.objective_reads {
+                BoundReading::Nominal => "at nominal properties",
+                BoundReading::Worst => "at the worst properties",
+            })
+    }
+
     /// Which case the objective reads.
     pub fn reading(&self) -> BoundReading {
         self.property_bounds

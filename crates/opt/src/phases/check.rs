@@ -373,10 +373,13 @@ impl CodeCheck {
             s.push_str("| case | criterion | limit | demand | ratio | verdict | source |\n");
             s.push_str("|---|---|---:|---:|---:|---|---|\n");
             for l in lines {
-                // a count is a whole number
+                // a count is a whole number; a drift ratio in percent, as every drift a
+                // person reads
                 let num = |v: f64| {
                     if l.source.ends_with("unacceptable") {
                         format!("{v:.0}")
+                    } else if l.criterion.ends_with("drift_ratio") {
+                        format!("{} %", short(100.0 * v))
                     } else {
                         short(v)
                     }
@@ -405,14 +408,14 @@ impl CodeCheck {
                 } else {
                     t.runs
                         .iter()
-                        .map(|(name, v)| format!("{} ({})", md_text(name), short(*v)))
+                        .map(|(name, v)| format!("{} ({} %)", md_text(name), short(100.0 * v)))
                         .collect::<Vec<_>>()
                         .join(", ")
                 };
                 let _ = writeln!(
                     s,
-                    "Residual drift read {when}; runs whose residual alone exceeds {}: {runs}.\n",
-                    short(t.limit)
+                    "Residual drift (the largest storey drift ratio left when the run ends) read {when}; runs whose residual alone exceeds {} %: {runs}.\n",
+                    short(100.0 * t.limit)
                 );
             }
         }

@@ -156,7 +156,7 @@ pub fn to_markdown(cells: &[FamilyCell], damper_floors: &[usize], objective: &st
         floors.join(" / ")
     );
     for c in cells {
-        let loads: Vec<String> = c.slip_loads_kn.iter().map(|v| format!("{v:.0}")).collect();
+        let loads: Vec<String> = c.slip_loads_kn.iter().map(|v| format!("{v:.1}")).collect();
         let _ = writeln!(
             s,
             "| {} | {:.3} | {} | {} | {} | {} | {} |",

@@ -8,18 +8,24 @@
 //! - peak drift-ratio profiles over the storeys of the ranked designs (mean and 84th
 //!   percentile over the suite);
 //! - per-record peak drift ratio of the best design vs the bare frame.
+//!
+//! The drift profiles and the per-record scatter are drawn per suite where a study has
+//! several (a design earthquake and MCE_R are never averaged together), each under the
+//! suite's name ([`SuiteFigures::stem`]), with the drift limits the suite states.
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
 use crate::eval::evaluate::{TaskJournal, run_designs_journalled, suite_ranges};
+use crate::model::check::{Checks, LimitMetric};
 use crate::model::config::MAX_DESIGNS;
 use crate::model::fidelity::Fidelity;
 use crate::model::objective::Statistic;
 use crate::model::space::SpaceConfig;
-use crate::model::study::Study;
+use crate::model::study::{Study, SuiteInfo};
 use crate::phases::refine::Point;
 use crate::phases::sweep::Manifest;
 use crate::phases::table::DesignTable;
+pub use crate::store::folder::PER_SUITE_STEMS;
 use std::path::{Path, PathBuf};
 
 /// The objective over a grid of two dissipators' slip loads.
@@ -219,16 +225,27 @@ pub struct DriftProfile {
     pub p84: Vec<f64>,
 }
 
-/// Profiles of designs from their per-record responses (`runs[d][r]`).
-pub fn drift_profiles(names: &[String], runs: &[&[RecordMetrics]]) -> Vec<DriftProfile> {
+/// Profiles of designs from their per-record responses (`runs[d][r]`), over the runs
+/// `picked` (indices into each design's responses).
+pub fn drift_profiles(
+    names: &[String],
+    runs: &[&[RecordMetrics]],
+    picked: &[usize],
+) -> Vec<DriftProfile> {
     names
         .iter()
         .zip(runs)
         .map(|(name, rows)| {
+            let rows: Vec<&RecordMetrics> = picked.iter().filter_map(|&i| rows.get(i)).collect();
             let n = rows.first().map_or(0, |m| m.drift_ratio.len());
             let stat = |st: Statistic| -> Vec<f64> {
                 (0..n)
-                    .map(|i| st.of(&rows.iter().map(|m| m.drift_ratio[i]).collect::<Vec<_>>()))
+                    .map(|i| {
+                        st.of(&rows
+                            .iter()
+                            .map(|m| m.drift_ratio.get(i).copied().unwrap_or(f64::NAN))
+                            .collect::<Vec<_>>())
+                    })
                     .collect()
             };
             DriftProfile {
@@ -247,6 +264,8 @@ pub struct RecordScatter {
     pub design: String,
     /// Record names.
     pub records: Vec<String>,
+    /// The suite of each record.
+    pub suites: Vec<String>,
     /// The bare frame's peak drift ratio per record.
     pub bare: Vec<f64>,
     /// The design's peak drift ratio per record.
@@ -254,20 +273,178 @@ pub struct RecordScatter {
 }
 
 impl RecordScatter {
-    /// From the per-record responses of the bare frame and the design.
+    /// From the per-record responses of the bare frame and the design, the runs `picked`
+    /// (indices into `records`, `bare` and `rows`), each of the suite `suite`.
     pub fn new(
         design: &str,
+        suite: &str,
+        picked: &[usize],
         records: &[String],
         bare: &[RecordMetrics],
         rows: &[RecordMetrics],
     ) -> RecordScatter {
+        let drift =
+            |m: &[RecordMetrics], i: usize| m.get(i).map_or(f64::NAN, |r| r.peak_drift_ratio());
         RecordScatter {
             design: design.to_string(),
-            records: records.to_vec(),
-            bare: bare.iter().map(RecordMetrics::peak_drift_ratio).collect(),
-            design_values: rows.iter().map(RecordMetrics::peak_drift_ratio).collect(),
+            records: picked
+                .iter()
+                .map(|&i| records.get(i).cloned().unwrap_or_default())
+                .collect(),
+            suites: vec![suite.to_string(); picked.len()],
+            bare: picked.iter().map(|&i| drift(bare, i)).collect(),
+            design_values: picked.iter().map(|&i| drift(rows, i)).collect(),
         }
     }
+}
+
+/// A drift limit a suite states (`suites[i].limits`), drawn on its drift profiles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriftLimit {
+    /// What the limit bounds: `mean`, `p84`, … of the suite's peak drift ratios (a
+    /// criterion) or `per record` (a record's unacceptable response).
+    pub applies_to: String,
+    /// The limit, as a drift ratio (dimensionless).
+    pub ratio: f64,
+}
+
+/// The peak drift ratio limits of one suite: its criteria on `peak_drift_ratio`, then its
+/// per-record limits of an unacceptable response, in the order the study states them.
+pub fn drift_limits(checks: &Checks, suite: usize) -> Vec<DriftLimit> {
+    let Some(Some(limits)) = checks.limits.get(suite) else {
+        return Vec::new();
+    };
+    let criteria = limits
+        .criteria
+        .iter()
+        .filter(|c| c.metric == LimitMetric::PeakDriftRatio)
+        .map(|c| DriftLimit {
+            applies_to: c.statistic.as_str().to_string(),
+            ratio: c.max,
+        });
+    let records = limits
+        .unacceptable
+        .record_limits
+        .iter()
+        .filter(|l| l.metric == LimitMetric::PeakDriftRatio)
+        .map(|l| DriftLimit {
+            applies_to: "per record".to_string(),
+            ratio: l.max,
+        });
+    criteria.chain(records).collect()
+}
+
+/// The drift profiles and the per-record scatter of one suite (of the whole study where
+/// it has one suite).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SuiteFigures {
+    /// The suite's name.
+    pub suite: String,
+    /// What its figures' file names add to the stem (`-LABEL`, the suite's name made a
+    /// plain file name); empty for a study of one suite, whose figures keep the plain
+    /// names.
+    pub suffix: String,
+    /// Drift profiles of the ranked designs, best first.
+    pub profiles: Vec<DriftProfile>,
+    /// The best design vs the bare frame, per record.
+    pub scatter: Option<RecordScatter>,
+    /// The peak drift ratio limits the suite states.
+    pub limits: Vec<DriftLimit>,
+}
+
+impl SuiteFigures {
+    /// The file stem of the figure `base` (`drift-profiles`, `records-scatter`) of this
+    /// suite: `base` itself for a study of one suite, else `base-LABEL`.
+    pub fn stem(&self, base: &str) -> String {
+        format!("{base}{}", self.suffix)
+    }
+}
+
+/// The file-name suffix of each suite's figures: none for one suite; else `-LABEL`, the
+/// suite's name with every character other than an ASCII letter, digit, `.`, `_` or `-`
+/// replaced by `_` (a name that would repeat an earlier suite's takes `-K`, its
+/// position from 1).
+pub fn suite_suffixes(names: &[String]) -> Vec<String> {
+    if names.len() <= 1 {
+        return vec![String::new(); names.len()];
+    }
+    let mut out: Vec<String> = Vec::with_capacity(names.len());
+    for (k, name) in names.iter().enumerate() {
+        let mut label: String = name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        if label.is_empty() || label.chars().all(|c| c == '.') {
+            label = format!("suite{}", k + 1);
+        }
+        let mut suffix = format!("-{label}");
+        if out.contains(&suffix) {
+            suffix = format!("-{label}-{}", k + 1);
+        }
+        out.push(suffix);
+    }
+    out
+}
+
+/// The runs (indices into a run list of `runs` entries over `records` records, case
+/// after case) of each suite: those whose record lies in the suite's range; for a study
+/// of one suite, every run.
+fn suite_runs(suites: &[SuiteInfo], runs: usize, records: usize) -> Vec<Vec<usize>> {
+    if suites.len() <= 1 {
+        return vec![(0..runs).collect()];
+    }
+    suites
+        .iter()
+        .map(|s| {
+            (0..runs)
+                .filter(|i| records > 0 && s.range.contains(&(i % records)))
+                .collect()
+        })
+        .collect()
+}
+
+/// The per-suite figures of designs `names` (their responses `runs`, each over the run
+/// list `run_names`, whose records `records` repeat case after case), the best design
+/// `best` (its name and responses) against the bare frame's responses `bare`.
+#[allow(clippy::too_many_arguments)] // two callers; each argument is one of the study's lists
+fn per_suite(
+    suites: &[SuiteInfo],
+    checks: &Checks,
+    run_names: &[String],
+    records: usize,
+    names: &[String],
+    runs: &[&[RecordMetrics]],
+    best: Option<(&str, &[RecordMetrics])>,
+    bare: &[RecordMetrics],
+) -> Vec<SuiteFigures> {
+    let picked = suite_runs(suites, run_names.len(), records);
+    let suite_names: Vec<String> = if suites.is_empty() {
+        vec![String::new()]
+    } else {
+        suites.iter().map(|s| s.name.clone()).collect()
+    };
+    let suffixes = suite_suffixes(&suite_names);
+    suite_names
+        .iter()
+        .zip(suffixes)
+        .zip(&picked)
+        .enumerate()
+        .map(|(k, ((suite, suffix), picked))| SuiteFigures {
+            suite: suite.clone(),
+            suffix,
+            profiles: drift_profiles(names, runs, picked),
+            scatter: best.map(|(design, rows)| {
+                RecordScatter::new(design, suite, picked, run_names, bare, rows)
+            }),
+            limits: drift_limits(checks, k),
+        })
+        .collect()
 }
 
 /// The figure data of one study run.
@@ -277,10 +454,9 @@ pub struct FigureData {
     pub map: Option<ObjectiveMap>,
     /// The refiners' paths (none for a sweep).
     pub convergence: Vec<Convergence>,
-    /// Drift profiles of the ranked designs, best first.
-    pub profiles: Vec<DriftProfile>,
-    /// The best design vs the bare frame, per record.
-    pub scatter: Option<RecordScatter>,
+    /// The drift profiles and the per-record scatter, per suite (one entry, under the
+    /// plain names, for a study of one suite).
+    pub suites: Vec<SuiteFigures>,
     /// Method and time step of the profiles and the scatter, for the titles.
     pub fidelity: String,
     /// The suites scaled to a code spectrum: each scaled mean spectrum against its target
@@ -292,7 +468,7 @@ impl FigureData {
     /// A sweep's figure data from its manifest and responses alone (no new simulations),
     /// so a single run and `merge` of its shards draw the same bytes: drift profiles of
     /// the three best designs, the building file's design and the bare frame; the best
-    /// design vs the bare frame per record.
+    /// design vs the bare frame per record; per suite where there are several.
     pub fn of_sweep(m: &Manifest, rows: &[RecordMetrics]) -> Result<FigureData, OptError> {
         let nr = m.records.len();
         let obj = m.objectives(rows)?;
@@ -315,18 +491,21 @@ impl FigureData {
             .map(|&d| &rows[d * nr..(d + 1) * nr])
             .collect();
         let best = order.iter().copied().find(|&d| d != 0);
+        // the study's records: the suites' ranges end at the last
+        let records = m.suites.iter().map(|s| s.range.end).max().unwrap_or(nr);
         Ok(FigureData {
             map: None,
             convergence: Vec::new(),
-            profiles: drift_profiles(&names, &runs),
-            scatter: best.map(|d| {
-                RecordScatter::new(
-                    &m.designs[d].label,
-                    &m.records,
-                    &rows[..nr],
-                    &rows[d * nr..(d + 1) * nr],
-                )
-            }),
+            suites: per_suite(
+                &m.suites,
+                &m.checks,
+                &m.records,
+                records,
+                &names,
+                &runs,
+                best.map(|d| (m.designs[d].label.as_str(), &rows[d * nr..(d + 1) * nr])),
+                &rows[..nr],
+            ),
             fidelity: format!("{} (sweep fidelity)", m.method.as_str()),
             spectra: Vec::new(),
         }
@@ -334,7 +513,7 @@ impl FigureData {
     }
 
     /// The figure data with the code scaling of `suites` (those scaled to a code spectrum).
-    pub fn with_spectra(mut self, suites: &[crate::model::study::SuiteInfo]) -> FigureData {
+    pub fn with_spectra(mut self, suites: &[SuiteInfo]) -> FigureData {
         self.spectra = suites
             .iter()
             .filter_map(|s| s.code_scaling.clone().map(|c| (s.name.clone(), c)))
@@ -342,18 +521,30 @@ impl FigureData {
         self
     }
 
+    /// The stems of the per-suite figures this data draws ([`SuiteFigures::stem`]), for
+    /// the folder to claim before they are written.
+    pub fn suite_stems(&self) -> Vec<String> {
+        self.suites
+            .iter()
+            .filter(|s| !s.suffix.is_empty())
+            .flat_map(|s| PER_SUITE_STEMS.map(|b| s.stem(b)))
+            .collect()
+    }
+
     /// An optimisation's figure data: the drift profiles of the design table's designs
     /// ranked by their objective, the first design (the optimum) vs the bare frame per
     /// record, both from the table's runs (`runs` as [`DesignTable::build_with_runs`]
-    /// returns them), with the refiners' paths and the objective map given.
+    /// returns them) and per suite of `study`, with the refiners' paths and the objective
+    /// map given.
     pub fn of_design_table(
-        records: &[String],
+        study: &Study,
         designs: &[(String, crate::eval::evaluate::DesignLoads)],
         table: &DesignTable,
         runs: &[Vec<RecordMetrics>],
         convergence: Vec<Convergence>,
         map: Option<ObjectiveMap>,
     ) -> FigureData {
+        let records: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
         // the designs ranked by the objective (design-table fidelity)
         let mut order: Vec<usize> = (0..designs.len()).collect();
         order.sort_by(|&a, &b| {
@@ -365,13 +556,24 @@ impl FigureData {
         let names: Vec<String> = order.iter().map(|&k| designs[k].0.clone()).collect();
         let rows: Vec<&[RecordMetrics]> =
             order.iter().map(|&k| runs[1 + 3 * k].as_slice()).collect();
+        let best = designs
+            .first()
+            .zip(runs.get(1))
+            .map(|((name, _), rows)| (name.as_str(), rows.as_slice()));
+        let bare: &[RecordMetrics] = runs.first().map_or(&[], Vec::as_slice);
         FigureData {
             map,
             convergence,
-            profiles: drift_profiles(&names, &rows),
-            scatter: designs
-                .first()
-                .map(|(name, _)| RecordScatter::new(name, records, &runs[0], &runs[1])),
+            suites: per_suite(
+                &study.suites,
+                &study.checks,
+                &records,
+                records.len(),
+                &names,
+                &rows,
+                best,
+                bare,
+            ),
             fidelity: table.fidelity.clone(),
             spectra: Vec::new(),
         }

@@ -476,7 +476,7 @@ impl DesignTable {
         let _ = writeln!(s, "# {title}: {}\n", self.study);
         let _ = writeln!(
             s,
-            "Objective: {} ({} records, {}). Drift ratios in %, slip loads in kN; \"/W\" = slip load over the floor weight, \"/ΣW\" = over the weight above the storey (its gravity shear).\n",
+            "Objective: {} ({} records, {}). Drift ratios in %, slip loads in kN; \"/W\" = slip load over the floor weight, \"/ΣW\" = over the weight above the storey (its gravity shear); residual drift = the largest storey drift ratio left at the end of the record (after the free vibration a suite asks for, `free_vibration_s`), mean over the records run to their end.\n",
             self.objective, self.records, self.fidelity
         );
         s.push_str("| design | floor | slip load (kN) | /W | /ΣW | drift mean (%) | drift p84 (%) | drift max (%) | stroke max (mm) |\n");

@@ -84,7 +84,7 @@ pub fn optimize_study(
         progress.discarded(folder.dir(), d);
     }
     let report = run_phases(study, &folder, options, progress)?;
-    folder.claim_figures()?;
+    folder.claim_figures(&report.figures.suite_stems())?;
     let mut drawn = figures.study(&report.figures, folder.dir())?;
     if let Some(p) = &report.pareto {
         drawn.extend(figures.front(p, folder.dir())?);
@@ -294,9 +294,8 @@ fn run_phases(
         )?),
         _ => None,
     };
-    let record_names: Vec<String> = study.records.iter().map(|r| r.name().to_string()).collect();
     let figures = FigureData::of_design_table(
-        &record_names,
+        study,
         &designs,
         &table,
         &table_runs,

@@ -48,7 +48,7 @@ impl SweepRun {
         };
         let drawn = match &data {
             Some(d) => {
-                folder.claim_figures()?;
+                folder.claim_figures(&d.suite_stems())?;
                 figures.study(d, folder.dir())?
             }
             None => Vec::new(),

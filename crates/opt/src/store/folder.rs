@@ -50,8 +50,20 @@ pub fn is_output_name(name: &str) -> bool {
     }
     is_journal_name(name)
         || OUTPUT_FILES.contains(&name)
-        || name.rsplit_once('.').is_some_and(|(stem, ext)| {
-            FIGURE_STEMS.contains(&stem) && matches!(ext, "csv" | "svg" | "png")
+        || name
+            .rsplit_once('.')
+            .is_some_and(|(stem, ext)| is_figure_stem(stem) && matches!(ext, "csv" | "svg" | "png"))
+}
+
+/// Whether `stem` names a study figure: one of [`FIGURE_STEMS`], or a per-suite figure
+/// (`drift-profiles-SUITE`, `records-scatter-SUITE`;
+/// [`PER_SUITE_STEMS`]).
+fn is_figure_stem(stem: &str) -> bool {
+    FIGURE_STEMS.contains(&stem)
+        || PER_SUITE_STEMS.iter().any(|b| {
+            stem.strip_prefix(b)
+                .and_then(|rest| rest.strip_prefix('-'))
+                .is_some_and(|label| !label.is_empty())
         })
 }
 
@@ -95,6 +107,10 @@ pub const FIGURE_STEMS: [&str; 6] = [
     "convergence",
     "objective-map",
 ];
+
+/// The study figures drawn per suite where a study has several suites, each as
+/// `STEM-LABEL` (the label made of the suite's name).
+pub const PER_SUITE_STEMS: [&str; 2] = ["drift-profiles", "records-scatter"];
 
 /// What `fresh` did in a folder.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -329,10 +345,12 @@ impl StudyFolder {
     }
 
     /// Claims the figure files a figure writer may write (every stem of
-    /// [`FIGURE_STEMS`] as `.svg`, `.png`, `.csv`).
-    pub fn claim_figures(&self) -> Result<(), OptError> {
+    /// [`FIGURE_STEMS`] and the per-suite stems `suite_stems` as `.svg`, `.png`, `.csv`).
+    pub fn claim_figures(&self, suite_stems: &[String]) -> Result<(), OptError> {
         let names: Vec<String> = FIGURE_STEMS
             .iter()
+            .copied()
+            .chain(suite_stems.iter().map(String::as_str))
             .flat_map(|s| ["svg", "png", "csv"].map(|e| format!("{s}.{e}")))
             .collect();
         // a name of the list that holds a user's file is refused, not claimed

@@ -120,10 +120,12 @@ pub(super) fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, 
     let summary_txt = by_name("summary.txt");
     let optimum = by_name("optimum.json").and_then(read_json);
     let design_table = by_name("design-table.json").and_then(read_json);
+    let manifest = by_name("manifest.json").and_then(read_json);
     if summary_txt.is_some() || optimum.is_some() {
         page.section("summary", "Summary");
         if let Some(o) = &optimum {
-            page.body.push_str(&key_results(o, design_table.as_ref()));
+            page.body
+                .push_str(&key_results(o, design_table.as_ref(), manifest.as_ref()));
         }
         if let Some(e) = summary_txt {
             let _ = writeln!(page.body, "<pre>{}</pre>", escape(&read(e)?));

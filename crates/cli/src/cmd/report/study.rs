@@ -129,12 +129,38 @@ fn on_bound_text(o: &serde_json::Value) -> Option<String> {
     Some(parts.join("; "))
 }
 
+/// The property case a study's objective values are read at, from its manifest: `at the
+/// worst properties` or `at nominal properties` where the study names property bounds
+/// (a cost objective, the same in every case, and a study without bounds need none).
+pub(super) fn objective_case(manifest: Option<&serde_json::Value>) -> Option<&'static str> {
+    let m = manifest?;
+    if m.get("objective").and_then(|o| o.get("cost")).is_some() {
+        return None;
+    }
+    let bounds = m.get("checks")?.get("property_bounds")?;
+    if bounds.is_null() {
+        return None;
+    }
+    Some(
+        match bounds.get("objective_reads").and_then(|r| r.as_str()) {
+            Some("worst") => "at the worst properties",
+            _ => "at nominal properties",
+        },
+    )
+}
+
 /// The optimum's key numbers as a table, the floors on a bound of the design space, and
 /// what the optimum costs in base shear and floor acceleration against the building
 /// file's slip loads and the bare frame (from `design-table.json`), rounded as the
-/// design tables round them.
-pub(super) fn key_results(o: &serde_json::Value, table: Option<&serde_json::Value>) -> String {
+/// design tables round them; with property bounds each objective value names the case
+/// it was read at (from the study's `manifest`).
+pub(super) fn key_results(
+    o: &serde_json::Value,
+    table: Option<&serde_json::Value>,
+    manifest: Option<&serde_json::Value>,
+) -> String {
     let num = |k: &str| f64_at(o, k);
+    let case = objective_case(manifest).map_or(String::new(), |c| format!(" {c}"));
     let mut rows: Vec<(String, String)> = Vec::new();
     if let Some(s) = o.get("objective").and_then(|s| s.as_str()) {
         rows.push(("objective".into(), s.to_string()));
@@ -152,14 +178,14 @@ pub(super) fn key_results(o: &serde_json::Value, table: Option<&serde_json::Valu
         ));
     }
     if let Some(f) = num("objective_value") {
-        rows.push(("objective at the optimum".into(), format!("{f:.6}")));
+        rows.push((format!("objective at the optimum{case}"), format!("{f:.6}")));
     }
     let lower = |f: f64, b: f64| format!("{b:.6} (optimum {:.1} % lower)", 100.0 * (1.0 - f / b));
     if let (Some(f), Some(b)) = (num("objective_value"), num("bare_objective")) {
-        rows.push(("bare frame".into(), lower(f, b)));
+        rows.push((format!("bare frame{case}"), lower(f, b)));
     }
     if let (Some(f), Some(b)) = (num("objective_value"), num("file_objective")) {
-        rows.push(("building file's slip loads".into(), lower(f, b)));
+        rows.push((format!("building file's slip loads{case}"), lower(f, b)));
     }
     if let Some(s) = o.get("refiner").and_then(|s| s.as_str()) {
         rows.push(("refiner".into(), s.to_string()));
@@ -176,14 +202,14 @@ pub(super) fn key_results(o: &serde_json::Value, table: Option<&serde_json::Valu
         out.push_str(&kv_table(&rows));
     }
     if let Some(t) = table {
-        out.push_str(&costs(t));
+        out.push_str(&costs(t, &case));
     }
     out
 }
 
 /// What the optimum costs: mean peak base shear and floor acceleration of the optimum,
 /// the building file's slip loads and the bare frame (rows of `design-table.json`).
-fn costs(table: &serde_json::Value) -> String {
+fn costs(table: &serde_json::Value, case: &str) -> String {
     let Some(rows) = table.get("rows").and_then(|r| r.as_array()) else {
         return String::new();
     };
@@ -222,11 +248,57 @@ fn costs(table: &serde_json::Value) -> String {
             &[
                 "design".into(),
                 "slip loads (kN)".into(),
-                "objective".into(),
+                format!("objective{case}"),
                 "peak base shear (MN)".into(),
                 "peak floor acceleration (m/s²)".into(),
             ],
             &body,
         )
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_objective_value_names_its_case_where_the_study_has_bounds() {
+        let optimum = serde_json::json!({
+            "objective": "mean peak_drift_ratio",
+            "objective_value": 0.0064,
+            "bare_objective": 0.0113,
+            "slip_loads_kN": [2746.856, 464.46],
+            "damper_floors": [1, 2]
+        });
+        let bounds = |reads: &str| {
+            serde_json::json!({
+                "objective": { "terms": [] },
+                "checks": { "property_bounds": { "slip_load": { "lower": 0.85, "upper": 1.15 }, "objective_reads": reads } }
+            })
+        };
+        let worst = key_results(&optimum, None, Some(&bounds("worst")));
+        assert!(
+            worst.contains("objective at the optimum at the worst properties"),
+            "{worst}"
+        );
+        assert!(
+            worst.contains("bare frame at the worst properties"),
+            "{worst}"
+        );
+        assert!(
+            worst.contains("2746.9 / 464.5"),
+            "slip loads to 0.1 kN: {worst}"
+        );
+        let nominal = key_results(&optimum, None, Some(&bounds("nominal")));
+        assert!(nominal.contains("objective at the optimum at nominal properties"));
+        // one case (no bounds), a cost objective: no label
+        let none = serde_json::json!({ "objective": { "terms": [] }, "checks": {} });
+        assert_eq!(objective_case(Some(&none)), None);
+        let cost = serde_json::json!({
+            "objective": { "terms": [], "cost": { "per_kn": 1.0 } },
+            "checks": { "property_bounds": { "objective_reads": "worst" } }
+        });
+        assert_eq!(objective_case(Some(&cost)), None);
+        assert!(key_results(&optimum, None, None).contains("<th>objective at the optimum</th>"));
+    }
 }
