@@ -197,6 +197,7 @@ pub(crate) fn scale_to_code(
             periods_s: a.periods_s,
             mean_psa_m_s2: a.mean_psa_m_s2,
             target_psa_m_s2: a.target_psa_m_s2,
+            zero_period: None,
         };
         (m, a.suite.records)
     } else {
