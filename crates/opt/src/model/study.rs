@@ -672,7 +672,7 @@ impl Study {
                 }
                 if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
                     let (scaled, scaling) =
-                        scale_to_code(&unscaled, &pairs, c, &building, path, i)?;
+                        scale_to_code(&unscaled, &pairs, c, s.limits.as_ref(), &building, path, i)?;
                     records.extend(scaled.into_iter().map(Arc::new));
                     code_scaling = Some(scaling);
                 }
