@@ -122,7 +122,7 @@ pub(crate) fn weighted_match<T: Target + ?Sized>(
         }
         Ok(sum.into_iter().map(|m| m / n).collect())
     };
-    let mut m = smallest_factor(&mean, target, range_s)?;
+    let mut m = smallest_factor(mean, target, range_s)?;
     if let Some(floor) = floor_m_s2 {
         if !(floor.is_finite() && floor > 0.0) {
             return Err(MotionError::InvalidArgument {

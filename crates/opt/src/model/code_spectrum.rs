@@ -69,7 +69,7 @@ pub struct CodeSpectrumConfig {
     pub table: Option<TableConfig>,
     /// The target as the EN 1998-1 elastic spectrum.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub en1998: Option<En1998Config>,
+    pub en1998: Option<Box<En1998Config>>,
     /// The scaling rule by name: `asce7` or `en1998` ([`ScalingRule`]; default `en1998`
     /// with the `en1998` form, else `asce7`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
