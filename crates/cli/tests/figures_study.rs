@@ -204,7 +204,10 @@ fn optimize_figure_data_is_the_studys_own() {
         ]
     );
     assert_eq!(rows.len(), nr);
-    assert!(rows.iter().all(|r| r[3] == "syn"), "every row names its suite");
+    assert!(
+        rows.iter().all(|r| r[3] == "syn"),
+        "every row names its suite"
+    );
     let mean = |k: usize| rows.iter().map(|r| num(&r[k])).sum::<f64>() / nr as f64;
     let row = |n: &str| trows.iter().find(|t| t["design"] == n).unwrap();
     assert!(close(

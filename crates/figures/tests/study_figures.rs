@@ -245,9 +245,13 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
     let dir = scratch("spectra");
     let c = CodeScaling {
         hazard: Hazard::MceR,
-        sds_g: 0.5,
-        sd1_g: 0.3,
-        tl_s: 8.0,
+        sds_g: Some(0.5),
+        sd1_g: Some(0.3),
+        tl_s: Some(8.0),
+        table: None,
+        en1998: None,
+        rule: None,
+        zero_period: None,
         period_s: 1.2,
         range_s: [0.24, 2.4],
         stuck_period_s: None,

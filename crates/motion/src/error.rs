@@ -323,6 +323,28 @@ pub enum MotionError {
         /// The valid range.
         expected: &'static str,
     },
+    /// A parameter of a target spectrum is out of its range.
+    #[error("{field} = {} is invalid: expected {expected}", readable(*value))]
+    InvalidSpectrum {
+        /// The parameter, as the study names it relative to the spectrum (`periods_s[3]`,
+        /// `ag_g`).
+        field: String,
+        /// Its value.
+        value: f64,
+        /// What was expected.
+        expected: String,
+    },
+    /// A period range reaches outside the periods a target spectrum is defined over.
+    #[error(
+        "the period range [{}, {}] s leaves the target spectrum, defined from {} to {} s: it is not extrapolated; give a target that covers the range (or a shorter range)",
+        readable(range_s[0]), readable(range_s[1]), readable(span_s[0]), readable(span_s[1])
+    )]
+    OutsideSpectrum {
+        /// The range, s.
+        range_s: [f64; 2],
+        /// The target's span, s.
+        span_s: [f64; 2],
+    },
     /// Two records named as the components of one event cannot be a pair.
     #[error("record pair {pair}: {reason}")]
     PairMismatch {

@@ -22,6 +22,7 @@
 
 mod at2;
 mod design_spectrum;
+mod en1998;
 mod envelope;
 mod error;
 mod intensity;
@@ -35,19 +36,24 @@ mod rng;
 mod scaling;
 mod spectrum;
 mod synthetic;
+mod target;
 mod text;
 mod unit_label;
 mod units;
 
 pub use at2::{parse_at2, parse_at2_in};
 pub use design_spectrum::DesignSpectrum;
+pub use en1998::{
+    EN1998_MAX_PERIOD_S, EN1998_MIN_ETA, En1998Corners, En1998Spectrum, GroundType, en1998_eta,
+};
 pub use envelope::Envelope;
 pub use error::{MotionError, readable};
 pub use intensity::{
     Intensity, arias_intensity, ground_displacement, ground_velocity, significant_duration,
 };
 pub use pair::{
-    PairScaling, RecordPair, rotd100_spectrum, scale_pairs_over_range, scale_pairs_over_range_each,
+    PairScaling, RecordPair, rotd100_spectrum, scale_pairs, scale_pairs_over_range,
+    scale_pairs_over_range_each,
 };
 pub use reader::{RecordFormat, read_record};
 pub use record::{
@@ -56,8 +62,9 @@ pub use record::{
 };
 pub use scaling::{
     ASCE7_FRACTION, Asce7Scaling, REFINE_MARGIN, SCALING_POINTS_PER_DECADE, ScaledSuite,
-    TargetMatch, fit_to_target, scale_suite_asce7, scale_suite_over_range,
-    scale_suite_over_range_each, scale_to_spectral_acceleration, smallest_factor,
+    ScalingOptions, TargetMatch, ZeroPeriod, fit_to_target, scale_suite, scale_suite_asce7,
+    scale_suite_over_range, scale_suite_over_range_each, scale_to_spectral_acceleration,
+    smallest_factor,
 };
 pub use spectrum::{
     DEFAULT_DAMPING, Spectrum, default_periods, log_spaced_periods, sdof_displacement,
@@ -67,5 +74,6 @@ pub use synthetic::{
     DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, DEFAULT_SUITE_SIZE, SuiteTarget, Synthetic,
     default_suite, derive_seed, synthetic_suite,
 };
+pub use target::{SpectrumTable, Target, TargetSpectrum, check_span};
 pub use text::{format_csv, parse_text};
 pub use units::{G, Units};

@@ -17,7 +17,7 @@
 //!   range (ASCE 7-22 §16.2.3.2, as [`crate::smallest_factor`] finds it).
 
 use crate::spectrum::integrate_components;
-use crate::{DesignSpectrum, MotionError, Record, Spectrum, TargetMatch};
+use crate::{DesignSpectrum, MotionError, Record, ScalingOptions, Spectrum, Target, TargetMatch};
 
 /// The two horizontal components of one event.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -182,18 +182,54 @@ pub fn scale_pairs_over_range(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<PairScaling, MotionError> {
-    scale_pairs_weighted(pairs, &vec![1.0; pairs.len()], target, range_s, damping)
+    scale_pairs_weighted(
+        pairs,
+        &vec![1.0; pairs.len()],
+        target,
+        range_s,
+        damping,
+        None,
+    )
+}
+
+/// Scales `pairs` to `target` over `range_s` as `options` say: one factor for all
+/// ([`scale_pairs_over_range`]) or each pair's own first ([`scale_pairs_over_range_each`]),
+/// with or without a zero-period floor on the mean of the pairs' peak ground acceleration
+/// over every direction (their RotD100 at T = 0; [`crate::scale_suite`]).
+///
+/// Errors: as [`crate::scale_suite`].
+pub fn scale_pairs<T: Target + ?Sized>(
+    pairs: &[RecordPair],
+    target: &T,
+    range_s: [f64; 2],
+    damping: f64,
+    options: &ScalingOptions,
+) -> Result<PairScaling, MotionError> {
+    let own = if options.per_record {
+        own_pair_factors(pairs, target, range_s, damping)?
+    } else {
+        vec![1.0; pairs.len()]
+    };
+    scale_pairs_weighted(
+        pairs,
+        &own,
+        target,
+        range_s,
+        damping,
+        options.zero_period_floor_m_s2,
+    )
 }
 
 /// `pairs`, pair i first × `own[i]`, then all by the smallest common factor for which their
 /// mean RotD100 spectrum meets 90 % of `target` over `range_s` (× 1 is exact: with every
 /// `own` 1 this is one factor for all, to the bit).
-fn scale_pairs_weighted(
+fn scale_pairs_weighted<T: Target + ?Sized>(
     pairs: &[RecordPair],
     own: &[f64],
-    target: &DesignSpectrum,
+    target: &T,
     range_s: [f64; 2],
     damping: f64,
+    floor_m_s2: Option<f64>,
 ) -> Result<PairScaling, MotionError> {
     if pairs.is_empty() {
         return Err(MotionError::InvalidArgument {
@@ -207,6 +243,7 @@ fn scale_pairs_weighted(
         |i, periods| Ok(rotd100_spectrum(&pairs[i], damping, periods)?.psa_m_s2),
         target,
         range_s,
+        floor_m_s2,
     )?;
     let pairs = pairs
         .iter()
@@ -230,7 +267,18 @@ pub fn scale_pairs_over_range_each(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<PairScaling, MotionError> {
-    let own = pairs
+    let own = own_pair_factors(pairs, target, range_s, damping)?;
+    scale_pairs_weighted(pairs, &own, target, range_s, damping, None)
+}
+
+/// Each pair's own factor, the fit of its RotD100 spectrum to `target` over `range_s`.
+fn own_pair_factors<T: Target + ?Sized>(
+    pairs: &[RecordPair],
+    target: &T,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<Vec<f64>, MotionError> {
+    pairs
         .iter()
         .map(|p| {
             crate::fit_to_target(
@@ -239,6 +287,5 @@ pub fn scale_pairs_over_range_each(
                 range_s,
             )
         })
-        .collect::<Result<Vec<f64>, _>>()?;
-    scale_pairs_weighted(pairs, &own, target, range_s, damping)
+        .collect()
 }

@@ -16,8 +16,15 @@
 //!   [`REFINE_MARGIN`] of the least. The factor is 0.9·target/mean at that minimum,
 //!   rounded up by a few ulps so that the inequality also holds in floating point. Means
 //!   are summed in record order (deterministic).
+//! * The target is any [`Target`] (the ASCE 7-16 spectrum, a table, EN 1998-1); its
+//!   corner periods join the grid, and a range outside its span is refused.
+//! * [`scale_suite`] / [`crate::scale_pairs`] with a zero-period floor
+//!   ([`ScalingOptions::zero_period_floor_m_s2`], EN 1998-1 §3.2.3.1.2(4)b: the mean of
+//!   the records' zero-period spectral values, their PGAs, at least a_g·S): the factor is
+//!   the larger of the spectral one and floor / mean PGA (rounded up as above), the
+//!   smallest meeting both.
 
-use crate::{DesignSpectrum, MotionError, Record, Spectrum, log_spaced_periods};
+use crate::{DesignSpectrum, MotionError, Record, Spectrum, Target, log_spaced_periods};
 
 /// Periods per decade of the scaling grid. A 5 %-damped oscillator's response to a record
 /// changes on the scale of its half-power band, 2ζ ≈ 0.1 in ln T (Chopra, *Dynamics of
@@ -55,6 +62,31 @@ pub struct TargetMatch {
     pub mean_psa_m_s2: Vec<f64>,
     /// The target there, m/s².
     pub target_psa_m_s2: Vec<f64>,
+    /// With a zero-period floor: the mean zero-period value and the floor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zero_period: Option<ZeroPeriod>,
+}
+
+/// The zero-period condition of a suite's scaling (EN 1998-1 §3.2.3.1.2(4)b).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ZeroPeriod {
+    /// The unscaled mean of the records' zero-period spectral values (PGA; a pair's peak
+    /// ground acceleration over every direction), each × its own factor, m/s².
+    pub mean_m_s2: f64,
+    /// The floor the scaled mean must reach, m/s².
+    pub floor_m_s2: f64,
+    /// Whether the floor sets the factor (else the spectral condition does).
+    pub binds: bool,
+}
+
+/// How a suite is scaled beyond the 90 % rule ([`scale_suite`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ScalingOptions {
+    /// Each record first fitted to the target by its own factor ([`fit_to_target`]).
+    pub per_record: bool,
+    /// The least mean zero-period spectral value (PGA) of the scaled suite, m/s²
+    /// (EN 1998-1 §3.2.3.1.2(4)b: a_g·S); none by default.
+    pub zero_period_floor_m_s2: Option<f64>,
 }
 
 /// The scaling grid of `range_s` (s): [`SCALING_POINTS_PER_DECADE`] log-spaced periods a
@@ -73,11 +105,12 @@ fn scaling_grid(range_s: [f64; 2]) -> Result<Vec<f64>, MotionError> {
 /// The smallest factor, over `count` spectra each × `own[i]` (`spectrum(i, periods)` gives
 /// spectrum i, m/s²), that lifts their mean to 90 % of `target` over `range_s`: the mean
 /// summed in index order ([`smallest_factor`]).
-pub(crate) fn weighted_match(
+pub(crate) fn weighted_match<T: Target + ?Sized>(
     own: &[f64],
     spectrum: impl Fn(usize, &[f64]) -> Result<Vec<f64>, MotionError>,
-    target: &DesignSpectrum,
+    target: &T,
     range_s: [f64; 2],
+    floor_m_s2: Option<f64>,
 ) -> Result<TargetMatch, MotionError> {
     let n = own.len() as f64;
     let mean = |periods: &[f64]| -> Result<Vec<f64>, MotionError> {
@@ -89,7 +122,35 @@ pub(crate) fn weighted_match(
         }
         Ok(sum.into_iter().map(|m| m / n).collect())
     };
-    smallest_factor(mean, target, range_s)
+    let mut m = smallest_factor(mean, target, range_s)?;
+    if let Some(floor) = floor_m_s2 {
+        if !(floor.is_finite() && floor > 0.0) {
+            return Err(MotionError::InvalidArgument {
+                what: "zero-period floor (m/s2)",
+                value: floor,
+                expected: "finite and > 0",
+            });
+        }
+        let zero = mean(&[0.0])?[0];
+        if zero.is_nan() || zero <= 0.0 {
+            return Err(MotionError::ZeroMeasure {
+                file: "suite mean PGA".into(),
+                measure: "PGA",
+            });
+        }
+        let f = floor / zero * (1.0 + 4.0 * f64::EPSILON);
+        let binds = f > m.factor;
+        if binds {
+            m.factor = f;
+            m.controlling_period_s = 0.0;
+        }
+        m.zero_period = Some(ZeroPeriod {
+            mean_m_s2: zero,
+            floor_m_s2: floor,
+            binds,
+        });
+    }
+    Ok(m)
 }
 
 /// The smallest factor f with f·mean(T) ≥ 0.9·target(T) for every T of `range_s`
@@ -98,14 +159,15 @@ pub(crate) fn weighted_match(
 ///
 /// Errors: [`MotionError::InvalidArgument`] for a bad range, [`MotionError::ZeroMeasure`]
 /// when the mean vanishes at a period of the range, and whatever `mean` returns.
-pub fn smallest_factor(
+pub fn smallest_factor<T: Target + ?Sized>(
     mean: impl Fn(&[f64]) -> Result<Vec<f64>, MotionError>,
-    target: &DesignSpectrum,
+    target: &T,
     range_s: [f64; 2],
 ) -> Result<TargetMatch, MotionError> {
     let [lo, hi] = range_s;
     let mut grid = scaling_grid(range_s)?;
-    for corner in [target.t0_s(), target.ts_s(), target.tl_s()] {
+    crate::check_span(target, range_s)?;
+    for corner in target.corners_s() {
         if corner > lo && corner < hi {
             grid.push(corner);
         }
@@ -186,6 +248,7 @@ pub fn smallest_factor(
         target_psa_m_s2: points.iter().map(|&(t, _)| target.sa_m_s2(t)).collect(),
         mean_psa_m_s2: points.iter().map(|&(_, m)| m).collect(),
         periods_s: points.into_iter().map(|(t, _)| t).collect(),
+        zero_period: None,
     })
 }
 
@@ -249,6 +312,9 @@ pub struct Asce7Scaling {
     pub mean_psa_m_s2: Vec<f64>,
     /// Target spectrum there, m/s².
     pub target_psa_m_s2: Vec<f64>,
+    /// With a zero-period floor: the mean PGA and the floor ([`TargetMatch::zero_period`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zero_period: Option<ZeroPeriod>,
     /// The scaled records (every factor equal to `factor`, or with per-record factors
     /// each record's own times it).
     pub suite: ScaledSuite,
@@ -287,18 +353,54 @@ pub fn scale_suite_over_range(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<Asce7Scaling, MotionError> {
-    scale_weighted(records, &vec![1.0; records.len()], target, range_s, damping)
+    scale_weighted(
+        records,
+        &vec![1.0; records.len()],
+        target,
+        range_s,
+        damping,
+        None,
+    )
+}
+
+/// Scales `records` to `target` over `range_s` as `options` say: one factor for all
+/// ([`scale_suite_over_range`]) or each record's own first ([`scale_suite_over_range_each`]),
+/// with or without a zero-period floor (module docs).
+///
+/// Errors: as [`scale_suite_over_range`], [`MotionError::OutsideSpectrum`] for a range
+/// outside the target's span, [`MotionError::InvalidArgument`] for a bad floor.
+pub fn scale_suite<T: Target + ?Sized>(
+    records: &[Record],
+    target: &T,
+    range_s: [f64; 2],
+    damping: f64,
+    options: &ScalingOptions,
+) -> Result<Asce7Scaling, MotionError> {
+    let own = if options.per_record {
+        own_factors(records, target, range_s, damping)?
+    } else {
+        vec![1.0; records.len()]
+    };
+    scale_weighted(
+        records,
+        &own,
+        target,
+        range_s,
+        damping,
+        options.zero_period_floor_m_s2,
+    )
 }
 
 /// `records`, record i first × `own[i]`, then all by the smallest common factor for which
 /// their mean spectrum meets 90 % of `target` over `range_s` (× 1 is exact: with every
 /// `own` 1 this is one factor for all, to the bit).
-fn scale_weighted(
+fn scale_weighted<T: Target + ?Sized>(
     records: &[Record],
     own: &[f64],
-    target: &DesignSpectrum,
+    target: &T,
     range_s: [f64; 2],
     damping: f64,
+    floor_m_s2: Option<f64>,
 ) -> Result<Asce7Scaling, MotionError> {
     if records.is_empty() {
         return Err(MotionError::InvalidArgument {
@@ -312,6 +414,7 @@ fn scale_weighted(
         |i, periods| Ok(Spectrum::compute(&records[i], damping, periods)?.psa_m_s2),
         target,
         range_s,
+        floor_m_s2,
     )?;
     let factors: Vec<f64> = own.iter().map(|a| a * m.factor).collect();
     let scaled = records
@@ -325,6 +428,7 @@ fn scale_weighted(
         periods_s: m.periods_s,
         mean_psa_m_s2: m.mean_psa_m_s2,
         target_psa_m_s2: m.target_psa_m_s2,
+        zero_period: m.zero_period,
         suite: ScaledSuite {
             factors,
             records: scaled,
@@ -340,12 +444,13 @@ fn scale_weighted(
 ///
 /// Errors: [`MotionError::InvalidArgument`] for a bad range, [`MotionError::ZeroMeasure`]
 /// when the spectrum vanishes at a period of the range, and whatever `spectrum` returns.
-pub fn fit_to_target(
+pub fn fit_to_target<T: Target + ?Sized>(
     spectrum: impl Fn(&[f64]) -> Result<Vec<f64>, MotionError>,
-    target: &DesignSpectrum,
+    target: &T,
     range_s: [f64; 2],
 ) -> Result<f64, MotionError> {
     let grid = scaling_grid(range_s)?;
+    crate::check_span(target, range_s)?;
     let sa = spectrum(&grid)?;
     let mut sum = 0.0;
     for (&t, &a) in grid.iter().zip(&sa) {
@@ -374,7 +479,18 @@ pub fn scale_suite_over_range_each(
     range_s: [f64; 2],
     damping: f64,
 ) -> Result<Asce7Scaling, MotionError> {
-    let own = records
+    let own = own_factors(records, target, range_s, damping)?;
+    scale_weighted(records, &own, target, range_s, damping, None)
+}
+
+/// Each record's own factor, its fit to `target` over `range_s` ([`fit_to_target`]).
+fn own_factors<T: Target + ?Sized>(
+    records: &[Record],
+    target: &T,
+    range_s: [f64; 2],
+    damping: f64,
+) -> Result<Vec<f64>, MotionError> {
+    records
         .iter()
         .map(|r| {
             fit_to_target(
@@ -383,6 +499,5 @@ pub fn scale_suite_over_range_each(
                 range_s,
             )
         })
-        .collect::<Result<Vec<f64>, _>>()?;
-    scale_weighted(records, &own, target, range_s, damping)
+        .collect()
 }

@@ -12,6 +12,10 @@ use slipload_motion::Units;
 use slipload_sim::scene::{BuildingRef, MethodName};
 use std::path::Path;
 
+pub use super::code_spectrum::{
+    CodeSpectrumConfig, En1998Config, Hazard, ScalingRule, TableConfig,
+};
+use super::code_spectrum::{finite_positive, intensity_g};
 pub use super::refine_config::{RefineConfig, RefineMethod};
 
 /// A study file, as written.
@@ -159,81 +163,6 @@ pub enum ScaleConfig {
     CodeSpectrum(CodeSpectrumConfig),
 }
 
-/// The target of a suite scaled to a code spectrum: the ASCE 7-16 design response
-/// spectrum (§11.4.6) of S_DS, S_D1 and T_L, at a hazard level.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CodeSpectrumConfig {
-    /// S_DS, g: the design spectral response acceleration at short periods (§11.4.5).
-    pub sds_g: f64,
-    /// S_D1, g: the design spectral response acceleration at 1 s (§11.4.5).
-    pub sd1_g: f64,
-    /// T_L, s: the long-period transition period (§11.4.6).
-    pub tl_s: f64,
-    /// The hazard level the suite stands for, by name: `design` (the default) or `mce_r`
-    /// ([`Hazard`]; read by [`CodeSpectrumConfig::hazard`]).
-    #[serde(default)]
-    pub hazard: Option<String>,
-    /// The period T of the range [0.2 T, 2 T], s (default: a range built from the building,
-    /// from its braced and bare first periods and its 90 %-mass modes).
-    #[serde(default)]
-    pub period_s: Option<f64>,
-    /// The least number of records (single components) or pairs the study accepts in the
-    /// suite (default: 11 records, ASCE 7-16 Ch. 16; 7 pairs, Ch. 18): a study that follows
-    /// another rule says so here.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub min_records: Option<usize>,
-    /// Each record (pair) first fitted to the target by its own factor — the geometric
-    /// mean of target/spectrum over the period range — then the suite by one common
-    /// factor (default false: one factor for every record).
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub per_record: bool,
-}
-
-/// A hazard level of a code-scaled suite.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Hazard {
-    /// The design earthquake: the design spectrum of S_DS and S_D1 itself.
-    #[default]
-    Design,
-    /// The risk-targeted maximum considered earthquake: 1.5 × the design spectrum
-    /// (ASCE 7-16 §11.4.5: S_DS = 2/3 S_MS, S_D1 = 2/3 S_M1).
-    MceR,
-}
-
-impl CodeSpectrumConfig {
-    /// The hazard level named by `hazard` (`design` when absent); an unknown name is an
-    /// error that lists the names.
-    pub fn hazard(&self) -> Result<Hazard, String> {
-        match self.hazard.as_deref() {
-            None | Some("design") => Ok(Hazard::Design),
-            Some("mce_r") => Ok(Hazard::MceR),
-            Some(other) => Err(format!(
-                "unknown hazard level {other:?}: expected \"design\" (the design earthquake) or \"mce_r\" (the risk-targeted maximum considered earthquake, 1.5 x design)"
-            )),
-        }
-    }
-}
-
-impl Hazard {
-    /// The factor on the design spectrum: 1 for `design`, 1.5 for `mce_r`.
-    pub fn factor(self) -> f64 {
-        match self {
-            Hazard::Design => 1.0,
-            Hazard::MceR => 1.5,
-        }
-    }
-
-    /// The level's name as a study file writes it.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Hazard::Design => "design",
-            Hazard::MceR => "mce_r",
-        }
-    }
-}
-
 /// The embedded synthetic suite (Clough–Penzien, firm soil; slipload_motion).
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -372,40 +301,12 @@ impl Default for SweepConfig {
     }
 }
 
-fn finite_positive(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(OptError::invalid(
-            path,
-            field,
-            format!("must be finite and > 0, got {v}"),
-        ))
-    }
-}
-
 /// The smallest peak ground acceleration a study's suites may ask for, g: about the
 /// threshold of perceptible shaking. Below it no dissipator of a real frame slips, every
 /// design answers as the bare frame and an optimum would be rounding noise (at 1e-300 g
 /// the responses are subnormal numbers).
 /// The same floor as a scene's target PGA ([`slipload_sim::scene::TARGET_PGA_BAND_G`]).
 pub const MIN_STUDY_PGA_G: f64 = slipload_sim::scene::TARGET_PGA_BAND_G.0;
-
-/// A suite's target intensity (g) within [[`MIN_STUDY_PGA_G`], `MAX_ABS_ACCEL_G`].
-fn intensity_g(path: &Path, field: &str, v: f64) -> Result<(), OptError> {
-    finite_positive(path, field, v)?;
-    let max = slipload_motion::MAX_ABS_ACCEL_G;
-    if !(MIN_STUDY_PGA_G..=max).contains(&v) {
-        return Err(OptError::invalid(
-            path,
-            field,
-            format!(
-                "{v:e} g is outside {MIN_STUDY_PGA_G} … {max} g: below it no dissipator slips and every design is the bare frame, beyond it no ground has shaken (wrong units?)"
-            ),
-        ));
-    }
-    Ok(())
-}
 
 /// Most designs of a sweep (grid levels^variables, or points), bare and file included.
 pub const MAX_DESIGNS: f64 = 1e6;
@@ -696,17 +597,7 @@ impl StudyConfig {
                 Some(ScaleConfig::Factor(v)) => finite_positive(path, &f("scale.factor"), *v)?,
                 Some(ScaleConfig::PgaG(v)) => intensity_g(path, &f("scale.pga_g"), *v)?,
                 Some(ScaleConfig::SaT1G(v)) => intensity_g(path, &f("scale.sa_t1_g"), *v)?,
-                Some(ScaleConfig::CodeSpectrum(c)) => {
-                    let g = |k: &str| f(&format!("scale.code_spectrum.{k}"));
-                    c.hazard()
-                        .map_err(|e| OptError::invalid(path, g("hazard"), e))?;
-                    intensity_g(path, &g("sds_g"), c.sds_g)?;
-                    intensity_g(path, &g("sd1_g"), c.sd1_g)?;
-                    finite_positive(path, &g("tl_s"), c.tl_s)?;
-                    if let Some(t) = c.period_s {
-                        finite_positive(path, &g("period_s"), t)?;
-                    }
-                }
+                Some(ScaleConfig::CodeSpectrum(c)) => c.validate(path, i)?,
                 None => {}
             }
             if let Some(l) = &s.limits {
@@ -775,14 +666,24 @@ impl StudyConfig {
             {
                 return bad("period_s", format!("must be a period > 0 s, got {t}"));
             }
-            if !self
+            let code: Vec<&CodeSpectrumConfig> = self
                 .suites
                 .iter()
-                .any(|s| matches!(s.scale, Some(ScaleConfig::CodeSpectrum(_))))
-            {
+                .filter_map(|s| match &s.scale {
+                    Some(ScaleConfig::CodeSpectrum(c)) => Some(c),
+                    _ => None,
+                })
+                .collect();
+            if code.is_empty() {
                 return bad(
                     "response_modification",
                     "the demand needs the design spectrum: scale a suite to `code_spectrum` (S_DS, S_D1, T_L are read from the first)".into(),
+                );
+            }
+            if code.iter().all(|c| c.asce7().is_none()) {
+                return bad(
+                    "response_modification",
+                    "the demand is ASCE 7-16 §12.8's C_s, read from S_DS, S_D1 and T_L: scale a suite to the ASCE form of `code_spectrum` (sds_g, sd1_g, tl_s); a table or an EN 1998-1 spectrum gives neither, and the project does not derive them".into(),
                 );
             }
         }

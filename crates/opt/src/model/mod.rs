@@ -7,6 +7,7 @@ pub mod bounds;
 pub mod check;
 pub mod checks_config;
 pub mod code_scaling;
+pub mod code_spectrum;
 pub mod config;
 pub mod devices_config;
 pub mod fidelity;

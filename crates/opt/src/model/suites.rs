@@ -324,7 +324,8 @@ pub(crate) fn load_suites(
                 }
             }
             if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
-                let (scaled, scaling) = scale_to_code(&unscaled, &pairs, c, building, path, i)?;
+                let (scaled, scaling) =
+                    scale_to_code(&unscaled, &pairs, c, s.limits.as_ref(), building, path, i)?;
                 if pairs.is_empty() || pair_run == PairRun::Components {
                     records.extend(scaled.into_iter().map(Arc::new));
                 } else {

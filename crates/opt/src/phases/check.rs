@@ -322,11 +322,9 @@ impl CodeCheck {
             if let Some(c) = &suite.code_scaling {
                 let _ = writeln!(
                     s,
-                    "Scaled to the {} spectrum (S_DS = {} g, S_D1 = {} g, T_L = {} s; ASCE 7-16 §16.2.3): factor {:.4} over [{:.3}, {:.3}] s, controlled at {:.3} s.\n",
+                    "Scaled to the {} spectrum ({}): factor {:.4} over [{:.3}, {:.3}] s, controlled at {:.3} s.\n",
                     c.hazard.as_str(),
-                    c.sds_g,
-                    c.sd1_g,
-                    c.tl_s,
+                    c.target_text(),
                     c.factor,
                     c.range_s[0],
                     c.range_s[1],
@@ -350,6 +348,25 @@ impl CodeCheck {
                             .pair_run
                             .as_deref()
                             .unwrap_or("each component of a pair as its own record")
+                    );
+                }
+                if let Some(z) = &c.zero_period {
+                    let motions = c.pairs.unwrap_or(suite.records);
+                    let _ = writeln!(
+                        s,
+                        "EN 1998-1 §3.2.3.1.2(4): {motions} accelerograms (at least 3); the scaled suite's mean PGA is {:.4} g against a_g·S = {:.4} g ({}); the mean spectrum is at least 90 % of the target over the range. {}\n",
+                        z.mean_pga_g,
+                        z.ag_s_g,
+                        if z.binds {
+                            "this condition set the factor"
+                        } else {
+                            "the spectral condition set the factor"
+                        },
+                        if motions >= crate::model::code_spectrum::EN1998_MEAN_FROM {
+                            "With at least 7 accelerograms the design value is the mean response (EN 1998-1 §4.3.3.4.3(3))."
+                        } else {
+                            "With fewer than 7 accelerograms the design value is the most unfavourable response (EN 1998-1 §4.3.3.4.3(3)): every criterion of this suite is a maximum."
+                        }
                     );
                 }
                 if let (Some(stuck), Some(m90)) = (c.stuck_period_s, c.mass_90_period_s) {

@@ -2,11 +2,13 @@
 //! submittal against — clause, requirement, value, limit, status — gathered from what the
 //! check computed, and the requirements the study or the planar model cannot show named
 //! as such (`not checked`: the study gives no data for it; `not covered`: a planar model of
-//! one component cannot show it). Clauses are ASCE 7-16's; a criterion the study sets
-//! itself is named as the study's.
+//! one component cannot show it). Clauses are ASCE 7-16's, except the rows of a suite
+//! scaled by the EN 1998-1 rule, which name EN 1998-1 §3.2.3.1.2; a criterion the study
+//! sets itself is named as the study's.
 
 use crate::model::check::{CheckLine, DesignCheck, md_text, short};
 use crate::model::code_scaling::{MIN_CODE_PAIRS, MIN_CODE_RECORDS};
+use crate::model::code_spectrum::{MIN_EN1998_ACCELEROGRAMS, ScalingRule};
 use crate::model::config::{ScaleConfig, TestProtocolConfig};
 use crate::model::study::Study;
 use crate::phases::strength::FrameStrength;
@@ -48,7 +50,7 @@ impl Status {
 /// One row of the matrix.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ComplianceRow {
-    /// The clause (ASCE 7-16), or whose requirement it is.
+    /// The clause (ASCE 7-16, or EN 1998-1 where it says so), or whose requirement it is.
     pub clause: String,
     /// What it requires.
     pub requirement: String,
@@ -140,13 +142,20 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
         });
         match (&suite.code_scaling, code) {
             (Some(sc), Some(c)) => {
-                let (count, what, standard) = match sc.pairs {
-                    Some(p) => (p, "pairs", MIN_CODE_PAIRS),
-                    None => (suite.range.len(), "records", MIN_CODE_RECORDS),
+                let en = sc.rule == Some(ScalingRule::En1998);
+                let (count, what, standard) = match (sc.pairs, en) {
+                    (Some(p), false) => (p, "pairs", MIN_CODE_PAIRS),
+                    (None, false) => (suite.range.len(), "records", MIN_CODE_RECORDS),
+                    (Some(p), true) => (p, "pairs", MIN_EN1998_ACCELEROGRAMS),
+                    (None, true) => (suite.range.len(), "records", MIN_EN1998_ACCELEROGRAMS),
                 };
                 let needed = c.min_records.unwrap_or(standard);
                 rows.push(row(
-                    "§16.2.2",
+                    if en {
+                        "EN 1998-1 §3.2.3.1.2(4)a"
+                    } else {
+                        "§16.2.2"
+                    },
                     format!("{name}: number of ground motions"),
                     format!("{count} {what}"),
                     format!(
@@ -169,8 +178,25 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
                     .zip(&sc.target_sa_g)
                     .map(|(m, t)| m / t)
                     .fold(f64::INFINITY, f64::min);
+                if let Some(z) = &sc.zero_period {
+                    rows.push(row(
+                        "EN 1998-1 §3.2.3.1.2(4)b",
+                        format!("{name}: mean PGA of the scaled suite"),
+                        format!("{:.4} g", z.mean_pga_g),
+                        format!("≥ a_g·S = {:.4} g", z.ag_s_g),
+                        if z.mean_pga_g >= z.ag_s_g * (1.0 - 1e-9) {
+                            Status::Pass
+                        } else {
+                            Status::Fail
+                        },
+                    ));
+                }
                 rows.push(row(
-                    "§16.2.3",
+                    if en {
+                        "EN 1998-1 §3.2.3.1.2(4)c"
+                    } else {
+                        "§16.2.3"
+                    },
                     format!(
                         "{name}: scaled mean spectrum over [{:.3}, {:.3}] s against the {} target",
                         sc.range_s[0],
@@ -413,8 +439,14 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
 
 /// The matrix as a section of `code-check.md`.
 pub fn to_markdown(rows: &[ComplianceRow]) -> String {
-    let mut s = String::from(
-        "## Compliance matrix\n\nASCE 7-16 clauses as this check reads them: `pass`/`FAIL` checked on the runs above, `stated` documented by the study's own numbers, `not checked` where the study gives no data for it, `not covered` where a planar model of one component cannot show it, `flagged` past a flag the study set (to be reviewed; the verdict does not read it).\n\n| clause | requirement | value | limit | status |\n|---|---|---|---|---|\n",
+    let en = rows.iter().any(|r| r.clause.starts_with("EN 1998-1"));
+    let mut s = format!(
+        "## Compliance matrix\n\nASCE 7-16 clauses{} as this check reads them: `pass`/`FAIL` checked on the runs above, `stated` documented by the study's own numbers, `not checked` where the study gives no data for it, `not covered` where a planar model of one component cannot show it, `flagged` past a flag the study set (to be reviewed; the verdict does not read it).\n\n| clause | requirement | value | limit | status |\n|---|---|---|---|---|\n",
+        if en {
+            " (and EN 1998-1 where a row names it)"
+        } else {
+            ""
+        }
     );
     for r in rows {
         let _ = writeln!(

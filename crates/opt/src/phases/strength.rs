@@ -59,8 +59,10 @@ impl FrameStrength {
     /// its building has storey heights and a code-scaled suite (checked when it loads).
     pub fn of(study: &Study) -> Option<FrameStrength> {
         let cfg = study.config.frame_strength?;
-        let code = study.config.suites.iter().find_map(|s| match &s.scale {
-            Some(ScaleConfig::CodeSpectrum(c)) => Some(c),
+        // S_DS, S_D1, T_L of the first suite scaled to the ASCE form (a study without one
+        // is refused when it loads)
+        let (sds_g, sd1_g, tl_s) = study.config.suites.iter().find_map(|s| match &s.scale {
+            Some(ScaleConfig::CodeSpectrum(c)) => c.asce7(),
             _ => None,
         })?;
         let b = &study.building;
@@ -68,14 +70,12 @@ impl FrameStrength {
         let (ie, fraction) = (cfg.importance.unwrap_or(1.0), cfg.fraction.unwrap_or(0.75));
         let t = cfg.period_s.unwrap_or_else(|| b.t1());
         let r = cfg.response_modification / ie;
-        let cap = if t <= code.tl_s {
-            code.sd1_g / (t * r)
+        let cap = if t <= tl_s {
+            sd1_g / (t * r)
         } else {
-            code.sd1_g * code.tl_s / (t * t * r)
+            sd1_g * tl_s / (t * t * r)
         };
-        let cs = (code.sds_g / r)
-            .min(cap)
-            .max((0.044 * code.sds_g * ie).max(0.01));
+        let cs = (sds_g / r).min(cap).max((0.044 * sds_g * ie).max(0.01));
         let n = b.floors();
         let w: Vec<f64> = (0..n).map(|i| b.mass[(i, i)] * G).collect();
         let weight: f64 = w.iter().sum();
