@@ -201,3 +201,41 @@ fn a_suite_that_says_how_pairs_run_must_name_a_pair() {
         "{e}"
     );
 }
+
+#[test]
+fn a_worst_pair_reruns_one_orientation_by_name_and_refuses_its_envelope() {
+    use slipload_opt::pipeline::{DesignRun, design_run_scene};
+    let st = study(r#", "pairs": { "run": "worst", "step_deg": 45 }"#, "", "").unwrap();
+    let dir = std::env::temp_dir().join(format!("slipload-orient-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("candidates.json");
+    std::fs::write(
+        &file,
+        r#"[{"name": "d", "slip_loads_kn": [300, 250, 150]}]"#,
+    )
+    .unwrap();
+    let pair = st.orientations[0][1].name().to_string();
+    assert!(pair.ends_with("@45deg"), "{pair}");
+    fn req<'a>(file: &'a Path, run: &'a str) -> DesignRun<'a> {
+        DesignRun {
+            designs: file,
+            design: "d",
+            run,
+            suite: None,
+            method: None,
+        }
+    }
+    let scene = design_run_scene(&st, &req(&file, &pair)).unwrap();
+    let rec = scene.record.as_ref().unwrap();
+    assert_eq!(rec.name(), pair);
+    assert_eq!(rec.samples(), st.orientations[0][1].samples());
+    // the pair's own run is the envelope of four: refused, naming them
+    let e = design_run_scene(&st, &req(&file, st.records[0].name()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("envelope of 4 runs") && e.contains("@135deg"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -43,11 +43,19 @@ pub(crate) fn loads_text(study: &Study, loads: &[f64]) -> String {
 pub(crate) fn runs_text(m: &slipload_opt::phases::sweep::Manifest) -> String {
     let cases = m.checks.cases();
     let records = m.record_count();
-    // how the pairs of a suite ran, where the study said
-    let pairs: String = m
-        .suites
+    // how the pairs of a suite ran, where the study said: each way once, with its suites
+    let mut ways: Vec<(&str, Vec<&str>)> = Vec::new();
+    for s in &m.suites {
+        if let Some(run) = s.pair_run.as_deref() {
+            match ways.iter_mut().find(|(w, _)| *w == run) {
+                Some((_, names)) => names.push(&s.name),
+                None => ways.push((run, vec![&s.name])),
+            }
+        }
+    }
+    let pairs: String = ways
         .iter()
-        .filter_map(|s| Some(format!(" (suite {}: {})", s.name, s.pair_run.as_ref()?)))
+        .map(|(run, names)| format!(" (pairs of suite {}: {run})", names.join(", ")))
         .collect();
     if cases.len() == 1 {
         format!("{records} records{pairs}")

@@ -46,9 +46,11 @@ pub fn estimate(study: &Study, threads: usize) -> Result<MemoryEstimate, OptErro
         let plan = design_plan(study, &design, 0, fid, "file (the memory estimate)")?;
         Ok(run_bytes(&plan))
     };
+    // the records and the orientations a `worst` pair keeps beside its record
     let records_bytes = study
         .records
         .iter()
+        .chain(study.orientations.iter().flatten())
         .map(|r| (r.len() * size_of::<f64>()) as u64)
         .sum();
     Ok(MemoryEstimate {
