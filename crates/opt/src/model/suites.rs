@@ -13,7 +13,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// A suite, resolved: its name and the range of its records in [`Study::records`].
+/// A suite, resolved: its name and the range of its records in [`crate::Study::records`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SuiteInfo {
     /// Name.
@@ -21,7 +21,7 @@ pub struct SuiteInfo {
     /// Indices into the study's records.
     pub range: Range<usize>,
     /// How the suite was scaled to a code spectrum, when it was
-    /// ([`ScaleConfig::CodeSpectrum`]).
+    /// ([`crate::model::config::ScaleConfig::CodeSpectrum`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub code_scaling: Option<CodeScaling>,
     /// Seconds of rest after each of its records (`free_vibration_s`; 0: none).
