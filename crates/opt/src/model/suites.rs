@@ -65,11 +65,10 @@ fn push_runs(
     further: Vec<Record>,
 ) {
     orientations.resize(records.len(), Vec::new());
-    let n = runs.len();
     records.extend(runs.into_iter().map(Arc::new));
     orientations.resize(records.len(), Vec::new());
-    if n == 1
-        && !further.is_empty()
+    // (only a `worst` pair has orientations, and it is one run)
+    if !further.is_empty()
         && let Some(last) = orientations.last_mut()
     {
         *last = further.into_iter().map(Arc::new).collect();

@@ -12,7 +12,7 @@
 
 use crate::base::error::OptError;
 use crate::base::metrics::RecordMetrics;
-use crate::model::check::{CaseName, short};
+use crate::model::check::{CaseName, md_text, short};
 use crate::model::devices_config::RedundancyConfig;
 use crate::model::study::Study;
 use crate::phases::protocol::TestProtocol;
@@ -532,7 +532,7 @@ impl RedundancyDesign {
         );
         s.push_str("| floor | device force at λ_max (kN) |");
         for su in suites {
-            let _ = write!(s, " design stroke {su} (mm) |");
+            let _ = write!(s, " design stroke {} (mm) |", md_text(su));
         }
         s.push_str(" design velocity (mm/s) |\n|---:|---:|");
         for _ in suites {

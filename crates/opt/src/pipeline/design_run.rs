@@ -207,7 +207,8 @@ pub fn design_run_scene(study: &Study, req: &DesignRun<'_>) -> Result<Scene, Opt
         );
         return Ok(scene);
     }
-    if let Some(run) = find_run(study, &names, req.run, req.suite)?
+    let found = find_run(study, &names, req.run, req.suite)?;
+    if let Some(run) = found
         && let (_, record) = study.run(run)
         && let Some(o) = study.orientations.get(record)
         && !o.is_empty()
@@ -219,7 +220,6 @@ pub fn design_run_scene(study: &Study, req: &DesignRun<'_>) -> Result<Scene, Opt
             o.iter().map(|r| r.name()).collect::<Vec<_>>().join(", ")
         )));
     }
-    let found = find_run(study, &names, req.run, req.suite)?;
     let Some(run) = found else {
         let shown: Vec<&str> = names.iter().take(NAMES_SHOWN).map(String::as_str).collect();
         return Err(OptError::Argument(format!(
