@@ -98,7 +98,7 @@ impl Frame {
         assert_eq!(plan.half_bandwidth(), 1);
         assert_eq!(plan.contacts.len(), n);
         for (c, ct) in plan.contacts.iter().enumerate() {
-            assert!(ct.floor == c && ct.below == c.checked_sub(1) && ct.brace_damping == 0.0);
+            assert!(ct.floor == c && ct.below() == c.checked_sub(1) && ct.brace_damping == 0.0);
         }
         let dt = plan.method.dt;
         let band = |a: &DMatrix<f64>| {
@@ -463,7 +463,7 @@ impl FixedPattern {
             if let ContactKind::Dof { dof } = ct.kind {
                 free[c] = (vt[fl] + gdt * af[fl]) - (vt[dof] + gdt * af[dof]);
             } else {
-                let (ub, ab) = ct.below.map_or((0.0, 0.0), |j| (ut[j], af[j]));
+                let (ub, ab) = ct.below().map_or((0.0, 0.0), |j| (ut[j], af[j]));
                 base[c] = e[c] - u[fl];
                 free[c] = (ut[fl] - ub + base[c]) * self.k_over_kappa[c] + gdt * (af[fl] - ab);
             }

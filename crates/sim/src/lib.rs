@@ -13,6 +13,7 @@ pub mod error;
 pub mod friction;
 pub mod integrator;
 pub mod kind;
+pub mod kinematics;
 pub mod limits;
 pub mod modes;
 pub mod opensees;

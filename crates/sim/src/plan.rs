@@ -15,6 +15,7 @@
 
 use crate::building::{Building, Dissipator};
 use crate::error::SimError;
+use crate::kinematics::{Kin, add_between};
 use crate::scene::{Harmonic, MethodName, MethodSettings, OutputsConfig, Scene};
 use nalgebra::{DMatrix, DVector};
 use slipload_motion::Record;
@@ -45,14 +46,27 @@ pub enum ContactRole {
 
 /// One friction contact between floor `floor` and its dissipator (or, for a
 /// [`ContactRole::Storey`] contact, the plastic element of storey `floor + 1`).
+///
+/// The contact acts along kinematic vectors ([`Kin`]): its friction force acts between
+/// the point `top` (the floor it is on) and its dissipator; its brace (or plastic
+/// element) joins the dissipator to the point `bottom` (the floor below, or the ground).
+/// In a chain `top` is floor `floor`'s DOF and `bottom` the floor below's.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
     /// What the contact models.
     pub role: ContactRole,
-    /// Floor index (DOF) the contact acts on.
+    /// Index of the storey (0-based, its top floor) the contact is in: names it in
+    /// messages and columns.
     pub floor: usize,
-    /// Floor the brace starts from (`None` = the ground).
-    pub below: Option<usize>,
+    /// Where its slip peak and transitions go in [`crate::response::Peaks`]: a damper's
+    /// index among the plan's damper slots, or [`Plan::damper_slots`] + the index of a
+    /// yielding storey's plastic element. In a chain a damper's slot is its floor and a
+    /// plastic element's the floor count + its floor.
+    pub slot: usize,
+    /// The point on the floor the friction acts at.
+    pub top: Kin,
+    /// The point the brace starts from ([`Kin::GROUND`] for the ground).
+    pub bottom: Kin,
     /// Dissipator model.
     pub kind: ContactKind,
     /// Lower friction bound F⁻, N.
@@ -66,6 +80,14 @@ pub struct Contact {
 }
 
 impl Contact {
+    /// The floor below in a chain: the bottom point's DOF (`None` for the ground). Read by
+    /// the chain-only step loops alone ([`Plan::is_chain`]), where the top point is the
+    /// DOF `floor`.
+    #[inline]
+    pub fn below(&self) -> Option<usize> {
+        self.bottom.as_dof()
+    }
+
     /// An elastic–perfectly plastic element without a brace dashpot (c′ = 0): its condensed
     /// massless DOF is algebraic (the brace force k′e is the friction force), which
     /// `newmark` steps by the return mapping (docs/MODEL.md § Integrators).
@@ -100,6 +122,23 @@ pub struct Plan {
     pub stiffness: DMatrix<f64>,
     /// Friction contacts.
     pub contacts: Vec<Contact>,
+    /// Number of damper slots of [`crate::response::Peaks`] (a chain: one per floor);
+    /// yielding storeys' plastic elements take the slots after them.
+    pub damper_slots: usize,
+    /// The drifts the responses measure, each between two points (`top`, `bottom`): a
+    /// chain's storeys, floor i's DOF over floor i − 1's (the ground's for the first).
+    pub drifts: Vec<(Kin, Kin)>,
+    /// The points whose displacement and absolute acceleration the responses measure (a
+    /// chain's floors), with each point's ground influence (the component of a unit
+    /// ground displacement along the point's direction; 1 in a chain).
+    pub points: Vec<(Kin, f64)>,
+    /// The ground influence r on the DOFs: the displacement of each DOF under a unit
+    /// ground displacement (1 everywhere in a chain); the ground's load is −M·r·a_g.
+    pub influence: DVector<f64>,
+    /// Whether the plan is a chain of floors ([`Plan::is_chain`]).
+    pub chain: bool,
+    /// Number of the structure's own DOFs (the floors' DOFs, before the dissipators').
+    pub frame_dofs: usize,
     /// Per floor: its dissipator's model.
     pub links: Vec<FloorLink>,
     /// Storey heights, m.
@@ -171,15 +210,6 @@ fn check_steps(scene: &Scene) -> Result<(), SimError> {
     )
 }
 
-fn add_spring(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
-    m[(i, i)] += k;
-    if let Some(j) = j {
-        m[(j, j)] += k;
-        m[(i, j)] -= k;
-        m[(j, i)] -= k;
-    }
-}
-
 impl Plan {
     /// Compiles a scene.
     pub fn compile(scene: &Scene) -> Result<Plan, SimError> {
@@ -222,6 +252,7 @@ impl Plan {
             }
         }
         let mut mass = DMatrix::zeros(n_dof, n_dof);
+        let ends = |f: usize| (Kin::dof(f), Kin::floor_or_ground(f.checked_sub(1)));
         let mut damping = DMatrix::zeros(n_dof, n_dof);
         let mut stiffness = DMatrix::zeros(n_dof, n_dof);
         mass.view_mut((0, 0), (n, n)).copy_from(&b.mass);
@@ -237,7 +268,6 @@ impl Plan {
         v0.resize(n_dof, 0.0);
         for (f, d) in dissipators.iter().enumerate() {
             let storey = f + 1;
-            let below = f.checked_sub(1);
             let Some(d) = d else {
                 notes.push(format!("floor {storey}: no dissipator"));
                 continue;
@@ -246,10 +276,11 @@ impl Plan {
                 notes.push(format!("floor {storey}: slip load 0 -> brace disconnected, no dissipator DOF (bare storey)"));
                 continue;
             }
+            let (top, bottom) = ends(f);
             if reduce && d.is_locked() {
                 mass[(f, f)] += d.mass;
-                add_spring(&mut stiffness, f, below, d.brace_stiffness);
-                add_spring(&mut damping, f, below, d.brace_damping);
+                add_between(&mut stiffness, &top, &bottom, d.brace_stiffness);
+                add_between(&mut damping, &top, &bottom, d.brace_damping);
                 links[f] = FloorLink::Locked;
                 notes.push(format!(
                     "floor {storey}: locked -> dissipator merged into the floor (m' = {} kg added), brace k' = {:.6e} N/m joins floors {} and {storey}",
@@ -260,8 +291,8 @@ impl Plan {
             let kind = match dof_of[f] {
                 Some(dof) => {
                     mass[(dof, dof)] = d.mass;
-                    add_spring(&mut stiffness, dof, below, d.brace_stiffness);
-                    add_spring(&mut damping, dof, below, d.brace_damping);
+                    add_between(&mut stiffness, &Kin::dof(dof), &bottom, d.brace_stiffness);
+                    add_between(&mut damping, &Kin::dof(dof), &bottom, d.brace_damping);
                     u0[dof] = ic.dissipator_displacement[f];
                     v0[dof] = ic.dissipator_velocity[f];
                     notes.push(format!(
@@ -289,7 +320,7 @@ impl Plan {
             if bilinear && had_mass && kind == ContactKind::Epp {
                 // Ignoring m′ is the limit m′ → 0, in which a dissipator displaced beyond
                 // its slip load slides instantly until its brace force is on the bound.
-                let (xj, vj) = below.map_or((0.0, 0.0), |j| (u0[j], v0[j]));
+                let (xj, vj) = (bottom.at(&u0), bottom.at(&v0));
                 let viscous = d.brace_damping * (vd0 - vj);
                 let force = d.brace_stiffness * (xd0 - xj) + viscous;
                 let clamped = force.clamp(d.lower, d.upper);
@@ -304,7 +335,9 @@ impl Plan {
             contacts.push(Contact {
                 role: ContactRole::Damper,
                 floor: f,
-                below,
+                slot: f,
+                top,
+                bottom,
                 kind,
                 lower: d.lower,
                 upper: d.upper,
@@ -319,14 +352,14 @@ impl Plan {
         for (f, y) in b.storey_yield.iter().enumerate() {
             let Some(y) = y else { continue };
             let storey = f + 1;
-            let below = f.checked_sub(1);
+            let (top, bottom) = ends(f);
             let kp = (1.0 - y.post_yield_ratio) * y.stiffness;
             let fp = (1.0 - y.post_yield_ratio) * y.yield_shear;
-            add_spring(&mut stiffness, f, below, -kp);
+            add_between(&mut stiffness, &top, &bottom, -kp);
             // Unstressed plastic element: it starts stuck with the storey's elastic force;
             // a storey displaced beyond yield at rest has yielded to its bound.
-            let uj = below.map_or(0.0, |j| u0[j]);
-            let force = kp * (u0[f] - uj);
+            let uj = bottom.at(&u0);
+            let force = kp * (top.at(&u0) - uj);
             let clamped = force.clamp(-fp, fp);
             let x0 = uj + clamped / kp;
             if clamped != force {
@@ -349,7 +382,9 @@ impl Plan {
             contacts.push(Contact {
                 role: ContactRole::Storey,
                 floor: f,
-                below,
+                slot: n + f,
+                top,
+                bottom,
                 kind: ContactKind::Epp,
                 lower: -fp,
                 upper: fp,
@@ -360,7 +395,8 @@ impl Plan {
         // P-Δ: the linearised geometric stiffness −Pᵢ/hᵢ of every storey.
         if let (Some(p), Some(h)) = (&b.gravity_loads, &b.storey_heights) {
             for (f, (pi, hi)) in p.iter().zip(h).enumerate() {
-                add_spring(&mut stiffness, f, f.checked_sub(1), -pi / hi);
+                let (top, bottom) = ends(f);
+                add_between(&mut stiffness, &top, &bottom, -pi / hi);
             }
             notes.push(format!(
                 "P-Delta: geometric stiffness -P/h per storey, P = [{}] N over h = [{}] m",
@@ -406,7 +442,7 @@ impl Plan {
         // storey with P-Δ may lose stiffness: that is the instability the run reports.
         let mut initial = stiffness.clone();
         for ct in contacts.iter().filter(|c| c.kind == ContactKind::Epp) {
-            add_spring(&mut initial, ct.floor, ct.below, ct.brace_stiffness);
+            add_between(&mut initial, &ct.top, &ct.bottom, ct.brace_stiffness);
         }
         if initial.cholesky().is_none() {
             return Err(SimError::NotPositiveDefinite {
@@ -516,10 +552,16 @@ impl Plan {
         Ok(Plan {
             name: scene.name.clone(),
             floors: n,
+            influence: DVector::from_element(n_dof, 1.0),
             mass,
             damping,
             stiffness,
             contacts,
+            damper_slots: n,
+            drifts: (0..n).map(ends).collect(),
+            points: (0..n).map(|f| (Kin::dof(f), 1.0)).collect(),
+            chain: true,
+            frame_dofs: n,
             links,
             storey_heights: b.storey_heights.clone(),
             record: scene.record.clone(),
@@ -551,6 +593,18 @@ impl Plan {
     /// - `exact`: zero-mass dissipator DOFs, which it cannot integrate (it needs M⁻¹).
     pub fn check_method(&self) -> Result<(), SimError> {
         let name = self.method.name;
+        if !self.chain {
+            if name == MethodName::Delacruz {
+                return Err(SimError::Scene(
+                    "delacruz steps a chain of floors (its loops run floor by floor); a building in plan runs with exact (the reference), newmark, hht or bilinear".into(),
+                ));
+            }
+            if self.outputs.sensitivities {
+                return Err(SimError::Scene(
+                    "outputs.sensitivities: the derivatives with respect to the slip loads are computed for a chain of floors; a building in plan runs without them".into(),
+                ));
+            }
+        }
         if self.outputs.sensitivities && matches!(name, MethodName::Delacruz | MethodName::Exact) {
             return Err(SimError::Scene(format!(
                 "outputs.sensitivities: the derivatives with respect to the slip loads are computed by newmark, hht and bilinear, not by {}",
@@ -608,22 +662,39 @@ impl Plan {
         self.harmonic.as_ref().map_or(0.0, |h| h.force(t))
     }
 
-    /// The influence matrix B (DOFs × contacts): column c is e(floor) − e(dissipator) for a
-    /// contact with DOF, e(floor) − e(floor below) for an elastic–perfectly plastic one.
+    /// The influence matrix B (DOFs × contacts): column c is top − e(dissipator) for a
+    /// contact with DOF, top − bottom for an elastic–perfectly plastic one (in a chain
+    /// e(floor) − e(dissipator) and e(floor) − e(floor below)).
     pub fn contact_matrix(&self) -> DMatrix<f64> {
         let mut bm = DMatrix::zeros(self.dofs(), self.contacts.len());
         for (c, ct) in self.contacts.iter().enumerate() {
-            bm[(ct.floor, c)] = 1.0;
-            match ct.kind {
-                ContactKind::Dof { dof } => bm[(dof, c)] = -1.0,
-                ContactKind::Epp => {
-                    if let Some(j) = ct.below {
-                        bm[(j, c)] = -1.0;
-                    }
-                }
-            }
+            self.contact_column(ct, &mut bm.column_mut(c));
         }
         bm
+    }
+
+    /// Column `c` of [`Plan::contact_matrix`] written into `col` (zeros on entry).
+    pub fn contact_column(&self, ct: &Contact, col: &mut nalgebra::DVectorViewMut<'_, f64>) {
+        let slice = col.as_mut_slice();
+        ct.top.add(slice, 1.0);
+        match ct.kind {
+            ContactKind::Dof { dof } => slice[dof] -= 1.0,
+            ContactKind::Epp => ct.bottom.add(slice, -1.0),
+        }
+    }
+
+    /// Where the contacts start among `exact`'s observed functions: after the drifts, the
+    /// points' displacements and accelerations, and the base shear.
+    pub fn observed_contacts_offset(&self) -> usize {
+        self.drifts.len() + 2 * self.points.len() + 1
+    }
+
+    /// Whether every element is a chain's: its points single DOFs of weight 1 (or the
+    /// ground), the ground influence 1 on every DOF and the drifts the storeys'. The
+    /// chain-only step loops (`newmark`'s banded and fixed-size loops, `delacruz`) run
+    /// such plans alone.
+    pub fn is_chain(&self) -> bool {
+        self.chain
     }
 
     /// The half-bandwidth of the plan's operators: the largest |i − j| of a non-zero entry
@@ -647,19 +718,32 @@ impl Plan {
         for ct in &self.contacts {
             let other = match ct.kind {
                 ContactKind::Dof { dof } => Some(dof),
-                ContactKind::Epp => ct.below,
+                ContactKind::Epp => ct.bottom.max_dof(),
             };
-            if let Some(o) = other {
-                p = p.max(ct.floor.abs_diff(o));
+            let ends: Vec<usize> = ct.top.entries().map(|(i, _)| i).chain(other).collect();
+            for &i in &ends {
+                for &j in &ends {
+                    p = p.max(i.abs_diff(j));
+                }
             }
         }
         p
     }
 
-    /// M·r with r = 1 on every DOF (all displacements are relative to the ground), kg.
+    /// M·r, with r the ground influence ([`Plan::influence`]; 1 on every DOF of a chain:
+    /// all displacements are relative to the ground), kg.
     pub fn mass_influence(&self) -> DVector<f64> {
-        let ones = DVector::from_element(self.dofs(), 1.0);
-        &self.mass * ones
+        &self.mass * &self.influence
+    }
+
+    /// rᵀ·M·r: the mass the ground accelerates (a chain's total mass), kg.
+    pub fn influence_mass(&self) -> f64 {
+        let mr = self.mass_influence();
+        if self.chain {
+            mr.iter().sum()
+        } else {
+            self.influence.dot(&mr)
+        }
     }
 
     /// Human-readable description of the plan.

@@ -6,6 +6,7 @@
 //! peaks in `Response::peak_drift` and the sampled ones in
 //! `Diagnostics::sampled_peak_drift`.
 
+use crate::kinematics::Kin;
 use serde::{Deserialize, Serialize};
 
 /// The five energies and the balance error, J (relative formulation).
@@ -207,7 +208,7 @@ pub struct DamperRecorder {
 impl DamperRecorder {
     /// A recorder for the damper contacts of `plan` (slots by floor).
     pub fn for_plan(plan: &crate::plan::Plan) -> Self {
-        let n = plan.floors;
+        let n = plan.damper_slots;
         let mut slots = vec![DamperSlot::default(); n];
         for ct in &plan.contacts {
             if ct.role != crate::plan::ContactRole::Damper {
@@ -222,7 +223,7 @@ impl DamperRecorder {
             } else {
                 0.0
             };
-            slots[ct.floor] = DamperSlot {
+            slots[ct.slot] = DamperSlot {
                 present: true,
                 still,
                 ..DamperSlot::default()
@@ -486,6 +487,19 @@ pub struct Peaks {
     pub collapse: Option<Collapse>,
     /// Per-damper demands, when the plan's outputs ask for them.
     pub dampers: Option<DamperRecorder>,
+    /// The drifts and points a plan that is not a chain measures (`None` for a chain,
+    /// whose drifts are its storeys and points its floors).
+    pub measures: Option<Box<Measures>>,
+}
+
+/// The drifts and points of a plan that is not a chain ([`crate::plan::Plan::drifts`],
+/// [`crate::plan::Plan::points`]).
+#[derive(Debug, Clone)]
+pub struct Measures {
+    /// Each drift's two points.
+    pub drifts: Vec<(Kin, Kin)>,
+    /// Each point and its ground influence.
+    pub points: Vec<(Kin, f64)>,
 }
 
 impl Peaks {
@@ -502,15 +516,39 @@ impl Peaks {
             collapse_limit: None,
             collapse: None,
             dampers: None,
+            measures: None,
         }
     }
 
-    /// Zeroed peaks for the floors of `plan`, with its collapse limit.
+    /// Zeroed peaks for the drifts, points and contacts of `plan`, with its collapse
+    /// limit.
     pub fn for_plan(plan: &crate::plan::Plan) -> Self {
+        let (nd, np) = (plan.drifts.len(), plan.points.len());
+        let slots = plan.damper_slots
+            + plan
+                .contacts
+                .iter()
+                .filter(|c| c.role == crate::plan::ContactRole::Storey)
+                .map(|c| c.slot + 1 - plan.damper_slots)
+                .max()
+                .unwrap_or(0)
+                .max(if plan.is_chain() { plan.floors } else { 0 });
         Peaks {
+            drift: vec![0.0; nd],
+            displacement: vec![0.0; np],
+            abs_acceleration: vec![0.0; np],
+            last_drift: vec![0.0; nd],
+            slip: vec![0.0; slots],
+            transitions: vec![0; slots],
             collapse_limit: plan.collapse_drift.clone(),
             dampers: plan.outputs.dampers.then(|| DamperRecorder::for_plan(plan)),
-            ..Peaks::new(plan.floors)
+            measures: (!plan.is_chain()).then(|| {
+                Box::new(Measures {
+                    drifts: plan.drifts.clone(),
+                    points: plan.points.clone(),
+                })
+            }),
+            ..Peaks::new(0)
         }
     }
 
@@ -550,6 +588,25 @@ impl Peaks {
     /// used) with ground acceleration `ag`.
     #[inline]
     pub fn observe_floors(&mut self, x: &[f64], a: &[f64], ag: f64) {
+        if let Some(m) = &self.measures {
+            for (k, (top, bottom)) in m.drifts.iter().enumerate() {
+                let d = top.at(x) - bottom.at(x);
+                self.last_drift[k] = d;
+                if d.abs() > self.drift[k] {
+                    self.drift[k] = d.abs();
+                }
+            }
+            for (k, (p, r)) in m.points.iter().enumerate() {
+                let (xa, aa) = (p.at(x).abs(), (p.at(a) + r * ag).abs());
+                if xa > self.displacement[k] {
+                    self.displacement[k] = xa;
+                }
+                if aa > self.abs_acceleration[k] {
+                    self.abs_acceleration[k] = aa;
+                }
+            }
+            return;
+        }
         // Plain comparisons (a NaN never replaces a peak, as with `f64::max`) over zipped
         // slices: no bounds checks, nothing the step loop has to wait for.
         let mut below = 0.0;
@@ -605,10 +662,11 @@ impl Peaks {
                 .map(|(d, y)| y.map(|y| d / y))
                 .collect()
         });
-        let n = self.drift.len();
+        let n = plan.damper_slots;
         let plastic = yields.then(|| self.slip[n..].to_vec());
         let collapse = self.collapse;
-        let mut r = self.into_response(
+        let mut r = self.into_response_slots(
+            n,
             plan.method.name.as_str(),
             plan.method.dt,
             plan.steps,
@@ -625,7 +683,7 @@ impl Peaks {
         r
     }
 
-    /// Builds the contract's response.
+    /// Builds the contract's response (a chain's: one damper slot per storey).
     pub fn into_response(
         self,
         method: &str,
@@ -634,8 +692,21 @@ impl Peaks {
         heights: Option<&[f64]>,
         energy: Option<Energy>,
     ) -> Response {
-        let ratio = heights.map(|h| self.drift.iter().zip(h).map(|(d, h)| d / h).collect());
         let n = self.drift.len();
+        self.into_response_slots(n, method, dt, steps, heights, energy)
+    }
+
+    /// Builds the contract's response with `n` damper slots.
+    fn into_response_slots(
+        self,
+        n: usize,
+        method: &str,
+        dt: f64,
+        steps: usize,
+        heights: Option<&[f64]>,
+        energy: Option<Energy>,
+    ) -> Response {
+        let ratio = heights.map(|h| self.drift.iter().zip(h).map(|(d, h)| d / h).collect());
         Response {
             method: method.to_string(),
             dt,

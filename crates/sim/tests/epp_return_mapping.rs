@@ -58,7 +58,7 @@ fn newton_return_mapping(plan: &Plan) -> (Vec<f64>, usize) {
             let mut r = m * &acc + c * &vel + k * &x + &mr * ag1;
             let mut tangent = k_dyn.clone();
             for (e, ct) in contacts.iter().enumerate() {
-                let trial = ct.brace_stiffness * (drift_of(&x, ct.floor, ct.below) - plastic[e]);
+                let trial = ct.brace_stiffness * (drift_of(&x, ct.floor, ct.below()) - plastic[e]);
                 let (force, kt) = if trial > ct.upper {
                     (ct.upper, 0.0)
                 } else if trial < ct.lower {
@@ -68,7 +68,7 @@ fn newton_return_mapping(plan: &Plan) -> (Vec<f64>, usize) {
                 };
                 r[ct.floor] += force;
                 tangent[(ct.floor, ct.floor)] += kt;
-                if let Some(j) = ct.below {
+                if let Some(j) = ct.below() {
                     r[j] -= force;
                     tangent[(j, j)] += kt;
                     tangent[(ct.floor, j)] -= kt;
@@ -89,7 +89,7 @@ fn newton_return_mapping(plan: &Plan) -> (Vec<f64>, usize) {
         a = acc;
         u = x;
         for (e, ct) in contacts.iter().enumerate() {
-            let d = drift_of(&u, ct.floor, ct.below);
+            let d = drift_of(&u, ct.floor, ct.below());
             let trial = ct.brace_stiffness * (d - plastic[e]);
             let force = trial.clamp(ct.lower, ct.upper);
             plastic[e] = d - force / ct.brace_stiffness;

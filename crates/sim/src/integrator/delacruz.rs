@@ -206,7 +206,7 @@ fn locked_omega2_max(plan: &Plan) -> Option<f64> {
         if ct.kind == ContactKind::Epp {
             let (i, kb) = (ct.floor, ct.brace_stiffness);
             k[(i, i)] += kb;
-            if let Some(j) = ct.below {
+            if let Some(j) = ct.below() {
                 k[(j, j)] += kb;
                 k[(i, j)] -= kb;
                 k[(j, i)] -= kb;
@@ -360,7 +360,7 @@ fn storey(plan: &Plan, st: &Step, c: usize, a: &[f64], dt: f64) -> (f64, f64) {
     let ct = &plan.contacts[c];
     let uf = st.up[ct.floor] + dt * dt / 6.0 * a[ct.floor];
     let vf = st.vp[ct.floor] + 0.5 * dt * a[ct.floor];
-    let (ub, vb) = ct.below.map_or((0.0, 0.0), |j| {
+    let (ub, vb) = ct.below().map_or((0.0, 0.0), |j| {
         (st.up[j] + dt * dt / 6.0 * a[j], st.vp[j] + 0.5 * dt * a[j])
     });
     (uf - ub, vf - vb)
@@ -444,7 +444,7 @@ fn solve(
                 for (c, ct) in plan.contacts.iter().enumerate() {
                     st.r[ct.floor] -= f[c];
                     if ct.kind == ContactKind::Epp
-                        && let Some(j) = ct.below
+                        && let Some(j) = ct.below()
                     {
                         st.r[j] += f[c];
                     }
@@ -484,7 +484,7 @@ fn solve(
                     }
                     ContactKind::Epp => {
                         let (d1, dv1) = storey(plan, st, c, a, dt);
-                        let d0 = u_k[ct.floor] - ct.below.map_or(0.0, |j| u_k[j]);
+                        let d0 = u_k[ct.floor] - ct.below().map_or(0.0, |j| u_k[j]);
                         let e1 = st.e0[c].0 + (d1 - d0);
                         st.e1[c] = (e1, dv1);
                         ct.brace_stiffness * e1 + ct.brace_damping * dv1
@@ -579,7 +579,7 @@ impl Integrator for DelaCruz {
                 }
             })
             .collect();
-        let below_u = |u: &[f64], c: usize| plan.contacts[c].below.map_or(0.0, |j| u[j]);
+        let below_u = |u: &[f64], c: usize| plan.contacts[c].below().map_or(0.0, |j| u[j]);
         let mut st = Step {
             q: vec![0.0; n],
             gp: vec![0.0; n],
@@ -711,7 +711,7 @@ impl Integrator for DelaCruz {
                 // Massless dissipators: x′ = x_below + e, v′ = v_below + ė.
                 if ct.kind == ContactKind::Epp {
                     let (e, ed) = st.e1[c];
-                    let (ub, vb) = ct.below.map_or((0.0, 0.0), |j| (u[j], v[j]));
+                    let (ub, vb) = ct.below().map_or((0.0, 0.0), |j| (u[j], v[j]));
                     epp[c] = EppState {
                         u: ub + e,
                         v: vb + ed,
@@ -738,7 +738,7 @@ impl Integrator for DelaCruz {
                             f_new[c] = force.clamp(ct.lower, ct.upper);
                         }
                         ContactKind::Epp => {
-                            let vb = ct.below.map_or(0.0, |j| v[j]);
+                            let vb = ct.below().map_or(0.0, |j| v[j]);
                             let ed = v[ct.floor] - vb;
                             st.e1[c].1 = ed;
                             epp[c].v = vb + ed;

@@ -26,8 +26,8 @@ pub(crate) struct EppState {
 pub(crate) fn slip_rate(plan: &Plan, c: usize, v: &[f64], epp: &[EppState]) -> f64 {
     let ct = &plan.contacts[c];
     match ct.kind {
-        ContactKind::Dof { dof } => v[ct.floor] - v[dof],
-        ContactKind::Epp => v[ct.floor] - epp[c].v,
+        ContactKind::Dof { dof } => ct.top.at(v) - v[dof],
+        ContactKind::Epp => ct.top.at(v) - epp[c].v,
     }
 }
 
@@ -36,8 +36,8 @@ pub(crate) fn slip_rate(plan: &Plan, c: usize, v: &[f64], epp: &[EppState]) -> f
 pub(crate) fn slip(plan: &Plan, c: usize, u: &[f64], epp: &[EppState]) -> f64 {
     let ct = &plan.contacts[c];
     match ct.kind {
-        ContactKind::Dof { dof } => u[ct.floor] - u[dof],
-        ContactKind::Epp => u[ct.floor] - epp[c].u,
+        ContactKind::Dof { dof } => ct.top.at(u) - u[dof],
+        ContactKind::Epp => ct.top.at(u) - epp[c].u,
     }
 }
 
@@ -59,7 +59,7 @@ pub(crate) fn observe_dampers(
     };
     for (c, ct) in plan.contacts.iter().enumerate() {
         if ct.role == ContactRole::Damper {
-            rec.observe(ct.floor, t, slip(plan, c, u, epp), w[c], f[c]);
+            rec.observe(ct.slot, t, slip(plan, c, u, epp), w[c], f[c]);
         }
     }
 }
@@ -104,7 +104,7 @@ pub(crate) fn epp_strain(plan: &Plan, u: &[f64], epp: &[EppState]) -> f64 {
     let mut strain = 0.0;
     for (c, ct) in plan.contacts.iter().enumerate() {
         if ct.kind == ContactKind::Epp {
-            let uj = ct.below.map_or(0.0, |j| u[j]);
+            let uj = ct.bottom.at(u);
             let e = epp[c].u - uj;
             strain += 0.5 * ct.brace_stiffness * e * e;
         }
@@ -153,7 +153,7 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
     let mut stuck = vec![false; nc];
     let mut epp = vec![EppState::default(); nc];
     for (c, ct) in plan.contacts.iter().enumerate() {
-        let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (u[j], v[j]));
+        let (uj, vj) = (ct.bottom.at(&u), ct.bottom.at(&v));
         let massless = match ct.kind {
             ContactKind::Epp => Some(plan.contact_x0[c]),
             ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => Some((u[dof], v[dof])),
@@ -181,8 +181,9 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
                 };
             }
         } else if let ContactKind::Dof { dof } = ct.kind {
-            let w0 = v[ct.floor] - v[dof];
-            let tol = 1e-12 * (v[ct.floor].abs() + v[dof].abs());
+            let vf = ct.top.at(&v);
+            let w0 = vf - v[dof];
+            let tol = 1e-12 * (vf.abs() + v[dof].abs());
             if w0.abs() > tol {
                 let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
                 if !bound.is_finite() {
@@ -201,14 +202,10 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
     // −B F for the known forces.
     let apply = |g: &mut DVector<f64>, c: usize, force: f64| {
         let ct = &plan.contacts[c];
-        g[ct.floor] -= force;
+        ct.top.add(g.as_mut_slice(), -force);
         match ct.kind {
             ContactKind::Dof { dof } => g[dof] += force,
-            ContactKind::Epp => {
-                if let Some(j) = ct.below {
-                    g[j] += force;
-                }
-            }
+            ContactKind::Epp => ct.bottom.add(g.as_mut_slice(), force),
         }
     };
     for c in (0..nc).filter(|&c| known[c]) {
@@ -228,9 +225,13 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
         for (k, &c) in unknown.iter().enumerate() {
             let ct = &plan.contacts[c];
             if let ContactKind::Dof { dof } = ct.kind
-                && let (Some(i), Some(j)) = (pos(ct.floor), pos(dof))
+                && let Some(j) = pos(dof)
             {
-                bu[(i, k)] = 1.0;
+                for (d, w) in ct.top.entries() {
+                    if let Some(i) = pos(d) {
+                        bu[(i, k)] = w;
+                    }
+                }
                 bu[(j, k)] = -1.0;
             }
         }
@@ -260,8 +261,8 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
     }
     for (c, ct) in plan.contacts.iter().enumerate() {
         match ct.kind {
-            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => a[dof] = a[ct.floor],
-            ContactKind::Epp => epp[c].a = a[ct.floor],
+            ContactKind::Dof { dof } if plan.mass[(dof, dof)] == 0.0 => a[dof] = ct.top.at(&a),
+            ContactKind::Epp => epp[c].a = ct.top.at(&a),
             _ => {}
         }
     }
@@ -277,9 +278,8 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
 
 /// Column names of the histories (the same for every method).
 pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
-    let nf = plan.floors;
     let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
-    cols.extend((1..=nf).map(|i| format!("x{i}_m")));
+    cols.extend((1..=plan.points.len()).map(|i| format!("x{i}_m")));
     // A yielding storey's plastic element: its position, force and slip rate (the
     // plastic drift rate), named xp, Fp, wp beside the dissipators' xd, F, w.
     let tag = |c: &crate::plan::Contact, damper: &str, storey: &str| match c.role {
@@ -287,7 +287,7 @@ pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
         ContactRole::Storey => format!("{storey}{}", c.floor + 1),
     };
     cols.extend(plan.contacts.iter().map(|c| tag(c, "xd", "xp") + "_m"));
-    cols.extend((1..=nf).map(|i| format!("drift{i}_m")));
+    cols.extend((1..=plan.drifts.len()).map(|i| format!("drift{i}_m")));
     cols.extend(plan.contacts.iter().map(|c| tag(c, "F", "Fp") + "_N"));
     cols.extend(plan.contacts.iter().map(|c| tag(c, "w", "wp") + "_m_s"));
     if energies {
@@ -326,20 +326,17 @@ pub(crate) fn record_row(
     epp: &[EppState],
     e: Option<EnergyRow>,
 ) {
-    let nf = plan.floors;
     h.rows.push(t);
     h.rows.push(ag);
-    h.rows.extend_from_slice(&u[..nf]);
+    h.rows.extend(plan.points.iter().map(|(p, _)| p.at(u)));
     for (c, ct) in plan.contacts.iter().enumerate() {
         h.rows.push(match ct.kind {
             ContactKind::Dof { dof } => u[dof],
             ContactKind::Epp => epp[c].u,
         });
     }
-    let mut below = 0.0;
-    for &x in &u[..nf] {
-        h.rows.push(x - below);
-        below = x;
+    for (top, bottom) in &plan.drifts {
+        h.rows.push(top.at(u) - bottom.at(u));
     }
     h.rows.extend_from_slice(f);
     h.rows.extend_from_slice(w);
@@ -516,9 +513,9 @@ impl EnergyAccumulator {
             }
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 // Brace dashpot of a condensed dissipator: ė = v′ − v_below.
-                let vj_old = ct.below.map_or(0.0, |j| v_old[j]);
-                let vj_new = ct.below.map_or(0.0, |j| v_now[j]);
-                let ed_old = (v_old[ct.floor] - w_old[c]) - vj_old;
+                let vj_old = ct.bottom.at(v_old);
+                let vj_new = ct.bottom.at(v_now);
+                let ed_old = (ct.top.at(v_old) - w_old[c]) - vj_old;
                 let ed_new = epp[c].v - vj_new;
                 let ed = 0.5 * (ed_old + ed_new);
                 self.viscous += dt * ct.brace_damping * ed * ed;

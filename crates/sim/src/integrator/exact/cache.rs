@@ -146,7 +146,12 @@ fn plan_key(plan: &Plan) -> Vec<u64> {
             ContactRole::Storey => 1,
         });
         k.push(ct.floor as u64);
-        k.push(ct.below.map_or(0, |j| j as u64 + 1));
+        for point in [&ct.top, &ct.bottom] {
+            k.push(point.entries().count() as u64);
+            for (i, w) in point.entries() {
+                k.extend([i as u64, w.to_bits()]);
+            }
+        }
         k.push(match ct.kind {
             ContactKind::Epp => 0,
             ContactKind::Dof { dof } => dof as u64 + 1,

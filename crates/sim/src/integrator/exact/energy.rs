@@ -58,9 +58,7 @@ impl Model<'_> {
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
                 // c′ (ẋ′ − v_below)².
                 let mut e = ops.xdot.column(c).into_owned();
-                if let Some(j) = ct.below {
-                    e[n + j] -= 1.0;
-                }
+                ct.bottom.add_offset(e.as_mut_slice(), n, -1.0);
                 viscous.ger(ct.brace_damping, &e, &e, 1.0);
             }
         }
@@ -95,7 +93,7 @@ impl Model<'_> {
                 ContactRole::Storey => plastic += p,
             }
             if ct.kind == ContactKind::Epp && ct.brace_damping > 0.0 {
-                let vb = ct.below.map_or(0.0, |j| v[j]);
+                let vb = ct.bottom.at(v);
                 let ed = row_dot(&ops.xdot, c, y) - vb;
                 viscous += ct.brace_damping * ed * ed;
             }
@@ -145,7 +143,7 @@ impl Model<'_> {
         let mut strain = 0.5 * quad(&plan.stiffness, &u);
         for (c, ct) in plan.contacts.iter().enumerate() {
             if let Some(s) = self.lay.epp_slot[c] {
-                let e = y[s] - ct.below.map_or(0.0, |j| u[j]);
+                let e = y[s] - ct.bottom.at(u.as_slice());
                 strain += 0.5 * ct.brace_stiffness * e * e;
             }
         }

@@ -87,7 +87,7 @@ impl Sizes {
     pub(super) fn of(plan: &Plan) -> Sizes {
         let n = plan.dofs();
         let nc = plan.contacts.len();
-        let nf = plan.floors;
+        let nf = plan.drifts.len();
         let epp = plan
             .contacts
             .iter()
@@ -96,7 +96,7 @@ impl Sizes {
         let dim = 2 * n + epp + 5;
         let events = 2 * nc;
         let observed = if frame_steps(plan) >= 2 {
-            3 * nf + 1 + nc
+            plan.observed_contacts_offset() + nc
         } else {
             0
         };

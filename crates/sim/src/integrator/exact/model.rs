@@ -8,6 +8,7 @@
 
 use super::kernels::SparseRows;
 use crate::error::SimError;
+use crate::kinematics::add_between;
 use crate::plan::{ContactKind, Plan};
 use nalgebra::{DMatrix, DVector};
 use std::cell::OnceCell;
@@ -271,8 +272,8 @@ impl<'a> Model<'a> {
             match ct.kind {
                 ContactKind::Epp => {
                     if matches!(mode, None | Some(Mode::Stuck)) {
-                        add_link(&mut k, ct.floor, ct.below, ct.brace_stiffness);
-                        add_link(&mut c, ct.floor, ct.below, ct.brace_damping);
+                        add_between(&mut k, &ct.top, &ct.bottom, ct.brace_stiffness);
+                        add_between(&mut c, &ct.top, &ct.bottom, ct.brace_damping);
                     }
                     if !matches!(mode, Some(Mode::Stuck)) && ct.brace_damping > 0.0 {
                         maxwell = maxwell.max(ct.brace_stiffness / ct.brace_damping);
@@ -307,14 +308,5 @@ impl<'a> Model<'a> {
                 .fold(0.0f64, |a, &x| a.max(x.abs()))
         };
         top(&k).sqrt() + top(&c) + maxwell + self.omega_h
-    }
-}
-
-pub(super) fn add_link(m: &mut DMatrix<f64>, i: usize, j: Option<usize>, k: f64) {
-    m[(i, i)] += k;
-    if let Some(j) = j {
-        m[(j, j)] += k;
-        m[(i, j)] -= k;
-        m[(j, i)] -= k;
     }
 }

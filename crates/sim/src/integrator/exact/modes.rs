@@ -6,7 +6,7 @@
 use super::kernels::SparseRows;
 use super::model::{EventFn, Mode, ModeOps, Model, Scale};
 use super::params::SUBSTEP_PHASE;
-use crate::plan::{ContactKind, ContactRole, Plan};
+use crate::plan::{ContactKind, Plan};
 use crate::response::Peaks;
 use nalgebra::{DMatrix, DVector};
 use std::cell::OnceCell;
@@ -29,27 +29,33 @@ impl Model<'_> {
                 (Mode::Stuck, ContactKind::Epp) => {
                     let s = lay.epp_slot[c].expect("EPP contacts have a slot");
                     force[(c, s)] += ct.brace_stiffness;
-                    force[(c, n + ct.floor)] += ct.brace_damping;
-                    if let Some(j) = ct.below {
-                        force[(c, j)] -= ct.brace_stiffness;
-                        force[(c, n + j)] -= ct.brace_damping;
+                    for (i, w) in ct.top.entries() {
+                        force[(c, n + i)] += ct.brace_damping * w;
+                    }
+                    for (j, w) in ct.bottom.entries() {
+                        force[(c, j)] -= ct.brace_stiffness * w;
+                        force[(c, n + j)] -= ct.brace_damping * w;
                     }
                 }
             }
             if let Some(s) = lay.epp_slot[c] {
                 match modes[c] {
-                    Mode::Stuck => xdot[(c, n + ct.floor)] = 1.0,
+                    Mode::Stuck => {
+                        for (i, w) in ct.top.entries() {
+                            xdot[(c, n + i)] = w;
+                        }
+                    }
                     Mode::Upper | Mode::Lower => {
-                        if let Some(j) = ct.below {
-                            xdot[(c, n + j)] = 1.0;
+                        for (j, w) in ct.bottom.entries() {
+                            xdot[(c, n + j)] = w;
                         }
                         if ct.brace_damping > 0.0 {
                             let bound = force[(c, lay.i_one)];
                             let r = 1.0 / ct.brace_damping;
                             xdot[(c, lay.i_one)] += bound * r;
                             xdot[(c, s)] -= ct.brace_stiffness * r;
-                            if let Some(j) = ct.below {
-                                xdot[(c, j)] += ct.brace_stiffness * r;
+                            for (j, w) in ct.bottom.entries() {
+                                xdot[(c, j)] += ct.brace_stiffness * r * w;
                             }
                         }
                     }
@@ -98,7 +104,9 @@ impl Model<'_> {
         a.view_mut((n, 0), (n, dim)).copy_from(&acc);
         let mut slip_rate = DMatrix::zeros(nc, dim);
         for (c, ct) in plan.contacts.iter().enumerate() {
-            slip_rate[(c, n + ct.floor)] = 1.0;
+            for (i, w) in ct.top.entries() {
+                slip_rate[(c, n + i)] = w;
+            }
             match (ct.kind, lay.epp_slot[c]) {
                 (ContactKind::Dof { dof }, _) => slip_rate[(c, n + dof)] -= 1.0,
                 (ContactKind::Epp, Some(s)) => {
@@ -183,13 +191,13 @@ impl Model<'_> {
                 .unwrap_or(1);
             (q / s, s)
         };
-        let prepare_after = dim + events.len() + plan.floors;
+        let prepare_after = dim + events.len() + plan.drifts.len();
         let acc_rows = a.rows(n, n).transpose();
         // The observed functions' bounds are worth testing on a substep when they cost
         // less than the output steps inside it they can spare (a product with exp(A Δt)
         // and the observation, each).
         let obs_rows = if out_steps >= 2
-            && 2 * (3 * plan.floors + 1 + nc) * dim < (out_steps - 1) * (dim + n) * dim
+            && 2 * (plan.observed_contacts_offset() + nc) * dim < (out_steps - 1) * (dim + n) * dim
         {
             self.observed_rows(&acc_rows)
         } else {
@@ -222,19 +230,13 @@ impl Model<'_> {
 /// [`ModeOps::obs_rows`]).
 #[inline]
 pub(super) fn observed_peak(plan: &Plan, peaks: &Peaks, o: usize) -> f64 {
-    let nf = plan.floors;
+    let (nd, np) = (plan.drifts.len(), plan.points.len());
     match o {
-        _ if o < nf => peaks.drift[o],
-        _ if o < 2 * nf => peaks.displacement[o - nf],
-        _ if o < 3 * nf => peaks.abs_acceleration[o - 2 * nf],
-        _ if o == 3 * nf => peaks.base_shear,
-        _ => {
-            let ct = &plan.contacts[o - 3 * nf - 1];
-            match ct.role {
-                ContactRole::Damper => peaks.slip[ct.floor],
-                ContactRole::Storey => peaks.slip[nf + ct.floor],
-            }
-        }
+        _ if o < nd => peaks.drift[o],
+        _ if o < nd + np => peaks.displacement[o - nd],
+        _ if o < nd + 2 * np => peaks.abs_acceleration[o - nd - np],
+        _ if o == nd + 2 * np => peaks.base_shear,
+        _ => peaks.slip[plan.contacts[o - nd - 2 * np - 1].slot],
     }
 }
 
@@ -244,31 +246,38 @@ impl Model<'_> {
     fn observed_rows(&self, acc_rows: &DMatrix<f64>) -> DMatrix<f64> {
         let plan = self.plan;
         let lay = &self.lay;
-        let (n, nf, dim) = (lay.n, plan.floors, lay.dim);
-        let mut rows = DMatrix::zeros(dim, 3 * nf + 1 + plan.contacts.len());
-        for i in 0..nf {
-            rows[(i, i)] = 1.0;
-            if i > 0 {
-                rows[(i - 1, i)] = -1.0;
+        let (n, dim) = (lay.n, lay.dim);
+        let (nd, np) = (plan.drifts.len(), plan.points.len());
+        let oc = plan.observed_contacts_offset();
+        let mut rows = DMatrix::zeros(dim, oc + plan.contacts.len());
+        for (i, (top, bottom)) in plan.drifts.iter().enumerate() {
+            let col = rows.column_mut(i);
+            let mut col = col;
+            top.add(col.as_mut_slice(), 1.0);
+            bottom.add(col.as_mut_slice(), -1.0);
+        }
+        for (i, (point, ground)) in plan.points.iter().enumerate() {
+            point.add(rows.column_mut(nd + i).as_mut_slice(), 1.0);
+            let mut a = DVector::zeros(dim);
+            for (j, w) in point.entries() {
+                a.axpy(w, &acc_rows.column(j), 1.0);
             }
-            rows[(i, nf + i)] = 1.0;
-            let mut a = acc_rows.column(i).into_owned();
-            a[lay.i_ag] += 1.0;
-            rows.set_column(2 * nf + i, &a);
+            a[lay.i_ag] += ground;
+            rows.set_column(nd + np + i, &a);
         }
         // Base shear Σ mᵢ(aᵢ + a_g) − p over every DOF (as `base_shear`).
         let mut v = DVector::zeros(dim);
         for i in 0..n {
             v.axpy(self.mr[i], &acc_rows.column(i), 1.0);
         }
-        v[lay.i_ag] += self.mr.iter().sum::<f64>();
+        v[lay.i_ag] += plan.influence_mass();
         if let Some(h) = &plan.harmonic {
             v[lay.i_sin] -= h.amplitude;
         }
-        rows.set_column(3 * nf, &v);
+        rows.set_column(oc - 1, &v);
         for (c, ct) in plan.contacts.iter().enumerate() {
-            let col = 3 * nf + 1 + c;
-            rows[(ct.floor, col)] = 1.0;
+            let col = oc + c;
+            ct.top.add(rows.column_mut(col).as_mut_slice(), 1.0);
             match (ct.kind, lay.epp_slot[c]) {
                 (ContactKind::Dof { dof }, _) => rows[(dof, col)] -= 1.0,
                 (_, Some(s)) => rows[(s, col)] -= 1.0,

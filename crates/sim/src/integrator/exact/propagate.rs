@@ -11,7 +11,7 @@ impl Model<'_> {
     /// The grid propagators of a mode set.
     pub(super) fn stepping(&self, ops: &ModeOps) -> Stepping {
         let dim = self.lay.dim;
-        let nf = self.plan.floors;
+        let nf = self.plan.drifts.len();
         let h = ops.h;
         // exp(A τ) = Σ_k (Aᵏ/k!) τᵏ, the powers formed once for every τ.
         let mut powers = Vec::with_capacity(TAYLOR_TERMS);
@@ -65,12 +65,10 @@ impl Model<'_> {
             let mut r = if f < ops.events.len() {
                 ops.events[f].row.clone()
             } else {
-                let i = f - ops.events.len();
+                let (top, bottom) = &self.plan.drifts[f - ops.events.len()];
                 let mut d = DVector::zeros(dim);
-                d[i] = 1.0;
-                if i > 0 {
-                    d[i - 1] = -1.0;
-                }
+                top.add(d.as_mut_slice(), 1.0);
+                bottom.add(d.as_mut_slice(), -1.0);
                 d
             };
             let mut hk = 1.0;

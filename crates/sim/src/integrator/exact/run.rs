@@ -38,10 +38,10 @@ fn history_row(
 ) {
     let plan = model.plan;
     let lay = &model.lay;
-    let nf = plan.floors;
     h.rows.push(t);
     h.rows.push(y[lay.i_ag]);
-    h.rows.extend(y.rows(0, nf).iter());
+    h.rows
+        .extend(plan.points.iter().map(|(p, _)| p.at(y.as_slice())));
     for (c, ct) in plan.contacts.iter().enumerate() {
         h.rows.push(match (ct.kind, lay.epp_slot[c]) {
             (ContactKind::Dof { dof }, _) => y[dof],
@@ -49,10 +49,8 @@ fn history_row(
             (ContactKind::Epp, None) => 0.0,
         });
     }
-    let mut below = 0.0;
-    for i in 0..nf {
-        h.rows.push(y[i] - below);
-        below = y[i];
+    for (top, bottom) in &plan.drifts {
+        h.rows.push(top.at(y.as_slice()) - bottom.at(y.as_slice()));
     }
     for c in 0..plan.contacts.len() {
         h.rows.push(row_dot(&ops.force, c, y));
@@ -163,7 +161,8 @@ impl Exact {
         let model = Model::new(plan)?;
         let lay = &model.lay;
         let (n, dim) = (lay.n, lay.dim);
-        let nf = plan.floors;
+        let nf = plan.drifts.len();
+        let obs_contacts = plan.observed_contacts_offset();
         let nc = plan.contacts.len();
         substep_budget(&model, plan)?;
         let duration = plan.steps as f64 * dt;
@@ -198,7 +197,10 @@ impl Exact {
             match ct.kind {
                 ContactKind::Epp => {
                     let s = lay.epp_slot[c].expect("EPP contacts have a slot");
-                    let (uj, vj) = ct.below.map_or((0.0, 0.0), |j| (y[j], y[n + j]));
+                    let (uj, vj) = (
+                        ct.bottom.at(y.as_slice()),
+                        ct.bottom.at_offset(y.as_slice(), n),
+                    );
                     let vd = plan.contact_x0[c].1;
                     let force = ct.brace_stiffness * (y[s] - uj) + ct.brace_damping * (vd - vj);
                     let tol = 1e-12
@@ -211,7 +213,7 @@ impl Exact {
                             ct.upper
                         )));
                     }
-                    let w = y[n + ct.floor] - vd;
+                    let w = ct.top.at_offset(y.as_slice(), n) - vd;
                     modes[c] = if force >= ct.upper - tol && w > 0.0 {
                         Mode::Upper
                     } else if force <= ct.lower + tol && w < 0.0 {
@@ -222,8 +224,9 @@ impl Exact {
                 }
                 ContactKind::Dof { .. } if ct.lower == ct.upper => modes[c] = Mode::Upper,
                 ContactKind::Dof { dof } => {
-                    let w0 = y[n + ct.floor] - y[n + dof];
-                    let tol = 1e-12 * (y[n + ct.floor].abs() + y[n + dof].abs());
+                    let vf = ct.top.at_offset(y.as_slice(), n);
+                    let w0 = vf - y[n + dof];
+                    let tol = 1e-12 * (vf.abs() + y[n + dof].abs());
                     if w0.abs() > tol {
                         let bound = if w0 > 0.0 { ct.upper } else { ct.lower };
                         if !bound.is_finite() {
@@ -278,7 +281,11 @@ impl Exact {
         let add = |w: usize| work.set(work.get() + w as u64);
         let mut peaks = Peaks::for_plan(plan);
         let mut cont_drift = vec![0.0; nf];
-        let msum: f64 = model.mr.iter().sum();
+        let drift = |i: usize, y: &DVector<f64>| {
+            let (top, bottom) = &plan.drifts[i];
+            top.at(y.as_slice()) - bottom.at(y.as_slice())
+        };
+        let msum: f64 = plan.influence_mass();
         let mut acc = DVector::zeros(dim);
         let observe =
             |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>, t: f64| {
@@ -306,18 +313,14 @@ impl Exact {
                         (_, Some(s)) => y[s],
                         (ContactKind::Epp, None) => 0.0,
                     };
-                    match ct.role {
-                        ContactRole::Damper => peaks.observe_slip(ct.floor, y[ct.floor] - other),
-                        ContactRole::Storey => {
-                            peaks.observe_plastic(ct.floor, y[ct.floor] - other);
-                        }
-                    }
+                    let slip = ct.top.at(y.as_slice()) - other;
+                    peaks.observe_slip(ct.slot, slip);
                     if ct.role == ContactRole::Damper
                         && let Some(rec) = peaks.dampers.as_mut()
                     {
                         let force = row_dot(&ops.force, c, y);
                         let rate = row_dot(&ops.slip_rate, c, y);
-                        rec.observe(ct.floor, t, y[ct.floor] - other, rate, force);
+                        rec.observe(ct.slot, t, slip, rate, force);
                     }
                 }
             };
@@ -541,7 +544,7 @@ impl Exact {
                             && bounds.is_some_and(|st| {
                                 (0..ops.obs_rows.ncols()).all(|o| {
                                     // A stuck contact's slip does not change.
-                                    (o > 3 * nf && modes[o - 3 * nf - 1] == Mode::Stuck)
+                                    (o >= obs_contacts && modes[o - obs_contacts] == Mode::Stuck)
                                         || dot(col(&ops.obs_rows, o), y.as_slice()).abs()
                                             + dot(col(&st.obs_tails, o), yabs.as_slice())
                                             <= observed_peak(plan, &peaks, o)
@@ -592,7 +595,7 @@ impl Exact {
                     at_end.fill(false);
                     for i in 0..nf {
                         if let Some(st) = bounds {
-                            let d0 = y[i] - if i == 0 { 0.0 } else { y[i - 1] };
+                            let d0 = drift(i, &y);
                             if d0.abs() + dot(col(&st.tails, nev + i), yabs.as_slice())
                                 <= cont_drift[i]
                             {
@@ -675,12 +678,10 @@ impl Exact {
                     }
                     debug_assert!(summed || fast.is_some());
                     // The monotone drifts' peaks, at the end of the substep.
-                    let mut below = 0.0;
                     for (i, c) in cont_drift.iter_mut().enumerate() {
                         if at_end[i] {
-                            *c = c.max((y[i] - below).abs());
+                            *c = c.max(drift(i, &y).abs());
                         }
-                        below = y[i];
                     }
                     if let Some(j) = end_out {
                         observe(&mut peaks, &ops, &y, &mut acc, j as f64 * dt);
@@ -704,7 +705,7 @@ impl Exact {
                             on_grid = None;
                         }
                     }
-                    for i in 0..nf {
+                    for i in 0..plan.frame_dofs {
                         v_ref = v_ref.max(y[n + i].abs());
                     }
                     if !y.iter().all(|x| x.is_finite()) {
@@ -776,7 +777,7 @@ impl Exact {
                                     } else {
                                         ct.lower
                                     };
-                                    let uj = ct.below.map_or(0.0, |j| y[j]);
+                                    let uj = ct.bottom.at(y.as_slice());
                                     let e_old = y[s] - uj;
                                     let e_new = bound / ct.brace_stiffness;
                                     let released =
@@ -815,7 +816,7 @@ impl Exact {
                         if (modes[c] == Mode::Stuck) != (old[c] == Mode::Stuck)
                             && plan.contacts[c].role == ContactRole::Damper
                         {
-                            peaks.transitions[plan.contacts[c].floor] += 1;
+                            peaks.transitions[plan.contacts[c].slot] += 1;
                         }
                     }
                     ops = cache.get(&model, &modes);

@@ -35,7 +35,7 @@
 //! histories take the general loop.
 
 use super::band::{Band, Ldl, tri_rhs};
-use super::link::{EppPred, GROUND, Link};
+use super::link::{EppPred, Link};
 use super::operators::StepConstants;
 use super::outcome::{non_finite, outcome};
 use crate::error::SimError;
@@ -45,7 +45,7 @@ use crate::integrator::state::{
     self, EnergyAccumulator, EppState, StepEnergyData, StepForms, epp_strain, initial_state,
     slip_rate,
 };
-use crate::plan::{ContactKind, ContactRole, Plan};
+use crate::plan::{ContactKind, Plan};
 use crate::response::{Outcome, Peaks};
 
 /// Largest half-bandwidth the banded step takes (its factorisation costs O(N p²)).
@@ -80,12 +80,12 @@ pub struct BandedStats {
 /// the ground) with a finite box of positive width, and
 /// banded operators (half-bandwidth at most [`MAX_HALF_BANDWIDTH`]).
 pub(super) fn eligible(plan: &Plan) -> Option<usize> {
-    if plan.outputs.histories || plan.outputs.sensitivities {
+    if plan.outputs.histories || plan.outputs.sensitivities || !plan.is_chain() {
         return None;
     }
     let epp_only = plan.contacts.iter().all(|c| {
         c.kind == ContactKind::Epp
-            && c.below == c.floor.checked_sub(1)
+            && c.below() == c.floor.checked_sub(1)
             && c.lower.is_finite()
             && c.upper.is_finite()
             && c.lower < c.upper
@@ -297,7 +297,6 @@ fn candidate_with(
 pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimError> {
     let n = plan.dofs();
     let nc = plan.contacts.len();
-    let nf = plan.floors;
     let dt = plan.method.dt;
     let alpha = plan.method.alpha;
     let gamma = 0.5 - alpha;
@@ -330,7 +329,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             let kappa = ct.brace_stiffness * beta * dt / gamma + ct.brace_damping;
             Spring {
                 f1: ct.floor + 1,
-                j1: ct.below.map_or(0, |j| j + 1),
+                j1: ct.below().map_or(0, |j| j + 1),
                 kappa,
                 inv_kappa: 1.0 / kappa,
                 k_over_kappa: ct.brace_stiffness / kappa,
@@ -344,15 +343,12 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         .iter()
         .zip(&springs)
         .map(|(ct, s)| Link {
-            floor: ct.floor,
-            other: ct.below.unwrap_or(GROUND),
+            top: ct.top,
+            other: ct.bottom,
             epp: true,
             algebraic: ct.is_algebraic(),
             k_over_kappa: s.k_over_kappa,
-            slot: match ct.role {
-                ContactRole::Damper => ct.floor,
-                ContactRole::Storey => nf + ct.floor,
-            },
+            slot: ct.slot,
         })
         .collect();
     // The Delassus matrix W = (1+α)γΔt BᵀA⁻¹B + diag(1/κ), one banded solve per column.

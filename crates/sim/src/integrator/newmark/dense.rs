@@ -15,7 +15,7 @@ use crate::integrator::state::{
     self, EnergyAccumulator, StepEnergyData, StepForms, history_columns, initial_state, record_row,
     slip, slip_rate,
 };
-use crate::plan::{ContactRole, Plan};
+use crate::plan::Plan;
 use crate::response::{Outcome, Peaks};
 
 /// Dispatches a run without histories to the fixed-size loop of its DOF and contact counts, for
@@ -77,12 +77,11 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let n = if N > 0 { N } else { ops.n };
     debug_assert_eq!(n, ops.n);
     let dt = plan.method.dt;
-    let nf = plan.floors;
     let nc = plan.contacts.len();
     let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
     let k = StepConstants::new(dt, beta, gamma);
     let (c_u, c_v, gdt, bdt2) = (k.c_u, k.c_v, k.gdt, k.bdt2);
-    let msum: f64 = ops.mr.iter().sum();
+    let msum: f64 = plan.influence_mass();
     let lo: Vec<f64> = plan.contacts.iter().map(|c| c.lower).collect();
     let hi: Vec<f64> = plan.contacts.iter().map(|c| c.upper).collect();
     let links = links(plan, ops);
@@ -125,7 +124,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let mut acc = EnergyAccumulator::start(plan, &start.u, &start.v, &epp);
 
     let mut peaks = Peaks::for_plan(plan);
-    debug_assert_eq!(peaks.drift.len(), nf);
+    debug_assert_eq!(peaks.drift.len(), plan.drifts.len());
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
     let mut p0 = plan.force(0.0);
@@ -134,11 +133,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let base_shear = |a: &[f64], ag: f64, p: f64| state::base_shear(mr, msum, a, ag, p);
     peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
     for c in 0..nc {
-        let fl = plan.contacts[c].floor;
-        match plan.contacts[c].role {
-            ContactRole::Damper => peaks.observe_slip(fl, slip(plan, c, &start.u, &epp)),
-            ContactRole::Storey => peaks.observe_plastic(fl, slip(plan, c, &start.u, &epp)),
-        }
+        peaks.observe_slip(plan.contacts[c].slot, slip(plan, c, &start.u, &epp));
     }
     state::observe_dampers(plan, &mut peaks, 0.0, &start.u, &f_old, &w_old, &epp);
 

@@ -12,7 +12,7 @@
 // Index loops over compile-time sizes read as the formulas they compute, and unroll.
 #![allow(clippy::needless_range_loop)]
 
-use super::link::{EppPred, GROUND, Link};
+use super::link::{EppPred, Link};
 use super::operators::{Operators, StepConstants};
 use super::outcome::{non_finite, outcome};
 use crate::error::SimError;
@@ -23,6 +23,7 @@ use crate::integrator::state::{
     EnergyAccumulator, EppState, StepEnergyData, StepForms, base_shear, epp_strain, initial_state,
     slip_rate as contact_slip_rate,
 };
+use crate::kinematics::Kin;
 use crate::plan::Plan;
 use crate::response::{Outcome, Peaks};
 
@@ -122,7 +123,8 @@ impl<const N: usize> EnergyMatrices<N> {
 /// loop holds no code for either), every contact with a finite box of positive width (the
 /// pattern solver's premise).
 pub(super) fn applies(plan: &Plan) -> bool {
-    !plan.outputs.histories
+    plan.is_chain()
+        && !plan.outputs.histories
         && !plan.outputs.dampers
         && !plan.outputs.sensitivities
         && plan
@@ -143,7 +145,6 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     debug_assert_eq!(E, plan.outputs.energies);
     let o = Ops::<N, NC>::new(ops);
     let dt = plan.method.dt;
-    let nf = plan.floors;
     let (alpha, beta, gamma) = (ops.alpha, ops.beta, ops.gamma);
     let k = StepConstants::new(dt, beta, gamma);
     let (c_u, c_v, gdt, bdt2) = (k.c_u, k.c_v, k.gdt, k.bdt2);
@@ -151,8 +152,8 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     let mut lo = [0.0; NC];
     let mut hi = [0.0; NC];
     let mut link = [Link {
-        floor: 0,
-        other: GROUND,
+        top: Kin::GROUND,
+        other: Kin::GROUND,
         epp: false,
         algebraic: false,
         k_over_kappa: 0.0,
@@ -198,7 +199,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     let mut pq = PatternQp::<NC>::new(ops.w.as_slice(), &lo, &hi);
 
     let mut peaks = Peaks::for_plan(plan);
-    debug_assert_eq!(peaks.drift.len(), nf);
+    debug_assert_eq!(peaks.drift.len(), plan.drifts.len());
 
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
@@ -207,7 +208,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
     peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag0, p0));
     for c in 0..NC {
         let l = link[c];
-        let x_other = if l.epp { epp[c].u } else { u[l.other] };
+        let x_other = if l.epp { epp[c].u } else { l.other.at(&u) };
         l.observe_start(&u, x_other, &mut peaks);
     }
 

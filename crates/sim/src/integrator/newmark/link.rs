@@ -5,19 +5,22 @@
 
 use super::operators::{Operators, StepConstants};
 use crate::integrator::state::EppState;
-use crate::plan::{ContactKind, ContactRole, Plan};
+use crate::kinematics::Kin;
+use crate::plan::{ContactKind, Plan};
 use crate::response::Peaks;
 
-/// Marks "the ground" as the other end of an elastic–perfectly plastic contact.
+/// Marks "the ground" as the other end of an elastic–perfectly plastic contact in the
+/// chain-only loops' own indexing ([`Link::chain_ends`]).
 pub(super) const GROUND: usize = usize::MAX;
 
 /// What the step loop reads of one contact, flattened from the plan.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Link {
-    /// Floor DOF the friction acts on.
-    pub(super) floor: usize,
-    /// The dissipator DOF (contact with DOF), or the floor below / [`GROUND`] (EPP).
-    pub(super) other: usize,
+    /// The point the friction acts at (a chain: its floor's DOF).
+    pub(super) top: Kin,
+    /// The dissipator DOF (contact with DOF), or the point the brace starts from (EPP: a
+    /// chain's floor below, or the ground).
+    pub(super) other: Kin,
     /// Elastic–perfectly plastic element (m′ = 0 condensed).
     pub(super) epp: bool,
     /// An EPP element without a brace dashpot (c′ = 0): its dissipator DOF is algebraic
@@ -42,6 +45,20 @@ pub(super) struct EppPred {
 }
 
 impl Link {
+    /// A chain's contact as the chain-only loops index it: its floor's DOF, and the
+    /// dissipator DOF or the floor below ([`GROUND`] for the ground). Those loops run
+    /// chains alone ([`Plan::is_chain`]), whose points are single DOFs.
+    #[inline]
+    pub(super) fn chain_ends(&self) -> (usize, usize) {
+        let floor = self.top.as_dof().unwrap_or(GROUND);
+        let other = if self.other.is_ground() {
+            GROUND
+        } else {
+            self.other.as_dof().unwrap_or(GROUND)
+        };
+        (floor, other)
+    }
+
     /// The friction law's free variable of the contact: the rate the QP's box bounds act on
     /// if the contact carried no friction force, from the start displacements `u0`, the
     /// predictors `ut`, `vt` and the free accelerations `af`; for an EPP element also its
@@ -68,24 +85,19 @@ impl Link {
         af: &[f64],
     ) -> (f64, EppPred) {
         // the floor's end-of-step velocity, which an algebraic element does not read
-        let vf = || vt[self.floor] + k.gdt * af[self.floor];
+        let vf = || self.top.at(vt) + k.gdt * self.top.at(af);
         if !self.epp {
             return (
-                vf() - (vt[self.other] + k.gdt * af[self.other]),
+                vf() - (self.other.at(vt) + k.gdt * self.other.at(af)),
                 EppPred::default(),
             );
         }
-        let (uj, vj, aj) = if self.other == GROUND {
-            (0.0, 0.0, 0.0)
-        } else {
-            let j = self.other;
-            (ut[j], vt[j], af[j])
-        };
+        let (uj, vj, aj) = (self.other.at(ut), self.other.at(vt), self.other.at(af));
         if self.algebraic {
             // (Δ̃ − Δ₀ + e₀)/(βΔt/γ) + γΔt (a_floor − a_below), free of friction
-            let base = e.u - u0[self.floor];
+            let base = e.u - self.top.at(u0);
             let free =
-                (ut[self.floor] - uj + base) * self.k_over_kappa + k.gdt * (af[self.floor] - aj);
+                (self.top.at(ut) - uj + base) * self.k_over_kappa + k.gdt * (self.top.at(af) - aj);
             return (
                 free,
                 EppPred {
@@ -125,16 +137,16 @@ impl Link {
                 // the energies and histories get (zero while stuck)
                 let rate;
                 (*epp, rate) =
-                    self.algebraic_update(k, (pred.base, w), u[self.floor], v[self.floor]);
+                    self.algebraic_update(k, (pred.base, w), self.top.at(u), self.top.at(v));
                 (epp.u, rate)
             } else {
-                *epp = Link::epp_update(k, pred, v[self.floor], w);
+                *epp = Link::epp_update(k, pred, self.top.at(v), w);
                 (epp.u, w)
             }
         } else {
-            (u[self.other], w)
+            (self.other.at(u), w)
         };
-        self.observe_end(now_stuck, stuck, u[self.floor] - x_other, peaks);
+        self.observe_end(now_stuck, stuck, self.top.at(u) - x_other, peaks);
         rate
     }
 
@@ -182,7 +194,7 @@ impl Link {
     /// displacements `u` and the other end `x_other`.
     #[inline]
     pub(super) fn observe_start(&self, u: &[f64], x_other: f64, peaks: &mut Peaks) {
-        peaks.observe_slip(self.slot, u[self.floor] - x_other);
+        peaks.observe_slip(self.slot, self.top.at(u) - x_other);
     }
 
     /// An EPP element's state at the end of the step, from its predictors, its floor's
@@ -212,26 +224,20 @@ pub(super) fn links(plan: &Plan, ops: &Operators) -> Vec<Link> {
         .enumerate()
         .map(|(c, ct)| match ct.kind {
             ContactKind::Dof { dof } => Link {
-                floor: ct.floor,
-                other: dof,
+                top: ct.top,
+                other: Kin::dof(dof),
                 epp: false,
                 algebraic: false,
                 k_over_kappa: 0.0,
-                slot: match ct.role {
-                    ContactRole::Damper => ct.floor,
-                    ContactRole::Storey => plan.floors + ct.floor,
-                },
+                slot: ct.slot,
             },
             ContactKind::Epp => Link {
-                floor: ct.floor,
-                other: ct.below.unwrap_or(GROUND),
+                top: ct.top,
+                other: ct.bottom,
                 epp: true,
                 algebraic: ct.is_algebraic(),
                 k_over_kappa: ct.brace_stiffness / ops.kappa[c],
-                slot: match ct.role {
-                    ContactRole::Damper => ct.floor,
-                    ContactRole::Storey => plan.floors + ct.floor,
-                },
+                slot: ct.slot,
             },
         })
         .collect()

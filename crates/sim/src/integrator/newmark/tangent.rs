@@ -255,7 +255,8 @@ impl Tangent {
                     self.dwfree[(c, j)] - self.wdf[(c, j)]
                 };
                 let pred = self.dpred[c * p + j];
-                let (uf, vf) = (self.du[(l.floor, j)], self.dv[(l.floor, j)]);
+                let fl = l.chain_ends().0;
+                let (uf, vf) = (self.du[(fl, j)], self.dv[(fl, j)]);
                 self.depp[c * p + j] = if l.algebraic {
                     l.algebraic_update(k, (pred.base, dw), uf, vf).0
                 } else {
@@ -276,13 +277,13 @@ impl Tangent {
         let (n, p) = (self.n, self.p);
         let (du, dut, daf) = (self.du.as_slice(), self.dut.as_slice(), self.daf.as_slice());
         for (c, l) in links.iter().enumerate() {
-            let (f, kk) = (l.floor, l.k_over_kappa);
+            let ((f, other), kk) = (l.chain_ends(), l.k_over_kappa);
             for j in 0..p {
                 let col = j * n;
-                let (ub, ab) = if l.other == GROUND {
+                let (ub, ab) = if other == GROUND {
                     (0.0, 0.0)
                 } else {
-                    (dut[col + l.other], daf[col + l.other])
+                    (dut[col + other], daf[col + other])
                 };
                 let base = self.depp[c * p + j].u - du[col + f];
                 self.dpred[c * p + j].base = base;
@@ -308,7 +309,7 @@ impl Tangent {
                     self.dwfree[(c, j)] - self.wdf[(c, j)]
                 };
                 let e = &mut self.depp[c * p + j];
-                e.u = du[j * n + l.floor] + self.dpred[c * p + j].base - dw * inv;
+                e.u = du[j * n + l.chain_ends().0] + self.dpred[c * p + j].base - dw * inv;
             }
         }
     }
