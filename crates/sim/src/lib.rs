@@ -10,6 +10,7 @@ pub mod accuracy;
 pub mod bench_scenes;
 pub mod building;
 pub mod error;
+pub mod floorplan;
 pub mod friction;
 pub mod integrator;
 pub mod kind;

@@ -107,6 +107,26 @@ pub enum FloorLink {
     Locked,
 }
 
+/// What a plan that is not a chain measures, by name: its drifts, points and damper
+/// slots (a chain's are its storeys, floors and floors' dampers, by number).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Labels {
+    /// One name per drift ([`Plan::drifts`]).
+    pub drifts: Vec<String>,
+    /// The storey (0-based) of each drift.
+    pub drift_storeys: Vec<usize>,
+    /// One name per point ([`Plan::points`]).
+    pub points: Vec<String>,
+    /// One name per damper slot.
+    pub dampers: Vec<String>,
+    /// One name per yielding storey's plastic element, in slot order.
+    pub plastic: Vec<String>,
+    /// Per storey, the drifts at the plan's four edges — along x at its least and largest
+    /// y, along y at its least and largest x — when the plan's size is known: the
+    /// torsional irregularity ratio compares them.
+    pub edges: Option<Vec<[usize; 4]>>,
+}
+
 /// A compiled scene.
 #[derive(Debug, Clone)]
 pub struct Plan {
@@ -137,6 +157,8 @@ pub struct Plan {
     pub influence: DVector<f64>,
     /// Whether the plan is a chain of floors ([`Plan::is_chain`]).
     pub chain: bool,
+    /// The names of what a plan that is not a chain measures (`None` for a chain).
+    pub labels: Option<Arc<Labels>>,
     /// Number of the structure's own DOFs (the floors' DOFs, before the dissipators').
     pub frame_dofs: usize,
     /// Per floor: its dissipator's model.
@@ -184,7 +206,11 @@ impl GroundSteps<'_> {
 /// The step and duration are usable and the run is within [`crate::limits`]: checked
 /// before anything is allocated.
 fn check_steps(scene: &Scene) -> Result<(), SimError> {
-    let (dt, duration) = (scene.method.dt, scene.duration);
+    check_step_count(scene.method.dt, scene.duration)
+}
+
+/// [`check_steps`] on a step `dt` and a `duration` (s): also a plan in plan's.
+pub(crate) fn check_step_count(dt: f64, duration: f64) -> Result<(), SimError> {
     if !(dt.is_finite() && dt > 0.0) {
         return Err(SimError::BadTimeStep { dt });
     }
@@ -561,6 +587,7 @@ impl Plan {
             drifts: (0..n).map(ends).collect(),
             points: (0..n).map(|f| (Kin::dof(f), 1.0)).collect(),
             chain: true,
+            labels: None,
             frame_dofs: n,
             links,
             storey_heights: b.storey_heights.clone(),

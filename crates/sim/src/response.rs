@@ -103,6 +103,38 @@ pub struct Response {
     /// when the scene's `outputs.sensitivities` asks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<Sensitivity>,
+    /// A building in plan: what each entry of the arrays above is (the arrays then run
+    /// over its drifts, points and dampers instead of storeys and floors), and the
+    /// torsional irregularity ratios. Absent for a chain.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub in_plan: Option<InPlan>,
+}
+
+/// What the arrays of a building in plan's [`Response`] hold.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InPlan {
+    /// `peak_drift`, `peak_drift_ratio`, `residual_drift`, `peak_ductility`: one entry per
+    /// drift named here (a line's storey, "A/3"; a plan edge's, "edge y=0 (x)/3").
+    pub drifts: Vec<String>,
+    /// `peak_displacement`, `peak_abs_acceleration`: one entry per point named here (a
+    /// floor's centre of mass along x and y, "3 x", "3 y", in m and m/s², and its rotation,
+    /// "3 rot", in rad and rad/s²).
+    pub points: Vec<String>,
+    /// `peak_slip`, `transitions`, `dampers`: one entry per damper named here ("A/3": line
+    /// A, storey 3).
+    pub dampers: Vec<String>,
+    /// `peak_plastic_drift`: one entry per yielding storey of a line, named here.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub plastic: Vec<String>,
+    /// Per storey, the torsional irregularity ratio along x and along y: the larger peak
+    /// drift of the plan's two edges across the direction over their mean (1 for a floor
+    /// that does not twist; ASCE 7-16 Table 12.3-1 calls a storey irregular past 1.2 and
+    /// extremely irregular past 1.4). Peaks of the run, each edge's at its own time; 1
+    /// where the edges' drifts along a direction are round-off beside the storey's
+    /// largest (below 1e-9 of it: the ground does not move the storey that way). Absent
+    /// when the plan's size is not given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsional_irregularity: Option<Vec<[f64; 2]>>,
 }
 
 /// The derivatives of a run's peak responses with respect to each damper's slip load F
@@ -680,6 +712,38 @@ impl Peaks {
             r.steps = ((c.time / plan.method.dt).round() as usize).min(plan.steps);
         }
         r.collapse = collapse;
+        if let Some(labels) = &plan.labels {
+            if let Some(c) = r.collapse.as_mut() {
+                // the drift's index (from 1) becomes its storey's number
+                c.storey = labels.drift_storeys[c.storey - 1] + 1;
+            }
+            // An edge pair whose drifts are round-off beside the storey's largest (a
+            // direction the ground does not move) compares nothing: 1.
+            let ratio = |a: f64, b: f64, scale: f64| {
+                let mean = 0.5 * (a + b);
+                if mean > 1e-9 * scale {
+                    a.max(b) / mean
+                } else {
+                    1.0
+                }
+            };
+            r.in_plan = Some(InPlan {
+                drifts: labels.drifts.clone(),
+                points: labels.points.clone(),
+                dampers: labels.dampers.clone(),
+                plastic: labels.plastic.clone(),
+                torsional_irregularity: labels.edges.as_ref().map(|edges| {
+                    edges
+                        .iter()
+                        .map(|e| {
+                            let d = |k: usize| r.peak_drift[e[k]];
+                            let scale = (0..4).map(d).fold(0.0, f64::max);
+                            [ratio(d(0), d(1), scale), ratio(d(2), d(3), scale)]
+                        })
+                        .collect()
+                }),
+            });
+        }
         r
     }
 
@@ -726,6 +790,7 @@ impl Peaks {
             collapse: None,
             dampers: self.dampers.map(DamperRecorder::finish),
             sensitivity: None,
+            in_plan: None,
         }
     }
 }

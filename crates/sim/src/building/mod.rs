@@ -19,7 +19,9 @@ mod config;
 mod dynamics;
 mod validated;
 
+pub(crate) use build::rayleigh_coefficients;
 pub use build::{DEFAULT_COLLAPSE_DRIFT_RATIO, STANDARD_GRAVITY};
+pub(crate) use check::line_parts;
 pub use check::{
     DISSIPATOR_PERIOD_BAND_S, FLOOR_MASS_BAND_KG, MAX_DAMPING_RATIO, MAX_HARMONIC_FORCE_PER_WEIGHT,
     MAX_SLIP_LOAD_PER_WEIGHT, MIN_PLAUSIBLE_SLIP_LOAD_PER_FLOOR_WEIGHT, PERIOD_BAND_S,

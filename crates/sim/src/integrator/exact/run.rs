@@ -450,7 +450,7 @@ impl Exact {
                             } else {
                                 let i = f - nev;
                                 for (c, pk) in coef.iter_mut().zip(p) {
-                                    *c = pk[i] - if i == 0 { 0.0 } else { pk[i - 1] };
+                                    *c = drift(i, pk);
                                 }
                             }
                         };

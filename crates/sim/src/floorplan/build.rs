@@ -1,0 +1,360 @@
+//! Validation and assembly of a [`FloorPlan`] from its file: floors (mass, inertia, centre
+//! of mass), lines (direction, position, storey springs, yield laws, dampers), the bare
+//! frame's mass and stiffness on the floors' DOFs, its modes, and its damping. Errors name
+//! the file and the field (`lines[2].storey_stiffness[4]`).
+
+use super::config::{DirectionConfig, FloorPlanConfig};
+use super::{Floor, FloorPlan, Line};
+use crate::building::{
+    DEFAULT_COLLAPSE_DRIFT_RATIO, DampingConfig, FLOOR_MASS_BAND_KG, PERIOD_BAND_S, line_parts,
+    rayleigh_coefficients,
+};
+use crate::error::SimError;
+use crate::kinematics::{Kin, add_between};
+use crate::modes::Modes;
+use crate::units::{is_non_negative, is_positive};
+use nalgebra::DMatrix;
+use std::path::Path;
+
+/// The mass matrix of rigid floors on their DOFs (ux, uy, θ of the origin): the centre
+/// of mass at (x, y) moves by (ux − y·θ, uy + x·θ), so each floor's block is
+/// [[m, 0, −m·y], [0, m, m·x], [−m·y, m·x, J + m(x² + y²)]] with J about the centre.
+pub(super) fn mass_matrix(floors: &[Floor]) -> DMatrix<f64> {
+    let n = 3 * floors.len();
+    let mut m = DMatrix::zeros(n, n);
+    for (f, fl) in floors.iter().enumerate() {
+        let [x, y] = fl.centre;
+        let o = 3 * f;
+        m[(o, o)] = fl.mass;
+        m[(o + 1, o + 1)] = fl.mass;
+        m[(o, o + 2)] = -fl.mass * y;
+        m[(o + 2, o)] = -fl.mass * y;
+        m[(o + 1, o + 2)] = fl.mass * x;
+        m[(o + 2, o + 1)] = fl.mass * x;
+        m[(o + 2, o + 2)] = fl.inertia + fl.mass * (x * x + y * y);
+    }
+    m
+}
+
+/// A line's point on floor `f` (0-based): its motion along the line's direction.
+pub(super) fn line_point(line: &Line, f: usize) -> Kin {
+    let [c, s, r] = line.weights();
+    Kin::weighted(&[(3 * f, c), (3 * f + 1, s), (3 * f + 2, r)])
+}
+
+/// A line's two ends at storey `f` (0-based, its top floor): the floor's point and the
+/// floor below's (the ground's for the first storey).
+pub(super) fn line_ends(line: &Line, f: usize) -> (Kin, Kin) {
+    let bottom = if f == 0 {
+        Kin::GROUND
+    } else {
+        line_point(line, f - 1)
+    };
+    (line_point(line, f), bottom)
+}
+
+impl FloorPlan {
+    /// Reads and validates a building-in-plan JSON file.
+    pub fn load(path: &Path) -> Result<FloorPlan, SimError> {
+        let text = slipload_motion::limits::read_input_text(
+            path,
+            "building in plan",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )?;
+        let cfg: FloorPlanConfig =
+            serde_json::from_str(&text).map_err(|source| SimError::Json {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        FloorPlan::from_config(&cfg, path)
+    }
+
+    /// Validates a config; `path` names the source in errors.
+    pub fn from_config(cfg: &FloorPlanConfig, path: &Path) -> Result<FloorPlan, SimError> {
+        let invalid = |field: String, message: String| SimError::invalid(path, field, message);
+        let n = cfg.floors.len();
+        if n == 0 {
+            return Err(invalid(
+                "floors".into(),
+                "must list at least one floor".into(),
+            ));
+        }
+        let size = match cfg.plan_size {
+            Some([lx, ly]) => {
+                for (i, v) in [lx.0, ly.0].into_iter().enumerate() {
+                    if !is_positive(v) {
+                        return Err(invalid(
+                            format!("plan_size[{i}]"),
+                            format!("must be a positive finite length (m), got {v}"),
+                        ));
+                    }
+                }
+                Some([lx.0, ly.0])
+            }
+            None => None,
+        };
+        let mut floors = Vec::with_capacity(n);
+        for (i, f) in cfg.floors.iter().enumerate() {
+            let m = f.mass.0;
+            if !(is_positive(m) && m >= FLOOR_MASS_BAND_KG.0 && m <= FLOOR_MASS_BAND_KG.1) {
+                return Err(invalid(
+                    format!("floors[{i}].mass"),
+                    format!(
+                        "must be a positive mass within [{:e}, {:e}] kg, got {m}",
+                        FLOOR_MASS_BAND_KG.0, FLOOR_MASS_BAND_KG.1
+                    ),
+                ));
+            }
+            let centre = match (f.centre_of_mass, size) {
+                (Some([x, y]), _) => {
+                    for (k, v) in [x.0, y.0].into_iter().enumerate() {
+                        if !v.is_finite() {
+                            return Err(invalid(
+                                format!("floors[{i}].centre_of_mass[{k}]"),
+                                format!("must be a finite coordinate (m), got {v}"),
+                            ));
+                        }
+                    }
+                    [x.0, y.0]
+                }
+                (None, Some([lx, ly])) => [lx / 2.0, ly / 2.0],
+                (None, None) => {
+                    return Err(invalid(
+                        format!("floors[{i}].centre_of_mass"),
+                        "missing: give the centre of mass [x, y] (m), or plan_size for the centre of the plan".into(),
+                    ));
+                }
+            };
+            let inertia = match (f.inertia_kg_m2, size) {
+                (Some(j), _) => {
+                    if !is_positive(j) {
+                        return Err(invalid(
+                            format!("floors[{i}].inertia_kg_m2"),
+                            format!(
+                                "must be a positive finite mass moment of inertia (kg*m^2), got {j}"
+                            ),
+                        ));
+                    }
+                    j
+                }
+                (None, Some([lx, ly])) => m * (lx * lx + ly * ly) / 12.0,
+                (None, None) => {
+                    return Err(invalid(
+                        format!("floors[{i}].inertia_kg_m2"),
+                        "missing: give the mass moment of inertia about the centre of mass (kg*m^2), or plan_size for a uniform rectangular floor's".into(),
+                    ));
+                }
+            };
+            floors.push(Floor {
+                mass: m,
+                inertia,
+                centre,
+            });
+        }
+        let heights = match &cfg.storey_heights {
+            Some(hs) => {
+                if hs.len() != n {
+                    return Err(invalid(
+                        "storey_heights".into(),
+                        format!("has {} values, expected {n} (one per storey)", hs.len()),
+                    ));
+                }
+                if let Some(i) = hs.iter().position(|h| !is_positive(h.0)) {
+                    return Err(invalid(
+                        format!("storey_heights[{i}]"),
+                        format!("must be a positive finite height (m), got {}", hs[i].0),
+                    ));
+                }
+                Some(hs.iter().map(|h| h.0).collect::<Vec<f64>>())
+            }
+            None => None,
+        };
+        if cfg.lines.is_empty() {
+            return Err(invalid(
+                "lines".into(),
+                "must list the lateral lines (at least two directions, not all through one point, so the floors resist both translations and the rotation)".into(),
+            ));
+        }
+        let mut lines = Vec::with_capacity(cfg.lines.len());
+        for (l, lc) in cfg.lines.iter().enumerate() {
+            let at = |name: &str| format!("lines[{l}].{name}");
+            let angle = match lc.direction {
+                DirectionConfig::X => 0.0,
+                DirectionConfig::Y => std::f64::consts::FRAC_PI_2,
+                DirectionConfig::Degrees(d) if d.is_finite() => d.to_radians(),
+                DirectionConfig::Degrees(d) => {
+                    return Err(invalid(
+                        at("direction"),
+                        format!("must be a finite angle, got {d}"),
+                    ));
+                }
+            };
+            let point = match (&lc.through, &lc.at, lc.direction) {
+                (Some(_), Some(_), _) => {
+                    return Err(invalid(
+                        at("at"),
+                        "give either `at` or `through`, not both".into(),
+                    ));
+                }
+                (Some([x, y]), None, _) => [x.0, y.0],
+                (None, Some(a), DirectionConfig::X) => [0.0, a.0],
+                (None, Some(a), DirectionConfig::Y) => [a.0, 0.0],
+                (None, Some(_), DirectionConfig::Degrees(_)) => {
+                    return Err(invalid(
+                        at("at"),
+                        "a line at an angle is placed by `through` [x, y] (m); `at` places a line along x (its y) or y (its x)".into(),
+                    ));
+                }
+                (None, None, _) => {
+                    return Err(invalid(
+                        at("at"),
+                        "missing: give the line's position, `at` (a line along x: its y; along y: its x, m) or `through` [x, y]".into(),
+                    ));
+                }
+            };
+            if let Some(k) = point.iter().position(|v| !v.is_finite()) {
+                return Err(invalid(
+                    at("through"),
+                    format!("coordinate {k} must be finite, got {}", point[k]),
+                ));
+            }
+            let ks: Vec<f64> = lc.storey_stiffness.iter().map(|k| k.0).collect();
+            if ks.len() != n {
+                return Err(invalid(
+                    at("storey_stiffness"),
+                    format!("has {} values, expected {n} (one per storey)", ks.len()),
+                ));
+            }
+            if let Some(i) = ks.iter().position(|k| !is_non_negative(*k)) {
+                return Err(invalid(
+                    at(&format!("storey_stiffness[{i}]")),
+                    format!(
+                        "must be a finite stiffness ≥ 0 (N/m; 0 where the line has no storey), got {}",
+                        ks[i]
+                    ),
+                ));
+            }
+            let (storey_yield, dissipators) = line_parts(
+                &format!("lines[{l}]."),
+                &lc.storey_stiffness,
+                &lc.storey_yield,
+                &lc.dissipators,
+                path,
+            )?;
+            lines.push(Line {
+                name: lc.name.clone().unwrap_or_else(|| format!("L{}", l + 1)),
+                angle,
+                point,
+                stiffness: ks,
+                storey_yield,
+                dissipators,
+            });
+        }
+        for (l, line) in lines.iter().enumerate() {
+            if let Some(k) = lines[..l].iter().position(|o| o.name == line.name) {
+                return Err(invalid(
+                    format!("lines[{l}].name"),
+                    format!("\"{}\" is already the name of lines[{k}]", line.name),
+                ));
+            }
+        }
+        let mass = mass_matrix(&floors);
+        let mut stiffness = DMatrix::zeros(3 * n, 3 * n);
+        for line in &lines {
+            for (f, k) in line.stiffness.iter().enumerate() {
+                let (top, bottom) = line_ends(line, f);
+                add_between(&mut stiffness, &top, &bottom, *k);
+            }
+        }
+        let modes = Modes::compute(&mass, &stiffness).ok_or_else(|| {
+            invalid(
+                "lines".into(),
+                "the lines leave a floor free to move: the bare frame's stiffness is singular (the lines must resist x, y and the rotation at every storey: two directions, and lines not all through one point)".into(),
+            )
+        })?;
+        let periods = modes.periods();
+        if let Some(t) = periods
+            .iter()
+            .find(|t| !(**t >= PERIOD_BAND_S.0 && **t <= PERIOD_BAND_S.1))
+        {
+            return Err(invalid(
+                "lines".into(),
+                format!(
+                    "the bare frame has a period of {t:e} s, outside [{:e}, {:e}] s: check the units of the masses, inertias and stiffnesses",
+                    PERIOD_BAND_S.0, PERIOD_BAND_S.1
+                ),
+            ));
+        }
+        let damping = match &cfg.damping {
+            None | Some(DampingConfig::None) => DMatrix::zeros(3 * n, 3 * n),
+            Some(DampingConfig::Rayleigh(r)) => {
+                let (alpha, beta) = rayleigh_coefficients(r, &modes, path)?;
+                &mass * alpha + &stiffness * beta
+            }
+            Some(DampingConfig::Modal { ratio, ratios }) => {
+                let zeta: Vec<f64> = match (ratio, ratios) {
+                    (Some(z), None) => vec![*z; 3 * n],
+                    (None, Some(zs)) if !zs.is_empty() => {
+                        (0..3 * n).map(|i| zs[i.min(zs.len() - 1)]).collect()
+                    }
+                    _ => {
+                        return Err(invalid(
+                            "damping.modal".into(),
+                            "give `ratio` (every mode) or `ratios` (by mode, the last for the modes after)".into(),
+                        ));
+                    }
+                };
+                if let Some(z) = zeta.iter().find(|z| !(**z >= 0.0 && **z < 1.0)) {
+                    return Err(invalid(
+                        "damping.modal".into(),
+                        format!("a damping ratio is a fraction of critical in [0, 1), got {z}"),
+                    ));
+                }
+                modes.damping_matrix(&mass, &zeta)
+            }
+            Some(DampingConfig::Storey(_) | DampingConfig::Matrix(_)) => {
+                return Err(invalid(
+                    "damping".into(),
+                    "a building in plan takes `rayleigh`, `modal` or `none` (on its three-dimensional modes); storey dashpots and a damping matrix are a chain's".into(),
+                ));
+            }
+        };
+        let yields = lines
+            .iter()
+            .any(|l| l.storey_yield.iter().any(Option::is_some));
+        let collapse_drift = match (cfg.collapse_drift_ratio, &heights) {
+            (Some(r), _) if !(is_positive(r) && r < 1.0) => {
+                return Err(invalid(
+                    "collapse_drift_ratio".into(),
+                    format!("must be a drift ratio in (0, 1), got {r}"),
+                ));
+            }
+            (Some(_), None) => {
+                return Err(invalid(
+                    "collapse_drift_ratio".into(),
+                    "needs storey_heights".into(),
+                ));
+            }
+            (Some(r), Some(h)) => Some(h.iter().map(|h| r * h).collect()),
+            (None, Some(h)) if yields => {
+                Some(h.iter().map(|h| DEFAULT_COLLAPSE_DRIFT_RATIO * h).collect())
+            }
+            (None, _) => None,
+        };
+        Ok(FloorPlan {
+            name: cfg
+                .name
+                .clone()
+                .unwrap_or_else(|| "building in plan".into()),
+            floors,
+            lines,
+            plan_size: size,
+            storey_heights: heights,
+            mass,
+            stiffness,
+            damping,
+            collapse_drift,
+            modes,
+        })
+    }
+}
