@@ -127,6 +127,19 @@ pub struct Labels {
     pub edges: Option<Vec<[usize; 4]>>,
 }
 
+/// A second horizontal ground component applied with the first (a building in plan under
+/// both components of a pair at once): its record, its influence on the DOFs and on the
+/// measured points.
+#[derive(Debug, Clone)]
+pub struct SecondGround {
+    /// The record, m/s².
+    pub record: Arc<Record>,
+    /// Its ground influence r₂ on the DOFs (the load is −M·r₂·a_g₂).
+    pub influence: DVector<f64>,
+    /// Its influence on each point of [`Plan::points`].
+    pub points: Vec<f64>,
+}
+
 /// A compiled scene.
 #[derive(Debug, Clone)]
 pub struct Plan {
@@ -167,6 +180,8 @@ pub struct Plan {
     pub storey_heights: Option<Vec<f64>>,
     /// Ground record, m/s².
     pub record: Option<Arc<Record>>,
+    /// A second ground component applied with `record` (`None` for a chain).
+    pub second: Option<SecondGround>,
     /// Harmonic floor force.
     pub harmonic: Option<Harmonic>,
     /// Initial displacements on the plan's DOFs, m.
@@ -592,6 +607,7 @@ impl Plan {
             links,
             storey_heights: b.storey_heights.clone(),
             record: scene.record.clone(),
+            second: None,
             harmonic: scene.harmonic,
             u0,
             v0,
@@ -681,6 +697,30 @@ impl Plan {
     /// division per step.
     pub fn ground_steps(&self) -> GroundSteps<'_> {
         GroundSteps(self.record.as_ref().map(|r| r.steps(self.method.dt)))
+    }
+
+    /// The second ground component's acceleration at `t`, m/s² (0 without one).
+    #[inline]
+    pub fn ground2_accel(&self, t: f64) -> f64 {
+        self.second.as_ref().map_or(0.0, |g| g.record.accel_at(t))
+    }
+
+    /// The second component's accelerations at the steps, as [`Plan::ground_steps`].
+    pub fn ground2_steps(&self) -> GroundSteps<'_> {
+        GroundSteps(self.second.as_ref().map(|g| g.record.steps(self.method.dt)))
+    }
+
+    /// M·r₂ of the second component, kg.
+    pub fn mass_influence2(&self) -> Option<DVector<f64>> {
+        self.second.as_ref().map(|g| &self.mass * &g.influence)
+    }
+
+    /// r₁ᵀ·M·r₂: the base shear along the first component's direction per unit
+    /// acceleration of the second (0 without one), kg.
+    pub fn cross_mass(&self) -> f64 {
+        self.second
+            .as_ref()
+            .map_or(0.0, |g| self.influence.dot(&(&self.mass * &g.influence)))
     }
 
     /// Harmonic force at `t`, N (0 without one).

@@ -532,6 +532,8 @@ pub struct Measures {
     pub drifts: Vec<(Kin, Kin)>,
     /// Each point and its ground influence.
     pub points: Vec<(Kin, f64)>,
+    /// Each point's influence of the second ground component (zeros without one).
+    pub points2: Vec<f64>,
 }
 
 impl Peaks {
@@ -578,6 +580,10 @@ impl Peaks {
                 Box::new(Measures {
                     drifts: plan.drifts.clone(),
                     points: plan.points.clone(),
+                    points2: plan
+                        .second
+                        .as_ref()
+                        .map_or_else(|| vec![0.0; np], |g| g.points.clone()),
                 })
             }),
             ..Peaks::new(0)
@@ -620,6 +626,13 @@ impl Peaks {
     /// used) with ground acceleration `ag`.
     #[inline]
     pub fn observe_floors(&mut self, x: &[f64], a: &[f64], ag: f64) {
+        self.observe_floors2(x, a, ag, 0.0);
+    }
+
+    /// [`Peaks::observe_floors`] with a second ground component's acceleration `ag2`
+    /// (a building in plan under both components; a chain has none).
+    #[inline]
+    pub fn observe_floors2(&mut self, x: &[f64], a: &[f64], ag: f64, ag2: f64) {
         if let Some(m) = &self.measures {
             for (k, (top, bottom)) in m.drifts.iter().enumerate() {
                 let d = top.at(x) - bottom.at(x);
@@ -628,8 +641,8 @@ impl Peaks {
                     self.drift[k] = d.abs();
                 }
             }
-            for (k, (p, r)) in m.points.iter().enumerate() {
-                let (xa, aa) = (p.at(x).abs(), (p.at(a) + r * ag).abs());
+            for (k, ((p, r), r2)) in m.points.iter().zip(&m.points2).enumerate() {
+                let (xa, aa) = (p.at(x).abs(), (p.at(a) + r * ag + r2 * ag2).abs());
                 if xa > self.displacement[k] {
                     self.displacement[k] = xa;
                 }

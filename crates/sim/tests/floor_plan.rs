@@ -57,13 +57,27 @@ fn run_in_plan(
     dt: Option<f64>,
     energies: bool,
 ) -> (Plan, Response) {
+    run_pair(b, &[(record.clone(), angle_deg)], method, dt, energies)
+}
+
+/// A run under the components given (record, angle from x in degrees), all at once.
+fn run_pair(
+    b: &FloorPlan,
+    components: &[(Arc<Record>, f64)],
+    method: MethodName,
+    dt: Option<f64>,
+    energies: bool,
+) -> (Plan, Response) {
     let mut scene = FloorPlanScene::new(
         Arc::new(b.clone()),
-        vec![GroundComponent {
-            record: record.clone(),
-            angle: angle_deg.to_radians(),
-        }],
-        record.duration(),
+        components
+            .iter()
+            .map(|(record, angle_deg)| GroundComponent {
+                record: record.clone(),
+                angle: angle_deg.to_radians(),
+            })
+            .collect(),
+        components[0].0.duration(),
         method,
         outputs(energies),
     );
@@ -397,10 +411,17 @@ fn reference(plan: &Plan, h_per_step: usize) -> (Vec<f64>, Vec<f64>, f64) {
         .collect();
     let mr = &plan.mass * &plan.influence;
     let record = plan.record.clone().unwrap();
+    let second = plan
+        .second
+        .as_ref()
+        .map(|g| (&plan.mass * &g.influence, g.record.clone()));
     let deriv = |t: f64, z: &DVector<f64>, modes: &[Mode]| -> DVector<f64> {
         let u = z.rows(0, n);
         let v = z.rows(n, n);
         let mut force = -(&plan.stiffness * u) - &plan.damping * v - &mr * record.accel_at(t);
+        if let Some((mr2, r2)) = &second {
+            force -= mr2 * r2.accel_at(t);
+        }
         let mut dz = DVector::zeros(2 * n + nc);
         for (c, ct) in plan.contacts.iter().enumerate() {
             let f = ct.brace_stiffness * z[2 * n + c];
@@ -618,4 +639,97 @@ fn newmark_converges_to_exact_on_an_asymmetric_plan() {
         e1 / e2 > 2.5 && e2 / e3 > 2.5,
         "errors fall at second order: {e1:e} {e2:e} {e3:e}"
     );
+}
+
+/// A second motion for pairs: other frequencies, the same length and step.
+fn motion2(pga: f64) -> Arc<Record> {
+    let dt = 0.01;
+    let a: Vec<f64> = (0..400)
+        .map(|i| {
+            let t = i as f64 * dt;
+            let env = (t / 0.8).min(1.0) * (-(t - 0.8).max(0.0) / 1.2).exp();
+            env * ((5.1 * t + 1.0).sin() + 0.5 * (11.7 * t).sin())
+        })
+        .collect();
+    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    Arc::new(Record::new("second", dt, a.iter().map(|x| x * pga / peak).collect()).unwrap())
+}
+
+#[test]
+fn a_pair_of_equal_components_along_x_and_y_is_one_component_root_two_larger_at_45_degrees() {
+    // −M(r(0°) + r(90°))a = −M r(45°) √2 a on every DOF, dampers' included: the same
+    // loads, so the same nonlinear run (dampers slipping, a line yielding) to round-off.
+    let b = floor_plan(ASYMMETRIC);
+    let a = motion(2.0);
+    let scaled = Arc::new(a.try_scaled(std::f64::consts::SQRT_2).unwrap());
+    for method in [MethodName::Exact, MethodName::Newmark] {
+        let (plan, pair) = run_pair(
+            &b,
+            &[(a.clone(), 0.0), (a.clone(), 90.0)],
+            method,
+            Some(0.005),
+            true,
+        );
+        assert!(plan.second.is_some());
+        let (_, one) = run_pair(&b, &[(scaled.clone(), 45.0)], method, Some(0.005), true);
+        assert!(
+            pair.peak_slip.iter().any(|s| *s > 1e-4),
+            "{method:?}: the dampers slip"
+        );
+        // round-off of the two loads' sum against one product, carried through the run
+        for (k, (p, o)) in pair.peak_drift.iter().zip(&one.peak_drift).enumerate() {
+            assert!(rel(*p, *o) < 1e-9, "{method:?} drift {k}: {p} {o}");
+        }
+        for (p, o) in pair
+            .peak_abs_acceleration
+            .iter()
+            .zip(&one.peak_abs_acceleration)
+        {
+            assert!(
+                (p - o).abs() <= 1e-9 * o.abs().max(1e-3),
+                "{method:?} acceleration {p} {o}"
+            );
+        }
+        let (ep, eo) = (pair.energy.unwrap(), one.energy.unwrap());
+        assert!(rel(ep.input, eo.input) < 1e-9 && rel(ep.friction, eo.friction) < 1e-9);
+    }
+}
+
+#[test]
+fn exact_under_both_components_agrees_with_the_reference_and_balances_its_energy() {
+    let b = floor_plan(ASYMMETRIC);
+    let (a1, a2) = (motion(3.0), motion2(2.0));
+    let (plan, r) = run_pair(
+        &b,
+        &[(a1, 20.0), (a2, 110.0)],
+        MethodName::Exact,
+        Some(0.005),
+        true,
+    );
+    let out = run_plan(&plan).unwrap();
+    let sampled = out.diagnostics.sampled_peak_drift.unwrap();
+    let (peaks, last, friction) = reference(&plan, 32);
+    let scale = peaks.iter().fold(0.0f64, |m, p| m.max(*p));
+    assert!(r.peak_slip.iter().all(|s| *s > 1e-4));
+    for k in 0..peaks.len() {
+        assert!(
+            (sampled[k] - peaks[k]).abs() <= 1e-9 * scale,
+            "drift {k}: {} {}",
+            sampled[k],
+            peaks[k]
+        );
+        assert!((r.residual_drift[k] - last[k]).abs() <= 1e-9 * scale);
+    }
+    let e = r.energy.unwrap();
+    assert!(rel(e.friction, friction) < 1e-6);
+    assert!(e.balance_error.abs() < 1e-8, "balance {}", e.balance_error);
+    // newmark under the same pair balances its energy to its step's accuracy
+    let (_, nm) = run_pair(
+        &b,
+        &[(motion(3.0), 20.0), (motion2(2.0), 110.0)],
+        MethodName::Newmark,
+        Some(0.002),
+        true,
+    );
+    assert!(nm.energy.unwrap().balance_error.abs() < 1e-3);
 }

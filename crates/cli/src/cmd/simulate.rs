@@ -6,6 +6,8 @@
 //! (units that override an AT2 title's), and says when the time step does not divide
 //! the duration, so that the last step ends past it.
 
+mod plan;
+
 use super::scene_args::SceneArgs;
 use anyhow::Context;
 use slipload_motion::{G, Record};
@@ -66,6 +68,11 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         slipload_figures::check_fonts()?;
     }
     crate::args::count_flag("--repeat", args.repeat as usize, crate::args::MAX_REPEATS)?;
+    if let Some(path) = &args.scene.scene
+        && slipload_sim::floorplan::is_in_plan(path)
+    {
+        return run_in_plan(&args, path);
+    }
     if let Some(path) = &args.history {
         // refuse a FIFO or device before the run, not after it
         slipload_opt::base::output::write_target(path)
@@ -127,6 +134,47 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         Format::Table => out!("{}", table(&scene, &out)),
     }
     Ok(())
+}
+
+/// `slipload simulate` on a scene in plan: the flags it takes checked here, the run and
+/// its output in `plan`.
+fn run_in_plan(args: &SimulateArgs, path: &std::path::Path) -> anyhow::Result<()> {
+    let s = &args.scene;
+    for (flag, given) in [
+        ("--record", s.record.is_some()),
+        ("--units", s.units.is_some()),
+        ("--scale-pga-g", s.scale_pga_g.is_some()),
+        ("--scale", s.scale.is_some()),
+        ("--window", s.window.is_some()),
+        ("--plot", args.plot.is_some()),
+        ("--dampers", args.dampers),
+    ] {
+        if given {
+            anyhow::bail!(
+                "{flag}: {} is a scene in plan; its ground components (records, scaling, angles) are the scene's `ground` list, and --plot and --dampers are not drawn for plans yet",
+                path.display()
+            );
+        }
+    }
+    if let Some(h) = &args.history {
+        slipload_opt::base::output::write_target(h)
+            .with_context(|| format!("--history {}", h.display()))?;
+        refuse_input_as_output(
+            "--history",
+            h,
+            &slipload_sim::floorplan::FloorPlanScene::input_files(path),
+        )?;
+    }
+    plan::run(
+        path,
+        &plan::PlanRun {
+            method: s.method.map(Into::into),
+            dt: s.dt,
+            duration: s.duration,
+            history: args.history.as_deref(),
+            json: matches!(args.format, Format::Json),
+        },
+    )
 }
 
 /// Refuses an output file `out` (flag `flag`) that is one of the run's `inputs` — the

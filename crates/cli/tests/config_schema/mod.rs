@@ -421,16 +421,26 @@ fn walk_study(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
     walk::<slipload_opt::model::config::StudyConfig>("study", w, t)
 }
 
+fn walk_floor_plan(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
+    walk::<slipload_sim::floorplan::FloorPlanConfig>("floor_plan", w, t)
+}
+
+fn walk_plan_scene(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
+    walk::<slipload_sim::floorplan::FloorPlanSceneConfig>("plan_scene", w, t)
+}
+
 fn walk_designs(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
     walk::<Vec<slipload_opt::phases::rank::NamedDesign>>("designs", w, t)
 }
 
-fn roots() -> [(&'static str, WalkFn); 4] {
+fn roots() -> [(&'static str, WalkFn); 6] {
     [
         ("building", walk_building as WalkFn),
         ("scene", walk_scene),
         ("study", walk_study),
         ("designs", walk_designs),
+        ("floor_plan", walk_floor_plan),
+        ("plan_scene", walk_plan_scene),
     ]
 }
 

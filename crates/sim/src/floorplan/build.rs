@@ -4,7 +4,7 @@
 //! the file and the field (`lines[2].storey_stiffness[4]`).
 
 use super::config::{DirectionConfig, FloorPlanConfig};
-use super::{Floor, FloorPlan, Line};
+use super::model::{Floor, FloorPlan, Line, mass_matrix};
 use crate::building::{
     DEFAULT_COLLAPSE_DRIFT_RATIO, DampingConfig, FLOOR_MASS_BAND_KG, PERIOD_BAND_S, line_parts,
     rayleigh_coefficients,
@@ -15,26 +15,6 @@ use crate::modes::Modes;
 use crate::units::{is_non_negative, is_positive};
 use nalgebra::DMatrix;
 use std::path::Path;
-
-/// The mass matrix of rigid floors on their DOFs (ux, uy, θ of the origin): the centre
-/// of mass at (x, y) moves by (ux − y·θ, uy + x·θ), so each floor's block is
-/// [[m, 0, −m·y], [0, m, m·x], [−m·y, m·x, J + m(x² + y²)]] with J about the centre.
-pub(super) fn mass_matrix(floors: &[Floor]) -> DMatrix<f64> {
-    let n = 3 * floors.len();
-    let mut m = DMatrix::zeros(n, n);
-    for (f, fl) in floors.iter().enumerate() {
-        let [x, y] = fl.centre;
-        let o = 3 * f;
-        m[(o, o)] = fl.mass;
-        m[(o + 1, o + 1)] = fl.mass;
-        m[(o, o + 2)] = -fl.mass * y;
-        m[(o + 2, o)] = -fl.mass * y;
-        m[(o + 1, o + 2)] = fl.mass * x;
-        m[(o + 2, o + 1)] = fl.mass * x;
-        m[(o + 2, o + 2)] = fl.inertia + fl.mass * (x * x + y * y);
-    }
-    m
-}
 
 /// A line's point on floor `f` (0-based): its motion along the line's direction.
 pub(super) fn line_point(line: &Line, f: usize) -> Kin {

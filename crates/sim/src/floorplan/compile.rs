@@ -9,12 +9,14 @@
 //! slip load is no element, a locked one is its brace (its mass joins the floor along the
 //! line), a massless one an elastic–perfectly plastic element without a DOF.
 
-use super::FloorPlan;
 use super::build::{line_ends, line_point};
+use super::model::{FloorPlan, cos_sin};
 use super::scene::FloorPlanScene;
 use crate::error::SimError;
 use crate::kinematics::{Kin, add_between};
-use crate::plan::{Contact, ContactKind, ContactRole, FloorLink, Labels, Plan, check_step_count};
+use crate::plan::{
+    Contact, ContactKind, ContactRole, FloorLink, Labels, Plan, SecondGround, check_step_count,
+};
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
@@ -26,22 +28,24 @@ struct Site {
 
 /// Compiles a scene in plan into the plan every general integrator steps.
 ///
-/// One ground component runs at its angle to the plan's x axis; two at once are refused
-/// here until the integrators carry a second ground input (a pair runs as one component
-/// at each orientation).
+/// Each ground component acts along its angle to the plan's x axis; a second one is the
+/// plan's [`SecondGround`], applied with the first.
 pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     check_step_count(scene.method.dt, scene.duration)?;
     let b: &FloorPlan = &scene.building;
     let n = b.storeys();
     let nf = 3 * n;
-    if scene.ground.len() > 1 {
+    if scene.ground.len() > 2 {
         return Err(SimError::Scene(format!(
-            "{}: two ground components at once are not run yet; run each orientation of the pair as one component (angle_deg)",
-            scene.name
+            "{}: {} ground components; a scene takes at most the two horizontal ones",
+            scene.name,
+            scene.ground.len()
         )));
     }
     let psi = scene.ground.first().map_or(0.0, |g| g.angle);
-    let (gc, gs) = (psi.cos(), psi.sin());
+    let (gc, gs) = cos_sin(psi);
+    // the directions of the dampers with a DOF, for each component's influence on them
+    let mut dof_dirs: Vec<(usize, (f64, f64))> = Vec::new();
     let bilinear = scene.method.name == crate::scene::MethodName::Bilinear;
     let mut notes = vec![format!(
         "building in plan: {n} floors x 3 DOFs (ux, uy, rotation of the plan's origin), {} lines",
@@ -80,11 +84,6 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     mass.view_mut((0, 0), (nf, nf)).copy_from(&b.mass);
     damping.view_mut((0, 0), (nf, nf)).copy_from(&b.damping);
     stiffness.view_mut((0, 0), (nf, nf)).copy_from(&b.stiffness);
-    let mut influence = DVector::zeros(n_dof);
-    for f in 0..n {
-        influence[3 * f] = gc;
-        influence[3 * f + 1] = gs;
-    }
     let mut contacts = Vec::new();
     let mut contact_x0 = Vec::new();
     let label = |s: &Site| format!("{}/{}", b.lines[s.line].name, s.storey + 1);
@@ -122,8 +121,7 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
                 mass[(dof, dof)] = d.mass;
                 add_between(&mut stiffness, &Kin::dof(dof), &bottom, d.brace_stiffness);
                 add_between(&mut damping, &Kin::dof(dof), &bottom, d.brace_damping);
-                let (c, sn) = line.direction();
-                influence[dof] = c * gc + sn * gs;
+                dof_dirs.push((dof, line.direction()));
                 notes.push(format!(
                     "{}: friction contact, dissipator DOF {dof} (m' = {} kg, k' = {:.6e} N/m), bounds [{:.6e}, {:.6e}] N",
                     label(site),
@@ -261,6 +259,21 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         }
         per_storey
     });
+    // A unit ground displacement along ψ moves every floor's origin by (cos ψ, sin ψ)
+    // without turning it, and a damper's DOF by its projection on the line, cos(φ − ψ).
+    let influence_of = |psi: f64| {
+        let (c, s) = cos_sin(psi);
+        let mut r = DVector::zeros(n_dof);
+        for f in 0..n {
+            r[3 * f] = c;
+            r[3 * f + 1] = s;
+        }
+        for &(dof, (lc, ls)) in &dof_dirs {
+            r[dof] = lc * c + ls * s;
+        }
+        r
+    };
+    let influence = influence_of(psi);
     let mut points = Vec::with_capacity(nf);
     let mut point_names = Vec::with_capacity(nf);
     for (f, fl) in b.floors.iter().enumerate() {
@@ -275,6 +288,14 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         ]);
     }
     let steps = ((scene.duration / scene.method.dt * (1.0 - 1e-9)).ceil() as usize).max(1);
+    for g in scene.ground.iter().skip(1) {
+        notes.push(format!(
+            "second ground component: {} at {:.3} deg from x, applied with the first (PGA = {:.4} m/s^2)",
+            g.record.name(),
+            g.angle.to_degrees(),
+            g.record.pga()
+        ));
+    }
     match scene.ground.first() {
         Some(g) => notes.push(format!(
             "ground motion: {} at {:.3} deg from x ({} samples at dt = {} s, PGA = {:.4} m/s^2)",
@@ -320,6 +341,16 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         links: vec![FloorLink::None; n],
         storey_heights: heights.iter().copied().collect::<Option<Vec<f64>>>(),
         record: scene.ground.first().map(|g| g.record.clone()),
+        second: scene.ground.get(1).map(|g| SecondGround {
+            record: g.record.clone(),
+            influence: influence_of(g.angle),
+            points: (0..n)
+                .flat_map(|_| {
+                    let (c, s) = cos_sin(g.angle);
+                    [c, s, 0.0]
+                })
+                .collect(),
+        }),
         harmonic: None,
         u0: vec![0.0; n_dof],
         v0: vec![0.0; n_dof],

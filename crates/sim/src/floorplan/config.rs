@@ -61,8 +61,8 @@ pub struct FloorConfig {
     pub centre_of_mass: Option<[Length; 2]>,
 }
 
-/// A line's direction as written: `"x"`, `"y"`, or an angle from the x axis (degrees,
-/// counter-clockwise).
+/// A line's direction as written: `"x"`, `"y"`, or an angle from the x axis,
+/// counter-clockwise: a number (degrees) or a string with a unit (`"30 deg"`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum DirectionConfig {
     /// Along x (0°).
@@ -85,9 +85,18 @@ impl<'de> Deserialize<'de> for DirectionConfig {
             Raw::Num(v) => Ok(DirectionConfig::Degrees(v)),
             Raw::Text(s) if s.trim().eq_ignore_ascii_case("x") => Ok(DirectionConfig::X),
             Raw::Text(s) if s.trim().eq_ignore_ascii_case("y") => Ok(DirectionConfig::Y),
-            Raw::Text(s) => Err(serde::de::Error::custom(format!(
-                "expected \"x\", \"y\" or an angle in degrees from the x axis, got \"{s}\""
-            ))),
+            // a bare number written as a string is degrees, as a number is; with a unit it
+            // is an angle ("30 deg", "0.5 rad")
+            Raw::Text(s) => match s.trim().parse::<f64>() {
+                Ok(v) => Ok(DirectionConfig::Degrees(v)),
+                Err(_) => crate::units::parse_quantity(&s, crate::units::Dimension::Angle)
+                    .map(|rad| DirectionConfig::Degrees(rad.to_degrees()))
+                    .map_err(|e| {
+                        serde::de::Error::custom(format!(
+                            "{e}; or \"x\", \"y\", or an angle in degrees from the x axis"
+                        ))
+                    }),
+            },
         }
     }
 }

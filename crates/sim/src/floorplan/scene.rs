@@ -2,8 +2,8 @@
 //! an angle to the plan's x axis), the duration, the method and the outputs. As written
 //! ([`FloorPlanSceneConfig`]) and resolved ([`FloorPlanScene`]).
 
-use super::FloorPlan;
 use super::config::FloorPlanConfig;
+use super::model::FloorPlan;
 use crate::error::SimError;
 use crate::scene::{
     MethodConfig, MethodName, MethodSettings, OutputsConfig, RecordConfig, TARGET_PGA_BAND_G,
@@ -45,13 +45,40 @@ pub struct FloorPlanSceneConfig {
 }
 
 /// A building in plan given by path or inline.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize)]
 #[serde(untagged)]
 pub enum FloorPlanRef {
     /// Path relative to the scene file.
     Path(PathBuf),
     /// The building itself.
     Inline(Box<FloorPlanConfig>),
+}
+
+/// A string is a path, an object an inline building in plan, read by
+/// [`FloorPlanConfig`]'s own deserializer so its errors surface as in a building file.
+impl<'de> Deserialize<'de> for FloorPlanRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = FloorPlanRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(
+                    "a building-in-plan file's path (a string) or a building-in-plan object",
+                )
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<FloorPlanRef, E> {
+                Ok(FloorPlanRef::Path(PathBuf::from(v)))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<FloorPlanRef, A::Error> {
+                FloorPlanConfig::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(|b| FloorPlanRef::Inline(Box::new(b)))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 /// One horizontal ground component, as written.
@@ -125,9 +152,68 @@ impl FloorPlanScene {
         }
     }
 
+    /// Applies the command line's overrides: another method (its default step unless
+    /// `dt` is given), a step, a duration, histories.
+    pub fn override_with(
+        &mut self,
+        method: Option<MethodName>,
+        dt: Option<f64>,
+        duration: Option<f64>,
+        histories: bool,
+    ) -> Result<(), SimError> {
+        if let Some(d) = duration {
+            if !is_positive(d) {
+                return Err(SimError::Scene(format!("--duration {d}: must be positive")));
+            }
+            self.duration = d;
+        }
+        if let Some(m) = method {
+            let again = FloorPlanScene::new(
+                self.building.clone(),
+                self.ground.clone(),
+                self.duration,
+                m,
+                self.outputs,
+            );
+            self.method = again.method;
+        }
+        if let Some(dt) = dt {
+            if !is_positive(dt) {
+                return Err(SimError::BadTimeStep { dt });
+            }
+            self.method.dt = dt;
+        }
+        for g in &self.ground {
+            check_step_against_record(self.method.name, self.method.dt, &g.record)?;
+        }
+        self.outputs.histories |= histories;
+        Ok(())
+    }
+
     /// Number of steps.
     pub fn steps(&self) -> usize {
         ((self.duration / self.method.dt * (1.0 - 1e-9)).ceil() as usize).max(1)
+    }
+
+    /// The files a scene in plan at `path` reads: itself, its building's file and its
+    /// records (as far as the file can be parsed; loading it says what is wrong).
+    pub fn input_files(path: &Path) -> Vec<PathBuf> {
+        let mut files = vec![path.to_path_buf()];
+        let base = path.parent().unwrap_or(Path::new("."));
+        let cfg = slipload_motion::limits::read_input_text(
+            path,
+            "scene in plan",
+            slipload_motion::limits::MAX_CONFIG_BYTES,
+        )
+        .ok()
+        .and_then(|t| serde_json::from_str::<FloorPlanSceneConfig>(&t).ok());
+        if let Some(cfg) = cfg {
+            if let FloorPlanRef::Path(p) = &cfg.building {
+                files.push(base.join(p));
+            }
+            files.extend(cfg.ground.iter().map(|g| base.join(&g.record.file)));
+        }
+        files
     }
 
     /// Reads and resolves a scene-in-plan JSON file.
@@ -137,6 +223,17 @@ impl FloorPlanScene {
             "scene in plan",
             slipload_motion::limits::MAX_CONFIG_BYTES,
         )?;
+        if let Ok(serde_json::Value::Object(o)) = serde_json::from_str::<serde_json::Value>(&text)
+            && o.contains_key("lines")
+            && o.contains_key("floors")
+        {
+            return Err(SimError::Scene(format!(
+                "{} is a building in plan; a run needs a scene that names it with its ground motion: {{\"building\": \"{}\", \"ground\": [{{\"record\": {{\"file\": \"RECORD.AT2\"}}, \"angle_deg\": 0}}]}}",
+                path.display(),
+                path.file_name()
+                    .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+            )));
+        }
         let cfg: FloorPlanSceneConfig =
             serde_json::from_str(&text).map_err(|source| SimError::Json {
                 path: path.to_path_buf(),
@@ -183,6 +280,13 @@ impl FloorPlanScene {
                         SimError::invalid(path, field("record.units"), e.to_string())
                     })?),
                 };
+            if rc.scale.is_some() && rc.scale_pga_g.is_some() {
+                return Err(SimError::invalid(
+                    path,
+                    field("record.scale_pga_g"),
+                    "give either scale or scale_pga_g, not both",
+                ));
+            }
             let mut r =
                 slipload_motion::read_record(&base.join(&rc.file), units, rc.dt.map(|d| d.0))?;
             if let Some(f) = rc.scale {

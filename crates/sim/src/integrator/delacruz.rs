@@ -761,6 +761,7 @@ impl Integrator for DelaCruz {
             let mut e_row = None;
             if energies {
                 let data = StepEnergyData {
+                    second: None,
                     dt,
                     mr: s.mr.as_slice(),
                     ag: (ag0, ag1),

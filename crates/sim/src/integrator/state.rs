@@ -68,11 +68,17 @@ pub(crate) fn observe_dampers(
 /// relative accelerations `a`, the ground acceleration and the harmonic force.
 #[inline]
 pub(crate) fn base_shear(mr: &[f64], msum: f64, a: &[f64], ag: f64, p: f64) -> f64 {
+    signed_base_shear(mr, msum, a, ag, p).abs()
+}
+
+/// The base shear Σ mᵢ(aᵢ + a_g) − P with its sign, N ([`base_shear`]).
+#[inline]
+pub(crate) fn signed_base_shear(mr: &[f64], msum: f64, a: &[f64], ag: f64, p: f64) -> f64 {
     let mut vb = msum * ag - p;
     for (mi, ai) in mr.iter().zip(a) {
         vb += mi * ai;
     }
-    vb.abs()
+    vb
 }
 
 /// x̄ᵀ A x̄ with x̄ = (x0 + x1)/2, for a column-major square matrix, without allocating.
@@ -145,6 +151,9 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
     let uu = DVector::from_column_slice(&u);
     let vv = DVector::from_column_slice(&v);
     let mut g = -(plan.mass_influence() * ag0) - &plan.damping * &vv - &plan.stiffness * &uu;
+    if let Some(mr2) = plan.mass_influence2() {
+        g -= mr2 * plan.ground2_accel(0.0);
+    }
     if let Some(h) = &plan.harmonic {
         g[h.floor] += h.force(0.0);
     }
@@ -386,6 +395,8 @@ pub(crate) struct StepEnergyData<'a> {
     pub(crate) mr: &'a [f64],
     /// Ground acceleration at the start and end of the step, m/s².
     pub(crate) ag: (f64, f64),
+    /// A second ground component's M r₂ and accelerations at the step's start and end.
+    pub(crate) second: Option<(&'a [f64], (f64, f64))>,
     /// Harmonic force at the start and end, N, and its floor.
     pub(crate) p: (f64, f64),
     /// Floor of the harmonic force.
@@ -494,6 +505,13 @@ impl EnergyAccumulator {
         }
         let cvv = q.cvv;
         let mut d_input = -ag_avg * mrv;
+        if let Some((mr2, (a0, a1))) = d.second {
+            let mut m2v = 0.0;
+            for i in 0..n {
+                m2v += mr2[i] * 0.5 * (v_old[i] + v_now[i]);
+            }
+            d_input -= 0.5 * (a0 + a1) * m2v;
+        }
         if let Some(f) = d.force_floor {
             d_input += 0.5 * (p0 + p1) * 0.5 * (v_old[f] + v_now[f]);
         }

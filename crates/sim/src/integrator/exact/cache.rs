@@ -162,6 +162,13 @@ fn plan_key(plan: &Plan) -> Vec<u64> {
         Some(h) => k.extend([1, h.floor as u64, h.amplitude.to_bits(), h.omega.to_bits()]),
         None => k.push(0),
     }
+    match &plan.second {
+        Some(g) => {
+            k.push(1);
+            k.extend(g.influence.iter().map(|x| x.to_bits()));
+        }
+        None => k.push(0),
+    }
     k.push(plan.method.dt.to_bits());
     k.push(u64::from(plan.outputs.energies));
     k.push(frame_steps(plan) as u64);

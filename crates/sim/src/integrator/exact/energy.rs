@@ -38,6 +38,11 @@ impl Model<'_> {
         for i in 0..n {
             input[(lay.i_ag, n + i)] -= self.mr[i];
         }
+        if let (Some((i_ag2, _)), Some(m2)) = (lay.second, &self.mr2) {
+            for i in 0..n {
+                input[(i_ag2, n + i)] -= m2[i];
+            }
+        }
         if let Some(h) = &plan.harmonic {
             input[(lay.i_sin, n + h.floor)] += h.amplitude;
         }
@@ -81,6 +86,10 @@ impl Model<'_> {
             viscous += v[i] * cv;
         }
         let mut input = -y[lay.i_ag] * mrv;
+        if let (Some((i_ag2, _)), Some(m2)) = (lay.second, &self.mr2) {
+            let m2v: f64 = m2.iter().zip(v.iter()).map(|(m, v)| m * v).sum();
+            input -= y[i_ag2] * m2v;
+        }
         if let Some(h) = &plan.harmonic {
             input += h.amplitude * y[lay.i_sin] * v[h.floor];
         }

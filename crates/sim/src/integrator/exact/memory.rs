@@ -93,7 +93,7 @@ impl Sizes {
             .iter()
             .filter(|c| matches!(c.kind, ContactKind::Epp))
             .count();
-        let dim = 2 * n + epp + 5;
+        let dim = 2 * n + epp + if plan.second.is_some() { 7 } else { 5 };
         let events = 2 * nc;
         let observed = if frame_steps(plan) >= 2 {
             plan.observed_contacts_offset() + nc

@@ -31,6 +31,9 @@ pub(super) struct Layout {
     pub(super) i_sin: usize,
     pub(super) i_cos: usize,
     pub(super) i_one: usize,
+    /// A second ground component's acceleration and slope (a plan under both
+    /// components), after the chain's states so a chain's layout is unchanged.
+    pub(super) second: Option<(usize, usize)>,
     pub(super) dim: usize,
 }
 
@@ -143,6 +146,8 @@ pub(super) struct Model<'a> {
     /// L⁻¹ of the mass matrix's Cholesky factor M = LLᵀ.
     pub(super) linv: DMatrix<f64>,
     pub(super) mr: DVector<f64>,
+    /// M r₂ of a second ground component.
+    pub(super) mr2: Option<DVector<f64>>,
     /// Contact columns of B.
     pub(super) bcols: Vec<DVector<f64>>,
     /// Forces without contacts as rows on y (n × dim).
@@ -201,7 +206,8 @@ impl<'a> Model<'a> {
             i_sin: next + 2,
             i_cos: next + 3,
             i_one: next + 4,
-            dim: next + 5,
+            second: plan.second.as_ref().map(|_| (next + 5, next + 6)),
+            dim: next + if plan.second.is_some() { 7 } else { 5 },
         };
         let chol = plan
             .mass
@@ -228,6 +234,12 @@ impl<'a> Model<'a> {
         for i in 0..n {
             f0[(i, lay.i_ag)] = -mr[i];
         }
+        let mr2 = plan.mass_influence2();
+        if let (Some(m2), Some((i_ag2, _))) = (&mr2, lay.second) {
+            for i in 0..n {
+                f0[(i, i_ag2)] = -m2[i];
+            }
+        }
         let mut omega_h = 0.0;
         if let Some(h) = &plan.harmonic {
             f0[(h.floor, lay.i_sin)] = h.amplitude;
@@ -239,6 +251,7 @@ impl<'a> Model<'a> {
             minv,
             linv,
             mr,
+            mr2,
             bcols,
             f0,
             omega_h,

@@ -118,6 +118,9 @@ impl Model<'_> {
             }
         }
         a[(lay.i_ag, lay.i_slope)] = 1.0;
+        if let Some((i_ag2, i_slope2)) = lay.second {
+            a[(i_ag2, i_slope2)] = 1.0;
+        }
         a[(lay.i_sin, lay.i_cos)] = self.omega_h;
         a[(lay.i_cos, lay.i_sin)] = -self.omega_h;
         let mut events = Vec::new();
@@ -263,6 +266,9 @@ impl Model<'_> {
                 a.axpy(w, &acc_rows.column(j), 1.0);
             }
             a[lay.i_ag] += ground;
+            if let (Some((i_ag2, _)), Some(g2)) = (lay.second, &plan.second) {
+                a[i_ag2] += g2.points[i];
+            }
             rows.set_column(nd + np + i, &a);
         }
         // Base shear Σ mᵢ(aᵢ + a_g) − p over every DOF (as `base_shear`).
@@ -271,6 +277,9 @@ impl Model<'_> {
             v.axpy(self.mr[i], &acc_rows.column(i), 1.0);
         }
         v[lay.i_ag] += plan.influence_mass();
+        if let Some((i_ag2, _)) = lay.second {
+            v[i_ag2] += plan.cross_mass();
+        }
         if let Some(h) = &plan.harmonic {
             v[lay.i_sin] -= h.amplitude;
         }

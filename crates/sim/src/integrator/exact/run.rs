@@ -16,12 +16,16 @@ use super::propagate::{lead_coefs, lead_terms, monotone, taylor};
 use super::search::{first_crossing, illinois, poly, tail_and_degree};
 use crate::error::SimError;
 use crate::integrator::method::Integrator;
-use crate::integrator::state::{EnergyRow, base_shear, history_columns, push_energies};
+use crate::integrator::state::{
+    EnergyRow, base_shear, history_columns, push_energies, signed_base_shear,
+};
 use crate::plan::{ContactKind, ContactRole, Plan};
 use crate::response::{Diagnostics, Energy, History, Outcome, Peaks};
 use crate::units::is_positive;
 use nalgebra::DVector;
+use slipload_motion::Record;
 use std::cell::RefCell;
+use std::sync::Arc;
 
 /// Event-driven integrator, exact between events.
 #[derive(Debug, Clone, Copy, Default)]
@@ -64,8 +68,8 @@ fn history_row(
 }
 
 /// Ground acceleration at the start of [ta, tb] and its slope on it (0 after the record).
-fn ground_segment(plan: &Plan, ta: f64, tb: f64) -> (f64, f64) {
-    match &plan.record {
+fn ground_segment(record: Option<&Arc<Record>>, ta: f64, tb: f64) -> (f64, f64) {
+    match record {
         Some(r) => {
             let dur = r.duration();
             if ta >= dur - 1e-12 * r.dt() {
@@ -81,7 +85,16 @@ fn ground_segment(plan: &Plan, ta: f64, tb: f64) -> (f64, f64) {
 
 /// End of the piece starting at `ta` (next record sample or record end, else `t_end`).
 fn piece_end(plan: &Plan, ta: f64, t_end: f64) -> f64 {
-    match &plan.record {
+    let first = piece_end_of(plan.record.as_ref(), ta, t_end);
+    match &plan.second {
+        Some(g) => first.min(piece_end_of(Some(&g.record), ta, t_end)),
+        None => first,
+    }
+}
+
+/// [`piece_end`] for one record.
+fn piece_end_of(record: Option<&Arc<Record>>, ta: f64, t_end: f64) -> f64 {
+    match record {
         Some(r) => {
             let rdt = r.dt();
             let dur = r.duration();
@@ -179,9 +192,14 @@ impl Exact {
             }
         }
         let set_inputs = |y: &mut DVector<f64>, ta: f64, tb: f64| {
-            let (a0, slope) = ground_segment(plan, ta, tb);
+            let (a0, slope) = ground_segment(plan.record.as_ref(), ta, tb);
             y[lay.i_ag] = a0;
             y[lay.i_slope] = slope;
+            if let (Some((i_ag2, i_slope2)), Some(g)) = (lay.second, &plan.second) {
+                let (a0, slope) = ground_segment(Some(&g.record), ta, tb);
+                y[i_ag2] = a0;
+                y[i_slope2] = slope;
+            }
             if let Some(h) = &plan.harmonic {
                 let ph = h.omega * ta + h.phase;
                 y[lay.i_sin] = ph.sin();
@@ -286,6 +304,7 @@ impl Exact {
             top.at(y.as_slice()) - bottom.at(y.as_slice())
         };
         let msum: f64 = plan.influence_mass();
+        let cross = plan.cross_mass();
         let mut acc = DVector::zeros(dim);
         let observe =
             |peaks: &mut Peaks, ops: &ModeOps, y: &DVector<f64>, acc: &mut DVector<f64>, t: f64| {
@@ -299,14 +318,30 @@ impl Exact {
                     .harmonic
                     .as_ref()
                     .map_or(0.0, |h| h.amplitude * y[lay.i_sin]);
-                peaks.observe_floors(y.as_slice(), &acc.as_slice()[n..2 * n], ag);
-                peaks.observe_base_shear(base_shear(
-                    model.mr.as_slice(),
-                    msum,
-                    &acc.as_slice()[n..2 * n],
-                    ag,
-                    p,
-                ));
+                match lay.second {
+                    None => {
+                        peaks.observe_floors(y.as_slice(), &acc.as_slice()[n..2 * n], ag);
+                        peaks.observe_base_shear(base_shear(
+                            model.mr.as_slice(),
+                            msum,
+                            &acc.as_slice()[n..2 * n],
+                            ag,
+                            p,
+                        ));
+                    }
+                    Some((i_ag2, _)) => {
+                        let ag2 = y[i_ag2];
+                        peaks.observe_floors2(y.as_slice(), &acc.as_slice()[n..2 * n], ag, ag2);
+                        let v = signed_base_shear(
+                            model.mr.as_slice(),
+                            msum,
+                            &acc.as_slice()[n..2 * n],
+                            ag,
+                            p,
+                        ) + cross * ag2;
+                        peaks.observe_base_shear(v.abs());
+                    }
+                }
                 for (c, ct) in plan.contacts.iter().enumerate() {
                     let other = match (ct.kind, lay.epp_slot[c]) {
                         (ContactKind::Dof { dof }, _) => y[dof],

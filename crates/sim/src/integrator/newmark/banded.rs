@@ -741,6 +741,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag1, p1));
         if energies {
             let data = StepEnergyData {
+                second: None,
                 dt,
                 mr: &mr,
                 ag: (ag0, ag1),

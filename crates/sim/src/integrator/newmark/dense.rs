@@ -91,6 +91,13 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     let g = &ops.g.as_slice()[..n * nc];
     let w = ops.w.as_slice();
     let mr = &ops.mr.as_slice()[..n];
+    // a second ground component: M r₂, A⁻¹ M r₂ and r₁ᵀ M r₂ (the base shear along the
+    // first component's direction per unit of the second)
+    let second = ops
+        .second
+        .as_ref()
+        .map(|(m2, h2)| (m2.as_slice(), h2.as_slice()));
+    let cross = plan.cross_mass();
     let hhht = alpha != 0.0 && nc > 0;
 
     let start = initial_state(plan)?;
@@ -127,11 +134,21 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     debug_assert_eq!(peaks.drift.len(), plan.drifts.len());
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
+    let mut ag2_0 = plan.ground2_accel(0.0);
+    let mut ground2 = plan.ground2_steps();
     let mut p0 = plan.force(0.0);
-    peaks.observe_floors(&start.u, &start.a, ag0);
+    peaks.observe_floors2(&start.u, &start.a, ag0, ag2_0);
     let hf = ops.hp.as_ref().map(|(f, _)| *f);
-    let base_shear = |a: &[f64], ag: f64, p: f64| state::base_shear(mr, msum, a, ag, p);
-    peaks.observe_base_shear(base_shear(&start.a, ag0, p0));
+    let base_shear = |a: &[f64], ag: f64, p: f64, ag2: f64| {
+        if second.is_some() {
+            // signed along the first component, then its size
+            let v = state::signed_base_shear(mr, msum, a, ag, p) + cross * ag2;
+            v.abs()
+        } else {
+            state::base_shear(mr, msum, a, ag, p)
+        }
+    };
+    peaks.observe_base_shear(base_shear(&start.a, ag0, p0, ag2_0));
     for c in 0..nc {
         peaks.observe_slip(plan.contacts[c].slot, slip(plan, c, &start.u, &epp));
     }
@@ -156,6 +173,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
     for step in 0..plan.steps {
         let t1 = (step + 1) as f64 * dt;
         let ag1 = ground.next_accel();
+        let ag2_1 = ground2.next_accel();
         let p1 = if hf.is_some() { plan.force(t1) } else { 0.0 };
         // Predictors ũ, ṽ; then the linear part a_free = Q z + loads (+ HHT friction memory)
         // with z = (1+α)(ũ, ṽ) − α(u, v).
@@ -178,6 +196,12 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         let load = -((1.0 + alpha) * ag1 - alpha * ag0);
         for i in 0..n {
             af[i] = load * h[i];
+        }
+        if let Some((_, h2)) = second {
+            let load2 = -((1.0 + alpha) * ag2_1 - alpha * ag2_0);
+            for i in 0..n {
+                af[i] += load2 * h2[i];
+            }
         }
         for (j, &zj) in zs.iter().enumerate() {
             let col = &qm[j * n..(j + 1) * n];
@@ -263,14 +287,15 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
             tg.observe(&peaks, (u_now, a_now, ag1), shear, mr);
         }
         state::observe_dampers(plan, &mut peaks, t1, u_now, &f_new, &w_new, &epp);
-        peaks.observe_floors(u_now, a_now, ag1);
-        peaks.observe_base_shear(base_shear(a_now, ag1, p1));
+        peaks.observe_floors2(u_now, a_now, ag1, ag2_1);
+        peaks.observe_base_shear(base_shear(a_now, ag1, p1, ag2_1));
         let mut e_row = None;
         if energies {
             let data = StepEnergyData {
                 dt,
                 mr,
                 ag: (ag0, ag1),
+                second: second.map(|(m2, _)| (m2, (ag2_0, ag2_1))),
                 p: (p0, p1),
                 force_floor: hf,
                 v: (&v_old, v_now),
@@ -287,6 +312,7 @@ fn run_loop<const N: usize>(plan: &Plan, ops: &Operators) -> Result<Outcome, Sim
         std::mem::swap(&mut f_old, &mut f_new);
         std::mem::swap(&mut w_old, &mut w_new);
         ag0 = ag1;
+        ag2_0 = ag2_1;
         p0 = p1;
         if peaks.collapsed(t1) {
             break;

@@ -317,6 +317,7 @@ pub(super) fn run<const N: usize, const NC: usize, const E: bool>(
         peaks.observe_base_shear(base_shear(&o.mr, msum, &a, ag1, p1));
         if let Some(e) = &energies {
             let data = StepEnergyData {
+                second: None,
                 dt,
                 mr: &o.mr,
                 ag: (ag0, ag1),

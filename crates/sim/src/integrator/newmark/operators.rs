@@ -27,6 +27,8 @@ pub(super) struct Operators {
     pub(super) kappa: Vec<f64>,
     /// M r.
     pub(super) mr: DVector<f64>,
+    /// M r₂ and A⁻¹ M r₂ of a second ground component, when the plan has one.
+    pub(super) second: Option<(DVector<f64>, DVector<f64>)>,
 }
 
 impl Operators {
@@ -47,6 +49,10 @@ impl Operators {
         q.view_mut((0, n), (n, n)).copy_from(&(-chol.solve(c)));
         let mr = plan.mass_influence();
         let h = chol.solve(&mr);
+        let second = plan.mass_influence2().map(|mr2| {
+            let h2 = chol.solve(&mr2);
+            (mr2, h2)
+        });
         let hp = plan.harmonic.map(|hm| {
             let mut e = DVector::zeros(n);
             e[hm.floor] = 1.0;
@@ -81,6 +87,7 @@ impl Operators {
             w,
             kappa,
             mr,
+            second,
         })
     }
 }

@@ -1,0 +1,153 @@
+//! The validated building in plan ([`FloorPlan`]) and its parts ([`Floor`], [`Line`]),
+//! SI units, with what they answer by themselves.
+
+use crate::building::{Dissipator, StoreyYield};
+use crate::modes::Modes;
+use nalgebra::DMatrix;
+
+/// A validated rigid floor, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Floor {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Mass moment of inertia about the vertical axis through the centre of mass, kg·m².
+    pub inertia: f64,
+    /// Centre of mass [x, y], m.
+    pub centre: [f64; 2],
+}
+
+/// A validated lateral line, SI units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Line {
+    /// Name.
+    pub name: String,
+    /// Direction: angle from the x axis, rad.
+    pub angle: f64,
+    /// A point the line passes through [x, y], m.
+    pub point: [f64; 2],
+    /// Storey stiffness along the line, per storey, N/m.
+    pub stiffness: Vec<f64>,
+    /// Yield law per storey (`None`: elastic).
+    pub storey_yield: Vec<Option<StoreyYield>>,
+    /// Friction damper per storey (its top floor), if any.
+    pub dissipators: Vec<Option<Dissipator>>,
+}
+
+impl Line {
+    /// The direction's cosine and sine ([`cos_sin`]: exact along x and y).
+    pub fn direction(&self) -> (f64, f64) {
+        cos_sin(self.angle)
+    }
+
+    /// The lever r of the line about the origin: a floor rotation θ moves the line along
+    /// its direction by r·θ (r = x sin φ − y cos φ for a point (x, y) of the line).
+    pub fn lever(&self) -> f64 {
+        let (c, s) = self.direction();
+        self.point[0] * s - self.point[1] * c
+    }
+
+    /// The line's kinematic weights on a floor's (ux, uy, θ): its motion along its
+    /// direction is c·ux + s·uy + r·θ.
+    pub fn weights(&self) -> [f64; 3] {
+        let (c, s) = self.direction();
+        [c, s, self.lever()]
+    }
+}
+
+/// A validated building in plan, SI units; floor DOFs (ux, uy, θ) of floor f at 3f, 3f+1,
+/// 3f+2, the translations those of the plan's origin.
+#[derive(Debug, Clone)]
+pub struct FloorPlan {
+    /// Name.
+    pub name: String,
+    /// The floors, bottom to top.
+    pub floors: Vec<Floor>,
+    /// The lines.
+    pub lines: Vec<Line>,
+    /// Plan dimensions [Lx, Ly], m, when given.
+    pub plan_size: Option<[f64; 2]>,
+    /// Storey heights, m, when given.
+    pub storey_heights: Option<Vec<f64>>,
+    /// Mass matrix on the floors' DOFs (3N × 3N), kg and kg·m.
+    pub mass: DMatrix<f64>,
+    /// Stiffness of the bare frame (every line elastic, dampers disconnected), 3N × 3N.
+    pub stiffness: DMatrix<f64>,
+    /// Frame damping on the floors' DOFs.
+    pub damping: DMatrix<f64>,
+    /// Drift (m) past which a yielding line's storey stops the run, per storey.
+    pub collapse_drift: Option<Vec<f64>>,
+    /// Modes of the bare frame.
+    pub modes: Modes,
+}
+
+impl FloorPlan {
+    /// Number of storeys (floors).
+    pub fn storeys(&self) -> usize {
+        self.floors.len()
+    }
+
+    /// Fundamental period of the bare frame, s.
+    pub fn t1(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.modes.omega[0]
+    }
+
+    /// The floor plan with every floor's centre of mass moved by [dx, dy] (m), its
+    /// inertia about the centre of mass kept: accidental torsion as a property case
+    /// (ASCE 7-16 §12.8.4.2 moves it by 5 % of the plan dimension across the motion).
+    pub fn with_centre_shift(&self, shift: [f64; 2]) -> FloorPlan {
+        let floors: Vec<Floor> = self
+            .floors
+            .iter()
+            .map(|f| Floor {
+                centre: [f.centre[0] + shift[0], f.centre[1] + shift[1]],
+                ..*f
+            })
+            .collect();
+        let mass = mass_matrix(&floors);
+        let modes = Modes::compute(&mass, &self.stiffness).unwrap_or_else(|| self.modes.clone());
+        FloorPlan {
+            floors,
+            mass,
+            modes,
+            ..self.clone()
+        }
+    }
+}
+
+/// The mass matrix of rigid floors on their DOFs (ux, uy, θ of the origin): the centre
+/// of mass at (x, y) moves by (ux − y·θ, uy + x·θ), so each floor's block is
+/// [[m, 0, −m·y], [0, m, m·x], [−m·y, m·x, J + m(x² + y²)]] with J about the centre.
+pub(super) fn mass_matrix(floors: &[Floor]) -> DMatrix<f64> {
+    let n = 3 * floors.len();
+    let mut m = DMatrix::zeros(n, n);
+    for (f, fl) in floors.iter().enumerate() {
+        let [x, y] = fl.centre;
+        let o = 3 * f;
+        m[(o, o)] = fl.mass;
+        m[(o + 1, o + 1)] = fl.mass;
+        m[(o, o + 2)] = -fl.mass * y;
+        m[(o + 2, o)] = -fl.mass * y;
+        m[(o + 1, o + 2)] = fl.mass * x;
+        m[(o + 2, o + 1)] = fl.mass * x;
+        m[(o + 2, o + 2)] = fl.inertia + fl.mass * (x * x + y * y);
+    }
+    m
+}
+
+/// cos and sin of an angle (rad), exact at the quarter turns (0, ±90°, 180°, …): a line
+/// along y or a ground component along y has no x part at all (cos 90° in floating point
+/// is 6e-17), so a plan's x and y stay apart exactly where they are apart.
+pub fn cos_sin(angle: f64) -> (f64, f64) {
+    let quarters = angle / std::f64::consts::FRAC_PI_2;
+    let k = quarters.round();
+    if (quarters - k).abs() <= 4.0 * f64::EPSILON * quarters.abs().max(1.0) {
+        match (k as i64).rem_euclid(4) {
+            0 => (1.0, 0.0),
+            1 => (0.0, 1.0),
+            2 => (-1.0, 0.0),
+            _ => (0.0, -1.0),
+        }
+    } else {
+        (angle.cos(), angle.sin())
+    }
+}
