@@ -16,6 +16,7 @@ mod batch;
 mod dicts;
 mod errors;
 mod json_path;
+mod plan;
 mod records;
 mod run;
 mod scene;
@@ -35,6 +36,8 @@ fn _slipload(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<study::PyStudy>()?;
     m.add_function(wrap_pyfunction!(records::synthetic_suite, m)?)?;
     m.add_function(wrap_pyfunction!(scene::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::simulate_in_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::is_in_plan, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch_designs, m)?)?;
     m.add_function(wrap_pyfunction!(study::optimize, m)?)?;

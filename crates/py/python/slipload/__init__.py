@@ -304,7 +304,9 @@ def simulate(
 
     Args:
         scene: a :class:`Scene`, a scene or building file, a dict, or ``None`` for the
-            embedded default scene (see :func:`load_scene`).
+            embedded default scene (see :func:`load_scene`); a scene in plan's file runs
+            as ``slipload simulate`` runs it (``Result.to_json()`` names its drifts,
+            points and dampers under ``in_plan``).
         method: integration method for this run (default: the scene's; ``"newmark"``
             unless the scene says otherwise).
         dt: time step for this run, s (default: the scene's).
@@ -329,6 +331,11 @@ def simulate(
         ``Result.warnings``): a slip load below 0.1 % of its floor's weight ("did you
         mean kN?"), a time step that does not divide the duration.
     """
+    if isinstance(scene, (str, os.PathLike)) and _slipload.is_in_plan(os.fspath(scene)):
+        # a scene in plan: the command line's run of it, the same Result
+        return _slipload.simulate_in_plan(
+            os.fspath(scene), method=method, dt=dt, duration=duration, outputs=_outputs(outputs)
+        )
     result = _slipload.simulate(_scene(scene), method=method, dt=dt, duration=duration, outputs=_outputs(outputs))
     _warn([result])
     return result

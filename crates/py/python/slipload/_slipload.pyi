@@ -305,6 +305,19 @@ def simulate(
 ) -> Result:
     """Runs one scene."""
 
+def simulate_in_plan(
+    path: str,
+    *,
+    method: Optional[str] = None,
+    dt: Optional[float] = None,
+    duration: Optional[float] = None,
+    outputs: Optional[Sequence[str]] = None,
+) -> Result:
+    """Runs the scene in plan at `path`."""
+
+def is_in_plan(path: str) -> bool:
+    """Whether the file is a scene in plan or a building in plan."""
+
 def batch(
     scenes: Sequence[Scene],
     *,

@@ -25,6 +25,7 @@ mod exact;
 mod figure;
 mod measure;
 mod scenes;
+mod plans;
 mod tall;
 
 use anyhow::bail;
@@ -104,6 +105,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     tall::memory(&mut bench)?;
     tall::exact(&mut bench)?;
     tall::study(&mut bench)?;
+    plans::plans(&mut bench)?;
     checked::checked_design(&mut bench)?;
 
     let figs = bench.figs;

@@ -1,0 +1,49 @@
+//! Scenes in plan from Python: `slipload.simulate(path)` runs a scene in plan as
+//! `slipload simulate PATH` does (the library's [`slipload_sim::floorplan`] run), and
+//! gives the same `Result` (its `to_json()` the command line's JSON, `in_plan` included).
+
+use crate::errors::{PyResultExt, guarded, input};
+use crate::scene::{PyOutcome, method};
+use pyo3::prelude::*;
+use slipload_sim::floorplan::FloorPlanScene;
+use std::path::PathBuf;
+
+/// Whether the file is a scene in plan or a building in plan.
+#[pyfunction]
+pub fn is_in_plan(path: PathBuf) -> bool {
+    slipload_sim::floorplan::is_in_plan(&path)
+}
+
+/// Runs the scene in plan at `path`, with the command line's overrides.
+#[pyfunction]
+#[pyo3(signature = (path, *, method=None, dt=None, duration=None, outputs=None))]
+pub fn simulate_in_plan(
+    py: Python<'_>,
+    path: PathBuf,
+    method: Option<&str>,
+    dt: Option<f64>,
+    duration: Option<f64>,
+    outputs: Option<Vec<String>>,
+) -> PyResult<PyOutcome> {
+    let scene = guarded(|| {
+        let mut scene = FloorPlanScene::load(&path).py()?;
+        let name = method.map(self::method_name).transpose()?;
+        let histories = outputs.as_ref().is_some_and(|o| o.iter().any(|x| x == "histories"));
+        if let Some(o) = &outputs {
+            if let Some(bad) = o.iter().find(|x| *x != "histories" && *x != "energies") {
+                return Err(input(format!(
+                    "outputs: {bad:?} is not an output; give names among \"histories\", \"energies\""
+                )));
+            }
+            scene.outputs.energies = o.iter().any(|x| x == "energies");
+        }
+        scene.override_with(name, dt, duration, histories).py()?;
+        Ok(scene)
+    })?;
+    let out = crate::run::detached(py, move || slipload_sim::floorplan::simulate(&scene).py())?;
+    Ok(PyOutcome::of(out))
+}
+
+fn method_name(name: &str) -> PyResult<slipload_sim::MethodName> {
+    method(name)
+}
