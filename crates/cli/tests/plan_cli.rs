@@ -74,6 +74,26 @@ fn what_a_plan_does_not_take_is_refused_by_name() {
         ],
         &["delacruz steps a chain of floors"],
     );
+    let out = scratch("plan-cli", "script").join("plan.py");
+    refused(
+        &[
+            "opensees",
+            "configs/plan-ten-story-pair.json",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["modal damping has no OpenSees element", "`rayleigh`"],
+    );
+    assert!(!out.exists(), "no script is written");
+    refused(
+        &[
+            "opensees",
+            "configs/plan-ten-story-pair.json",
+            "--out",
+            "configs/plan-ten-story.json",
+        ],
+        &["which this command reads"],
+    );
     refused(
         &["simulate", "configs/plan-ten-story.json"],
         &["is a building in plan", "\"ground\""],
@@ -122,4 +142,37 @@ fn history_writes_the_plans_columns() {
     assert!(header.starts_with("t_s,ag_m_s2,x1_m"), "{header}");
     assert!(header.contains("drift80_m"), "{header}");
     assert!(csv.lines().count() > 100);
+}
+
+#[test]
+fn explain_prints_the_plans_modes_and_what_it_compiles_into() {
+    let o = slipload(&["explain", "configs/plan-ten-story-pair.json"]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains("bare frame in plan: 10 floors x 3 DOFs, 4 lines"),
+        "{text}"
+    );
+    // 30 modes, each with its shares; along x they sum to the whole mass
+    let shares: Vec<[f64; 3]> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("mode"))
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            let at = |k: &str| {
+                w[w.iter().position(|x| *x == k).unwrap() + 1]
+                    .parse::<f64>()
+                    .unwrap()
+            };
+            [at("x"), at("y"), at("rotation")]
+        })
+        .collect();
+    assert_eq!(shares.len(), 30);
+    for k in 0..3 {
+        let sum: f64 = shares.iter().map(|s| s[k]).sum();
+        // the printed shares are rounded to 1e-3 each
+        assert!((sum - 1.0).abs() < 30.0 * 5e-4, "share {k} sums to {sum}");
+    }
+    assert!(text.contains("plan for"), "{text}");
+    assert!(text.contains("second ground component"), "{text}");
 }

@@ -28,7 +28,9 @@ pub fn simulate_in_plan(
     let scene = guarded(|| {
         let mut scene = FloorPlanScene::load(&path).py()?;
         let name = method.map(self::method_name).transpose()?;
-        let histories = outputs.as_ref().is_some_and(|o| o.iter().any(|x| x == "histories"));
+        let histories = outputs
+            .as_ref()
+            .is_some_and(|o| o.iter().any(|x| x == "histories"));
         if let Some(o) = &outputs {
             if let Some(bad) = o.iter().find(|x| *x != "histories" && *x != "energies") {
                 return Err(input(format!(

@@ -10,7 +10,7 @@
 //! instances of one structure. A chain's point reads its DOF exactly (no product, no sum),
 //! so a chain gives the same bits as before the structure was generalised.
 
-/// A point an element acts at: Σₖ wₖ·x[iₖ] over at most three DOFs; the ground when
+/// A point an element acts at: Σₖ wₖ·`x[iₖ]` over at most three DOFs; the ground when
 /// empty.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kin {
@@ -82,13 +82,13 @@ impl Kin {
         (0..self.len as usize).map(|k| (self.idx[k], self.w[k]))
     }
 
-    /// Σₖ wₖ·x[iₖ]; exactly x[i] for one DOF of weight 1, 0 for the ground.
+    /// Σₖ wₖ·`x[iₖ]`; exactly `x[i]` for one DOF of weight 1, 0 for the ground.
     #[inline(always)]
     pub fn at(&self, x: &[f64]) -> f64 {
         self.at_offset(x, 0)
     }
 
-    /// Σₖ wₖ·x[off + iₖ] (a state vector whose block starts at `off`).
+    /// Σₖ wₖ·`x[off + iₖ]` (a state vector whose block starts at `off`).
     #[inline(always)]
     pub fn at_offset(&self, x: &[f64], off: usize) -> f64 {
         if self.unit {
@@ -101,14 +101,14 @@ impl Kin {
         s
     }
 
-    /// x[iₖ] += s·wₖ (a force `s` along the point's direction); x[i] += s for one DOF of
+    /// `x[iₖ]` += s·wₖ (a force `s` along the point's direction); `x[i]` += s for one DOF of
     /// weight 1.
     #[inline(always)]
     pub fn add(&self, x: &mut [f64], s: f64) {
         self.add_offset(x, 0, s);
     }
 
-    /// x[off + iₖ] += s·wₖ.
+    /// `x[off + iₖ]` += s·wₖ.
     #[inline(always)]
     pub fn add_offset(&self, x: &mut [f64], off: usize, s: f64) {
         if self.unit {

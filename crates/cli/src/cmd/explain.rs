@@ -16,6 +16,15 @@ pub struct ExplainArgs {
 
 /// Runs `slipload explain`.
 pub fn run(args: ExplainArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.scene.scene
+        && slipload_sim::floorplan::is_in_plan(path)
+    {
+        let s = &args.scene;
+        let mut scene = slipload_sim::floorplan::FloorPlanScene::load(path)?;
+        scene.override_with(s.method.map(Into::into), s.dt, s.duration, false)?;
+        out!("{}", slipload_sim::floorplan::explain(&scene)?);
+        return Ok(());
+    }
     let scene = args.scene.load_to_explain()?;
     let plan = Plan::compile(&scene)?;
     slipload_sim::simulate::check(&plan)

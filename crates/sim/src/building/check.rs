@@ -788,6 +788,61 @@ pub fn slip_load_plausibility(building: &Building) -> Vec<Plausibility> {
     out
 }
 
+/// A line's yield law and damper per storey ([`line_parts`]).
+pub(crate) type LineParts = (Vec<Option<StoreyYield>>, Vec<Option<Dissipator>>);
+
+/// The yield laws and dissipators of one line of a building in plan, validated as a
+/// chain's (`storey_yield` against the line's own storey springs, `dissipators` one per
+/// floor), with the fields named under `prefix` (`lines[2].`).
+pub(crate) fn line_parts(
+    prefix: &str,
+    storey_stiffness: &[crate::units::Stiffness],
+    yields: &[super::config::StoreyYieldConfig],
+    dampers: &[super::config::DissipatorConfig],
+    path: &Path,
+) -> Result<LineParts, SimError> {
+    let n = storey_stiffness.len();
+    let cfg = BuildingConfig {
+        name: None,
+        description: None,
+        floor_masses: None,
+        mass_matrix: None,
+        storey_stiffness: Some(storey_stiffness.to_vec()),
+        stiffness_matrix: None,
+        damping: None,
+        storey_heights: None,
+        dissipators: dampers.to_vec(),
+        storey_yield: yields.to_vec(),
+        p_delta: None,
+        collapse_drift_ratio: None,
+        collapse_drift: None,
+    };
+    let under = |e: SimError| match e {
+        SimError::Invalid {
+            path,
+            field,
+            message,
+        } => SimError::Invalid {
+            path,
+            field: format!("{prefix}{field}"),
+            message,
+        },
+        other => other,
+    };
+    let mut k = DMatrix::zeros(n, n);
+    for (i, s) in storey_stiffness.iter().enumerate() {
+        k[(i, i)] += s.0;
+        if i > 0 {
+            k[(i - 1, i - 1)] += s.0;
+            k[(i, i - 1)] -= s.0;
+            k[(i - 1, i)] -= s.0;
+        }
+    }
+    let y = storey_yield(&cfg, path, n, &k).map_err(under)?;
+    let d = dissipators(&cfg, path, n).map_err(under)?;
+    Ok((y, d))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -882,56 +937,4 @@ mod tests {
         assert!(!braced_periods_in_band(&m, &k, &ds));
         assert!(!each_frame_in_band(&m, &k, &ds));
     }
-}
-
-/// The yield laws and dissipators of one line of a building in plan, validated as a
-/// chain's (`storey_yield` against the line's own storey springs, `dissipators` one per
-/// floor), with the fields named under `prefix` (`lines[2].`).
-pub(crate) fn line_parts(
-    prefix: &str,
-    storey_stiffness: &[crate::units::Stiffness],
-    yields: &[super::config::StoreyYieldConfig],
-    dampers: &[super::config::DissipatorConfig],
-    path: &Path,
-) -> Result<(Vec<Option<StoreyYield>>, Vec<Option<Dissipator>>), SimError> {
-    let n = storey_stiffness.len();
-    let cfg = BuildingConfig {
-        name: None,
-        description: None,
-        floor_masses: None,
-        mass_matrix: None,
-        storey_stiffness: Some(storey_stiffness.to_vec()),
-        stiffness_matrix: None,
-        damping: None,
-        storey_heights: None,
-        dissipators: dampers.to_vec(),
-        storey_yield: yields.to_vec(),
-        p_delta: None,
-        collapse_drift_ratio: None,
-        collapse_drift: None,
-    };
-    let under = |e: SimError| match e {
-        SimError::Invalid {
-            path,
-            field,
-            message,
-        } => SimError::Invalid {
-            path,
-            field: format!("{prefix}{field}"),
-            message,
-        },
-        other => other,
-    };
-    let mut k = DMatrix::zeros(n, n);
-    for (i, s) in storey_stiffness.iter().enumerate() {
-        k[(i, i)] += s.0;
-        if i > 0 {
-            k[(i - 1, i - 1)] += s.0;
-            k[(i, i - 1)] -= s.0;
-            k[(i - 1, i)] -= s.0;
-        }
-    }
-    let y = storey_yield(&cfg, path, n, &k).map_err(under)?;
-    let d = dissipators(&cfg, path, n).map_err(under)?;
-    Ok((y, d))
 }

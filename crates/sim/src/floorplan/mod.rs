@@ -17,14 +17,60 @@ mod build;
 mod compile;
 mod config;
 mod model;
+mod opensees;
 mod scene;
 
 pub use compile::compile;
 pub use config::{DirectionConfig, FloorConfig, FloorPlanConfig, LineConfig};
 pub use model::{Floor, FloorPlan, Line, cos_sin};
+pub use opensees::opensees_script;
 pub use scene::{
     FloorPlanRef, FloorPlanScene, FloorPlanSceneConfig, GroundComponent, GroundConfig,
 };
+
+/// What `slipload explain` prints of a scene in plan: the bare frame's periods with each
+/// mode's share of mass along x and y and of rotational inertia, then the plan it compiles
+/// into, after the checks a run makes before its first step.
+pub fn explain(scene: &FloorPlanScene) -> Result<String, crate::error::SimError> {
+    use std::fmt::Write as _;
+    let plan = compile(scene)?;
+    crate::simulate::check(&plan)?;
+    let b = &scene.building;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "bare frame in plan: {} floors x 3 DOFs, {} lines; modes (period; effective mass along x and along y, and effective rotational inertia about the centres of mass, as fractions of the totals)",
+        b.storeys(),
+        b.lines.len()
+    );
+    let n = b.mass.nrows();
+    let unit = |k: usize| nalgebra::DVector::from_fn(n, |i, _| if i % 3 == k { 1.0 } else { 0.0 });
+    let (ex, ey) = (unit(0), unit(1));
+    // a unit rotation of every floor about its own centre of mass (x_c, y_c) moves the
+    // floor's origin by (y_c, −x_c)
+    let et = nalgebra::DVector::from_fn(n, |i, _| {
+        let c = b.floors[i / 3].centre;
+        [c[1], -c[0], 1.0][i % 3]
+    });
+    let total = |e: &nalgebra::DVector<f64>| e.dot(&(&b.mass * e));
+    for (k, t) in b.modes.periods().iter().enumerate() {
+        let phi = b.modes.shapes.column(k);
+        let share = |e: &nalgebra::DVector<f64>| {
+            let g = phi.dot(&(&b.mass * e));
+            g * g / total(e)
+        };
+        let _ = writeln!(
+            s,
+            "  mode {:>3}: T = {t:.4} s   x {:.3}   y {:.3}   rotation {:.3}",
+            k + 1,
+            share(&ex),
+            share(&ey),
+            share(&et)
+        );
+    }
+    s.push_str(&plan.explain());
+    Ok(s)
+}
 
 /// Compiles and runs a scene in plan; `cpu_seconds` is the run's wall-clock time.
 pub fn simulate(

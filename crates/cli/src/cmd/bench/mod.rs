@@ -24,8 +24,8 @@ mod checked;
 mod exact;
 mod figure;
 mod measure;
-mod scenes;
 mod plans;
+mod scenes;
 mod tall;
 
 use anyhow::bail;
