@@ -138,9 +138,23 @@ fn history_writes_the_plans_columns() {
     assert!(o.status.success(), "{}", common::stderr(&o));
     let csv = std::fs::read_to_string(&h).unwrap();
     let header = csv.lines().next().unwrap();
-    // 30 points, 80 drifts, 40 dampers' F and w (massless: no xd column beyond the contacts)
-    assert!(header.starts_with("t_s,ag_m_s2,x1_m"), "{header}");
-    assert!(header.contains("drift80_m"), "{header}");
+    // named by what they measure: 30 points, 80 drifts, 40 dampers' xd, F and w
+    assert!(
+        header.starts_with("t_s,ag_m_s2,x_1_x_m,x_1_y_m,x_1_rot_rad"),
+        "{header}"
+    );
+    for name in [
+        "drift_D/10_m",
+        "drift_edge_x=Lx_(y)/10_m",
+        "F_A/1_N",
+        "w_2/10_m_s",
+        "xd_D/3_m",
+    ] {
+        assert!(header.split(',').any(|c| c == name), "{name}: {header}");
+    }
+    let columns: Vec<&str> = header.split(',').collect();
+    let unique: std::collections::BTreeSet<&&str> = columns.iter().collect();
+    assert_eq!(unique.len(), columns.len(), "every column has its own name");
     assert!(csv.lines().count() > 100);
 }
 

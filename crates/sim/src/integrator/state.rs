@@ -288,15 +288,35 @@ pub(crate) fn initial_state(plan: &Plan) -> Result<Start, SimError> {
 /// Column names of the histories (the same for every method).
 pub(crate) fn history_columns(plan: &Plan, energies: bool) -> History {
     let mut cols = vec!["t_s".to_string(), "ag_m_s2".to_string()];
-    cols.extend((1..=plan.points.len()).map(|i| format!("x{i}_m")));
+    // A building in plan names its columns by what they measure (`x_3_rot_rad`,
+    // `drift_D/3_m`, `F_D/3_N`): several lines share a storey.
+    let labels = plan.labels.as_deref();
+    match labels {
+        None => cols.extend((1..=plan.points.len()).map(|i| format!("x{i}_m"))),
+        Some(l) => cols.extend(l.points.iter().map(|p| {
+            let unit = if p.ends_with("rot") { "rad" } else { "m" };
+            format!("x_{}_{unit}", p.replace(' ', "_"))
+        })),
+    }
     // A yielding storey's plastic element: its position, force and slip rate (the
     // plastic drift rate), named xp, Fp, wp beside the dissipators' xd, F, w.
-    let tag = |c: &crate::plan::Contact, damper: &str, storey: &str| match c.role {
-        ContactRole::Damper => format!("{damper}{}", c.floor + 1),
-        ContactRole::Storey => format!("{storey}{}", c.floor + 1),
+    let tag = |c: &crate::plan::Contact, damper: &str, storey: &str| match (c.role, labels) {
+        (ContactRole::Damper, None) => format!("{damper}{}", c.floor + 1),
+        (ContactRole::Storey, None) => format!("{storey}{}", c.floor + 1),
+        (ContactRole::Damper, Some(l)) => format!("{damper}_{}", l.dampers[c.slot]),
+        (ContactRole::Storey, Some(l)) => {
+            format!("{storey}_{}", l.plastic[c.slot - plan.damper_slots])
+        }
     };
     cols.extend(plan.contacts.iter().map(|c| tag(c, "xd", "xp") + "_m"));
-    cols.extend((1..=plan.drifts.len()).map(|i| format!("drift{i}_m")));
+    match labels {
+        None => cols.extend((1..=plan.drifts.len()).map(|i| format!("drift{i}_m"))),
+        Some(l) => cols.extend(
+            l.drifts
+                .iter()
+                .map(|d| format!("drift_{}_m", d.replace(' ', "_"))),
+        ),
+    }
     cols.extend(plan.contacts.iter().map(|c| tag(c, "F", "Fp") + "_N"));
     cols.extend(plan.contacts.iter().map(|c| tag(c, "w", "wp") + "_m_s"));
     if energies {
