@@ -733,3 +733,53 @@ fn exact_under_both_components_agrees_with_the_reference_and_balances_its_energy
     );
     assert!(nm.energy.unwrap().balance_error.abs() < 1e-3);
 }
+
+#[test]
+fn per_damper_demands_of_a_plan_are_by_damper_and_add_up_to_the_friction_work() {
+    let b = floor_plan(ASYMMETRIC);
+    let record = motion(3.5);
+    for method in [MethodName::Exact, MethodName::Newmark] {
+        let mut scene = FloorPlanScene::new(
+            Arc::new(b.clone()),
+            vec![GroundComponent {
+                record: record.clone(),
+                angle: 90f64.to_radians(),
+            }],
+            record.duration(),
+            method,
+            OutputsConfig {
+                dampers: true,
+                ..outputs(true)
+            },
+        );
+        scene.method.dt = 0.002;
+        let r = slipload_sim::floorplan::simulate(&scene).unwrap().response;
+        let d = r.dampers.as_ref().unwrap();
+        let ip = r.in_plan.as_ref().unwrap();
+        assert_eq!(d.len(), ip.dampers.len());
+        assert_eq!(ip.dampers, ["D/1", "D/2", "D/3"]);
+        let mut energy = 0.0;
+        for (k, x) in d.iter().enumerate() {
+            // the largest slip either way is the peak slip (both from the start of the run)
+            assert!(
+                rel(x.slip_max_pos_m.max(x.slip_max_neg_m), r.peak_slip[k]) < 1e-12,
+                "{method:?} {k}"
+            );
+            // its force never passes the slip load
+            let bound = [350e3, 250e3, 150e3][k];
+            assert!(
+                x.peak_force_n <= bound * (1.0 + 1e-12),
+                "{method:?} {k}: {}",
+                x.peak_force_n
+            );
+            energy += x.energy_j;
+        }
+        // the dampers' energies are the run's friction work (sampled at the output steps:
+        // the step's accuracy for newmark, 1e-3 for both here)
+        let friction = r.energy.unwrap().friction;
+        assert!(
+            rel(energy, friction) < 1e-3,
+            "{method:?}: {energy} vs {friction}"
+        );
+    }
+}
