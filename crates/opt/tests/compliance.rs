@@ -93,9 +93,10 @@ fn the_matrix_states_each_requirement_from_the_check() {
     // unacceptable responses at its worst (2 at the lower bound, 1 allowed) fails
     let drift = find("§16.4.1.2");
     assert!(drift.requirement.contains("lower"), "{drift:?}");
+    // a drift in percent of the storey height, as every drift a person reads
     assert_eq!(
-        (drift.value.as_str(), drift.status),
-        ("0.01500", Status::Pass)
+        (drift.value.as_str(), drift.limit.as_str(), drift.status),
+        ("1.500 %", "≤ 2.000 %", Status::Pass)
     );
     let bad = find("§16.4.1.1");
     assert_eq!((bad.value.as_str(), bad.limit.as_str()), ("2", "≤ 1"));
@@ -143,4 +144,59 @@ fn the_matrix_states_each_requirement_from_the_check() {
     let p = rows.iter().find(|r| r.clause == "§18.6.2").unwrap();
     assert_eq!(p.status, Status::Stated);
     assert_eq!(p.value, "5 cycles, ±15 % band (device-table.md)");
+}
+
+/// The verdict (the summary's last line, `optimum.json` and `code-check.md`) states a
+/// drift's demand and limit in percent of the storey height, as every drift a person
+/// reads; a base shear stays in N and a count whole.
+#[test]
+fn the_verdict_states_a_drift_in_percent() {
+    let drift = |demand| {
+        line(
+            CaseName::Lower,
+            "mean residual_drift_ratio",
+            0.005,
+            demand,
+            "suites[1].limits.criteria[1]",
+        )
+    };
+    let passing = DesignCheck {
+        lines: vec![drift(0.004975)],
+    };
+    let v = passing.verdict();
+    assert!(v.starts_with("PASS"), "{v}");
+    assert!(
+        v.contains("demand 0.4975 % against limit 0.5000 %, ratio 0.995"),
+        "{v}"
+    );
+    // 100 × the ratio, not the ratio: no drift is stated as a bare ratio
+    assert!(!v.contains("0.004975"), "{v}");
+    let shear = line(
+        CaseName::Nominal,
+        "max base_shear",
+        4.0e6,
+        4.4e6,
+        "suites[0].limits.criteria[0]",
+    );
+    let failing = DesignCheck {
+        lines: vec![drift(0.004), shear.clone()],
+    };
+    let v = failing.verdict();
+    assert!(v.starts_with("FAIL"), "{v}");
+    assert!(v.contains("demand 4.400e6 against limit 4.000e6"), "{v}");
+    let count = line(
+        CaseName::Upper,
+        "unacceptable responses",
+        1.0,
+        2.0,
+        "suites[0].limits.unacceptable",
+    );
+    assert_eq!(
+        (
+            count.value_text(count.demand),
+            count.value_text(count.limit)
+        ),
+        ("2".to_string(), "1".to_string())
+    );
+    assert!(!shear.is_drift() && !count.is_drift() && drift(0.0).is_drift());
 }

@@ -2,7 +2,7 @@
 //! then the verdict; and the outcome a script can tell from a crash (exit code 3: the
 //! study ran and wrote its files, but no evaluated design meets its limits).
 
-use slipload_opt::model::check::{CheckLine, governing, short};
+use slipload_opt::model::check::{CheckLine, governing};
 use slipload_opt::phases::check::CodeCheck;
 use slipload_opt::phases::devices::DeviceTable;
 
@@ -22,13 +22,15 @@ impl std::fmt::Display for NoAcceptableDesign {
 
 impl std::error::Error for NoAcceptableDesign {}
 
+/// A criterion's line: its demand against its limit (a drift in percent of the storey
+/// height), the ratio and the study key.
 fn line_text(l: &CheckLine) -> String {
     format!(
         "{} of {}: {} against {} (ratio {:.3}, {})",
         l.criterion,
         l.suite,
-        short(l.demand),
-        short(l.limit),
+        l.value_text(l.demand),
+        l.value_text(l.limit),
         l.ratio,
         l.source
     )

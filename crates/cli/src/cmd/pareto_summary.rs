@@ -12,7 +12,13 @@ use slipload_opt::phases::table::TableRow;
 use slipload_opt::pipeline::StudyReport;
 use slipload_opt::{RecordMetrics, Study};
 
-/// One objective's value as the summary prints it, with its unit.
+/// A drift ratio as the summary prints it: in percent of the storey height, to the
+/// thousandth of a percent (what five decimals of the ratio were).
+fn drift(v: f64) -> String {
+    format!("{:.3} %", 100.0 * v)
+}
+
+/// One objective's value as the summary prints it, with its unit (a drift in percent).
 fn value(o: &ParetoObjective, v: f64) -> String {
     if !v.is_finite() {
         return "collapsed".into();
@@ -21,7 +27,7 @@ fn value(o: &ParetoObjective, v: f64) -> String {
         ParetoMetric::PeakFloorAcceleration => format!("{v:.2} m/s²"),
         ParetoMetric::BaseShear => format!("{:.2} MN", v / 1e6),
         ParetoMetric::DamperSize => format!("{:.1} kN", v / 1e3),
-        ParetoMetric::PeakDriftRatio | ParetoMetric::ResidualDriftRatio => format!("{v:.5}"),
+        ParetoMetric::PeakDriftRatio | ParetoMetric::ResidualDriftRatio => drift(v),
         _ => format!("{v:.4}"),
     }
 }
@@ -49,10 +55,10 @@ fn values(objectives: &[ParetoObjective], v: &[f64]) -> String {
 /// acceleration (means over the records of each run's peak, reference accuracy).
 fn costs(row: &TableRow, file: &TableRow) -> String {
     format!(
-        "mean peak drift ratio {:.5} ({} against the file's {:.5}), base shear {:.2} MN ({} against {:.2}), floor acceleration {:.2} m/s² ({} against {:.2})",
-        row.peak_drift_ratio_mean,
+        "mean peak drift ratio {} ({} against the file's {}), base shear {:.2} MN ({} against {:.2}), floor acceleration {:.2} m/s² ({} against {:.2})",
+        drift(row.peak_drift_ratio_mean),
         change(row.peak_drift_ratio_mean, file.peak_drift_ratio_mean),
-        file.peak_drift_ratio_mean,
+        drift(file.peak_drift_ratio_mean),
         row.base_shear_mean / 1e6,
         change(row.base_shear_mean, file.base_shear_mean),
         file.base_shear_mean / 1e6,
@@ -290,10 +296,10 @@ pub fn sweep_trade_off(study: &Study, report: &StudyReport) -> Option<String> {
     let k = front[knee(&fv)?];
     let say = |i: usize| {
         format!(
-            "{} ({}: drift {:.5}, floor acceleration {:.2} m/s²)",
+            "{} ({}: drift {}, floor acceleration {:.2} m/s²)",
             labels[i],
             loads_text(study, loads[i]),
-            points[i][0],
+            drift(points[i][0]),
             points[i][1]
         )
     };

@@ -350,6 +350,33 @@ pub struct CheckLine {
     pub source: String,
 }
 
+impl CheckLine {
+    /// Whether the line counts unacceptable responses (its limit and demand are counts).
+    pub fn is_count(&self) -> bool {
+        self.source.ends_with("unacceptable")
+    }
+
+    /// Whether the line limits a drift ratio (peak or residual): its limit and demand are
+    /// shown in percent of the storey height wherever a person reads them.
+    pub fn is_drift(&self) -> bool {
+        !self.is_count() && self.criterion.ends_with("drift_ratio")
+    }
+
+    /// A limit or demand of this line as a person reads it: a count as a whole number, a
+    /// drift ratio in percent of the storey height (`0.4975 %`), any other response in
+    /// the unit of its metric; 4 significant figures ([`short`]). The machine files keep
+    /// the number itself.
+    pub fn value_text(&self, v: f64) -> String {
+        if self.is_count() {
+            format!("{v:.0}")
+        } else if self.is_drift() {
+            format!("{} %", short(100.0 * v))
+        } else {
+            short(v)
+        }
+    }
+}
+
 /// A design's check against every limit at every property case.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct DesignCheck {
@@ -401,7 +428,8 @@ impl DesignCheck {
             .collect()
     }
 
-    /// A one-line verdict: `PASS (governing: …, ratio 0.93)` or `FAIL (…)`.
+    /// A one-line verdict: `PASS (governing: …, ratio 0.93)` or `FAIL (…)`; a drift's
+    /// demand and limit in percent of the storey height ([`CheckLine::value_text`]).
     pub fn verdict(&self) -> String {
         let head = if self.passes() { "PASS" } else { "FAIL" };
         match self.governing() {
@@ -410,8 +438,8 @@ impl DesignCheck {
                 g.criterion,
                 g.suite,
                 g.case.as_str(),
-                short(g.demand),
-                short(g.limit),
+                g.value_text(g.demand),
+                g.value_text(g.limit),
                 g.ratio,
                 g.source
             ),

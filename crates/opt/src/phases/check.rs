@@ -392,22 +392,13 @@ impl CodeCheck {
             for l in lines {
                 // a count is a whole number; a drift ratio in percent, as every drift a
                 // person reads
-                let num = |v: f64| {
-                    if l.source.ends_with("unacceptable") {
-                        format!("{v:.0}")
-                    } else if l.criterion.ends_with("drift_ratio") {
-                        format!("{} %", short(100.0 * v))
-                    } else {
-                        short(v)
-                    }
-                };
                 let _ = writeln!(
                     s,
                     "| {} | {} | {} | {} | {:.3} | {} | `{}` |",
                     l.case.as_str(),
                     l.criterion,
-                    num(l.limit),
-                    num(l.demand),
+                    l.value_text(l.limit),
+                    l.value_text(l.demand),
                     l.ratio,
                     if l.pass { "pass" } else { "**FAIL**" },
                     l.source

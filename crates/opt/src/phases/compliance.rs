@@ -6,7 +6,7 @@
 //! scaled by the EN 1998-1 rule, which name EN 1998-1 §3.2.3.1.2; a criterion the study
 //! sets itself is named as the study's.
 
-use crate::model::check::{CheckLine, DesignCheck, md_text, short};
+use crate::model::check::{CheckLine, DesignCheck, md_text};
 use crate::model::code_scaling::{MIN_CODE_PAIRS, MIN_CODE_RECORDS};
 use crate::model::code_spectrum::{MIN_EN1998_ACCELEROGRAMS, ScalingRule};
 use crate::model::config::{ScaleConfig, TestProtocolConfig};
@@ -268,8 +268,8 @@ pub fn matrix(study: &Study, check: &DesignCheck, slip_loads_n: &[f64]) -> Vec<C
                     l.criterion,
                     l.case.as_str()
                 ),
-                short(l.demand),
-                format!("≤ {}", short(l.limit)),
+                l.value_text(l.demand),
+                format!("≤ {}", l.value_text(l.limit)),
                 if l.pass { Status::Pass } else { Status::Fail },
             ));
         }

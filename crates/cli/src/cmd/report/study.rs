@@ -25,6 +25,25 @@ pub(super) fn pareto_section(p: &serde_json::Value) -> String {
         .as_array()
         .map(|a| a.iter().map(text).collect())
         .unwrap_or_default();
+    // each objective's value: a drift ratio in percent of the storey height, as every
+    // drift a person reads; the others as pareto.json holds them
+    let objectives = |v: &serde_json::Value| {
+        v.as_array()
+            .map(|a| {
+                a.iter()
+                    .enumerate()
+                    .map(|(k, x)| match x.as_f64() {
+                        None => "—".to_string(),
+                        Some(f) if names.get(k).is_some_and(|n| n.ends_with("drift_ratio")) => {
+                            format!("{:.3} %", 100.0 * f)
+                        }
+                        Some(f) => format!("{f:.5}"),
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            })
+            .unwrap_or_default()
+    };
     let front = p["front"].as_array().cloned().unwrap_or_default();
     let entry = |label: &str| {
         front
@@ -35,8 +54,8 @@ pub(super) fn pareto_section(p: &serde_json::Value) -> String {
                     "{} — slip loads {} kN; objectives (sweep) {}; (check) {}",
                     label,
                     list(&e["slip_loads_kN"], 1),
-                    list(&e["sweep"], 5),
-                    list(&e["check"], 5)
+                    objectives(&e["sweep"]),
+                    objectives(&e["check"])
                 )
             })
             .unwrap_or_else(|| label.to_string())
