@@ -156,59 +156,79 @@ fn refine_outcome(r: &slipload_opt::phases::refinement::OptimizeReport) -> Strin
         }
     );
     if let Some(s) = &r.stationarity {
-        let pct = |v: f64| 100.0 * v;
-        let _ = std::fmt::Write::write_fmt(
-            &mut text,
-            format_args!(
-                "; {}post-check of {} single-floor and profile moves of ±{:.1} % of the range{}{}: {}",
-                if s.polls == 0 {
-                    "first-order (from the derivatives, no simulation) "
-                } else {
-                    ""
-                },
-                if s.screened > 0 && s.polls > 0 {
-                    s.screened
-                } else {
-                    s.moves
-                },
-                pct(s.step),
-                if s.screened > 0 && s.polls > 0 {
-                    format!(
-                        " (screened by the derivatives; the {} they flag simulated)",
-                        s.moves
-                    )
-                } else {
-                    String::new()
-                },
-                if s.polls > 1 {
-                    format!(" (poll {}: each earlier one's best move taken)", s.polls)
-                } else {
-                    String::new()
-                },
-                if s.stationary {
-                    format!(
-                        "stationary (the best, {}, changes the objective by {:+.3} %; threshold {:.1} %)",
-                        s.best_move,
-                        -pct(s.best_gain),
-                        pct(slipload_opt::phases::refine::STATIONARY_GAIN)
-                    )
-                } else if s.polls == 0 {
-                    format!(
-                        "not stationary: {} lowers the objective by {:.3} % to first order",
-                        s.best_move,
-                        pct(s.best_gain)
-                    )
-                } else {
-                    format!(
-                        "not stationary: {} lowers the objective by {:.3} % and is taken",
-                        s.best_move,
-                        pct(s.best_gain)
-                    )
-                }
-            ),
-        );
+        text.push_str("; ");
+        text.push_str(&post_check_text(s, r.target == RefineTarget::Violation));
     }
     text
+}
+
+/// The post-check in words: its moves, and whether the optimum is stationary — the best
+/// move and what it gains. While no design passes (`violation`) the objective is the sum
+/// of the limits' exceedances, and a move that takes it to zero is said to make the
+/// design pass, not to lower it by 100 %.
+fn post_check_text(s: &slipload_opt::phases::refine::Stationarity, violation: bool) -> String {
+    let pct = |v: f64| 100.0 * v;
+    let first_order = s.polls == 0;
+    // the move's objective is (1 − gain) × the optimum's: zero (or, linearised, below)
+    let to_zero = s.best_gain >= 1.0;
+    let verdict = if s.stationary {
+        format!(
+            "stationary (the best, {}, changes the objective by {:+.3} %; threshold {:.1} %)",
+            s.best_move,
+            -pct(s.best_gain),
+            pct(slipload_opt::phases::refine::STATIONARY_GAIN)
+        )
+    } else if to_zero {
+        let what = if violation {
+            "brings the sum of exceedances to zero: the design passes"
+        } else {
+            "brings the objective to zero"
+        };
+        if first_order {
+            format!("not stationary: to first order {} {what}", s.best_move)
+        } else {
+            format!(
+                "not stationary: {} {what} (at the sweep's fidelity), and is taken",
+                s.best_move
+            )
+        }
+    } else if first_order {
+        format!(
+            "not stationary: {} lowers the objective by {:.3} % to first order",
+            s.best_move,
+            pct(s.best_gain)
+        )
+    } else {
+        format!(
+            "not stationary: {} lowers the objective by {:.3} % and is taken",
+            s.best_move,
+            pct(s.best_gain)
+        )
+    };
+    let screened = s.screened > 0 && !first_order;
+    format!(
+        "{}post-check of {} single-floor and profile moves of ±{:.1} % of the range{}{}: {verdict}",
+        if first_order {
+            "first-order (from the derivatives, no simulation) "
+        } else {
+            ""
+        },
+        if screened { s.screened } else { s.moves },
+        pct(s.step),
+        if screened {
+            format!(
+                " (screened by the derivatives; the {} they flag simulated)",
+                s.moves
+            )
+        } else {
+            String::new()
+        },
+        if s.polls > 1 {
+            format!(" (poll {}: each earlier one's best move taken)", s.polls)
+        } else {
+            String::new()
+        },
+    )
 }
 
 /// The summary: what ran and what was reused, the optimum against the bare frame and the
@@ -443,5 +463,55 @@ fn print_summary(study: &Study, report: &StudyReport, seconds: f64) {
                 outln!("{line}");
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::post_check_text;
+    use slipload_opt::phases::refine::Stationarity;
+
+    fn poll(best_gain: f64, polls: usize) -> Stationarity {
+        Stationarity {
+            step: 0.01,
+            moves: 22,
+            best_gain,
+            best_move: "floor7 -".into(),
+            stationary: best_gain <= slipload_opt::phases::refine::STATIONARY_GAIN,
+            polls,
+            screened: 0,
+        }
+    }
+
+    /// A move that takes the sum of exceedances (the objective while no design passes)
+    /// to zero is said to make the design pass, never to lower the objective by 100 %.
+    #[test]
+    fn a_move_to_zero_exceedance_is_said_to_pass() {
+        for polls in [0, 1] {
+            let text = post_check_text(&poll(1.0, polls), true);
+            assert!(
+                text.contains("floor7 - brings the sum of exceedances to zero: the design passes"),
+                "{text}"
+            );
+            assert!(!text.contains("100.000 %"), "{text}");
+        }
+        let text = post_check_text(&poll(1.0, 1), false);
+        assert!(
+            text.contains(
+                "floor7 - brings the objective to zero (at the sweep's fidelity), and is taken"
+            ),
+            "{text}"
+        );
+        // a gain short of the whole objective is stated as the gain it is
+        let text = post_check_text(&poll(0.01336, 1), true);
+        assert!(
+            text.ends_with("not stationary: floor7 - lowers the objective by 1.336 % and is taken"),
+            "{text}"
+        );
+        let text = post_check_text(&poll(-0.0002, 1), false);
+        assert!(
+            text.contains(": stationary (the best, floor7 -, changes the objective by +0.020 %"),
+            "{text}"
+        );
     }
 }
