@@ -228,8 +228,18 @@ pub fn write(data: &FigureData, dir: &Path) -> Result<Vec<String>, FigureError> 
         }
     }
     if !data.spectra.is_empty() {
+        // the clause of the rule each suite was scaled by, each once
+        let mut clauses: Vec<&str> = Vec::new();
+        for (_, c) in &data.spectra {
+            if !clauses.contains(&c.clause()) {
+                clauses.push(c.clause());
+            }
+        }
         let mut panel = Panel::new("period (s)", "pseudo-spectral acceleration, 5 % (g)")
-            .title("solid: the scaled suite's mean; dashed: the target; dotted: 90 % of it (ASCE 7-16 §16.2.3)")
+            .title(format!(
+                "solid: the scaled suite's mean; dashed: the target; dotted: 90 % of it ({})",
+                clauses.join("; ")
+            ))
             .x_log()
             .y_from_zero()
             .legend(Legend::UpperRight);

@@ -287,6 +287,8 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
     let svg = String::from_utf8(read(&dir.join("code-spectra.svg"))).unwrap();
     let p = &FigureMeta::from_svg(&svg).unwrap().panels[0];
     assert!(p.title.contains("dotted: 90 % of it"), "{}", p.title);
+    // the clause of the rule the suite was scaled by
+    assert!(p.title.ends_with("(ASCE 7-16 §16.2.3)"), "{}", p.title);
     let ninety = p
         .series
         .iter()
@@ -300,6 +302,38 @@ fn a_code_scaled_suite_draws_its_mean_against_the_target() {
         "named in the legend"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+
+    // a suite scaled by the EN 1998-1 rule cites its clause, not ASCE 7's; a study with
+    // suites of both rules cites both
+    use slipload_opt::model::code_spectrum::ScalingRule;
+    let en = CodeScaling {
+        rule: Some(ScalingRule::En1998),
+        ..data.spectra[0].1.clone()
+    };
+    let title = |spectra: Vec<(String, CodeScaling)>| {
+        let dir = scratch("spectra-rule");
+        let data = FigureData {
+            spectra,
+            ..data.clone()
+        };
+        study::write(&data, &dir).unwrap();
+        let svg = String::from_utf8(read(&dir.join("code-spectra.svg"))).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        FigureMeta::from_svg(&svg).unwrap().panels[0].title.clone()
+    };
+    let t = title(vec![("en".into(), en.clone())]);
+    assert!(
+        t.ends_with("(EN 1998-1 §3.2.3.1.2)") && !t.contains("ASCE"),
+        "{t}"
+    );
+    let t = title(vec![
+        ("asce".into(), data.spectra[0].1.clone()),
+        ("en".into(), en),
+    ]);
+    assert!(
+        t.ends_with("(ASCE 7-16 §16.2.3; EN 1998-1 §3.2.3.1.2)"),
+        "{t}"
+    );
 }
 
 /// The pixel of the data point (`x`, `y`) in a panel whose axes are linear.

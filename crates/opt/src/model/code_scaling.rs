@@ -112,12 +112,18 @@ pub struct ZeroPeriodCheck {
 }
 
 impl CodeScaling {
-    /// The target in words for code-check.md, with the clause the suite was scaled by.
-    pub fn target_text(&self) -> String {
-        let clause = match self.rule {
+    /// The clause of the rule the suite was scaled by (its 90 % condition over the range):
+    /// ASCE 7-16 §16.2.3, or EN 1998-1 §3.2.3.1.2 for the `en1998` rule.
+    pub fn clause(&self) -> &'static str {
+        match self.rule {
             Some(ScalingRule::En1998) => "EN 1998-1 §3.2.3.1.2",
             _ => "ASCE 7-16 §16.2.3",
-        };
+        }
+    }
+
+    /// The target in words for code-check.md, with the clause the suite was scaled by.
+    pub fn target_text(&self) -> String {
+        let clause = self.clause();
         if let (Some(sds), Some(sd1), Some(tl)) = (self.sds_g, self.sd1_g, self.tl_s) {
             return format!("S_DS = {sds} g, S_D1 = {sd1} g, T_L = {tl} s; {clause}");
         }

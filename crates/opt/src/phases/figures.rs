@@ -459,8 +459,8 @@ pub struct FigureData {
     pub suites: Vec<SuiteFigures>,
     /// Method and time step of the profiles and the scatter, for the titles.
     pub fidelity: String,
-    /// The suites scaled to a code spectrum: each scaled mean spectrum against its target
-    /// (ASCE 7-16 §16.2.3).
+    /// The suites scaled to a code spectrum: each scaled mean spectrum against its target,
+    /// by the rule the suite was scaled by ([`crate::model::study::CodeScaling::clause`]).
     pub spectra: Vec<(String, crate::model::study::CodeScaling)>,
 }
 
