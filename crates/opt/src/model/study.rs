@@ -18,8 +18,8 @@ use crate::model::objective::{Metric, Objective};
 use crate::model::space::DesignSpace;
 pub use crate::model::suites::SuiteInfo;
 use slipload_motion::Record;
-use slipload_sim::Building;
 use slipload_sim::scene::{BuildingRef, MethodName};
+use slipload_sim::{Building, BuildingConfig};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -35,6 +35,10 @@ pub struct Study {
     pub config: StudyConfig,
     /// The building (slip loads of the file kept: the "paper" design).
     pub building: Building,
+    /// The building as its file (or the study, inline) writes it, before validation:
+    /// how its damping, yield laws and limits were given, for the study folder's copy
+    /// ([`crate::phases::building`]).
+    pub building_config: BuildingConfig,
     /// All records of all suites, suite after suite.
     pub records: Vec<Arc<Record>>,
     /// Per record, the orientations whose responses envelope into its run (a pair run
@@ -59,6 +63,17 @@ pub struct Study {
     /// The method of the finalists' check, and why
     /// ([`crate::eval::probe::choose_check_method`]).
     pub check_method: SweepMethod,
+}
+
+/// A building file as written (read and parsed as [`Building::load`] reads it, with its
+/// errors), for [`Building::from_config`].
+fn read_building(path: &Path) -> Result<BuildingConfig, slipload_sim::SimError> {
+    let text = slipload_motion::limits::read_input_text(
+        path,
+        "building",
+        slipload_motion::limits::MAX_CONFIG_BYTES,
+    )?;
+    slipload_sim::kind::parse(&text, path, slipload_sim::kind::Expected::Building)
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String, OptError> {
@@ -409,10 +424,15 @@ impl Study {
     pub(crate) fn described(mut cfg: StudyConfig, path: &Path) -> Result<Study, OptError> {
         cfg.validate(path)?;
         let base = path.parent().unwrap_or(Path::new("."));
-        let mut building = match &cfg.building {
-            BuildingRef::Path(p) => Building::load(&base.join(p))?,
-            BuildingRef::Inline(b) => Building::from_config(b, path)?,
+        // what `Building::load` does, keeping the file as written
+        let (building_config, file) = match &cfg.building {
+            BuildingRef::Path(p) => {
+                let file = base.join(p);
+                (read_building(&file)?, file)
+            }
+            BuildingRef::Inline(b) => ((**b).clone(), path.to_path_buf()),
         };
+        let mut building = Building::from_config(&building_config, &file)?;
         let Some(heights) = building.storey_heights.clone() else {
             return Err(OptError::invalid(
                 path,
@@ -514,6 +534,7 @@ impl Study {
             path: path.to_path_buf(),
             config: cfg,
             building,
+            building_config,
             records,
             orientations,
             suites,

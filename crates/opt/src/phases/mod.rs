@@ -3,9 +3,11 @@
 //! objective and limits ([`gradient`]) and the refinement with its
 //! checked finalists ([`refinement`]), the design table ([`table`]), the front search
 //! ([`pareto`]), the ranking ([`rank`]), the design family ([`family`]) and the data of
-//! the study figures ([`figures`]). A phase takes the paths of its journals from the
-//! study folder and never opens the folder itself.
+//! the study figures ([`figures`]); beside them, the building as the study ran it
+//! ([`building`]: the folder's `building.json` and `building.md`). A phase takes the
+//! paths of its journals from the study folder and never opens the folder itself.
 
+pub mod building;
 pub mod check;
 pub mod compliance;
 pub mod devices;

@@ -25,7 +25,9 @@
 //! | [`Phase::ParetoCheck`] | the front's designs (search, file, refinement) at the check fidelity | `check.jsonl` |
 //! | [`Phase::ParetoTable`] | the design table of the front's optima and knee | `check.jsonl` |
 //!
-//! then the candidates (the design table's designs), the figure data
+//! before them the building the study runs (`building.json`, `building.md`:
+//! [`crate::phases::building`]), after them the candidates (the design table's designs),
+//! the figure data
 //! ([`crate::phases::figures`]) and the files ([`StudyReport::write_files`]): `refine.csv`, `optimum.json`,
 //! `design-table.{csv,md,json}`, `candidates.json`, beside the sweep's `manifest.json`,
 //! `designs.csv`, `responses.csv` (and, with `objectives`, `pareto.{csv,json}` and

@@ -53,7 +53,8 @@ pub struct OptimizeRun {
 
 /// `slipload optimize`: optimises `study` into the folder of `request`. Checks the
 /// figures can be drawn and the options, opens the folder (its lock; `fresh`), refuses it
-/// if a journal of another study is there, then runs the phases of
+/// if a journal of another study is there, writes the building the study runs
+/// (`building.json`, `building.md`: [`crate::phases::building`]), then runs the phases of
 /// [`crate::eval::progress::Phase`] — sweep, the front's search (a study with
 /// `objectives`: before the refinement, whose starts and finalist candidates its designs
 /// join), refine, check, design table, objective map (when asked), the front's check and
@@ -89,7 +90,8 @@ pub fn optimize_study(
     if let Some(p) = &report.pareto {
         drawn.extend(figures.front(p, folder.dir())?);
     }
-    let mut files: Vec<&'static str> = StudyReport::FILES.to_vec();
+    let mut files: Vec<&'static str> = crate::phases::building::BuildingPage::FILES.to_vec();
+    files.extend(StudyReport::FILES);
     if report.pareto.is_some() {
         files.extend(crate::phases::pareto::ParetoReport::FILES);
     }
@@ -122,6 +124,8 @@ fn run_phases(
     folder
         .check_journals(&manifest.fingerprint)
         .map_err(|e| e.context(format!("optimizing {} into {}", study.name, out.display())))?;
+    // the building the study runs, first: a folder of a run cut short states it too
+    crate::phases::building::BuildingPage::of(study)?.write_files(folder)?;
     // every design runs each record at each property case; the design table and the
     // objective map read the nominal properties
     let nr = study.runs();

@@ -19,7 +19,9 @@
 //! A folder written by an earlier slipload has no list (its lock file is empty, or absent
 //! in a copy such as a clone's `results/`); where it shows that slipload wrote it (a lock
 //! file, a journal or a sweep manifest), the files under slipload's output names
-//! ([`is_output_name`]) are taken as slipload's, as they always were.
+//! ([`is_output_name`]) are taken as slipload's, as they always were — but for the names
+//! no slipload wrote before the list existed (`building.json`, `building.md`), which are
+//! a user's there.
 
 use crate::base::error::OptError;
 use crate::base::output::{check_output_folder, refuse_symlink, write_atomic};
@@ -40,7 +42,8 @@ const LIST_HEADER: &str =
     "# files slipload wrote in this folder (--fresh removes these and no other)";
 
 /// Whether `name` is a file some slipload command writes into an output folder: the
-/// journals, the sweep's and `optimize`'s tables, the design table, the candidates, the
+/// journals, the sweep's and `optimize`'s tables, the building the study ran
+/// (`building.json`, `building.md`), the design table, the candidates, the
 /// code check and the device table, the study figures (`.csv`, `.svg`, `.png`), `rank`'s and `table`'s files, the HTML
 /// report, and the hidden temporary file an interrupted atomic write leaves
 /// (`.NAME.tmp`).
@@ -69,8 +72,10 @@ fn is_figure_stem(stem: &str) -> bool {
 
 /// The files (other than journals and figures) that slipload's study commands and its
 /// report write into an output folder.
-const OUTPUT_FILES: [&str; 26] = [
+const OUTPUT_FILES: [&str; 28] = [
     "manifest.json",
+    "building.json",
+    "building.md",
     "pareto.csv",
     "pareto.json",
     "pareto-table.csv",
@@ -97,6 +102,11 @@ const OUTPUT_FILES: [&str; 26] = [
     "family.md",
     "report.html",
 ];
+
+/// Output names no slipload wrote before folders kept their list: in a folder without a
+/// list they are never taken as slipload's (a `building.json` there is the user's own
+/// building file, and is refused, not overwritten).
+const LISTED_ONLY: [&str; 2] = ["building.json", "building.md"];
 
 /// The study figures' names, each written as `.svg`, `.png` and `.csv`.
 pub const FIGURE_STEMS: [&str; 6] = [
@@ -244,7 +254,7 @@ impl StudyFolder {
                 written.extend(
                     present
                         .iter()
-                        .filter(|n| is_output_name(n))
+                        .filter(|n| is_output_name(n) && !LISTED_ONLY.contains(*n))
                         .map(|n| n.to_string()),
                 );
             }

@@ -1,5 +1,6 @@
 //! The page of `slipload report`: its sections in the order a reader wants them
-//! (summary, trade-off, run, tables, figures, data, inputs, other files), which file goes
+//! (a study's building, summary, trade-off, run, tables, figures, data, inputs, other
+//! files), which file goes
 //! where, the style sheet and the frame (title, contents, version).
 
 use super::folder::{Entry, FolderKind, list, read, read_json, recognise};
@@ -67,6 +68,7 @@ fn table_order(kind: FolderKind) -> &'static [&'static str] {
 /// JSON files that are inputs (what produced the folder), shown first among the inputs.
 fn is_input(e: &Entry) -> bool {
     e.name == "manifest.json"
+        || e.name == "building.json"
         || e.stem.contains("scene")
         || e.stem.contains("study")
         || e.stem.contains("config")
@@ -116,6 +118,21 @@ pub(super) fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, 
     let mut shown: Vec<String> = Vec::new();
     let by_name = |n: &str| files.iter().find(|e| e.name == n);
 
+    // A study's building first: what was designed (building.md, which optimize writes)
+    if matches!(kind, FolderKind::Optimize | FolderKind::Sweep)
+        && let Some(e) = by_name("building.md")
+    {
+        page.section("building", "Building");
+        let _ = writeln!(
+            page.body,
+            "<div class=\"file\"><p class=\"src\">{}</p>\n{}</div>",
+            escape(&e.name),
+            markdown(&read(e)?, 3)
+        );
+        shown.push(e.name.clone());
+        page.end();
+    }
+
     // Summary: summary.txt and the optimum's key numbers
     let summary_txt = by_name("summary.txt");
     let optimum = by_name("optimum.json").and_then(read_json);
@@ -162,7 +179,10 @@ pub(super) fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, 
             md.push(e);
         }
     }
-    for e in files.iter().filter(|e| e.ext == "md") {
+    for e in files
+        .iter()
+        .filter(|e| e.ext == "md" && !shown.contains(&e.name))
+    {
         if !md.iter().any(|m| m.name == e.name) {
             md.push(e);
         }
