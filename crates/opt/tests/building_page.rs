@@ -180,6 +180,7 @@ fn a_yielding_frame_is_stated_as_it_ran() {
         md.contains("**Collapse:** a run stops when a storey drifts past 8 % of its height (the study's `collapse_drift_ratio`)."),
         "{md}"
     );
+    assert!(md.contains("the gravity load of the table (g = 9.80665 m/s² times the mass at and above the storey, the default)"), "{md}");
     // modal damping: every mode listed at 2 %
     assert_eq!(md.matches(", ζ = 2.00 %").count(), 6, "{md}");
 

@@ -405,10 +405,18 @@ fn markdown(study: &Study, collapse: Option<Collapse>) -> String {
         }
     );
     if b.gravity_loads.is_some() {
-        s.push_str(
-            "**P-Δ:** a geometric stiffness −P/h on every storey, P the gravity load of the \
-             table (as the file gives it, or g = 9.80665 m/s² times the mass at and above the \
-             storey).\n\n",
+        let given = cfg
+            .p_delta
+            .as_ref()
+            .is_some_and(|p| p.gravity_loads.is_some());
+        let _ = writeln!(
+            s,
+            "**P-Δ:** a geometric stiffness −P/h on every storey, P the gravity load of the table ({}).\n",
+            if given {
+                "as the building file gives it"
+            } else {
+                "g = 9.80665 m/s² times the mass at and above the storey, the default"
+            }
         );
     }
     match collapse {
