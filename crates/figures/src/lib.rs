@@ -14,6 +14,8 @@
 //! - [`StudyFigures`]: the figure writer every front hands to the study commands of
 //!   [`slipload_opt::pipeline`] (it implements [`slipload_opt::pipeline::FigureWriter`]):
 //!   the study figures and, for a study with `objectives`, the front.
+//! - [`plan::write_plan`]: the figures of a study in plan (`plan-view`,
+//!   `line-drift-profiles`).
 //! - [`pareto::write_front`]: the front figure of a study with `objectives`
 //!   (`pareto-front.{svg,png,csv}`), [`pareto::front_csv`] its CSV text alone.
 //! - [`check_fonts`]: whether the PNG text font can be found, checked before any work so
@@ -27,6 +29,7 @@
 mod error;
 pub mod names;
 pub mod pareto;
+pub mod plan;
 pub mod plot;
 pub mod study;
 
@@ -59,5 +62,13 @@ impl slipload_opt::pipeline::FigureWriter for StudyFigures {
         dir: &std::path::Path,
     ) -> Result<Vec<String>, slipload_opt::OptError> {
         pareto::write_front(report, dir).map_err(|e| slipload_opt::OptError::Figure(Box::new(e)))
+    }
+
+    fn plan(
+        &self,
+        data: &slipload_opt::plan::PlanFigureData,
+        dir: &std::path::Path,
+    ) -> Result<Vec<String>, slipload_opt::OptError> {
+        plan::write_plan(data, dir).map_err(|e| slipload_opt::OptError::Figure(Box::new(e)))
     }
 }

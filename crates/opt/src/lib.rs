@@ -23,6 +23,7 @@ pub mod eval;
 pub mod model;
 pub mod phases;
 pub mod pipeline;
+pub mod plan;
 pub mod store;
 
 pub use base::error::OptError;

@@ -98,6 +98,11 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         // GRID² designs × every record: the sweep's own design limit, per axis
         super::count_flag("--map-grid", args.map_grid, 1000)?;
     }
+    if let Some(path) = args.study.as_deref()
+        && slipload_opt::plan::is_plan_study(path)
+    {
+        return run_in_plan(&args, path);
+    }
     let study = load_study(args.study.as_deref())?;
     let map_floors = match args.map_floors.as_slice() {
         &[a, b] => [a, b],
@@ -141,6 +146,47 @@ pub fn run(args: OptimizeArgs) -> anyhow::Result<()> {
         outln!("{}", super::check_summary::verdict(c));
     }
     super::check_summary::outcome(run.report.code_check.as_ref())
+}
+
+/// `slipload optimize` on a study in plan ([`slipload_opt::pipeline::optimize_in_plan`]):
+/// the summary, then the files and figures written.
+fn run_in_plan(args: &OptimizeArgs, path: &std::path::Path) -> anyhow::Result<()> {
+    if args.map {
+        anyhow::bail!(
+            "--map: a study in plan draws no objective map (its figures are the plan view and the drift profiles by line)"
+        );
+    }
+    if let Some(r) = args.refine
+        && r != RefineMethod::Model
+        && r != RefineMethod::Auto
+    {
+        anyhow::bail!(
+            "--refine {}: a study in plan refines with `model` (its runs compute no sensitivities for sqp)",
+            r.as_str()
+        );
+    }
+    let study = slipload_opt::plan::PlanStudy::load(path)?;
+    let folder = FolderRequest {
+        path: &args.out,
+        option: "--out",
+        fresh: args.fresh,
+    };
+    let run = slipload_opt::pipeline::optimize_in_plan(
+        &study,
+        folder,
+        &PhaseBars::default(),
+        &StudyFigures,
+    )?;
+    out!("{}", run.summary);
+    let mut files: Vec<&str> = vec![slipload_opt::pipeline::PLAN_JOURNAL];
+    files.extend(run.files.iter().copied());
+    outln!("wrote {}/{{{}}}", args.out.display(), files.join(","));
+    outln!(
+        "figures (SVG, PNG, CSV): {}/{{{}}}",
+        args.out.display(),
+        run.drawn.join(",")
+    );
+    Ok(())
 }
 
 /// Why the refiners stopped and, for the `model` and `sqp` refiners, whether the optimum is

@@ -429,11 +429,15 @@ fn walk_plan_scene(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
     walk::<slipload_sim::floorplan::FloorPlanSceneConfig>("plan_scene", w, t)
 }
 
+fn walk_plan_study(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
+    walk::<slipload_opt::plan::PlanStudyConfig>("plan_study", w, t)
+}
+
 fn walk_designs(w: &Walk, t: &RefCell<Trace>) -> Result<(), String> {
     walk::<Vec<slipload_opt::phases::rank::NamedDesign>>("designs", w, t)
 }
 
-fn roots() -> [(&'static str, WalkFn); 6] {
+fn roots() -> [(&'static str, WalkFn); 7] {
     [
         ("building", walk_building as WalkFn),
         ("scene", walk_scene),
@@ -441,6 +445,7 @@ fn roots() -> [(&'static str, WalkFn); 6] {
         ("designs", walk_designs),
         ("floor_plan", walk_floor_plan),
         ("plan_scene", walk_plan_scene),
+        ("plan_study", walk_plan_study),
     ]
 }
 

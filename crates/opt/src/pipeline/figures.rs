@@ -5,6 +5,7 @@
 use crate::base::error::OptError;
 use crate::phases::figures::FigureData;
 use crate::phases::pareto::ParetoReport;
+use crate::plan::PlanFigureData;
 use std::path::Path;
 
 /// Draws a study's figures into its folder. Each method returns the names written (the
@@ -19,6 +20,8 @@ pub trait FigureWriter: Sync {
     fn study(&self, data: &FigureData, dir: &Path) -> Result<Vec<String>, OptError>;
     /// The front of a study with `objectives`.
     fn front(&self, report: &ParetoReport, dir: &Path) -> Result<Vec<String>, OptError>;
+    /// The figures of a study in plan: the plan view and the drift profiles by line.
+    fn plan(&self, data: &PlanFigureData, dir: &Path) -> Result<Vec<String>, OptError>;
 }
 
 /// Draws nothing (a run whose caller wants no figures, such as a test of the files).
@@ -33,6 +36,9 @@ impl FigureWriter for NoFigures {
         Ok(Vec::new())
     }
     fn front(&self, _report: &ParetoReport, _dir: &Path) -> Result<Vec<String>, OptError> {
+        Ok(Vec::new())
+    }
+    fn plan(&self, _data: &PlanFigureData, _dir: &Path) -> Result<Vec<String>, OptError> {
         Ok(Vec::new())
     }
 }

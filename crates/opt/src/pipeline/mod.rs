@@ -50,6 +50,7 @@
 mod design_run;
 mod figures;
 mod optimize;
+mod plan;
 mod rank;
 mod report;
 mod sweep;
@@ -57,6 +58,7 @@ mod sweep;
 pub use design_run::{DesignRun, design_run_scene};
 pub use figures::{FigureWriter, NoFigures};
 pub use optimize::{OptimizeOptions, OptimizeRun, optimize_study};
+pub use plan::{PLAN_JOURNAL, PlanRun, optimize_in_plan};
 pub use rank::{family_study, rank_study};
 pub use report::{PhaseWork, StudyReport, Work};
 pub use sweep::{SweepRun, merge_shards, sweep_study};

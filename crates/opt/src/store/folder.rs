@@ -63,6 +63,7 @@ pub fn is_output_name(name: &str) -> bool {
 /// [`PER_SUITE_STEMS`]).
 fn is_figure_stem(stem: &str) -> bool {
     FIGURE_STEMS.contains(&stem)
+        || PLAN_FIGURE_STEMS.contains(&stem)
         || PER_SUITE_STEMS.iter().any(|b| {
             stem.strip_prefix(b)
                 .and_then(|rest| rest.strip_prefix('-'))
@@ -72,7 +73,7 @@ fn is_figure_stem(stem: &str) -> bool {
 
 /// The files (other than journals and figures) that slipload's study commands and its
 /// report write into an output folder.
-const OUTPUT_FILES: [&str; 28] = [
+const OUTPUT_FILES: [&str; 35] = [
     "manifest.json",
     "building.json",
     "building.md",
@@ -101,6 +102,13 @@ const OUTPUT_FILES: [&str; 28] = [
     "family.csv",
     "family.md",
     "report.html",
+    "plan-journal.jsonl",
+    "plan-summary.txt",
+    "plan-optimum.json",
+    "plan-designs.csv",
+    "plan-dampers.csv",
+    "plan-dampers.md",
+    "plan-profiles.csv",
 ];
 
 /// Output names no slipload wrote before folders kept their list: in a folder without a
@@ -117,6 +125,9 @@ pub const FIGURE_STEMS: [&str; 6] = [
     "convergence",
     "objective-map",
 ];
+
+/// The figures of a study in plan, each written as `.svg`, `.png` and `.csv`.
+pub const PLAN_FIGURE_STEMS: [&str; 2] = ["plan-view", "line-drift-profiles"];
 
 /// The study figures drawn per suite where a study has several suites, each as
 /// `STEM-LABEL` (the label made of the suite's name).
