@@ -178,6 +178,13 @@ fn run_in_plan(args: &OptimizeArgs, path: &std::path::Path) -> anyhow::Result<()
         &StudyFigures,
     )?;
     out!("{}", run.summary);
+    if run.report.replayed > 0 {
+        outln!(
+            "({} of the designs taken from the journal of an earlier run in {})",
+            run.report.replayed,
+            args.out.display()
+        );
+    }
     let mut files: Vec<&str> = vec![slipload_opt::pipeline::PLAN_JOURNAL];
     files.extend(run.files.iter().copied());
     outln!("wrote {}/{{{}}}", args.out.display(), files.join(","));

@@ -346,8 +346,8 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
     );
     let _ = writeln!(
         s,
-        "search: {} sweep designs, {} refinement designs ({} from the journal), stopped by {}",
-        report.sweep_designs, report.refine_designs, report.replayed, report.stop
+        "search: {} sweep designs, {} refinement designs, stopped by {}",
+        report.sweep_designs, report.refine_designs, report.stop
     );
     let _ = writeln!(
         s,
