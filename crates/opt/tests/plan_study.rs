@@ -295,6 +295,23 @@ fn accidental_torsion_on_a_symmetric_plan_gives_mirrored_cases_and_no_twist_in_t
     let c0 = s.cases[0].building.floors[0].centre;
     let c1 = s.cases[1].building.floors[0].centre;
     assert!((c1[0] - c0[0] - 1.0).abs() < 1e-12 && c1[1] == c0[1]);
+    // the case is the building written with its centres moved: its mass, modes and
+    // damping (modal, on its own modes) are that file's (round-off of the eigensolver)
+    let mut moved = building(0.5);
+    for f in moved["floors"].as_array_mut().unwrap() {
+        f["centre_of_mass"] = json!(["11 m", "6 m"]);
+    }
+    let cfg: slipload_sim::floorplan::FloorPlanConfig = serde_json::from_value(moved).unwrap();
+    let direct = slipload_sim::floorplan::FloorPlan::from_config(&cfg, Path::new("moved")).unwrap();
+    let case = &s.cases[1].building;
+    let close =
+        |a: &nalgebra::DMatrix<f64>, b: &nalgebra::DMatrix<f64>| (a - b).amax() <= 1e-9 * b.amax();
+    assert!(close(&case.mass, &direct.mass));
+    assert!(
+        close(&case.damping, &direct.damping),
+        "the damping of the moved plan is its own"
+    );
+    assert!(!close(&case.damping, &s.cases[0].building.damping));
     let loads: Vec<Option<f64>> = s.dampers.iter().map(|d| d.file_slip_load).collect();
     let e = &evaluate_loads(&s, &[loads], Step { factor: 1.0 }).unwrap()[0];
     let cell = |case: usize| e.cells.iter().find(|c| c.case == case).unwrap();

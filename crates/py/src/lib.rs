@@ -38,6 +38,8 @@ fn _slipload(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(plan::simulate_in_plan, m)?)?;
     m.add_function(wrap_pyfunction!(plan::is_in_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::is_plan_study, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::optimize_in_plan, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch_designs, m)?)?;
     m.add_function(wrap_pyfunction!(study::optimize, m)?)?;

@@ -49,3 +49,48 @@ pub fn simulate_in_plan(
 fn method_name(name: &str) -> PyResult<slipload_sim::MethodName> {
     method(name)
 }
+
+/// Whether the file is a study in plan (its building is a building in plan).
+#[pyfunction]
+pub fn is_plan_study(path: PathBuf) -> bool {
+    slipload_opt::plan::is_plan_study(&path)
+}
+
+/// Optimises the study in plan at `path` into `out`, as `slipload optimize PATH --out OUT`
+/// does ([`slipload_opt::pipeline::optimize_in_plan`]): the same files, byte for byte.
+#[pyfunction]
+#[pyo3(signature = (path, out, *, fresh=false, progress=None, threads=None))]
+pub fn optimize_in_plan<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    out: PathBuf,
+    fresh: bool,
+    progress: Option<&Bound<'py, PyAny>>,
+    threads: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+    let study = guarded(|| slipload_opt::plan::PlanStudy::load(&path).py())?;
+    let run = crate::run::watched(py, threads, progress, |ctl| {
+        slipload_opt::pipeline::optimize_in_plan(
+            &study,
+            slipload_opt::store::folder::FolderRequest {
+                path: &out,
+                option: "out",
+                fresh,
+            },
+            ctl,
+            &slipload_figures::StudyFigures,
+        )
+        .py()
+    })?;
+    let d = pyo3::types::PyDict::new(py);
+    d.set_item("out", out.display().to_string())?;
+    d.set_item("summary", run.summary.clone())?;
+    let mut files: Vec<&str> = vec![slipload_opt::pipeline::PLAN_JOURNAL];
+    files.extend(run.files.iter().copied());
+    d.set_item("files", files)?;
+    d.set_item("figures", run.drawn.clone())?;
+    d.set_item("replayed", run.report.replayed)?;
+    d.set_item("sweep_designs", run.report.sweep_designs)?;
+    d.set_item("refine_designs", run.report.refine_designs)?;
+    Ok(d)
+}

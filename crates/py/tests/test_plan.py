@@ -120,3 +120,41 @@ def test_the_plans_script_reads_every_name_as_data(text, tmp_path):
     assert ran.returncode == 0, ran.stderr
     assert json.loads(ran.stdout) == [text, text, text]
     assert not (tmp_path / "PWNED").exists()
+
+
+def short_plan_study(tmp_path):
+    pairs = ROOT / "records" / "pairs"
+    study = {
+        "name": "short plan study",
+        "building": str(ROOT / "configs" / "plan-ten-story.json"),
+        "suites": [
+            {
+                "name": "newhall",
+                "pairs": [[str(pairs / "RSN1044_NORTHR_NWH090.AT2"), str(pairs / "RSN1044_NORTHR_NWH360.AT2")]],
+                "angles_deg": [0, 90],
+                "duration_s": 3,
+            }
+        ],
+        "space": {"placement": "lines", "slip_load_kn": [0, 4000]},
+        "sweep": {"points": 3},
+        "refine": {"max_evaluations": 4},
+    }
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    return path
+
+
+def test_a_study_in_plan_optimises_as_in_the_cli(tmp_path):
+    study = short_plan_study(tmp_path)
+    py_out, cli_out = tmp_path / "py", tmp_path / "cli"
+    got = slipload.optimize(study, py_out)
+    run_cli("optimize", study, "--out", cli_out)
+    assert got["summary"] == (cli_out / "plan-summary.txt").read_text()
+    assert "plan-optimum.json" in got["files"] and "plan-view" in got["figures"]
+    for name in got["files"] + [f"{s}.csv" for s in got["figures"]]:
+        assert (py_out / name).read_bytes() == (cli_out / name).read_bytes(), name
+    # a rerun takes every design from the journal
+    again = slipload.optimize(study, py_out)
+    assert again["replayed"] == got["sweep_designs"] + got["refine_designs"]
+    with pytest.raises(ValueError, match="refines with 'model'"):
+        slipload.optimize(study, tmp_path / "x", refine="sqp")

@@ -639,10 +639,32 @@ def optimize(
         A :class:`StudyReport` (``optimum``, ``design_table``, ``candidates``, …). The files
         are byte for byte those the command line writes for the same study.
 
+        A study in plan (a file whose building is a building in plan) runs as the command
+        line runs it and gives a dict: ``summary`` (the text of ``plan-summary.txt``),
+        ``files``, ``figures``, ``replayed``, ``sweep_designs``, ``refine_designs``
+        (``refine`` must be ``None`` or ``"model"``; no objective map).
+
     Raises:
         KeyboardInterrupt: on Ctrl-C; every simulation already finished is in the folder's
             journals and is not run again by the next call.
     """
+    if isinstance(study, (str, os.PathLike)) and _slipload.is_plan_study(os.fspath(study)):
+        if refine not in (None, "model", "auto"):
+            raise ValueError(
+                f"refine={refine!r}: a study in plan refines with 'model' (its runs compute no sensitivities for sqp)"
+            )
+        if map_floors is not None:
+            raise ValueError(
+                "map_floors: a study in plan draws no objective map (its figures are the plan view and the drift profiles by line)"
+            )
+        return _watched(
+            _slipload.optimize_in_plan,
+            progress,
+            os.fspath(study),
+            os.fspath(out),
+            fresh=fresh,
+            threads=threads,
+        )
     raw = _watched(
         _slipload.optimize,
         progress,

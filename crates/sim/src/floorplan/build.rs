@@ -4,10 +4,9 @@
 //! the file and the field (`lines[2].storey_stiffness[4]`).
 
 use super::config::{DirectionConfig, FloorPlanConfig};
-use super::model::{Floor, FloorPlan, Line, mass_matrix};
+use super::model::{Floor, FloorPlan, Line, damping_matrix, mass_matrix};
 use crate::building::{
-    DEFAULT_COLLAPSE_DRIFT_RATIO, DampingConfig, FLOOR_MASS_BAND_KG, PERIOD_BAND_S, line_parts,
-    rayleigh_coefficients,
+    DEFAULT_COLLAPSE_DRIFT_RATIO, FLOOR_MASS_BAND_KG, PERIOD_BAND_S, line_parts,
 };
 use crate::error::SimError;
 use crate::kinematics::{Kin, add_between};
@@ -265,40 +264,7 @@ impl FloorPlan {
                 ),
             ));
         }
-        let damping = match &cfg.damping {
-            None | Some(DampingConfig::None) => DMatrix::zeros(3 * n, 3 * n),
-            Some(DampingConfig::Rayleigh(r)) => {
-                let (alpha, beta) = rayleigh_coefficients(r, &modes, path)?;
-                &mass * alpha + &stiffness * beta
-            }
-            Some(DampingConfig::Modal { ratio, ratios }) => {
-                let zeta: Vec<f64> = match (ratio, ratios) {
-                    (Some(z), None) => vec![*z; 3 * n],
-                    (None, Some(zs)) if !zs.is_empty() => {
-                        (0..3 * n).map(|i| zs[i.min(zs.len() - 1)]).collect()
-                    }
-                    _ => {
-                        return Err(invalid(
-                            "damping.modal".into(),
-                            "give `ratio` (every mode) or `ratios` (by mode, the last for the modes after)".into(),
-                        ));
-                    }
-                };
-                if let Some(z) = zeta.iter().find(|z| !(**z >= 0.0 && **z < 1.0)) {
-                    return Err(invalid(
-                        "damping.modal".into(),
-                        format!("a damping ratio is a fraction of critical in [0, 1), got {z}"),
-                    ));
-                }
-                modes.damping_matrix(&mass, &zeta)
-            }
-            Some(DampingConfig::Storey(_) | DampingConfig::Matrix(_)) => {
-                return Err(invalid(
-                    "damping".into(),
-                    "a building in plan takes `rayleigh`, `modal` or `none` (on its three-dimensional modes); storey dashpots and a damping matrix are a chain's".into(),
-                ));
-            }
-        };
+        let damping = damping_matrix(cfg.damping.as_ref(), &mass, &stiffness, &modes, path)?;
         let yields = lines
             .iter()
             .any(|l| l.storey_yield.iter().any(Option::is_some));
@@ -335,6 +301,7 @@ impl FloorPlan {
             damping,
             collapse_drift,
             modes,
+            damping_config: cfg.damping.clone(),
         })
     }
 }

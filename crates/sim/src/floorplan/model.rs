@@ -1,7 +1,8 @@
 //! The validated building in plan ([`FloorPlan`]) and its parts ([`Floor`], [`Line`]),
 //! SI units, with what they answer by themselves.
 
-use crate::building::{Dissipator, StoreyYield};
+use crate::building::{DampingConfig, Dissipator, StoreyYield, rayleigh_coefficients};
+use crate::error::SimError;
 use crate::modes::Modes;
 use nalgebra::DMatrix;
 
@@ -78,6 +79,8 @@ pub struct FloorPlan {
     pub collapse_drift: Option<Vec<f64>>,
     /// Modes of the bare frame.
     pub modes: Modes,
+    /// The damping as the file states it (what a moved centre of mass recomputes).
+    pub damping_config: Option<DampingConfig>,
 }
 
 impl FloorPlan {
@@ -92,7 +95,8 @@ impl FloorPlan {
     }
 
     /// The floor plan with every floor's centre of mass moved by [dx, dy] (m), its
-    /// inertia about the centre of mass kept: accidental torsion as a property case
+    /// inertia about the centre of mass kept, the modes and the damping (as the file
+    /// states it) computed again: accidental torsion as a property case
     /// (ASCE 7-16 §12.8.4.2 moves it by 5 % of the plan dimension across the motion).
     pub fn with_centre_shift(&self, shift: [f64; 2]) -> FloorPlan {
         let floors: Vec<Floor> = self
@@ -105,10 +109,21 @@ impl FloorPlan {
             .collect();
         let mass = mass_matrix(&floors);
         let modes = Modes::compute(&mass, &self.stiffness).unwrap_or_else(|| self.modes.clone());
+        // the damping as stated, on this plan's own mass and modes (validated when the
+        // file was read, so the same statement holds here)
+        let damping = damping_matrix(
+            self.damping_config.as_ref(),
+            &mass,
+            &self.stiffness,
+            &modes,
+            std::path::Path::new(&self.name),
+        )
+        .unwrap_or_else(|_| self.damping.clone());
         FloorPlan {
             floors,
             mass,
             modes,
+            damping,
             ..self.clone()
         }
     }
@@ -150,4 +165,55 @@ pub fn cos_sin(angle: f64) -> (f64, f64) {
     } else {
         (angle.cos(), angle.sin())
     }
+}
+
+/// The frame damping of a building in plan as `damping` states it, on the modes and mass
+/// given: Rayleigh (its coefficients from ratios at modes or periods, or given), modal
+/// (on the three-dimensional modes), or none. A plan whose centres of mass move (an
+/// accidental-torsion case) recomputes it on its own mass and modes.
+pub(super) fn damping_matrix(
+    damping: Option<&DampingConfig>,
+    mass: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    modes: &Modes,
+    path: &std::path::Path,
+) -> Result<DMatrix<f64>, SimError> {
+    let n = mass.nrows() / 3;
+    Ok(match damping {
+        None | Some(DampingConfig::None) => DMatrix::zeros(3 * n, 3 * n),
+        Some(DampingConfig::Rayleigh(r)) => {
+            let (alpha, beta) = rayleigh_coefficients(r, modes, path)?;
+            mass * alpha + stiffness * beta
+        }
+        Some(DampingConfig::Modal { ratio, ratios }) => {
+            let zeta: Vec<f64> = match (ratio, ratios) {
+                (Some(z), None) => vec![*z; 3 * n],
+                (None, Some(zs)) if !zs.is_empty() => {
+                    (0..3 * n).map(|i| zs[i.min(zs.len() - 1)]).collect()
+                }
+                _ => {
+                    return Err(SimError::invalid(
+                        path,
+                        "damping.modal",
+                        "give `ratio` (every mode) or `ratios` (by mode, the last for the modes after)",
+                    ));
+                }
+            };
+            if let Some(z) = zeta.iter().find(|z| !(**z >= 0.0 && **z < 1.0)) {
+                return Err(SimError::invalid(
+                    path,
+                    "damping.modal",
+                    format!("a damping ratio is a fraction of critical in [0, 1), got {z}"),
+                ));
+            }
+            modes.damping_matrix(mass, &zeta)
+        }
+        Some(DampingConfig::Storey(_) | DampingConfig::Matrix(_)) => {
+            return Err(SimError::invalid(
+                path,
+                "damping",
+                "a building in plan takes `rayleigh`, `modal` or `none` (on its three-dimensional modes); storey dashpots and a damping matrix are a chain's",
+            ));
+        }
+    })
 }
