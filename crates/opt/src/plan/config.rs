@@ -261,3 +261,10 @@ fn default_evaluations() -> usize {
 fn default_tolerance() -> f64 {
     2e-3
 }
+
+/// A number without trailing zeros (at most 6 decimals): 5, 2.5, 0.035.
+pub fn trim(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}

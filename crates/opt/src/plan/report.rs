@@ -4,17 +4,11 @@
 //! share of its direction, drift profiles per line; as text, CSV, Markdown and JSON, and
 //! the data of its figures ([`PlanFigureData`]).
 
+use super::config::trim;
 use super::evaluate::DesignEval;
 use super::study::PlanStudy;
 use serde::Serialize;
 use std::fmt::Write as _;
-
-/// A number without trailing zeros (at most 6 decimals): 5, 2.5, 0.035.
-pub fn trim(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.to_string() }
-}
 
 /// A row of the final table.
 #[derive(Debug, Clone, Serialize)]

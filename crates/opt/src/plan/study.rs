@@ -358,7 +358,7 @@ fn property_cases(
                 name: format!(
                     "centre of mass {}{} % {axis}",
                     if sign > 0.0 { "+" } else { "-" },
-                    crate::plan::report::trim(e * 100.0)
+                    super::config::trim(e * 100.0)
                 ),
                 building: Arc::new(b.with_centre_shift(shift)),
             });
@@ -614,7 +614,7 @@ fn plan_space(
                             Shape::Stiffness => total(s) / total(base),
                         }
                 };
-                let deg = crate::plan::report::trim(a.to_degrees());
+                let deg = super::config::trim(a.to_degrees());
                 let names: Vec<&str> = lines.iter().map(|&l| b.lines[l].name.as_str()).collect();
                 groups.push((
                     format!("direction {deg} deg ({})", names.join(", ")),
