@@ -212,6 +212,26 @@ fn the_optimum_puts_more_slip_load_on_the_flexible_edge_than_the_planar_split_an
     );
     // and the dampers do their work: the bare frame drifts more than the optimum
     assert!(opt.objective < r.report.row("bare").unwrap().objective);
+    // the device table's demands: the stroke is the peak slip (the slip starts at 0), the
+    // force never passes the slip load, the dampers that slip dissipate
+    for c in &opt.eval.cells {
+        let dv = &c.peaks.devices;
+        assert_eq!(dv.stroke.len(), s.dampers.len());
+        for k in 0..s.dampers.len() {
+            let load = opt.eval.loads[k].unwrap();
+            assert!((dv.stroke[k] - c.peaks.slip[k]).abs() <= 1e-12 * c.peaks.slip[k].max(1e-12));
+            assert!(
+                dv.force[k] <= load * (1.0 + 1e-9),
+                "{} > {load}",
+                dv.force[k]
+            );
+            if c.peaks.slip[k] > 1e-6 {
+                assert!(dv.energy[k] > 0.0 && dv.velocity[k] > 0.0 && dv.travel[k] >= dv.stroke[k]);
+            }
+        }
+    }
+    let table = std::fs::read_to_string(out.join("plan-devices.csv")).unwrap();
+    assert_eq!(table.lines().count(), 1 + s.dampers.len());
     // every file the run names is there
     for f in r.files {
         assert!(out.join(f).is_file(), "{f}");
@@ -313,7 +333,7 @@ fn accidental_torsion_on_a_symmetric_plan_gives_mirrored_cases_and_no_twist_in_t
     );
     assert!(!close(&case.damping, &s.cases[0].building.damping));
     let loads: Vec<Option<f64>> = s.dampers.iter().map(|d| d.file_slip_load).collect();
-    let e = &evaluate_loads(&s, &[loads], Step { factor: 1.0 }).unwrap()[0];
+    let e = &evaluate_loads(&s, &[loads], Step::SEARCH).unwrap()[0];
     let cell = |case: usize| e.cells.iter().find(|c| c.case == case).unwrap();
     // the nominal symmetric plan does not twist (ratio 1 to round-off)
     assert!(
@@ -343,7 +363,7 @@ fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
     let s0 = PlanStudy::load(&p0).unwrap();
     let bare: Vec<Option<f64>> = s0.dampers.iter().map(|_| Some(0.0)).collect();
     let file: Vec<Option<f64>> = s0.dampers.iter().map(|d| d.file_slip_load).collect();
-    let e = evaluate_loads(&s0, &[bare, file], Step { factor: 1.0 }).unwrap();
+    let e = evaluate_loads(&s0, &[bare, file], Step::SEARCH).unwrap();
     let limit = 0.5 * (e[0].objective(&s0) + e[1].objective(&s0));
     let p = study(&dir, 0.7, |v| {
         v["objective"] = json!({"metric": "total_slip_load"});
@@ -371,7 +391,8 @@ fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
 #[test]
 fn bad_studies_are_refused_naming_the_field() {
     let dir = tmp("refusals");
-    let cases: Vec<(&str, Box<dyn Fn(&mut Value)>)> = vec![
+    type Edit = Box<dyn Fn(&mut Value)>;
+    let cases: Vec<(&str, Edit)> = vec![
         (
             "space.lines[0]",
             Box::new(|v| v["space"]["lines"] = json!(["Z"])),

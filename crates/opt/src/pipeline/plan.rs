@@ -17,7 +17,8 @@ use crate::phases::refine::{Evaluations, Point, refine};
 use crate::plan::config::Placement;
 use crate::plan::evaluate::{DesignEval, Step, evaluate_loads};
 use crate::plan::report::{
-    PlanReport, PlanRow, dampers_csv, dampers_md, figure_data, planar_split, profiles_csv, summary,
+    PlanReport, PlanRow, dampers_csv, dampers_md, devices_csv, devices_md, figure_data,
+    planar_split, profiles_csv, summary,
 };
 use crate::plan::study::PlanStudy;
 use crate::store::folder::{Discarded, FolderRequest, StudyFolder};
@@ -183,7 +184,7 @@ pub fn optimize_in_plan(
         })?;
     let oracle = |zs: &[Vec<f64>]| -> Result<Vec<(f64, Option<crate::phases::refine::LimitValues>)>, OptError> {
         let loads: Vec<Vec<Option<f64>>> = zs.iter().map(|z| study.all_slip_loads(z)).collect();
-        let evals = evaluate_loads(study, &loads, Step { factor: 1.0 })?;
+        let evals = evaluate_loads(study, &loads, Step::SEARCH)?;
         Ok(evals.iter().map(|e| e.point_value(study)).collect())
     };
     let jp = journal_path.clone();
@@ -281,7 +282,14 @@ pub fn optimize_in_plan(
     }
     let loads: Vec<Vec<Option<f64>>> = designs.iter().map(|d| d.2.clone()).collect();
     let evals: Vec<DesignEval> = phase(progress, Phase::DesignTable, 1, |tick| {
-        let e = evaluate_loads(study, &loads, Step { factor })?;
+        let e = evaluate_loads(
+            study,
+            &loads,
+            Step {
+                factor,
+                demands: true,
+            },
+        )?;
         tick();
         Ok(e)
     })?;
@@ -349,6 +357,8 @@ pub fn optimize_in_plan(
     folder.write("plan-designs.csv", designs_csv(study, &folder)?.as_bytes())?;
     folder.write("plan-dampers.csv", dampers_csv(study, &report).as_bytes())?;
     folder.write("plan-dampers.md", dampers_md(study, &report).as_bytes())?;
+    folder.write("plan-devices.csv", devices_csv(study, &report).as_bytes())?;
+    folder.write("plan-devices.md", devices_md(study, &report).as_bytes())?;
     folder.write("plan-profiles.csv", profiles_csv(study, &report).as_bytes())?;
     let names: Vec<String> = crate::store::folder::PLAN_FIGURE_STEMS
         .iter()

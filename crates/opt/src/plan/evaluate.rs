@@ -37,6 +37,45 @@ pub struct Peaks {
     pub residual: Vec<f64>,
     /// Runs that collapsed (a yielding line past its collapse drift).
     pub collapsed: usize,
+    /// Per damper, the demands of a device (empty unless the runs asked for them,
+    /// [`Step::demands`]).
+    pub devices: Devices,
+}
+
+/// Per damper, what a device must take (each entry one damper, in the plan's order).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Devices {
+    /// The larger slip either way from the start, m: the stroke.
+    pub stroke: Vec<f64>,
+    /// Peak slip velocity, m/s.
+    pub velocity: Vec<f64>,
+    /// Cumulative slip travel, m.
+    pub travel: Vec<f64>,
+    /// Energy dissipated, J.
+    pub energy: Vec<f64>,
+    /// Peak friction force, N.
+    pub force: Vec<f64>,
+}
+
+impl Devices {
+    fn fields(&self) -> [&Vec<f64>; 5] {
+        [
+            &self.stroke,
+            &self.velocity,
+            &self.travel,
+            &self.energy,
+            &self.force,
+        ]
+    }
+    fn fields_mut(&mut self) -> [&mut Vec<f64>; 5] {
+        [
+            &mut self.stroke,
+            &mut self.velocity,
+            &mut self.travel,
+            &mut self.energy,
+            &mut self.force,
+        ]
+    }
 }
 
 fn max_of(v: &[f64]) -> f64 {
@@ -77,6 +116,9 @@ impl Peaks {
             up(&mut out.slip, &r.slip);
             up(&mut out.residual, &r.residual);
             out.collapsed += r.collapsed;
+            for (a, b) in out.devices.fields_mut().into_iter().zip(r.devices.fields()) {
+                up(a, b);
+            }
         }
         out
     }
@@ -104,6 +146,13 @@ impl Peaks {
             slip: reduce(&|p| &p.slip),
             residual: reduce(&|p| &p.residual),
             collapsed: pairs.iter().map(|p| p.collapsed).sum(),
+            devices: Devices {
+                stroke: reduce(&|p| &p.devices.stroke),
+                velocity: reduce(&|p| &p.devices.velocity),
+                travel: reduce(&|p| &p.devices.travel),
+                energy: reduce(&|p| &p.devices.energy),
+                force: reduce(&|p| &p.devices.force),
+            },
         }
     }
 }
@@ -241,6 +290,17 @@ pub struct Step {
     /// Multiplies the study's step (1 for the sweep and refinement; the check's factor
     /// for the final table).
     pub factor: f64,
+    /// Whether the runs record each damper's demands (the final table's; the search
+    /// does not pay for them).
+    pub demands: bool,
+}
+
+impl Step {
+    /// The search's runs: the study's step, no per-damper demands.
+    pub const SEARCH: Step = Step {
+        factor: 1.0,
+        demands: false,
+    };
 }
 
 /// One run's task: design, case, suite, pair, orientation.
@@ -357,6 +417,7 @@ fn run_one(
         .unwrap_or_else(|| p.first.duration().max(p.second.duration()));
     let outputs = OutputsConfig {
         energies: false,
+        dampers: step.demands,
         ..OutputsConfig::default()
     };
     let mut scene = FloorPlanScene::new(building.clone(), ground, duration, study.method, outputs);
@@ -413,5 +474,18 @@ fn peaks_of(r: &slipload_sim::Response, b: &FloorPlan) -> Peaks {
         slip: r.peak_slip.clone(),
         residual,
         collapsed: usize::from(r.collapse.is_some()),
+        devices: r
+            .dampers
+            .as_ref()
+            .map_or_else(Devices::default, |d| Devices {
+                stroke: d
+                    .iter()
+                    .map(|x| x.slip_max_pos_m.max(x.slip_max_neg_m))
+                    .collect(),
+                velocity: d.iter().map(|x| x.peak_slip_velocity_m_s).collect(),
+                travel: d.iter().map(|x| x.cumulative_travel_m).collect(),
+                energy: d.iter().map(|x| x.energy_j).collect(),
+                force: d.iter().map(|x| x.peak_force_n).collect(),
+            }),
     }
 }

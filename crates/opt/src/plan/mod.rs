@@ -16,7 +16,7 @@ pub mod report;
 pub mod study;
 
 pub use config::{Placement, PlanMetric, PlanStatistic, PlanStudyConfig};
-pub use evaluate::{DesignEval, Peaks, Step, evaluate_loads};
+pub use evaluate::{DesignEval, Devices, Peaks, Step, evaluate_loads};
 pub use report::{PlanFigureData, PlanReport, PlanRow};
 pub use study::PlanStudy;
 

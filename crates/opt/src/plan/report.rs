@@ -58,12 +58,14 @@ pub struct PlanReport {
 
 impl PlanReport {
     /// The files a study in plan writes (besides its journal and figures).
-    pub const FILES: [&'static str; 6] = [
+    pub const FILES: [&'static str; 8] = [
         "plan-summary.txt",
         "plan-optimum.json",
         "plan-designs.csv",
         "plan-dampers.csv",
         "plan-dampers.md",
+        "plan-devices.csv",
+        "plan-devices.md",
         "plan-profiles.csv",
     ];
 
@@ -212,6 +214,96 @@ pub fn dampers_md(study: &PlanStudy, report: &PlanReport) -> String {
             let _ = write!(s, " {:.1} % |", sh * 100.0);
         }
         s.push_str("\n\n");
+    }
+    s
+}
+
+/// Per damper of `row`, each device demand's worst over the suites and property cases
+/// (each the suite's statistic over its pairs): (stroke m, velocity m/s, travel m,
+/// energy J, force N).
+pub fn device_demands(row: &PlanRow) -> Vec<[f64; 5]> {
+    let n = row.eval.loads.len();
+    (0..n)
+        .map(|k| {
+            let mut out = [0.0f64; 5];
+            for c in &row.eval.cells {
+                let d = &c.peaks.devices;
+                for (o, v) in
+                    out.iter_mut()
+                        .zip([&d.stroke, &d.velocity, &d.travel, &d.energy, &d.force])
+                {
+                    *o = o.max(v.get(k).copied().unwrap_or(0.0));
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// `plan-devices.csv`: the optimum's device table, one row per damper.
+pub fn devices_csv(study: &PlanStudy, report: &PlanReport) -> String {
+    let mut s = String::from(
+        "damper,line,storey,slip_load_kn,stroke_mm,velocity_mm_s,travel_mm,energy_kj,peak_force_kn\n",
+    );
+    let Some(row) = report.row("optimum") else {
+        return s;
+    };
+    for (site, (d, load)) in study
+        .dampers
+        .iter()
+        .zip(device_demands(row).iter().zip(&row.eval.loads))
+    {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:.2},{:.1},{:.1},{:.2},{:.1}",
+            csv(&site.name),
+            csv(&study.building.lines[site.line].name),
+            site.storey + 1,
+            kn(*load),
+            d[0] * 1e3,
+            d[1] * 1e3,
+            d[2] * 1e3,
+            d[3] / 1e3,
+            d[4] / 1e3
+        );
+    }
+    s
+}
+
+/// `plan-devices.md`: the optimum's device table, line by line, top storey first.
+pub fn devices_md(study: &PlanStudy, report: &PlanReport) -> String {
+    let stat = match study.config.objective.statistic {
+        super::config::PlanStatistic::Mean => "mean",
+        super::config::PlanStatistic::Max => "largest",
+    };
+    let mut s = format!(
+        "# {}: device table of the optimum\n\nEach damper's demands at the final table's step: the {stat} over each suite's pairs (each pair its largest over its orientations), the worst suite and property case. Stroke: the larger slip either way from the start. Slip loads to 0.1 kN.\n\n| damper | slip load (kN) | stroke (mm) | peak velocity (mm/s) | cumulative travel (mm) | energy (kJ) | peak force (kN) |\n|---|---:|---:|---:|---:|---:|---:|\n",
+        report.study
+    );
+    let Some(row) = report.row("optimum") else {
+        return s;
+    };
+    let demands = device_demands(row);
+    let mut order: Vec<usize> = (0..study.dampers.len()).collect();
+    order.sort_by_key(|&k| {
+        (
+            study.dampers[k].line,
+            std::cmp::Reverse(study.dampers[k].storey),
+        )
+    });
+    for k in order {
+        let d = demands[k];
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:.1} | {:.1} | {:.2} | {:.1} |",
+            study.dampers[k].name,
+            kn(row.eval.loads[k]),
+            d[0] * 1e3,
+            d[1] * 1e3,
+            d[2] * 1e3,
+            d[3] / 1e3,
+            d[4] / 1e3
+        );
     }
     s
 }

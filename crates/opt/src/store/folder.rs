@@ -73,7 +73,7 @@ fn is_figure_stem(stem: &str) -> bool {
 
 /// The files (other than journals and figures) that slipload's study commands and its
 /// report write into an output folder.
-const OUTPUT_FILES: [&str; 35] = [
+const OUTPUT_FILES: [&str; 37] = [
     "manifest.json",
     "building.json",
     "building.md",
@@ -108,6 +108,8 @@ const OUTPUT_FILES: [&str; 35] = [
     "plan-designs.csv",
     "plan-dampers.csv",
     "plan-dampers.md",
+    "plan-devices.csv",
+    "plan-devices.md",
     "plan-profiles.csv",
 ];
 

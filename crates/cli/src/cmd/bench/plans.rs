@@ -1,8 +1,10 @@
 //! The cases of `slipload bench` for buildings in plan: a ten-storey plan with four lines
 //! per direction (massless dampers on every line, stiffness eccentricity 15 % of the
 //! width) under both components of a 15 s synthetic pair, `newmark` at its default step
-//! against `exact` and each one's time per simulation; and a sixty-storey plan's time
-//! per step (peaks only: memory independent of the record's length).
+//! against `exact` and each one's time per simulation; a sixty-storey plan's time per
+//! step (peaks only: memory independent of the record's length); and the example study
+//! in plan's wall-clock time (`configs/study-plan-ten-story.json`, into a scratch folder,
+//! on every core, one run) with what it found.
 
 use super::figure::Figure;
 use super::measure::{Bench, max_rel, seconds_per_run};
@@ -114,6 +116,7 @@ pub(super) fn plans(bench: &mut Bench) -> anyhow::Result<()> {
             "-",
         ));
     }
+    example_study(bench)?;
     let case = "building in plan: sixty storeys, four lines per direction, newmark";
     if bench.want(case) {
         let b = building(60)?;
@@ -124,6 +127,70 @@ pub(super) fn plans(bench: &mut Bench) -> anyhow::Result<()> {
             "time per step (5 s of the pair)",
             s / nm.steps as f64 * 1e6,
             "µs",
+        ));
+    }
+    Ok(())
+}
+
+/// The example study in plan, where a clone of the project holds it.
+const EXAMPLE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../configs/study-plan-ten-story.json"
+);
+
+/// `optimize` of the example study in plan into a scratch folder: its wall-clock time, its
+/// designs and simulations, the flexible line's share of the y slip load at the optimum
+/// and the optimum's edge drift over its planar split's.
+fn example_study(bench: &mut Bench) -> anyhow::Result<()> {
+    let case = "study in plan: configs/study-plan-ten-story.json, 7 pairs x 2 orientations, one slip load per line";
+    if !bench.want(case) {
+        return Ok(());
+    }
+    let study = slipload_opt::plan::PlanStudy::load(Path::new(EXAMPLE)).with_context(|| {
+        format!("the example {EXAMPLE} (run the bench from a clone of the project)")
+    })?;
+    let dir = std::env::temp_dir().join(format!("slipload-bench-plan-{}", std::process::id()));
+    let t = std::time::Instant::now();
+    let run = slipload_opt::pipeline::optimize_in_plan(
+        &study,
+        slipload_opt::store::folder::FolderRequest {
+            path: &dir,
+            option: "scratch folder",
+            fresh: true,
+        },
+        &slipload_opt::eval::progress::NoProgress,
+        &slipload_opt::pipeline::NoFigures,
+    );
+    let wall = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = run?;
+    let r = &run.report;
+    let designs = r.sweep_designs + r.refine_designs;
+    bench.figs.push(Figure::new(
+        case,
+        &format!(
+            "wall-clock seconds, {} thread(s) ({designs} designs, {} simulations, + the final table)",
+            rayon::current_num_threads(),
+            designs * r.runs_per_design
+        ),
+        wall,
+        "s",
+    ));
+    if let (Some(opt), Some(planar)) = (r.row("optimum"), r.row("planar split")) {
+        let shares = slipload_opt::plan::report::line_shares(&study, &opt.eval.loads);
+        if let Some((_, d)) = shares.iter().find(|(n, _)| n == "D") {
+            bench.figs.push(Figure::new(
+                case,
+                "flexible line D's share of the y slip load at the optimum (planar: 0.35)",
+                *d,
+                "-",
+            ));
+        }
+        bench.figs.push(Figure::new(
+            case,
+            "optimum's edge drift over its planar split's (same total slip load)",
+            opt.objective / planar.objective,
+            "-",
         ));
     }
     Ok(())
