@@ -375,6 +375,18 @@ fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
     assert!(!r.report.row("bare").unwrap().passes);
     // passes at the search's step; the finer check may move it by its error only
     assert!(opt.ratios[0] <= 1.0 + 1e-3, "{:?}", opt.ratios);
+    // the check page states the verdict and each storey against the limit
+    let check = std::fs::read_to_string(out.join("plan-check.md")).unwrap();
+    let verdict = if opt.passes {
+        "## optimum — PASS"
+    } else {
+        "## optimum — FAIL"
+    };
+    assert!(check.contains(verdict), "{check}");
+    assert!(
+        check.contains(&format!("| {:.3} |", limit * 100.0)),
+        "{check}"
+    );
     let total: f64 = opt.eval.loads.iter().map(|l| l.unwrap()).sum();
     let file_total: f64 = s0.dampers.iter().map(|d| d.file_slip_load.unwrap()).sum();
     println!(

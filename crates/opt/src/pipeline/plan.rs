@@ -17,7 +17,7 @@ use crate::phases::refine::{Evaluations, Point, refine};
 use crate::plan::config::Placement;
 use crate::plan::evaluate::{DesignEval, Step, evaluate_loads};
 use crate::plan::report::{
-    PlanReport, PlanRow, dampers_csv, dampers_md, devices_csv, devices_md, figure_data,
+    PlanReport, PlanRow, check_md, dampers_csv, dampers_md, devices_csv, devices_md, figure_data,
     planar_split, profiles_csv, summary,
 };
 use crate::plan::study::PlanStudy;
@@ -357,6 +357,7 @@ pub fn optimize_in_plan(
     folder.write("plan-designs.csv", designs_csv(study, &folder)?.as_bytes())?;
     folder.write("plan-dampers.csv", dampers_csv(study, &report).as_bytes())?;
     folder.write("plan-dampers.md", dampers_md(study, &report).as_bytes())?;
+    folder.write("plan-check.md", check_md(study, &report).as_bytes())?;
     folder.write("plan-devices.csv", devices_csv(study, &report).as_bytes())?;
     folder.write("plan-devices.md", devices_md(study, &report).as_bytes())?;
     folder.write("plan-profiles.csv", profiles_csv(study, &report).as_bytes())?;

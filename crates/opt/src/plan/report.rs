@@ -58,8 +58,9 @@ pub struct PlanReport {
 
 impl PlanReport {
     /// The files a study in plan writes (besides its journal and figures).
-    pub const FILES: [&'static str; 8] = [
+    pub const FILES: [&'static str; 9] = [
         "plan-summary.txt",
+        "plan-check.md",
         "plan-optimum.json",
         "plan-designs.csv",
         "plan-dampers.csv",
@@ -304,6 +305,90 @@ pub fn devices_md(study: &PlanStudy, report: &PlanReport) -> String {
             d[3] / 1e3,
             d[4] / 1e3
         );
+    }
+    s
+}
+
+/// ASCE 7-16 Table 12.3-1's reading of a torsional ratio: regular up to 1.2, type 1a
+/// (torsional irregularity) past 1.2, type 1b (extreme) past 1.4.
+pub fn torsion_class(ratio: f64) -> &'static str {
+    if ratio > 1.4 {
+        "extreme (1b)"
+    } else if ratio > 1.2 {
+        "irregular (1a)"
+    } else {
+        "regular"
+    }
+}
+
+/// `plan-check.md`: the optimum storey by storey against the study's limits, per suite at
+/// its worst property case — the edge drift and the torsional ratio, each the suite's
+/// statistic over its pairs — with the torsional class of every storey; the planar split
+/// (or the file's design) beside it.
+pub fn check_md(study: &PlanStudy, report: &PlanReport) -> String {
+    let limits = study.config.limits.unwrap_or_default();
+    let stat = match study.config.objective.statistic {
+        super::config::PlanStatistic::Mean => "mean",
+        super::config::PlanStatistic::Max => "largest",
+    };
+    let mut s = format!(
+        "# {}: check of the optimum storey by storey\n\nPer suite, each storey's edge drift (the largest of the plan's four edges, percent of the storey height) and torsional irregularity ratio (the larger edge drift over the edges' mean, along x or y), each the {stat} over the suite's pairs (each pair its largest over its orientations) at the worst property case ({}). The torsional class reads ASCE 7-16 Table 12.3-1's thresholds (1.2, 1.4) on these dynamic peaks; the standard's own check uses the drifts of the equivalent lateral forces with accidental torsion, so the class here is an indicator, not that check.\n\n",
+        report.study,
+        study
+            .cases
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
+    let verdict = |row: &PlanRow| {
+        if study.config.limits.is_none() {
+            "no limits given".to_string()
+        } else if row.passes {
+            "PASS (every limit met)".to_string()
+        } else {
+            "FAIL (a limit missed or a run collapsed)".to_string()
+        }
+    };
+    let others = report.row("planar split").or_else(|| report.row("file"));
+    for row in ["optimum"]
+        .iter()
+        .filter_map(|d| report.row(d))
+        .chain(others)
+    {
+        let _ = writeln!(s, "## {} — {}\n", row.design, verdict(row));
+        for (si, suite) in study.suites.iter().enumerate() {
+            let cells: Vec<&super::evaluate::Cell> =
+                row.eval.cells.iter().filter(|c| c.suite == si).collect();
+            let n = study.building.storeys();
+            let worst = |f: &dyn Fn(&super::evaluate::Cell) -> f64| {
+                cells.iter().map(|c| f(c)).fold(f64::NEG_INFINITY, f64::max)
+            };
+            let _ = writeln!(
+                s,
+                "### suite {}\n\n| storey | edge drift (%) | limit (%) | demand/limit | torsional ratio | limit | class |\n|---|---:|---:|---:|---:|---:|---|",
+                suite.name
+            );
+            for f in (0..n).rev() {
+                let edge = worst(&|c| c.peaks.edge_drift.get(f).copied().unwrap_or(f64::NAN));
+                let tor = worst(&|c| c.peaks.torsion.get(f).copied().unwrap_or(f64::NAN));
+                let (el, er) = match limits.edge_drift_ratio {
+                    Some(l) => (format!("{:.3}", l * 100.0), format!("{:.3}", edge / l)),
+                    None => ("—".into(), "—".into()),
+                };
+                let tl = limits
+                    .torsional_ratio
+                    .map_or_else(|| "—".to_string(), |l| format!("{l}"));
+                let _ = writeln!(
+                    s,
+                    "| {} | {:.3} | {el} | {er} | {tor:.3} | {tl} | {} |",
+                    f + 1,
+                    edge * 100.0,
+                    torsion_class(tor)
+                );
+            }
+            s.push('\n');
+        }
     }
     s
 }

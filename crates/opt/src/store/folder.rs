@@ -73,7 +73,7 @@ fn is_figure_stem(stem: &str) -> bool {
 
 /// The files (other than journals and figures) that slipload's study commands and its
 /// report write into an output folder.
-const OUTPUT_FILES: [&str; 37] = [
+const OUTPUT_FILES: [&str; 38] = [
     "manifest.json",
     "building.json",
     "building.md",
@@ -104,6 +104,7 @@ const OUTPUT_FILES: [&str; 37] = [
     "report.html",
     "plan-journal.jsonl",
     "plan-summary.txt",
+    "plan-check.md",
     "plan-optimum.json",
     "plan-designs.csv",
     "plan-dampers.csv",
