@@ -4,7 +4,7 @@
 //! the file and the field (`lines[2].storey_stiffness[4]`).
 
 use super::config::{DirectionConfig, FloorPlanConfig};
-use super::model::{Floor, FloorPlan, Line, damping_matrix, mass_matrix};
+use super::model::{Floor, FloorPlan, Line, damping_matrix, mass_matrix, p_delta_blocks};
 use crate::building::{
     DEFAULT_COLLAPSE_DRIFT_RATIO, FLOOR_MASS_BAND_KG, PERIOD_BAND_S, line_parts,
 };
@@ -287,6 +287,39 @@ impl FloorPlan {
             }
             (None, _) => None,
         };
+        let p_delta = match &cfg.p_delta {
+            None => None,
+            Some(pd) => {
+                let Some(h) = &heights else {
+                    return Err(invalid(
+                        "p_delta".into(),
+                        "needs storey_heights (the geometric stiffness of storey i is P_i/h_i)"
+                            .into(),
+                    ));
+                };
+                let loads = match &pd.gravity_loads {
+                    None => None,
+                    Some(ps) => {
+                        if ps.len() != n {
+                            return Err(invalid(
+                                "p_delta.gravity_loads".into(),
+                                format!("has {} values, expected {n} (one per storey)", ps.len()),
+                            ));
+                        }
+                        for (i, p) in ps.iter().enumerate() {
+                            if !is_non_negative(p.0) {
+                                return Err(invalid(
+                                    format!("p_delta.gravity_loads[{i}]"),
+                                    format!("a finite load >= 0 (N), got {}", p.0),
+                                ));
+                            }
+                        }
+                        Some(ps.iter().map(|p| p.0).collect::<Vec<f64>>())
+                    }
+                };
+                Some(p_delta_blocks(&floors, h, loads.as_deref()))
+            }
+        };
         Ok(FloorPlan {
             name: cfg
                 .name
@@ -302,6 +335,8 @@ impl FloorPlan {
             collapse_drift,
             modes,
             damping_config: cfg.damping.clone(),
+            p_delta,
+            p_delta_config: cfg.p_delta.clone(),
         })
     }
 }

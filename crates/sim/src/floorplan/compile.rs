@@ -84,6 +84,33 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     mass.view_mut((0, 0), (nf, nf)).copy_from(&b.mass);
     damping.view_mut((0, 0), (nf, nf)).copy_from(&b.damping);
     stiffness.view_mut((0, 0), (nf, nf)).copy_from(&b.stiffness);
+    // P-Δ: each storey's geometric stiffness on its relative motion (Δ of the floor's
+    // ux, uy, θ over the floor below's; the ground's is zero), subtracted
+    if let Some(pd) = &b.p_delta {
+        for (f, block) in pd.blocks.iter().enumerate() {
+            let top = 3 * f;
+            for i in 0..3 {
+                for j in 0..3 {
+                    let g = block[i][j];
+                    stiffness[(top + i, top + j)] -= g;
+                    if f > 0 {
+                        let bot = top - 3;
+                        stiffness[(bot + i, bot + j)] -= g;
+                        stiffness[(top + i, bot + j)] += g;
+                        stiffness[(bot + i, top + j)] += g;
+                    }
+                }
+            }
+        }
+        notes.push(format!(
+            "P-Delta: each storey's gravity load [{}] N spread as the mass above it; geometric stiffness on the storey's two translations and its twist",
+            pd.loads
+                .iter()
+                .map(|v| format!("{v:.6e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     let mut contacts = Vec::new();
     let mut contact_x0 = Vec::new();
     let label = |s: &Site| format!("{}/{}", b.lines[s.line].name, s.storey + 1);

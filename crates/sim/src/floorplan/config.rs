@@ -44,6 +44,12 @@ pub struct FloorPlanConfig {
     /// storey drift; default 0.10 when a line yields and storey heights are given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collapse_drift_ratio: Option<f64>,
+    /// P-Δ of the whole storey: each storey's gravity load (default g times the floors'
+    /// masses at and above it) spread over the plan as the mass above it, its geometric
+    /// stiffness acting on the storey's two translations and its twist. Needs
+    /// `storey_heights`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub p_delta: Option<crate::building::PDeltaConfig>,
 }
 
 /// One rigid floor, as written.

@@ -81,6 +81,62 @@ pub struct FloorPlan {
     pub modes: Modes,
     /// The damping as the file states it (what a moved centre of mass recomputes).
     pub damping_config: Option<DampingConfig>,
+    /// P-Δ, when the file asks for it: each storey's gravity load (N) and the geometric
+    /// stiffness block it gives on the storey's relative (Δux, Δuy, Δθ) ([`p_delta_blocks`];
+    /// subtracted from the stiffness when the plan is compiled).
+    pub p_delta: Option<PDelta>,
+    /// The gravity loads as the file states them (`None`: g times the mass above), for a
+    /// moved centre of mass to spread again.
+    pub p_delta_config: Option<crate::building::PDeltaConfig>,
+}
+
+/// P-Δ of a building in plan, per storey.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PDelta {
+    /// Gravity load of each storey, N.
+    pub loads: Vec<f64>,
+    /// Each storey's geometric stiffness on its relative (Δux, Δuy, Δθ): P/h times the
+    /// load's [[1, 0, −ȳ], [0, 1, x̄], [−ȳ, x̄, x̄² + ȳ² + ρ²]] (x̄, ȳ its centroid, ρ² its
+    /// polar moment about it over P), N/m, N and N·m; positive semidefinite.
+    pub blocks: Vec<[[f64; 3]; 3]>,
+}
+
+/// The P-Δ of `floors` with storey heights `heights`: each storey's gravity load (given,
+/// or g times the mass at and above it) spread as the mass of the floors above it — its
+/// centroid their centre of mass, its polar moment theirs (each floor's own J plus its
+/// mass times its centre's distance squared) — so the second-order moment of a load
+/// leaning on the storey's columns, −(1/h)∫w(δu_x² + δu_y²), is the block
+/// (Wilson and Habibullah, 1987, for rigid diaphragms).
+pub fn p_delta_blocks(floors: &[Floor], heights: &[f64], loads: Option<&[f64]>) -> PDelta {
+    let n = floors.len();
+    let mut out = PDelta {
+        loads: Vec::with_capacity(n),
+        blocks: Vec::with_capacity(n),
+    };
+    for f in 0..n {
+        let above = &floors[f..];
+        let m: f64 = above.iter().map(|fl| fl.mass).sum();
+        let cx = above.iter().map(|fl| fl.mass * fl.centre[0]).sum::<f64>() / m;
+        let cy = above.iter().map(|fl| fl.mass * fl.centre[1]).sum::<f64>() / m;
+        let polar: f64 = above
+            .iter()
+            .map(|fl| {
+                let (dx, dy) = (fl.centre[0] - cx, fl.centre[1] - cy);
+                fl.inertia + fl.mass * (dx * dx + dy * dy)
+            })
+            .sum();
+        let p = loads.map_or(crate::building::STANDARD_GRAVITY * m, |l| l[f]);
+        // the load per unit mass above: its polar moment is the mass's scaled
+        let s = p / m / heights[f];
+        let ph = p / heights[f];
+        out.loads.push(p);
+        out.blocks.push([
+            [ph, 0.0, -ph * cy],
+            [0.0, ph, ph * cx],
+            [-ph * cy, ph * cx, ph * (cx * cx + cy * cy) + s * polar],
+        ]);
+    }
+    out
 }
 
 impl FloorPlan {
@@ -119,11 +175,24 @@ impl FloorPlan {
             std::path::Path::new(&self.name),
         )
         .unwrap_or_else(|_| self.damping.clone());
+        // the gravity loads spread again over the moved masses
+        let p_delta = match (&self.p_delta, &self.storey_heights) {
+            (Some(pd), Some(h)) => Some(p_delta_blocks(
+                &floors,
+                h,
+                self.p_delta_config
+                    .as_ref()
+                    .and_then(|c| c.gravity_loads.as_ref())
+                    .map(|_| pd.loads.as_slice()),
+            )),
+            _ => None,
+        };
         FloorPlan {
             floors,
             mass,
             modes,
             damping,
+            p_delta,
             ..self.clone()
         }
     }

@@ -39,6 +39,11 @@ pub fn opensees_script(scene: &FloorPlanScene) -> Result<String, SimError> {
         )));
     }
     let b = &scene.building;
+    if b.p_delta.is_some() {
+        return Err(refuse(
+            "its storeys carry P-Delta, which the script does not write for a plan yet (a leaning column per storey with the load's polar moment): remove `p_delta` to export it".into(),
+        ));
+    }
     let plan = super::compile(scene)?;
     crate::simulate::check(&plan)?;
     // Rayleigh α, β of the bare frame: C = αM + βK must hold on the floors' DOFs.
