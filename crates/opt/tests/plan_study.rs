@@ -262,6 +262,11 @@ fn a_rerun_replays_the_journal_and_a_cut_journal_resumes_to_the_same_bytes() {
     let resumed = run(&p, &out);
     assert_eq!(resumed.report.replayed, keep - 1);
     assert_eq!(read_all(&out), bytes);
+    // a larger budget continues from the journal: every design run before is replayed
+    let more = study(&dir, 0.7, |v| v["refine"]["max_evaluations"] = json!(20));
+    let r = run(&more, &out);
+    assert!(r.report.replayed >= n, "{} of {n}", r.report.replayed);
+    assert!(r.report.refine_designs > first.report.refine_designs);
 }
 
 #[test]

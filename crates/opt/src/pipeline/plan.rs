@@ -45,9 +45,10 @@ pub struct PlanRun {
     pub discarded: Option<Discarded>,
 }
 
-/// The study's fingerprint: everything that sets the journal's numbers (the buildings
-/// of every case, the records' samples as run, the space, objective, limits, fidelity,
-/// sweep and refinement, the integrators' version).
+/// The study's fingerprint: everything that sets a journalled design's numbers (the
+/// buildings of every case, the records' samples as run, the space, objective, limits and
+/// fidelity, the integrators' version) — not the sweep's or the refinement's settings,
+/// which only choose the designs: a rerun with a larger budget replays what was run.
 pub fn fingerprint(study: &PlanStudy) -> u64 {
     let mut h = Fnv64::default();
     h.u64(u64::from(slipload_sim::NUMERICS_VERSION));
@@ -97,12 +98,12 @@ pub fn fingerprint(study: &PlanStudy) -> u64 {
     }
     let cfg = &study.config;
     let json = |v: &dyn erased::Ser| v.json();
+    // (the sweep's and the refinement's settings choose which designs run, not what a
+    // design gives: a journal serves a study that asks for more of them)
     h.str(&json(&cfg.space))
         .str(&json(&cfg.objective))
         .str(&json(&cfg.limits))
-        .str(&json(&cfg.fidelity))
-        .str(&json(&cfg.sweep))
-        .str(&json(&cfg.refine));
+        .str(&json(&cfg.fidelity));
     h.str(study.method.as_str());
     h.finish()
 }

@@ -133,7 +133,7 @@ fn table(scene: &FloorPlanScene, out: &Outcome) -> String {
     if let Some(e) = &r.energy {
         let _ = writeln!(
             s,
-            "energy: input {:.4e} J, friction {:.4e} J, balance error {:.2e}",
+            "energy: input {:.4e} J, friction {:.4e} J, balance error {:.2e} J",
             e.input, e.friction, e.balance_error
         );
     }
