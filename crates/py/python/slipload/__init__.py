@@ -619,7 +619,7 @@ def optimize(
     fresh: bool = False,
     progress: Progress = None,
     threads: Optional[int] = None,
-) -> StudyReport:
+) -> Union[StudyReport, Dict[str, Any]]:
     """Optimises a study's slip loads, as ``slipload optimize`` does: sweep, refine from the
     best sweep points, check the finalists at reference accuracy, build the design table,
     draw the figures — into ``out``, journalled and resumable.

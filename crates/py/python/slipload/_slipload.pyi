@@ -318,6 +318,19 @@ def simulate_in_plan(
 def is_in_plan(path: str) -> bool:
     """Whether the file is a scene in plan or a building in plan."""
 
+def is_plan_study(path: str) -> bool:
+    """Whether the file is a study in plan (its building is a building in plan)."""
+
+def optimize_in_plan(
+    path: str,
+    out: str,
+    *,
+    fresh: bool = False,
+    progress: ProgressCallback = None,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]:
+    """Optimises the study in plan at `path` into `out`, as `slipload optimize` does."""
+
 def batch(
     scenes: Sequence[Scene],
     *,
