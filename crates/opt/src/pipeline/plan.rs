@@ -186,6 +186,11 @@ pub fn optimize_in_plan(
     let oracle = |zs: &[Vec<f64>]| -> Result<Vec<(f64, Option<crate::phases::refine::LimitValues>)>, OptError> {
         let loads: Vec<Vec<Option<f64>>> = zs.iter().map(|z| study.all_slip_loads(z)).collect();
         let evals = evaluate_loads(study, &loads, Step::SEARCH)?;
+        // one tick per design run (the sweep's and the refinement's bars; a design the
+        // journal gives is not run)
+        for _ in &evals {
+            progress.tick();
+        }
         Ok(evals.iter().map(|e| e.point_value(study)).collect())
     };
     let jp = journal_path.clone();
@@ -219,12 +224,9 @@ pub fn optimize_in_plan(
             ..crate::model::config::SweepConfig::default()
         },
     ));
-    phase(progress, Phase::Sweep, sample.len(), |tick| {
+    phase(progress, Phase::Sweep, sample.len(), |_| {
         for chunk in sample.chunks(SWEEP_BATCH) {
             ev.eval(chunk)?;
-            for _ in chunk {
-                tick();
-            }
         }
         Ok(())
     })?;

@@ -82,7 +82,7 @@ pub struct FloorPlan {
     /// The damping as the file states it (what a moved centre of mass recomputes).
     pub damping_config: Option<DampingConfig>,
     /// P-Δ, when the file asks for it: each storey's gravity load (N) and the geometric
-    /// stiffness block it gives on the storey's relative (Δux, Δuy, Δθ) ([`p_delta_blocks`];
+    /// stiffness block it gives on the storey's relative (Δux, Δuy, Δθ) (`p_delta_blocks`;
     /// subtracted from the stiffness when the plan is compiled).
     pub p_delta: Option<PDelta>,
     /// The gravity loads as the file states them (`None`: g times the mass above), for a
