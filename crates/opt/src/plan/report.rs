@@ -76,8 +76,8 @@ impl PlanReport {
     }
 }
 
-/// The share of each sized line in its direction's slip load (summed over the storeys),
-/// per design: (line name, direction's lines, share) — lines of one direction together.
+/// Each line with dampers and its share of its direction's slip load (summed over the
+/// storeys) under `loads`: (line name, share), in the lines' order.
 pub fn line_shares(study: &PlanStudy, loads: &[Option<f64>]) -> Vec<(String, f64)> {
     let b = &study.building;
     let mut per_line = vec![0.0; b.lines.len()];
