@@ -478,3 +478,25 @@ fn bad_studies_are_refused_naming_the_field() {
     let e = PlanStudy::load(&p).unwrap_err().to_string();
     assert!(e.contains("placment"), "{e}");
 }
+
+#[test]
+fn a_plan_without_its_size_is_studied_for_its_rotation_and_its_check_page_shows_no_edges() {
+    let dir = tmp("nosize");
+    let p = study(&dir, 0.7, |v| {
+        v["building"].as_object_mut().unwrap().remove("plan_size");
+        for f in v["building"]["floors"].as_array_mut().unwrap() {
+            f["centre_of_mass"] = json!(["10 m", "6 m"]);
+            f["inertia_kg_m2"] = json!(9.0e6);
+        }
+        v["objective"] = json!({"metric": "rotation"});
+        v["sweep"] = json!({"points": 3});
+        v["refine"] = json!({"max_evaluations": 0});
+    });
+    let out = dir.join("out");
+    let r = run(&p, &out);
+    let opt = r.report.row("optimum").unwrap();
+    assert!(opt.objective > 0.0 && opt.objective.is_finite());
+    let check = std::fs::read_to_string(out.join("plan-check.md")).unwrap();
+    assert!(!check.contains("NaN") && !check.contains("inf"), "{check}");
+    assert!(check.contains("| 1 | — |"), "{check}");
+}

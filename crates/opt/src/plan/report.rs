@@ -379,12 +379,15 @@ pub fn check_md(study: &PlanStudy, report: &PlanReport) -> String {
                 let tl = limits
                     .torsional_ratio
                     .map_or_else(|| "—".to_string(), |l| format!("{l}"));
+                // (a plan without `plan_size` has no edges and no torsional ratio)
+                let shown = |v: f64, text: String| if v.is_finite() { text } else { "—".into() };
                 let _ = writeln!(
                     s,
-                    "| {} | {:.3} | {el} | {er} | {tor:.3} | {tl} | {} |",
+                    "| {} | {} | {el} | {er} | {} | {tl} | {} |",
                     f + 1,
-                    edge * 100.0,
-                    torsion_class(tor)
+                    shown(edge, format!("{:.3}", edge * 100.0)),
+                    shown(tor, format!("{tor:.3}")),
+                    shown(tor, torsion_class(tor).to_string())
                 );
             }
             s.push('\n');
