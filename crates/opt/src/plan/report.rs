@@ -7,6 +7,7 @@
 use super::config::trim;
 use super::evaluate::DesignEval;
 use super::study::PlanStudy;
+use crate::model::check::md_text;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -161,8 +162,8 @@ pub fn dampers_csv(study: &PlanStudy, report: &PlanReport) -> String {
                 s,
                 "{},{},{},{},{},{:.3}",
                 row.design,
-                site.name,
-                study.building.lines[site.line].name,
+                csv(&site.name),
+                csv(&study.building.lines[site.line].name),
                 site.storey + 1,
                 kn(row.eval.loads[k]),
                 cell.peaks.slip.get(k).copied().unwrap_or(0.0) * 1e3
@@ -178,7 +179,7 @@ pub fn dampers_md(study: &PlanStudy, report: &PlanReport) -> String {
     let b = &study.building;
     let mut s = format!(
         "# {}: slip loads by line and storey\n\nSlip loads in kN, rounded to 0.1 kN. Shares: each line's part of the slip load along its direction, summed over the storeys.\n\n",
-        report.study
+        md_text(&report.study)
     );
     let lines: Vec<usize> = (0..b.lines.len())
         .filter(|&l| study.dampers.iter().any(|d| d.line == l))
@@ -190,7 +191,7 @@ pub fn dampers_md(study: &PlanStudy, report: &PlanReport) -> String {
         let _ = writeln!(s, "## {} — {}\n", row.design, row.description);
         let _ = write!(s, "| storey |");
         for &l in &lines {
-            let _ = write!(s, " {} |", b.lines[l].name);
+            let _ = write!(s, " {} |", md_text(&b.lines[l].name));
         }
         let _ = write!(s, "\n|---|");
         for _ in &lines {
@@ -279,7 +280,7 @@ pub fn devices_md(study: &PlanStudy, report: &PlanReport) -> String {
     };
     let mut s = format!(
         "# {}: device table of the optimum\n\nEach damper's demands at the final table's step: the {stat} over each suite's pairs (each pair its largest over its orientations), the worst suite and property case. Stroke: the larger slip either way from the start. Slip loads to 0.1 kN.\n\n| damper | slip load (kN) | stroke (mm) | peak velocity (mm/s) | cumulative travel (mm) | energy (kJ) | peak force (kN) |\n|---|---:|---:|---:|---:|---:|---:|\n",
-        report.study
+        md_text(&report.study)
     );
     let Some(row) = report.row("optimum") else {
         return s;
@@ -297,7 +298,7 @@ pub fn devices_md(study: &PlanStudy, report: &PlanReport) -> String {
         let _ = writeln!(
             s,
             "| {} | {} | {:.2} | {:.1} | {:.1} | {:.2} | {:.1} |",
-            study.dampers[k].name,
+            md_text(&study.dampers[k].name),
             kn(row.eval.loads[k]),
             d[0] * 1e3,
             d[1] * 1e3,
@@ -333,7 +334,7 @@ pub fn check_md(study: &PlanStudy, report: &PlanReport) -> String {
     };
     let mut s = format!(
         "# {}: check of the optimum storey by storey\n\nPer suite, each storey's edge drift (the largest of the plan's four edges, percent of the storey height) and torsional irregularity ratio (the larger edge drift over the edges' mean, along x or y), each the {stat} over the suite's pairs (each pair its largest over its orientations) at the worst property case ({}). The torsional class reads ASCE 7-16 Table 12.3-1's thresholds (1.2, 1.4) on these dynamic peaks; the standard's own check uses the drifts of the equivalent lateral forces with accidental torsion, so the class here is an indicator, not that check.\n\n",
-        report.study,
+        md_text(&report.study),
         study
             .cases
             .iter()
@@ -367,7 +368,7 @@ pub fn check_md(study: &PlanStudy, report: &PlanReport) -> String {
             let _ = writeln!(
                 s,
                 "### suite {}\n\n| storey | edge drift (%) | limit (%) | demand/limit | torsional ratio | limit | class |\n|---|---:|---:|---:|---:|---:|---|",
-                suite.name
+                md_text(&suite.name)
             );
             for f in (0..n).rev() {
                 let edge = worst(&|c| c.peaks.edge_drift.get(f).copied().unwrap_or(f64::NAN));
