@@ -140,6 +140,22 @@ pub struct SecondGround {
     pub points: Vec<f64>,
 }
 
+/// What a building in plan's base carries: its shear along x and y and its torque about
+/// the plan's origin, each a row of weights on the absolute accelerations. Row k is M·e_k
+/// for the base's rigid motion e_k (a unit translation along x, along y, a unit rotation
+/// about the origin: every floor's origin moving with it, a damper's DOF by its line's
+/// share), so the base's reaction is e_kᵀ M (a + r₁ a_g₁ + r₂ a_g₂): the inertia forces'
+/// resultant, as a chain's base shear Σ mᵢ(aᵢ + a_g) is.
+#[derive(Debug, Clone)]
+pub struct BaseRows {
+    /// M·e_x, M·e_y, M·e_θ on the plan's DOFs (kg, kg, kg·m).
+    pub rows: [DVector<f64>; 3],
+    /// Each row times the first component's influence r₁: its ground acceleration's share.
+    pub first: [f64; 3],
+    /// Each row times the second component's influence r₂ (zeros without one).
+    pub second: [f64; 3],
+}
+
 /// A compiled scene.
 #[derive(Debug, Clone)]
 pub struct Plan {
@@ -182,6 +198,9 @@ pub struct Plan {
     pub record: Option<Arc<Record>>,
     /// A second ground component applied with `record` (`None` for a chain).
     pub second: Option<SecondGround>,
+    /// A building in plan's base shears and torque as rows on the accelerations (`None`
+    /// for a chain, whose base shear is its own sum).
+    pub base: Option<Arc<BaseRows>>,
     /// Harmonic floor force.
     pub harmonic: Option<Harmonic>,
     /// Initial displacements on the plan's DOFs, m.
@@ -608,6 +627,7 @@ impl Plan {
             storey_heights: b.storey_heights.clone(),
             record: scene.record.clone(),
             second: None,
+            base: None,
             harmonic: scene.harmonic,
             u0,
             v0,

@@ -135,6 +135,23 @@ pub struct InPlan {
     /// when the plan's size is not given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub torsional_irregularity: Option<Vec<[f64; 2]>>,
+    /// The base's peak shears along the plan's x and y and its peak torque about the
+    /// plan's origin ([`crate::plan::BaseRows`]): the inertia forces' resultant, each the
+    /// largest magnitude over the output steps at its own time (the response's
+    /// `peak_base_shear` is the shear along the first component).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_base: Option<BaseForces>,
+}
+
+/// A building in plan's peak base forces ([`InPlan::peak_base`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BaseForces {
+    /// Peak |base shear along x|, N.
+    pub shear_x_n: f64,
+    /// Peak |base shear along y|, N.
+    pub shear_y_n: f64,
+    /// Peak |base torque about the plan's origin|, N·m.
+    pub torque_nm: f64,
 }
 
 /// The derivatives of a run's peak responses with respect to each damper's slip load F
@@ -534,6 +551,11 @@ pub struct Measures {
     pub points: Vec<(Kin, f64)>,
     /// Each point's influence of the second ground component (zeros without one).
     pub points2: Vec<f64>,
+    /// The base's rows ([`crate::plan::BaseRows`]), when the plan has them.
+    pub base: Option<std::sync::Arc<crate::plan::BaseRows>>,
+    /// Peak |base shear along x|, |along y| (N) and |base torque about the plan's origin|
+    /// (N·m), each at its own time.
+    pub base_peaks: [f64; 3],
 }
 
 impl Peaks {
@@ -584,6 +606,8 @@ impl Peaks {
                         .second
                         .as_ref()
                         .map_or_else(|| vec![0.0; np], |g| g.points.clone()),
+                    base: plan.base.clone(),
+                    base_peaks: [0.0; 3],
                 })
             }),
             ..Peaks::new(0)
@@ -633,7 +657,18 @@ impl Peaks {
     /// (a building in plan under both components; a chain has none).
     #[inline]
     pub fn observe_floors2(&mut self, x: &[f64], a: &[f64], ag: f64, ag2: f64) {
-        if let Some(m) = &self.measures {
+        if let Some(m) = &mut self.measures {
+            if let Some(b) = &m.base {
+                for (k, peak) in m.base_peaks.iter_mut().enumerate() {
+                    let mut v = b.first[k] * ag + b.second[k] * ag2;
+                    for (w, ai) in b.rows[k].iter().zip(a) {
+                        v += w * ai;
+                    }
+                    if v.abs() > *peak {
+                        *peak = v.abs();
+                    }
+                }
+            }
             for (k, (top, bottom)) in m.drifts.iter().enumerate() {
                 let d = top.at(x) - bottom.at(x);
                 self.last_drift[k] = d;
@@ -710,6 +745,15 @@ impl Peaks {
         let n = plan.damper_slots;
         let plastic = yields.then(|| self.slip[n..].to_vec());
         let collapse = self.collapse;
+        let base = self
+            .measures
+            .as_ref()
+            .and_then(|m| m.base.as_ref().map(|_| m.base_peaks))
+            .map(|[x, y, t]| BaseForces {
+                shear_x_n: x,
+                shear_y_n: y,
+                torque_nm: t,
+            });
         let mut r = self.into_response_slots(
             n,
             plan.method.name.as_str(),
@@ -745,6 +789,7 @@ impl Peaks {
                 points: labels.points.clone(),
                 dampers: labels.dampers.clone(),
                 plastic: labels.plastic.clone(),
+                peak_base: base,
                 torsional_irregularity: labels.edges.as_ref().map(|edges| {
                     edges
                         .iter()

@@ -888,7 +888,8 @@ fn p_delta_of_a_one_storey_plan_lowers_each_frequency_as_the_closed_form_says() 
         let got = k[(i, i)] / m[(i, i)];
         assert!(rel(got, *w) < 1e-12, "DOF {i}: {got} vs {w}");
     }
-    // the OpenSees export does not write a plan's P-Δ yet: refused by name
+    // the OpenSees export writes the storey's P-Δ as springs at the load's centroid:
+    // −P/h along x and y, −Pρ²/h about the vertical (the py tests run it against newmark)
     let scene = FloorPlanScene::new(
         Arc::new(b.clone()),
         vec![GroundComponent {
@@ -899,10 +900,22 @@ fn p_delta_of_a_one_storey_plan_lowers_each_frequency_as_the_closed_form_says() 
         MethodName::Newmark,
         outputs(false),
     );
-    let e = slipload_sim::floorplan::opensees_script(&scene)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("P-Delta") && e.contains("p_delta"), "{e}");
+    let script = slipload_sim::floorplan::opensees_script(&scene).unwrap();
+    let row: Vec<f64> = script
+        .split("P_DELTA = [\n")
+        .nth(1)
+        .and_then(|t| t.lines().next())
+        .unwrap()
+        .trim()
+        .trim_start_matches('(')
+        .trim_end_matches("),")
+        .split(", ")
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(row.len(), 4, "{row:?}");
+    assert!(row[0].abs() < 1e-12 && row[1].abs() < 1e-12, "centroid {row:?}");
+    assert!(rel(row[2], -p / h) < 1e-12, "{row:?}");
+    assert!(rel(row[3], -p * rho2 / h) < 1e-12, "{row:?}");
     // uncoupled: a symmetric plan's off-diagonal terms are zero
     assert_eq!(k[(0, 1)], 0.0);
     assert_eq!(k[(0, 2)], 0.0);

@@ -213,6 +213,29 @@ impl FloorPlan {
                     ),
                 ));
             }
+            let dashpots: Vec<f64> = if lc.storey_damping.is_empty() {
+                vec![0.0; n]
+            } else {
+                lc.storey_damping.iter().map(|c| c.0).collect()
+            };
+            if dashpots.len() != n {
+                return Err(invalid(
+                    at("storey_damping"),
+                    format!(
+                        "has {} values, expected {n} (one per storey, N·s/m)",
+                        dashpots.len()
+                    ),
+                ));
+            }
+            if let Some(i) = dashpots.iter().position(|c| !is_non_negative(*c)) {
+                return Err(invalid(
+                    at(&format!("storey_damping[{i}]")),
+                    format!(
+                        "must be a finite damping coefficient ≥ 0 (N·s/m), got {}",
+                        dashpots[i]
+                    ),
+                ));
+            }
             let (storey_yield, dissipators) = line_parts(
                 &format!("lines[{l}]."),
                 &lc.storey_stiffness,
@@ -225,6 +248,7 @@ impl FloorPlan {
                 angle,
                 point,
                 stiffness: ks,
+                dashpots,
                 storey_yield,
                 dissipators,
             });

@@ -15,7 +15,8 @@ use super::scene::FloorPlanScene;
 use crate::error::SimError;
 use crate::kinematics::{Kin, add_between};
 use crate::plan::{
-    Contact, ContactKind, ContactRole, FloorLink, Labels, Plan, SecondGround, check_step_count,
+    BaseRows, Contact, ContactKind, ContactRole, FloorLink, Labels, Plan, SecondGround,
+    check_step_count,
 };
 use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
@@ -44,8 +45,9 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     }
     let psi = scene.ground.first().map_or(0.0, |g| g.angle);
     let (gc, gs) = cos_sin(psi);
-    // the directions of the dampers with a DOF, for each component's influence on them
-    let mut dof_dirs: Vec<(usize, (f64, f64))> = Vec::new();
+    // the kinematic weights (c, s, lever) of the dampers with a DOF, for each ground
+    // component's influence on them and the base's rigid motions
+    let mut dof_dirs: Vec<(usize, [f64; 3])> = Vec::new();
     let bilinear = scene.method.name == crate::scene::MethodName::Bilinear;
     let mut notes = vec![format!(
         "building in plan: {n} floors x 3 DOFs (ux, uy, rotation of the plan's origin), {} lines",
@@ -84,6 +86,18 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     mass.view_mut((0, 0), (nf, nf)).copy_from(&b.mass);
     damping.view_mut((0, 0), (nf, nf)).copy_from(&b.damping);
     stiffness.view_mut((0, 0), (nf, nf)).copy_from(&b.stiffness);
+    // The lines' storey dashpots, between each storey's two points of the line
+    for line in &b.lines {
+        for (f, &c) in line.dashpots.iter().enumerate() {
+            if c > 0.0 {
+                let (top, bottom) = line_ends(line, f);
+                add_between(&mut damping, &top, &bottom, c);
+            }
+        }
+    }
+    if b.lines.iter().any(|l| l.dashpots.iter().any(|c| *c > 0.0)) {
+        notes.push("storey dashpots of the lines: viscous elements along the lines, added to the frame damping".into());
+    }
     // P-Δ: each storey's geometric stiffness on its relative motion (Δ of the floor's
     // ux, uy, θ over the floor below's; the ground's is zero), subtracted
     if let Some(pd) = &b.p_delta {
@@ -148,7 +162,7 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
                 mass[(dof, dof)] = d.mass;
                 add_between(&mut stiffness, &Kin::dof(dof), &bottom, d.brace_stiffness);
                 add_between(&mut damping, &Kin::dof(dof), &bottom, d.brace_damping);
-                dof_dirs.push((dof, line.direction()));
+                dof_dirs.push((dof, line.weights()));
                 notes.push(format!(
                     "{}: friction contact, dissipator DOF {dof} (m' = {} kg, k' = {:.6e} N/m), bounds [{:.6e}, {:.6e}] N",
                     label(site),
@@ -295,12 +309,35 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
             r[3 * f] = c;
             r[3 * f + 1] = s;
         }
-        for &(dof, (lc, ls)) in &dof_dirs {
+        for &(dof, [lc, ls, _]) in &dof_dirs {
             r[dof] = lc * c + ls * s;
         }
         r
     };
     let influence = influence_of(psi);
+    let second_influence = scene.ground.get(1).map(|g| influence_of(g.angle));
+    // The base's rigid motions: translations along x and y are the influences at 0° and
+    // 90°; a unit rotation about the origin turns every floor and moves a damper's DOF
+    // by its line's lever.
+    let base = {
+        let mut rot = DVector::zeros(n_dof);
+        for f in 0..n {
+            rot[3 * f + 2] = 1.0;
+        }
+        for &(dof, [_, _, lever]) in &dof_dirs {
+            rot[dof] = lever;
+        }
+        let rows = [influence_of(0.0), influence_of(std::f64::consts::FRAC_PI_2), rot]
+            .map(|e| &mass * e);
+        let share = |r: Option<&DVector<f64>>| {
+            [0, 1, 2].map(|k| r.map_or(0.0, |r| rows[k].dot(r)))
+        };
+        BaseRows {
+            first: share(scene.ground.first().map(|_| &influence)),
+            second: share(second_influence.as_ref()),
+            rows,
+        }
+    };
     let mut points = Vec::with_capacity(nf);
     let mut point_names = Vec::with_capacity(nf);
     for (f, fl) in b.floors.iter().enumerate() {
@@ -368,9 +405,9 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         links: vec![FloorLink::None; n],
         storey_heights: heights.iter().copied().collect::<Option<Vec<f64>>>(),
         record: scene.ground.first().map(|g| g.record.clone()),
-        second: scene.ground.get(1).map(|g| SecondGround {
+        second: scene.ground.get(1).zip(second_influence).map(|(g, influence)| SecondGround {
             record: g.record.clone(),
-            influence: influence_of(g.angle),
+            influence,
             points: (0..n)
                 .flat_map(|_| {
                     let (c, s) = cos_sin(g.angle);
@@ -378,6 +415,7 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
                 })
                 .collect(),
         }),
+        base: Some(Arc::new(base)),
         harmonic: None,
         u0: vec![0.0; n_dof],
         v0: vec![0.0; n_dof],

@@ -3,7 +3,7 @@
 //! Nothing here is validated; `build` turns it into a [`FloorPlan`](super::FloorPlan).
 
 use crate::building::{DampingConfig, DissipatorConfig, StoreyYieldConfig};
-use crate::units::{Length, Mass, Stiffness};
+use crate::units::{Damping, Length, Mass, Stiffness};
 use serde::{Deserialize, Serialize};
 
 /// A building in plan, as written: rigid floors (diaphragms) with two translations and a
@@ -125,6 +125,11 @@ pub struct LineConfig {
     pub at: Option<Length>,
     /// Storey stiffness of the line along its direction, bottom to top (N/m).
     pub storey_stiffness: Vec<Stiffness>,
+    /// Storey dashpots of the line along its direction, bottom to top (N·s/m; a chain's
+    /// `damping.storey`, per line): viscous elements between the line's points on two
+    /// floors, added to the building's frame damping.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub storey_damping: Vec<Damping>,
     /// Storeys of the line that yield (bilinear, as a chain's `storey_yield`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub storey_yield: Vec<StoreyYieldConfig>,

@@ -28,6 +28,8 @@ pub struct Line {
     pub point: [f64; 2],
     /// Storey stiffness along the line, per storey, N/m.
     pub stiffness: Vec<f64>,
+    /// Storey dashpot along the line, per storey, N·s/m (zeros without any).
+    pub dashpots: Vec<f64>,
     /// Yield law per storey (`None`: elastic).
     pub storey_yield: Vec<Option<StoreyYield>>,
     /// Friction damper per storey (its top floor), if any.
@@ -281,7 +283,7 @@ pub(super) fn damping_matrix(
             return Err(SimError::invalid(
                 path,
                 "damping",
-                "a building in plan takes `rayleigh`, `modal` or `none` (on its three-dimensional modes); storey dashpots and a damping matrix are a chain's",
+                "a building in plan takes `rayleigh`, `modal` or `none` (on its three-dimensional modes); a damping matrix is a chain's; storey dashpots go on the lines (`lines[i].storey_damping`, N·s/m per storey)",
             ));
         }
     })

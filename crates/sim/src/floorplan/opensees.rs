@@ -16,6 +16,11 @@
 //! every line at every storey (in the order of the response's `in_plan.drifts`), peaks at
 //! the steps.
 //!
+//! A line's storey dashpot is a zeroLength `Viscous` element (c, exponent 1) along it; a
+//! storey's P-Δ a zeroLength element at its gravity load's centroid, between nodes
+//! rigidly linked to the two floors, with −P/h along x and y and −Pρ²/h about the
+//! vertical (the block the plan subtracts, written as three springs).
+//!
 //! Refused with a message that says what to change: another method than `newmark` or
 //! `bilinear`, modal damping (no element expresses it), a damper with mass under `newmark`
 //! (`bilinear` ignores it), a brace dashpot.
@@ -39,11 +44,6 @@ pub fn opensees_script(scene: &FloorPlanScene) -> Result<String, SimError> {
         )));
     }
     let b = &scene.building;
-    if b.p_delta.is_some() {
-        return Err(refuse(
-            "its storeys carry P-Delta, which the script does not write for a plan yet (a leaning column per storey with the load's polar moment): remove `p_delta` to export it".into(),
-        ));
-    }
     let plan = super::compile(scene)?;
     crate::simulate::check(&plan)?;
     // Rayleigh α, β of the bare frame: C = αM + βK must hold on the floors' DOFs.
@@ -113,7 +113,7 @@ pub fn opensees_script(scene: &FloorPlanScene) -> Result<String, SimError> {
     let _ = writeln!(s, "]");
     let _ = writeln!(
         s,
-        "# lines: (name, cos, sin, x, y of a point, per storey: (elastic k N/m, plastic (k, fy) or None, damper (k', F-, F+) or None, locked brace k' or None))"
+        "# lines: (name, cos, sin, x, y of a point, per storey: (elastic k N/m, plastic (k, fy) or None, damper (k', F-, F+) or None, locked brace k' or None, dashpot c N*s/m))"
     );
     let _ = writeln!(s, "LINES = [");
     for line in &b.lines {
@@ -146,9 +146,30 @@ pub fn opensees_script(scene: &FloorPlanScene) -> Result<String, SimError> {
                 ),
                 None => ("None".to_string(), "None".to_string()),
             };
-            let _ = writeln!(s, "        ({elastic:?}, {plastic}, {damper}, {locked}),");
+            let dashpot = line.dashpots[f];
+            let _ = writeln!(
+                s,
+                "        ({elastic:?}, {plastic}, {damper}, {locked}, {dashpot:?}),"
+            );
         }
         let _ = writeln!(s, "    ]),");
+    }
+    let _ = writeln!(s, "]");
+    // P-Δ: per storey, the block P/h [[1, 0, −ȳ], [0, 1, x̄], [−ȳ, x̄, x̄² + ȳ² + ρ²]] is
+    // a spring −P/h along x and one along y at the load's centroid (x̄, ȳ) and a
+    // torsional spring −Pρ²/h: three negative stiffnesses of a zeroLength element there.
+    let _ = writeln!(
+        s,
+        "# P-Delta per storey: (x, y of the gravity load's centroid m, -P/h N/m, -P*rho^2/h N*m), or none"
+    );
+    let _ = writeln!(s, "P_DELTA = [");
+    if let Some(pd) = &b.p_delta {
+        for block in &pd.blocks {
+            let ph = block[0][0];
+            let (x, y) = (block[1][2] / ph, -block[0][2] / ph);
+            let twist = block[2][2] - ph * (x * x + y * y);
+            let _ = writeln!(s, "    ({x:?}, {y:?}, {:?}, {:?}),", -ph, -twist);
+        }
     }
     let _ = writeln!(s, "]");
     // The ground at the integration steps, as newmark samples each component, resolved
@@ -251,7 +272,7 @@ def build(ops):
     tag = 0
     frame = []
     for l, (name, c, s, x, y, storeys) in enumerate(LINES):
-        for f, (k, plastic, damper, locked) in enumerate(storeys, start=1):
+        for f, (k, plastic, damper, locked, dashpot) in enumerate(storeys, start=1):
             a, b = at(f - 1, l), at(f, l)
             mats = []
             if k != 0.0:
@@ -273,6 +294,28 @@ def build(ops):
                 tag += 1
                 ops.uniaxialMaterial(brace[0], tag, *brace[1:])
                 ops.element("zeroLength", tag, a, b, "-mat", tag, "-dir", 1, "-orient", c, s, 0.0, -s, c, 0.0, "-doRayleigh", 0)
+            if dashpot > 0.0:
+                tag += 1
+                ops.uniaxialMaterial("Viscous", tag, dashpot, 1.0)
+                ops.element("zeroLength", tag, a, b, "-mat", tag, "-dir", 1, "-orient", c, s, 0.0, -s, c, 0.0, "-doRayleigh", 0)
+    # P-Delta: a node at the load's centroid on the storey's two floors (the ground's
+    # fixed), each rigidly linked to its floor's master, joined by negative springs
+    for f, (x, y, kt, kr) in enumerate(P_DELTA, start=1):
+        top, bottom = 100000 * f + 99998, 100000 * (f - 1) + 99999
+        ops.node(top, x, y)
+        ops.rigidLink("beam", master(f), top)
+        ops.node(bottom, x, y)
+        if f == 1:
+            ops.fix(bottom, 1, 1, 1)
+        else:
+            ops.rigidLink("beam", master(f - 1), bottom)
+        mats = []
+        for k in (kt, kt, kr):
+            tag += 1
+            ops.uniaxialMaterial("Elastic", tag, k)
+            mats.append(tag)
+        tag += 1
+        ops.element("zeroLength", tag, bottom, top, "-mat", *mats, "-dir", 1, 2, 3, "-doRayleigh", 0)
     alpha, beta = RAYLEIGH
     if frame and beta != 0.0:
         ops.region(1, "-ele", *frame, "-rayleigh", 0.0, 0.0, beta, 0.0)

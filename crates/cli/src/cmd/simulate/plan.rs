@@ -130,6 +130,13 @@ fn table(scene: &FloorPlanScene, out: &Outcome) -> String {
         "\npeak base shear along the first component: {:.4e} N",
         r.peak_base_shear
     );
+    if let Some(b) = &ip.peak_base {
+        let _ = writeln!(
+            s,
+            "peak base shear along x {:.4e} N, along y {:.4e} N; peak base torque about the plan's origin {:.4e} N m",
+            b.shear_x_n, b.shear_y_n, b.torque_nm
+        );
+    }
     if let Some(e) = &r.energy {
         let _ = writeln!(
             s,

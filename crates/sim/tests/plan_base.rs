@@ -1,0 +1,272 @@
+//! A building in plan's base forces (shear along x and y, torque about the origin) and
+//! its lines' storey dashpots.
+
+use slipload_motion::Record;
+use slipload_sim::floorplan::{FloorPlan, FloorPlanConfig, FloorPlanScene, GroundComponent};
+use slipload_sim::scene::OutputsConfig;
+use slipload_sim::{MethodName, run_plan, simulate};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A short broadband record (m/s², dt 0.01 s), `phase` shifting its content so two
+/// components differ.
+fn motion(pga: f64, phase: f64) -> Arc<Record> {
+    let dt = 0.01;
+    let a: Vec<f64> = (0..400)
+        .map(|i| {
+            let t = i as f64 * dt;
+            let env = (t / 0.5).min(1.0) * (-(t - 0.5).max(0.0) / 1.5).exp();
+            env * ((7.3 * t + phase).sin()
+                + 0.6 * (17.1 * t + 0.4).sin()
+                + 0.35 * (3.1 * t - phase).sin())
+        })
+        .collect();
+    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    Arc::new(
+        Record::new(
+            "decaying sines",
+            dt,
+            a.iter().map(|x| x * pga / peak).collect(),
+        )
+        .unwrap(),
+    )
+}
+
+fn floor_plan(json: &str) -> FloorPlan {
+    let cfg: FloorPlanConfig = serde_json::from_str(json).unwrap();
+    FloorPlan::from_config(&cfg, Path::new("inline-plan.json")).unwrap()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
+}
+
+fn run(
+    b: &FloorPlan,
+    components: &[(Arc<Record>, f64)],
+    method: MethodName,
+    outputs: OutputsConfig,
+) -> (slipload_sim::scene::MethodSettings, slipload_sim::response::Outcome) {
+    let mut scene = FloorPlanScene::new(
+        Arc::new(b.clone()),
+        components
+            .iter()
+            .map(|(record, deg)| GroundComponent {
+                record: record.clone(),
+                angle: deg.to_radians(),
+            })
+            .collect(),
+        components[0].0.duration(),
+        method,
+        outputs,
+    );
+    scene.method.dt = 0.002;
+    let plan = slipload_sim::floorplan::compile(&scene).unwrap();
+    (plan.method, run_plan(&plan).unwrap())
+}
+
+/// Eccentric masses, a line at 30°, massless dampers slipping on two lines, a yielding
+/// storey; no frame damping, so the base's reaction is the first storey's elements'
+/// forces alone.
+const ECCENTRIC: &str = r#"{
+  "name": "eccentric", "plan_size": [20, 12],
+  "floors": [
+    {"mass": "400 t", "centre_of_mass": [12.0, 7.0]},
+    {"mass": "380 t", "centre_of_mass": [11.0, 6.5]},
+    {"mass": "300 t", "centre_of_mass": [13.0, 5.0]}
+  ],
+  "storey_heights": [4.0, 3.5, 3.5],
+  "lines": [
+    {"name": "A", "direction": "y", "at": 0, "storey_stiffness": ["500 MN/m", "450 MN/m", "350 MN/m"]},
+    {"name": "D", "direction": "y", "at": 20, "storey_stiffness": ["150 MN/m", "130 MN/m", "100 MN/m"],
+     "storey_yield": [{"storey": 1, "yield_drift": 0.004, "post_yield_ratio": 0.05}],
+     "dissipators": [
+       {"floor": 1, "brace_stiffness": "300 MN/m", "slip_load": "300 kN"},
+       {"floor": 2, "brace_stiffness": "260 MN/m", "slip_load": "250 kN"}
+     ]},
+    {"name": "1", "direction": "x", "at": 0, "storey_stiffness": ["300 MN/m", "280 MN/m", "220 MN/m"]},
+    {"name": "2", "direction": "x", "at": 12, "storey_stiffness": ["200 MN/m", "180 MN/m", "150 MN/m"]},
+    {"name": "R", "direction": 30, "through": [10, 6], "storey_stiffness": ["100 MN/m", "90 MN/m", "80 MN/m"],
+     "dissipators": [{"floor": 1, "brace_stiffness": "200 MN/m", "slip_load": "200 kN"}]}
+  ]
+}"#;
+
+#[test]
+fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_origin() {
+    // Without frame damping, M(a + r a_g) = −(K u + B F): a rigid motion e of the base
+    // sees only the first storey's elements (every higher storey's two ends move with
+    // it), so the base's shear along x and y and torque about the origin at each step
+    // are Σ over the lines of (c, s, lever) × (elastic force + damper force + plastic
+    // force) of storey 1, from the history's drifts and forces: an independent sum of
+    // the same numbers; round-off (1e-9 of the peak) is all that separates them.
+    let b = floor_plan(ECCENTRIC);
+    let components = [(motion(4.0, 0.0), 20.0), (motion(3.0, 1.1), 110.0)];
+    for method in [MethodName::Newmark, MethodName::Exact] {
+        let outputs = OutputsConfig {
+            histories: true,
+            ..OutputsConfig::default()
+        };
+        let (_, out) = run(&b, &components, method, outputs);
+        let h = out.history.as_ref().unwrap();
+        let r = &out.response;
+        let base = r.in_plan.as_ref().unwrap().peak_base.unwrap();
+        let mut peaks = [0.0f64; 3];
+        let rows = h.rows.len() / h.columns.len();
+        let col = |name: &str| h.column(name);
+        let mut sums = vec![[0.0; 3]; rows];
+        for line in &b.lines {
+            let w = line.weights();
+            let drift = col(&format!("drift_{}/1_m", line.name)).unwrap();
+            let mut k = line.stiffness[0];
+            let mut forces: Vec<Vec<f64>> = Vec::new();
+            if let Some(y) = line.storey_yield[0] {
+                k -= (1.0 - y.post_yield_ratio) * y.stiffness;
+                forces.push(col(&format!("Fp_{}/1_N", line.name)).unwrap());
+            }
+            if line.dissipators[0].is_some() {
+                forces.push(col(&format!("F_{}/1_N", line.name)).unwrap());
+            }
+            for (i, s) in sums.iter_mut().enumerate() {
+                let f = k * drift[i] + forces.iter().map(|c| c[i]).sum::<f64>();
+                for j in 0..3 {
+                    s[j] += w[j] * f;
+                }
+            }
+        }
+        for s in &sums {
+            for j in 0..3 {
+                peaks[j] = peaks[j].max(s[j].abs());
+            }
+        }
+        let got = [base.shear_x_n, base.shear_y_n, base.torque_nm];
+        for j in 0..3 {
+            assert!(
+                rel(got[j], peaks[j]) < 1e-9,
+                "{method:?} base force {j}: {} from the inertia forces, {} from the first storey",
+                got[j],
+                peaks[j]
+            );
+        }
+        // an eccentric plan under both components: real shears both ways and a torque
+        // that is not round-off (a lever of metres on meganewtons)
+        assert!(base.shear_x_n > 1e5 && base.shear_y_n > 1e5, "{base:?}");
+        assert!(base.torque_nm > 1.0 * base.shear_x_n.min(base.shear_y_n), "{base:?}");
+        // the dampers and the yielding storey took part
+        assert!(r.peak_slip.iter().any(|s| *s > 1e-4), "{:?}", r.peak_slip);
+        assert!(r.peak_plastic_drift.as_ref().unwrap()[0] > 0.0);
+    }
+}
+
+/// The chain: three storeys, massless dampers, storey dashpots.
+const CHAIN: &str = r#"{
+  "name": "chain", "floor_masses": [400000, 380000, 300000],
+  "storey_stiffness": [3.0e8, 2.6e8, 2.0e8], "storey_heights": [4.0, 3.5, 3.5],
+  "damping": {"storey": ["1.2 MN*s/m", "0.9 MN*s/m", "600 kN*s/m"]},
+  "dissipators": [
+    {"floor": 1, "brace_stiffness": 4.0e8, "slip_load": 4.0e5},
+    {"floor": 3, "brace_stiffness": 3.0e8, "slip_load": 2.0e5}
+  ]
+}"#;
+
+/// The chain as line X of a plan through the centre of mass, its storey dashpots the
+/// line's.
+const PLANAR: &str = r#"{
+  "name": "planar in plan",
+  "floors": [
+    {"mass": 400000, "inertia_kg_m2": 2.0e7, "centre_of_mass": [0, 0]},
+    {"mass": 380000, "inertia_kg_m2": 1.9e7, "centre_of_mass": [0, 0]},
+    {"mass": 300000, "inertia_kg_m2": 1.5e7, "centre_of_mass": [0, 0]}
+  ],
+  "storey_heights": [4.0, 3.5, 3.5],
+  "lines": [
+    {"name": "X", "direction": "x", "at": 0,
+     "storey_stiffness": [3.0e8, 2.6e8, 2.0e8],
+     "storey_damping": ["1.2 MN*s/m", "0.9 MN*s/m", "600 kN*s/m"],
+     "dissipators": [
+       {"floor": 1, "brace_stiffness": 4.0e8, "slip_load": 4.0e5},
+       {"floor": 3, "brace_stiffness": 3.0e8, "slip_load": 2.0e5}
+     ]},
+    {"name": "Y1", "direction": "y", "at": -8, "storey_stiffness": [2.0e8, 2.0e8, 2.0e8]},
+    {"name": "Y2", "direction": "y", "at": 8, "storey_stiffness": [2.0e8, 2.0e8, 2.0e8]}
+  ]
+}"#;
+
+#[test]
+fn a_lines_storey_dashpots_are_the_chains_storey_damping() {
+    // The chain's storey dashpots written on the line: the plan's x block holds the
+    // chain's C as it holds its K, so the runs agree to round-off carried through the
+    // stick–slip decisions (1e-9, the chain-as-plan tolerance), energies included.
+    let record = motion(3.0, 0.0);
+    let plan_b = floor_plan(PLANAR);
+    let cfg: slipload_sim::BuildingConfig = serde_json::from_str(CHAIN).unwrap();
+    let chain_b = slipload_sim::Building::from_config(&cfg, Path::new("chain.json")).unwrap();
+    let outputs = OutputsConfig {
+        energies: true,
+        ..OutputsConfig::default()
+    };
+    for method in [MethodName::Exact, MethodName::Newmark] {
+        let (settings, out) = run(&plan_b, &[(record.clone(), 0.0)], method, outputs);
+        let p = out.response;
+        let mut scene = slipload_sim::Scene {
+            name: "chain".into(),
+            building: chain_b.clone(),
+            record: Some(record.clone()),
+            harmonic: None,
+            initial: slipload_sim::scene::InitialState::rest(3),
+            duration: record.duration(),
+            method: settings,
+            outputs,
+            reduce: true,
+            notes: Vec::new(),
+        };
+        scene.method.dt = 0.002;
+        let c = simulate(&scene).unwrap().response;
+        let names = &p.in_plan.as_ref().unwrap().drifts;
+        for s in 0..3 {
+            let k = names.iter().position(|d| *d == format!("X/{}", s + 1)).unwrap();
+            assert!(
+                rel(p.peak_drift[k], c.peak_drift[s]) < 1e-9,
+                "{method:?} storey {}: {} in plan, {} as a chain",
+                s + 1,
+                p.peak_drift[k],
+                c.peak_drift[s]
+            );
+        }
+        let (pe, ce) = (p.energy.unwrap(), c.energy.unwrap());
+        assert!(
+            rel(pe.viscous, ce.viscous) < 1e-9 && ce.viscous > 0.05 * ce.input,
+            "{method:?} viscous {} in plan, {} as a chain (input {})",
+            pe.viscous,
+            ce.viscous,
+            ce.input
+        );
+        assert!(rel(pe.friction, ce.friction) < 1e-9);
+        let base = p.in_plan.as_ref().unwrap().peak_base.unwrap();
+        assert!(rel(base.shear_x_n, c.peak_base_shear) < 1e-9, "{method:?}");
+        assert!(rel(p.peak_base_shear, c.peak_base_shear) < 1e-9, "{method:?}");
+        // the chain lies on the origin's x axis: no shear across, no torque
+        assert!(base.shear_y_n <= 1e-12 * base.shear_x_n, "{base:?}");
+        assert!(base.torque_nm <= 1e-12 * base.shear_x_n, "{base:?}");
+    }
+}
+
+#[test]
+fn a_lines_storey_damping_is_checked_by_field() {
+    let err = |replace: (&str, &str)| {
+        let json = PLANAR.replacen(replace.0, replace.1, 1);
+        let cfg: FloorPlanConfig = serde_json::from_str(&json).unwrap();
+        FloorPlan::from_config(&cfg, Path::new("plan.json"))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = err((r#""600 kN*s/m""#, r#"-5"#));
+    assert!(
+        e.contains("plan.json") && e.contains("lines[0].storey_damping[2]") && e.contains("≥ 0"),
+        "{e}"
+    );
+    let e = err((r#", "600 kN*s/m""#, ""));
+    assert!(
+        e.contains("lines[0].storey_damping") && e.contains("expected 3"),
+        "{e}"
+    );
+}
