@@ -67,6 +67,44 @@ fn sections(doc: &str) -> BTreeMap<String, Vec<Row>> {
     out
 }
 
+/// The sections that document their object by another's: a section headed `P` whose text
+/// says "Same keys as `Q`" takes Q's rows for P, and Q.x's for P.x, all the way down (a
+/// study in plan's `property_bounds` are a chain study's). P → Q.
+fn aliases(doc: &str) -> BTreeMap<String, String> {
+    let mut out = BTreeMap::new();
+    let mut current: Option<String> = None;
+    for line in doc.lines() {
+        if line.starts_with('#') {
+            current = line.split('`').nth(1).map(String::from);
+            continue;
+        }
+        if let (Some(c), Some(rest)) = (&current, line.strip_prefix("Same keys as `"))
+            && let Some(target) = rest.split('`').next()
+        {
+            out.insert(c.clone(), target.to_string());
+        }
+    }
+    out
+}
+
+/// The rows documenting `path`: its own section's, or through an alias of it or of an
+/// object above it ([`aliases`]).
+fn rows_of<'a>(
+    path: &str,
+    secs: &'a BTreeMap<String, Vec<Row>>,
+    aliases: &BTreeMap<String, String>,
+) -> Option<&'a Vec<Row>> {
+    if let Some(rows) = secs.get(path).filter(|r| !r.is_empty()) {
+        return Some(rows);
+    }
+    aliases.iter().find_map(|(from, to)| {
+        let rest = path.strip_prefix(from.as_str())?;
+        (rest.is_empty() || rest.starts_with('.'))
+            .then(|| secs.get(&format!("{to}{rest}")))
+            .flatten()
+    })
+}
+
 const COLUMNS: usize = 6; // key | type | unit | default | allowed | meaning
 const TYPE: usize = 1;
 const DEFAULT: usize = 3;
@@ -78,6 +116,7 @@ const ALLOWED: usize = 4;
 /// and no object ignores unknown keys (the reference says they are refused).
 fn problems(doc: &str, schema: &Schema) -> Vec<String> {
     let secs = sections(doc);
+    let aliases = aliases(doc);
     let mut out: Vec<String> = schema
         .open
         .iter()
@@ -93,7 +132,7 @@ fn problems(doc: &str, schema: &Schema) -> Vec<String> {
             Kind::Enum(variants) if !schema.unit_enum(path, variants) => variants.clone(),
             _ => continue,
         };
-        let Some(rows) = secs.get(path) else {
+        let Some(rows) = rows_of(path, &secs, &aliases) else {
             out.push(format!(
                 "no section for `{path}` (a heading naming `{path}` with a row per key: {keys:?})"
             ));
@@ -275,6 +314,22 @@ fn a_missing_row_an_unknown_row_or_a_wrong_column_is_found() {
         }
         v.join("\n")
     };
+    // An alias whose words are gone: its object and every one below it lose their rows.
+    let i = lines
+        .iter()
+        .position(|l| l.starts_with("Same keys as `study.property_bounds`"))
+        .unwrap();
+    let p = problems(&with_line(i, Some(String::new())), &schema);
+    for path in [
+        "plan_study.property_bounds",
+        "plan_study.property_bounds.slip_load.derivation",
+    ] {
+        assert!(
+            p.iter()
+                .any(|m| m.contains(&format!("no section for `{path}`"))),
+            "{p:?}"
+        );
+    }
     // A key without its row.
     let i = row_of("scale_pga_g");
     let p = problems(&with_line(i, None), &schema);

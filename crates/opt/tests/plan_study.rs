@@ -361,6 +361,114 @@ fn accidental_torsion_on_a_symmetric_plan_gives_mirrored_cases_and_no_twist_in_t
 }
 
 #[test]
+fn property_bounds_run_every_case_at_the_lower_and_upper_slip_loads_and_the_limits_read_them() {
+    let dir = tmp("bounds");
+    let plain = PlanStudy::load(&study(&dir, 0.7, |v| {
+        v["accidental_torsion"] = json!(0.05);
+        v["limits"] = json!({"edge_drift_ratio": 0.05});
+    }))
+    .unwrap();
+    let s = PlanStudy::load(&study(&dir, 0.7, |v| {
+        v["accidental_torsion"] = json!(0.05);
+        v["limits"] = json!({"edge_drift_ratio": 0.05});
+        v["property_bounds"] = json!({"slip_load": {"lower": 0.8, "upper": 1.25},
+                                      "brace_stiffness": {"lower": 0.9, "upper": 1.1}});
+    }))
+    .unwrap();
+    // the five torsion cases at nominal properties, then at the lower and the upper bound
+    assert_eq!(s.cases.len(), 15);
+    assert_eq!(s.cases[5].name, "lower bound");
+    assert_eq!(s.cases[11].name, "upper bound, centre of mass +5 % x");
+    assert_eq!(s.runs_per_design(), 3 * plain.runs_per_design());
+    // the case's building carries the factors on every damper
+    let loads: Vec<Option<f64>> = s.dampers.iter().map(|d| d.file_slip_load).collect();
+    let b = s.with_slip_loads(11, &loads);
+    let nominal = s.with_slip_loads(1, &loads);
+    for site in &s.dampers {
+        let (d, n) = (
+            b.lines[site.line].dissipators[site.storey].unwrap(),
+            nominal.lines[site.line].dissipators[site.storey].unwrap(),
+        );
+        assert!((d.upper - 1.25 * n.upper).abs() <= 1e-12 * n.upper);
+        assert!((d.lower - 1.25 * n.lower).abs() <= 1e-12 * n.upper);
+        assert!((d.brace_stiffness - 1.1 * n.brace_stiffness).abs() <= 1e-12 * n.brace_stiffness);
+    }
+    assert_eq!(s.cases[11].building.floors, s.cases[1].building.floors);
+    let e = &evaluate_loads(&s, std::slice::from_ref(&loads), Step::SEARCH).unwrap()[0];
+    let p = &evaluate_loads(&plain, std::slice::from_ref(&loads), Step::SEARCH).unwrap()[0];
+    // the nominal-property cells are the plain study's, bit for bit: the same runs
+    for c in &p.cells {
+        let same = e
+            .cells
+            .iter()
+            .find(|x| x.suite == c.suite && x.case == c.case)
+            .unwrap();
+        assert_eq!(same.peaks, c.peaks);
+    }
+    // objective_reads defaults to nominal: the objective is the plain study's
+    assert_eq!(e.objective(&s), p.objective(&plain));
+    // the limit reads the worst case, bounds included: the lower bound slips more and
+    // drifts more here, so the ratio is the bounds' and above the plain study's
+    let worst_edge = e.cells.iter().map(|c| c.edge).fold(0.0, f64::max);
+    assert!((e.ratios(&s)[0] - worst_edge / 0.05).abs() <= 1e-15 * worst_edge / 0.05);
+    assert!(
+        e.ratios(&s)[0] > p.ratios(&plain)[0],
+        "{:?} vs {:?}",
+        e.ratios(&s),
+        p.ratios(&plain)
+    );
+    // objective_reads worst: the objective is the worst case of all fifteen
+    let w = PlanStudy::load(&study(&dir, 0.7, |v| {
+        v["accidental_torsion"] = json!(0.05);
+        v["property_bounds"] =
+            json!({"slip_load": {"lower": 0.8, "upper": 1.25}, "objective_reads": "worst"});
+    }))
+    .unwrap();
+    let ew = &evaluate_loads(&w, std::slice::from_ref(&loads), Step::SEARCH).unwrap()[0];
+    let all = ew.cells.iter().map(|c| c.edge).fold(0.0, f64::max);
+    assert_eq!(ew.objective(&w), all);
+    assert!(
+        all > ew
+            .cells
+            .iter()
+            .filter(|c| c.case < 5)
+            .map(|c| c.edge)
+            .fold(0.0, f64::max)
+    );
+    // the device table's peak force is the worst case's: the upper bound's slip load
+    let demand = Step {
+        factor: 1.0,
+        demands: true,
+    };
+    let ed = &evaluate_loads(&s, std::slice::from_ref(&loads), demand).unwrap()[0];
+    let force = |case: usize, k: usize| {
+        ed.cells
+            .iter()
+            .filter(|c| c.case == case)
+            .map(|c| c.peaks.devices.force[k])
+            .fold(0.0, f64::max)
+    };
+    let k = (0..s.dampers.len())
+        .max_by(|a, b| force(0, *a).total_cmp(&force(0, *b)))
+        .unwrap();
+    let nominal_load = loads[k].unwrap();
+    assert!(force(0, k) <= nominal_load * (1.0 + 1e-9));
+    assert!(
+        force(10, k) > nominal_load * 1.01 && force(10, k) <= 1.25 * nominal_load * (1.0 + 1e-9),
+        "damper {}: {} N at the upper bound, slip load {} N",
+        s.dampers[k].name,
+        force(10, k),
+        nominal_load
+    );
+    // bad factors are refused by name
+    let bad = study(&dir, 0.7, |v| {
+        v["property_bounds"] = json!({"slip_load": {"lower": 1.2, "upper": 1.25}});
+    });
+    let err = PlanStudy::load(&bad).unwrap_err().to_string();
+    assert!(err.contains("property_bounds.slip_load"), "{err}");
+}
+
+#[test]
 fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
     let dir = tmp("least");
     // the limit between the bare frame's edge drift and the file design's

@@ -913,7 +913,10 @@ fn p_delta_of_a_one_storey_plan_lowers_each_frequency_as_the_closed_form_says() 
         .map(|v| v.parse().unwrap())
         .collect();
     assert_eq!(row.len(), 4, "{row:?}");
-    assert!(row[0].abs() < 1e-12 && row[1].abs() < 1e-12, "centroid {row:?}");
+    assert!(
+        row[0].abs() < 1e-12 && row[1].abs() < 1e-12,
+        "centroid {row:?}"
+    );
     assert!(rel(row[2], -p / h) < 1e-12, "{row:?}");
     assert!(rel(row[3], -p * rho2 / h) < 1e-12, "{row:?}");
     // uncoupled: a symmetric plan's off-diagonal terms are zero

@@ -1,5 +1,6 @@
 //! A building in plan's base forces (shear along x and y, torque about the origin) and
 //! its lines' storey dashpots.
+#![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_motion::Record;
 use slipload_sim::floorplan::{FloorPlan, FloorPlanConfig, FloorPlanScene, GroundComponent};
@@ -46,7 +47,10 @@ fn run(
     components: &[(Arc<Record>, f64)],
     method: MethodName,
     outputs: OutputsConfig,
-) -> (slipload_sim::scene::MethodSettings, slipload_sim::response::Outcome) {
+) -> (
+    slipload_sim::scene::MethodSettings,
+    slipload_sim::response::Outcome,
+) {
     let mut scene = FloorPlanScene::new(
         Arc::new(b.clone()),
         components
@@ -150,7 +154,10 @@ fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_
         // an eccentric plan under both components: real shears both ways and a torque
         // that is not round-off (a lever of metres on meganewtons)
         assert!(base.shear_x_n > 1e5 && base.shear_y_n > 1e5, "{base:?}");
-        assert!(base.torque_nm > 1.0 * base.shear_x_n.min(base.shear_y_n), "{base:?}");
+        assert!(
+            base.torque_nm > 1.0 * base.shear_x_n.min(base.shear_y_n),
+            "{base:?}"
+        );
         // the dampers and the yielding storey took part
         assert!(r.peak_slip.iter().any(|s| *s > 1e-4), "{:?}", r.peak_slip);
         assert!(r.peak_plastic_drift.as_ref().unwrap()[0] > 0.0);
@@ -223,7 +230,10 @@ fn a_lines_storey_dashpots_are_the_chains_storey_damping() {
         let c = simulate(&scene).unwrap().response;
         let names = &p.in_plan.as_ref().unwrap().drifts;
         for s in 0..3 {
-            let k = names.iter().position(|d| *d == format!("X/{}", s + 1)).unwrap();
+            let k = names
+                .iter()
+                .position(|d| *d == format!("X/{}", s + 1))
+                .unwrap();
             assert!(
                 rel(p.peak_drift[k], c.peak_drift[s]) < 1e-9,
                 "{method:?} storey {}: {} in plan, {} as a chain",
@@ -243,7 +253,10 @@ fn a_lines_storey_dashpots_are_the_chains_storey_damping() {
         assert!(rel(pe.friction, ce.friction) < 1e-9);
         let base = p.in_plan.as_ref().unwrap().peak_base.unwrap();
         assert!(rel(base.shear_x_n, c.peak_base_shear) < 1e-9, "{method:?}");
-        assert!(rel(p.peak_base_shear, c.peak_base_shear) < 1e-9, "{method:?}");
+        assert!(
+            rel(p.peak_base_shear, c.peak_base_shear) < 1e-9,
+            "{method:?}"
+        );
         // the chain lies on the origin's x axis: no shear across, no torque
         assert!(base.shear_y_n <= 1e-12 * base.shear_x_n, "{base:?}");
         assert!(base.torque_nm <= 1e-12 * base.shear_x_n, "{base:?}");

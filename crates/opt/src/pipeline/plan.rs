@@ -55,6 +55,10 @@ pub fn fingerprint(study: &PlanStudy) -> u64 {
     for case in &study.cases {
         let b = &case.building;
         h.str(&case.name);
+        if study.config.property_bounds.is_some() {
+            h.f64(case.slip_factor).f64(case.brace_factor);
+            h.u64(u64::from(case.objective));
+        }
         h.f64s(b.mass.as_slice())
             .f64s(b.stiffness.as_slice())
             .f64s(b.damping.as_slice());

@@ -36,6 +36,13 @@ pub struct PlanStudyConfig {
     /// ASCE 7-16 §12.8.4.2 takes 0.05). The objective and limits read the worst case.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accidental_torsion: Option<f64>,
+    /// The dampers' property bounds, as a chain study's `property_bounds`: every case
+    /// runs again with every slip load × λ_min and × λ_max (and brace stiffness, when
+    /// given), the accidental-torsion cases included. The limits read every case; the
+    /// objective the nominal properties (`objective_reads`: `nominal`) or every case
+    /// (`worst`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub property_bounds: Option<crate::model::check::PropertyBoundsConfig>,
     /// The runs' method and step.
     #[serde(default)]
     pub fidelity: PlanFidelityConfig,

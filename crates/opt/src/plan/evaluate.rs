@@ -208,7 +208,8 @@ impl DesignEval {
         }
     }
 
-    /// The objective: the worst cell's value (+∞ when a run collapsed).
+    /// The objective: the worst value of the cells whose case the objective reads (+∞
+    /// when a run collapsed).
     pub fn objective(&self, study: &PlanStudy) -> f64 {
         if self.collapsed() > 0 {
             return f64::INFINITY;
@@ -216,6 +217,7 @@ impl DesignEval {
         let metric = study.config.objective.metric;
         self.cells
             .iter()
+            .filter(|c| study.cases[c.case].objective)
             .map(|c| Self::value(study, c, &self.loads, metric))
             .fold(f64::NEG_INFINITY, f64::max)
     }

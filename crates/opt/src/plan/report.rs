@@ -502,9 +502,29 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
             .collect::<Vec<_>>()
             .join("; ")
     );
+    if let Some(b) = &study.config.property_bounds {
+        let (lo, hi) = b.slip_load.bounds();
+        let brace = b.brace_stiffness.as_ref().map_or_else(
+            || "as given".to_string(),
+            |k| {
+                let (kl, kh) = k.bounds();
+                format!("x {} and x {}", trim(kl), trim(kh))
+            },
+        );
+        let _ = writeln!(
+            s,
+            "  property bounds: slip loads x {} (lower) and x {} (upper), brace stiffnesses {brace}; the limits read every case, the objective {}",
+            trim(lo),
+            trim(hi),
+            match b.objective_reads {
+                crate::model::check::BoundReading::Nominal => "the nominal properties",
+                crate::model::check::BoundReading::Worst => "every case",
+            }
+        );
+    }
     let _ = writeln!(
         s,
-        "objective: the {stat} over each suite's pairs of the {}, at the worst suite and case; {} runs per design ({} {})",
+        "objective: the {stat} over each suite's pairs of the {}, at the worst suite and case it reads; {} runs per design ({} {})",
         match metric {
             super::config::PlanMetric::EdgeDriftRatio => "largest edge drift ratio",
             super::config::PlanMetric::LineDriftRatio => "largest line drift ratio",
@@ -559,7 +579,7 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
     }
     let _ = writeln!(
         s,
-        "  (edge drift and torsional ratio: the nominal case of suite {}; the objective reads every suite and case)",
+        "  (edge drift and torsional ratio: the nominal case of suite {}; the objective reads every suite and the cases above)",
         study.suites[0].name
     );
     if let Some(opt) = report.row("optimum") {

@@ -29,13 +29,21 @@ pub struct DamperSite {
     pub file_slip_load: Option<f64>,
 }
 
-/// One property case: the building with its centres of mass where the case puts them.
+/// One property case: the building with its centres of mass where the case puts them,
+/// and the factors on its dampers' slip loads and brace stiffnesses.
 #[derive(Debug, Clone)]
 pub struct PlanCase {
-    /// "nominal", "centre of mass +5 % x", …
+    /// "nominal", "centre of mass +5 % x", "lower bound", "upper bound, centre of mass
+    /// -5 % y", …
     pub name: String,
     /// The building of the case.
     pub building: Arc<FloorPlan>,
+    /// Factor on every damper's slip load (1, λ_min or λ_max).
+    pub slip_factor: f64,
+    /// Factor on every damper's brace stiffness.
+    pub brace_factor: f64,
+    /// Whether the objective reads the case (the limits read every case).
+    pub objective: bool,
 }
 
 /// A pair of horizontal components, scaled.
@@ -214,13 +222,26 @@ impl PlanStudy {
 
     /// The building of `case` with the slip loads `loads` (N, per damper; `None` keeps
     /// the file's bounds).
+    ///
+    /// The case's factors multiply every damper's slip load (or the file's bounds) and
+    /// brace stiffness; a locked damper stays locked.
     pub fn with_slip_loads(&self, case: usize, loads: &[Option<f64>]) -> FloorPlan {
-        let mut b = (*self.cases[case].building).clone();
+        let c = &self.cases[case];
+        let mut b = (*c.building).clone();
         for (site, load) in self.dampers.iter().zip(loads) {
-            if let (Some(f), Some(d)) = (load, b.lines[site.line].dissipators[site.storey].as_mut())
-            {
+            let Some(d) = b.lines[site.line].dissipators[site.storey].as_mut() else {
+                continue;
+            };
+            if let Some(f) = load {
                 d.lower = -f;
                 d.upper = *f;
+            }
+            if c.slip_factor != 1.0 && !d.is_locked() {
+                d.lower *= c.slip_factor;
+                d.upper *= c.slip_factor;
+            }
+            if c.brace_factor != 1.0 {
+                d.brace_stiffness *= c.brace_factor;
             }
         }
         b
@@ -320,8 +341,9 @@ fn check_metric_needs(cfg: &PlanStudyConfig, b: &FloorPlan, path: &Path) -> Resu
     Ok(())
 }
 
-/// The nominal case, and with `accidental_torsion` the four cases with every floor's
-/// centre of mass moved by ± that fraction of the plan's size along x and along y.
+/// The nominal case, with `accidental_torsion` the four cases with every floor's centre
+/// of mass moved by ± that fraction of the plan's size along x and along y, and with
+/// `property_bounds` each of these again at the lower and at the upper bound.
 fn property_cases(
     cfg: &PlanStudyConfig,
     b: &Arc<FloorPlan>,
@@ -330,9 +352,46 @@ fn property_cases(
     let mut cases = vec![PlanCase {
         name: "nominal".into(),
         building: b.clone(),
+        slip_factor: 1.0,
+        brace_factor: 1.0,
+        objective: true,
     }];
-    let Some(e) = cfg.accidental_torsion else {
+    add_torsion_cases(cfg, b, path, &mut cases)?;
+    let Some(bounds) = &cfg.property_bounds else {
         return Ok(cases);
+    };
+    bounds.validate(path)?;
+    let checks = crate::model::check::Checks::of(Some(bounds.clone()), Vec::new());
+    let worst = bounds.objective_reads == crate::model::check::BoundReading::Worst;
+    let nominal = cases.clone();
+    for bound in checks.cases().into_iter().filter(|c| !c.is_nominal()) {
+        for c in &nominal {
+            let name = format!("{} bound", bound.name.as_str());
+            cases.push(PlanCase {
+                name: if c.name == "nominal" {
+                    name
+                } else {
+                    format!("{name}, {}", c.name)
+                },
+                building: c.building.clone(),
+                slip_factor: bound.slip_load,
+                brace_factor: bound.brace_stiffness,
+                objective: worst,
+            });
+        }
+    }
+    Ok(cases)
+}
+
+/// The four accidental-torsion cases `accidental_torsion` asks for, after the nominal.
+fn add_torsion_cases(
+    cfg: &PlanStudyConfig,
+    b: &Arc<FloorPlan>,
+    path: &Path,
+    cases: &mut Vec<PlanCase>,
+) -> Result<(), OptError> {
+    let Some(e) = cfg.accidental_torsion else {
+        return Ok(());
     };
     if !(e.is_finite() && e > 0.0 && e <= 0.25) {
         return Err(OptError::invalid(
@@ -361,10 +420,13 @@ fn property_cases(
                     super::config::trim(e * 100.0)
                 ),
                 building: Arc::new(b.with_centre_shift(shift)),
+                slip_factor: 1.0,
+                brace_factor: 1.0,
+                objective: true,
             });
         }
     }
-    Ok(cases)
+    Ok(())
 }
 
 /// Reads every suite's pairs and scales them.

@@ -327,11 +327,13 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         for &(dof, [_, _, lever]) in &dof_dirs {
             rot[dof] = lever;
         }
-        let rows = [influence_of(0.0), influence_of(std::f64::consts::FRAC_PI_2), rot]
-            .map(|e| &mass * e);
-        let share = |r: Option<&DVector<f64>>| {
-            [0, 1, 2].map(|k| r.map_or(0.0, |r| rows[k].dot(r)))
-        };
+        let rows = [
+            influence_of(0.0),
+            influence_of(std::f64::consts::FRAC_PI_2),
+            rot,
+        ]
+        .map(|e| &mass * e);
+        let share = |r: Option<&DVector<f64>>| [0, 1, 2].map(|k| r.map_or(0.0, |r| rows[k].dot(r)));
         BaseRows {
             first: share(scene.ground.first().map(|_| &influence)),
             second: share(second_influence.as_ref()),
@@ -405,16 +407,20 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         links: vec![FloorLink::None; n],
         storey_heights: heights.iter().copied().collect::<Option<Vec<f64>>>(),
         record: scene.ground.first().map(|g| g.record.clone()),
-        second: scene.ground.get(1).zip(second_influence).map(|(g, influence)| SecondGround {
-            record: g.record.clone(),
-            influence,
-            points: (0..n)
-                .flat_map(|_| {
-                    let (c, s) = cos_sin(g.angle);
-                    [c, s, 0.0]
-                })
-                .collect(),
-        }),
+        second: scene
+            .ground
+            .get(1)
+            .zip(second_influence)
+            .map(|(g, influence)| SecondGround {
+                record: g.record.clone(),
+                influence,
+                points: (0..n)
+                    .flat_map(|_| {
+                        let (c, s) = cos_sin(g.angle);
+                        [c, s, 0.0]
+                    })
+                    .collect(),
+            }),
         base: Some(Arc::new(base)),
         harmonic: None,
         u0: vec![0.0; n_dof],
