@@ -502,6 +502,15 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
             .collect::<Vec<_>>()
             .join("; ")
     );
+    let reads = match study
+        .config
+        .property_bounds
+        .as_ref()
+        .map(|b| b.objective_reads)
+    {
+        Some(crate::model::check::BoundReading::Nominal) => " of nominal properties",
+        _ => "",
+    };
     if let Some(b) = &study.config.property_bounds {
         let (lo, hi) = b.slip_load.bounds();
         let brace = b.brace_stiffness.as_ref().map_or_else(
@@ -524,7 +533,7 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
     }
     let _ = writeln!(
         s,
-        "objective: the {stat} over each suite's pairs of the {}, at the worst suite and case it reads; {} runs per design ({} {})",
+        "objective: the {stat} over each suite's pairs of the {}, at the worst suite and case{reads}; {} runs per design ({} {})",
         match metric {
             super::config::PlanMetric::EdgeDriftRatio => "largest edge drift ratio",
             super::config::PlanMetric::LineDriftRatio => "largest line drift ratio",
@@ -544,11 +553,24 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
         "search: {} sweep designs, {} refinement designs, stopped by {}",
         report.sweep_designs, report.refine_designs, report.stop
     );
+    let at_search = if report.objective_sweep.is_finite() {
+        format!(
+            "the optimum's objective at the search's step: {}",
+            objective_text(metric, report.objective_sweep)
+        )
+    } else {
+        // the search keeps the design nearest to passing when none passes
+        let worst = report
+            .row("optimum")
+            .map_or(f64::NAN, |r| r.ratios.iter().copied().fold(0.0, f64::max));
+        format!(
+            "no design of the search passes the limits: the optimum is the one nearest to passing, its largest demand over limit {worst:.3} here"
+        )
+    };
     let _ = writeln!(
         s,
-        "final table at dt x {} (the optimum's objective at the search's step: {}):",
+        "final table at dt x {} ({at_search}):",
         trim(report.check_dt_factor),
-        objective_text(metric, report.objective_sweep)
     );
     for row in &report.rows {
         let nominal = &row.eval.cells[0];
@@ -579,7 +601,7 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
     }
     let _ = writeln!(
         s,
-        "  (edge drift and torsional ratio: the nominal case of suite {}; the objective reads every suite and the cases above)",
+        "  (edge drift and torsional ratio: the nominal case of suite {}; the objective reads every suite and case{reads})",
         study.suites[0].name
     );
     if let Some(opt) = report.row("optimum") {
