@@ -283,3 +283,69 @@ fn a_lines_storey_damping_is_checked_by_field() {
         "{e}"
     );
 }
+
+#[test]
+fn a_named_point_moves_with_its_floor_as_a_rigid_body() {
+    // A point (x, y) of a rigid floor moves by (u_x − (y − y_c)θ, u_y + (x − x_c)θ) from
+    // its centre of mass's motion: from the history's centre-of-mass columns, the peaks
+    // of a corner agree to round-off (1e-9 of the peak); a point placed on floor 1's
+    // centre of mass is that centre's measure, the same arithmetic (1e-12), under both
+    // components at once (each component's influence on the point by its direction).
+    let json = ECCENTRIC.replacen(
+        r#""storey_heights""#,
+        r#""points": [{"name": "NE", "at": [20, 12]}, {"name": "c1", "at": ["12 m", "7 m"]}],
+  "storey_heights""#,
+        1,
+    );
+    let b = floor_plan(&json);
+    let components = [(motion(4.0, 0.0), 20.0), (motion(3.0, 1.1), 110.0)];
+    for method in [MethodName::Newmark, MethodName::Exact] {
+        let outputs = OutputsConfig {
+            histories: true,
+            ..OutputsConfig::default()
+        };
+        let (_, out) = run(&b, &components, method, outputs);
+        let (r, h) = (&out.response, out.history.as_ref().unwrap());
+        let names = &r.in_plan.as_ref().unwrap().points;
+        assert_eq!(names.len(), 3 * 3 + 2 * 2 * 3, "{names:?}");
+        let at = |name: &str| names.iter().position(|p| p == name).unwrap();
+        for (axis, k) in [("x", 0), ("y", 1)] {
+            let (c, p) = (at(&format!("1 {axis}")), at(&format!("1 c1 {axis}")));
+            assert!(rel(r.peak_displacement[p], r.peak_displacement[c]) < 1e-12);
+            assert!(
+                rel(r.peak_abs_acceleration[p], r.peak_abs_acceleration[c]) < 1e-12,
+                "{method:?} {axis}"
+            );
+            for (f, fl) in b.floors.iter().enumerate() {
+                let col = |q: &str| h.column(&format!("x_{}_{q}", f + 1)).unwrap();
+                let (u, rot) = (col(&format!("{axis}_m")), col("rot_rad"));
+                let lever = if k == 0 {
+                    -(12.0 - fl.centre[1])
+                } else {
+                    20.0 - fl.centre[0]
+                };
+                let want = u
+                    .iter()
+                    .zip(&rot)
+                    .map(|(u, t)| (u + lever * t).abs())
+                    .fold(0.0, f64::max);
+                let got = r.peak_displacement[at(&format!("{} NE {axis}", f + 1))];
+                assert!(
+                    rel(got, want) < 1e-9,
+                    "{method:?} floor {} NE {axis}: {got} vs {want}",
+                    f + 1
+                );
+                // the corner of a twisting floor is not its centre
+                let centre = r.peak_displacement[at(&format!("{} {axis}", f + 1))];
+                assert!(rel(got, centre) > 1e-3, "{got} vs {centre}");
+            }
+        }
+    }
+    // names are checked by field
+    let dup = json.replacen(r#""name": "c1""#, r#""name": "NE""#, 1);
+    let cfg: FloorPlanConfig = serde_json::from_str(&dup).unwrap();
+    let e = FloorPlan::from_config(&cfg, Path::new("plan.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("points[1].name") && e.contains("already"), "{e}");
+}

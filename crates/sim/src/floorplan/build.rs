@@ -32,6 +32,9 @@ pub(super) fn line_ends(line: &Line, f: usize) -> (Kin, Kin) {
     (line_point(line, f), bottom)
 }
 
+/// Most named points a building in plan takes.
+const MAX_POINTS: usize = 64;
+
 impl FloorPlan {
     /// Reads and validates a building-in-plan JSON file.
     pub fn load(path: &Path) -> Result<FloorPlan, SimError> {
@@ -344,6 +347,39 @@ impl FloorPlan {
                 Some(p_delta_blocks(&floors, h, loads.as_deref()))
             }
         };
+        let mut points: Vec<(String, [f64; 2])> = Vec::with_capacity(cfg.points.len());
+        if cfg.points.len() > MAX_POINTS {
+            return Err(invalid(
+                "points".into(),
+                format!(
+                    "{} points: at most {MAX_POINTS} (each floor reports every one)",
+                    cfg.points.len()
+                ),
+            ));
+        }
+        for (k, pc) in cfg.points.iter().enumerate() {
+            let name = pc.name.trim();
+            if name.is_empty() {
+                return Err(invalid(
+                    format!("points[{k}].name"),
+                    "must not be empty".into(),
+                ));
+            }
+            if let Some(j) = points.iter().position(|(n, _)| n == name) {
+                return Err(invalid(
+                    format!("points[{k}].name"),
+                    format!("\"{name}\" is already the name of points[{j}]"),
+                ));
+            }
+            let at = [pc.at[0].0, pc.at[1].0];
+            if let Some(i) = at.iter().position(|v| !v.is_finite()) {
+                return Err(invalid(
+                    format!("points[{k}].at[{i}]"),
+                    format!("must be a finite coordinate (m), got {}", at[i]),
+                ));
+            }
+            points.push((name.to_string(), at));
+        }
         Ok(FloorPlan {
             name: cfg
                 .name
@@ -361,6 +397,7 @@ impl FloorPlan {
             damping_config: cfg.damping.clone(),
             p_delta,
             p_delta_config: cfg.p_delta.clone(),
+            points,
         })
     }
 }

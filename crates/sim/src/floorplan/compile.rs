@@ -340,18 +340,39 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
             rows,
         }
     };
-    let mut points = Vec::with_capacity(nf);
-    let mut point_names = Vec::with_capacity(nf);
+    // Each floor's centre of mass (x, y) and rotation, then the named points' x and y on
+    // every floor; a point (x, y) of a floor moves by (ux − y·θ, uy + x·θ). `dirs` is each
+    // point's direction (0 x, 1 y, 2 the rotation), for each component's influence.
+    let mut points = Vec::with_capacity(nf + 2 * n * b.points.len());
+    let mut point_names = Vec::with_capacity(points.capacity());
+    let mut dirs: Vec<usize> = Vec::with_capacity(points.capacity());
+    let along = |f: usize, [x, y]: [f64; 2]| {
+        [
+            Kin::weighted(&[(3 * f, 1.0), (3 * f + 2, -y)]),
+            Kin::weighted(&[(3 * f + 1, 1.0), (3 * f + 2, x)]),
+        ]
+    };
     for (f, fl) in b.floors.iter().enumerate() {
-        let [x, y] = fl.centre;
-        points.push((Kin::weighted(&[(3 * f, 1.0), (3 * f + 2, -y)]), gc));
-        points.push((Kin::weighted(&[(3 * f + 1, 1.0), (3 * f + 2, x)]), gs));
-        points.push((Kin::weighted(&[(3 * f + 2, 1.0)]), 0.0));
+        let [px, py] = along(f, fl.centre);
+        points.extend([
+            (px, gc),
+            (py, gs),
+            (Kin::weighted(&[(3 * f + 2, 1.0)]), 0.0),
+        ]);
+        dirs.extend([0, 1, 2]);
         point_names.extend([
             format!("{} x", f + 1),
             format!("{} y", f + 1),
             format!("{} rot", f + 1),
         ]);
+    }
+    for f in 0..n {
+        for (name, at) in &b.points {
+            let [px, py] = along(f, *at);
+            points.extend([(px, gc), (py, gs)]);
+            dirs.extend([0, 1]);
+            point_names.extend([format!("{} {name} x", f + 1), format!("{} {name} y", f + 1)]);
+        }
     }
     let steps = ((scene.duration / scene.method.dt * (1.0 - 1e-9)).ceil() as usize).max(1);
     for g in scene.ground.iter().skip(1) {
@@ -414,12 +435,10 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
             .map(|(g, influence)| SecondGround {
                 record: g.record.clone(),
                 influence,
-                points: (0..n)
-                    .flat_map(|_| {
-                        let (c, s) = cos_sin(g.angle);
-                        [c, s, 0.0]
-                    })
-                    .collect(),
+                points: {
+                    let (c, s) = cos_sin(g.angle);
+                    dirs.iter().map(|d| [c, s, 0.0][*d]).collect()
+                },
             }),
         base: Some(Arc::new(base)),
         harmonic: None,

@@ -37,7 +37,8 @@ pub struct FloorPlanConfig {
     pub lines: Vec<LineConfig>,
     /// Frame damping on the three-dimensional modes of the bare frame: `rayleigh` (by its
     /// coefficients or by ratios at two modes or periods), `modal`, or `none` (default).
-    /// `storey` and `matrix` are the chain's and are refused here.
+    /// `matrix` is the chain's and is refused here; storey dashpots go on the lines
+    /// (`storey_damping`).
     #[serde(default)]
     pub damping: Option<DampingConfig>,
     /// Drift ratio past which a run stops and reports the collapse (a yielding line's
@@ -50,6 +51,20 @@ pub struct FloorPlanConfig {
     /// `storey_heights`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub p_delta: Option<crate::building::PDeltaConfig>,
+    /// Named points in plan whose displacement and absolute acceleration every floor
+    /// reports along x and y (equipment, a corner, a façade), beside its centre of mass.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<PlanPointConfig>,
+}
+
+/// A named point in plan, as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanPointConfig {
+    /// Its name in the outputs ("3 NE x": floor 3, point NE, along x).
+    pub name: String,
+    /// Where it is [x, y], m.
+    pub at: [Length; 2],
 }
 
 /// One rigid floor, as written.

@@ -90,6 +90,8 @@ pub struct FloorPlan {
     /// The gravity loads as the file states them (`None`: g times the mass above), for a
     /// moved centre of mass to spread again.
     pub p_delta_config: Option<crate::building::PDeltaConfig>,
+    /// Named points [x, y] (m) whose motion every floor reports beside its centre of mass.
+    pub points: Vec<(String, [f64; 2])>,
 }
 
 /// P-Δ of a building in plan, per storey.
