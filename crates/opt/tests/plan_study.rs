@@ -469,6 +469,81 @@ fn property_bounds_run_every_case_at_the_lower_and_upper_slip_loads_and_the_limi
 }
 
 #[test]
+fn a_suite_of_pairs_scaled_to_a_code_spectrum_meets_it_by_their_maximum_direction_spectra() {
+    let dir = tmp("code");
+    let spectrum = json!({"sds_g": 0.9, "sd1_g": 0.5, "tl_s": 8.0, "min_records": 2});
+    let p = study(&dir, 0.7, |v| {
+        v["suites"][0]["code_spectrum"] = spectrum.clone()
+    });
+    let s = PlanStudy::load(&p).unwrap();
+    let su = &s.suites[0];
+    let c = su.code.as_ref().unwrap();
+    assert_eq!(su.factor, c.factor);
+    assert_eq!(c.pairs, Some(2));
+    // the range from the plan's own periods: 2 × the larger first-mode period of x and
+    // y (bare), down to the lesser of 0.2 × the braced plan's smaller one and the
+    // 90 %-mass period
+    let periods = s.building.scaling_periods().unwrap();
+    assert!((c.range_s[1] - 2.0 * periods.bare_t1_s).abs() <= 1e-12 * c.range_s[1]);
+    assert!(
+        (c.range_s[0] - (0.2 * periods.stuck_t1_s).min(periods.mass_90_period_s)).abs()
+            <= 1e-12 * c.range_s[0]
+    );
+    assert!(periods.stuck_t1_s < periods.bare_t1_s);
+    // the factor is the one that meets 90 % of the target: nowhere below, touching it at
+    // the controlling period (the grid's resolution, 1e-9)
+    let ratio = c
+        .mean_sa_g
+        .iter()
+        .zip(&c.target_sa_g)
+        .map(|(m, t)| m / (0.9 * t))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (ratio - 1.0).abs() < 1e-6,
+        "least mean / (0.9 target) {ratio}"
+    );
+    // both components of every pair carry that factor (the unscaled study's pairs × it)
+    let plain = PlanStudy::load(&study(&dir, 0.7, |_| {})).unwrap();
+    for (a, b) in su.pairs.iter().zip(&plain.suites[0].pairs) {
+        for (x, y) in [(&a.first, &b.first), (&a.second, &b.second)] {
+            let k = x.samples().len() / 2;
+            assert!((x.samples()[k] - c.factor * y.samples()[k]).abs() <= 1e-12 * x.pga());
+        }
+    }
+    // the summary says so
+    let out = dir.join("out");
+    let std = run(
+        &study(&dir, 0.7, |v| {
+            v["suites"][0]["code_spectrum"] = spectrum.clone();
+            v["sweep"] = json!({"points": 2});
+            v["refine"] = json!({"max_evaluations": 0});
+        }),
+        &out,
+    );
+    assert!(
+        std.summary
+            .contains("scaled to a code spectrum, S_DS = 0.9 g"),
+        "{}",
+        std.summary
+    );
+    // refused with the pairs' field: too few pairs for the standard, and a factor too
+    let few = study(&dir, 0.7, |v| {
+        v["suites"][0]["code_spectrum"] = json!({"sds_g": 0.9, "sd1_g": 0.5, "tl_s": 8.0});
+    });
+    let e = PlanStudy::load(&few).unwrap_err().to_string();
+    assert!(
+        e.contains("suites[0].pairs") && e.contains("7 pairs"),
+        "{e}"
+    );
+    let both = study(&dir, 0.7, |v| {
+        v["suites"][0]["code_spectrum"] = spectrum.clone();
+        v["suites"][0]["factor"] = json!(2.0);
+    });
+    let e = PlanStudy::load(&both).unwrap_err().to_string();
+    assert!(e.contains("suites[0].factor"), "{e}");
+}
+
+#[test]
 fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
     let dir = tmp("least");
     // the limit between the bare frame's edge drift and the file design's

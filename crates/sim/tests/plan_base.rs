@@ -349,3 +349,24 @@ fn a_named_point_moves_with_its_floor_as_a_rigid_body() {
         .to_string();
     assert!(e.contains("points[1].name") && e.contains("already"), "{e}");
 }
+
+#[test]
+fn a_planar_building_in_plan_has_the_chains_scaling_periods_along_its_line() {
+    // The chain as line X of a plan whose y lines are far stiffer: x holds the longer
+    // first-mode period bare and the braced plan's shorter one is y's unless x's is; the
+    // x block is the chain's, so T₁ bare equals the chain's (eigensolver round-off,
+    // 1e-9), and the 90 %-mass period, the shorter over both directions, is at most the
+    // chain's.
+    let cfg: slipload_sim::BuildingConfig = serde_json::from_str(CHAIN).unwrap();
+    let chain = slipload_sim::Building::from_config(&cfg, Path::new("chain.json"))
+        .unwrap()
+        .scaling_periods()
+        .unwrap();
+    let plan = floor_plan(&PLANAR.replace("2.0e8, 2.0e8, 2.0e8", "2.0e10, 2.0e10, 2.0e10"))
+        .scaling_periods()
+        .unwrap();
+    assert!(rel(plan.bare_t1_s, chain.bare_t1_s) < 1e-9, "{plan:?} {chain:?}");
+    assert!(plan.stuck_t1_s <= chain.stuck_t1_s * (1.0 + 1e-9));
+    assert!(plan.mass_90_period_s <= chain.mass_90_period_s * (1.0 + 1e-9));
+    assert!(plan.stuck_t1_s < plan.bare_t1_s);
+}

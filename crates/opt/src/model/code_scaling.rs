@@ -14,7 +14,7 @@ use slipload_motion::{
     En1998Spectrum, G, Record, RecordPair, ScalingOptions, SpectrumTable, Target, TargetMatch,
     TargetSpectrum,
 };
-use slipload_sim::Building;
+use slipload_sim::{Building, ScalingPeriods};
 use std::path::Path;
 
 /// A suite scaled to a code spectrum (ASCE 7-16 §16.2.3): one factor for every record,
@@ -188,6 +188,27 @@ fn most_unfavourable(
     Ok(())
 }
 
+/// What a code-scaled suite's period range is built from: the bare frame's first period
+/// and, where the braced frame has modes, its [`ScalingPeriods`] (a chain's, or a
+/// building in plan's read along its principal directions).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ScalingBasis {
+    /// T₁ of the bare frame, s (a plan: the larger first-mode period of x and y).
+    pub t1_s: f64,
+    /// The periods with the dampers stuck and the 90 %-mass modes.
+    pub periods: Option<ScalingPeriods>,
+}
+
+impl ScalingBasis {
+    /// A chain's.
+    pub fn of(building: &Building) -> ScalingBasis {
+        ScalingBasis {
+            t1_s: building.t1(),
+            periods: building.scaling_periods(),
+        }
+    }
+}
+
 /// The period range of a code-scaled suite: [0.2 T, 2 T] for a given T (`period_s`);
 /// else from the building (ASCE 7-16 §16.2.3.1, docs/MODEL.md § Ground motions in code
 /// form): the lower end the lesser of 0.2 × the first period with every damper stuck and
@@ -195,14 +216,14 @@ fn most_unfavourable(
 /// frame's first period (the dampers slipping). Returns (T, range, stuck T₁, 90 %-mass
 /// period).
 fn scaling_range(
-    building: &Building,
+    basis: &ScalingBasis,
     period_s: Option<f64>,
 ) -> (f64, [f64; 2], Option<f64>, Option<f64>) {
     if let Some(t) = period_s {
         return (t, [0.2 * t, 2.0 * t], None, None);
     }
-    let t1 = building.t1();
-    match building.scaling_periods() {
+    let t1 = basis.t1_s;
+    match basis.periods {
         Some(p) => {
             let lower = (0.2 * p.stuck_t1_s).min(p.mass_90_period_s);
             (
@@ -231,7 +252,7 @@ pub(crate) fn scale_to_code(
     pairs: &[RecordPair],
     c: &CodeSpectrumConfig,
     limits: Option<&SuiteLimits>,
-    building: &Building,
+    basis: &ScalingBasis,
     path: &Path,
     i: usize,
 ) -> Result<(Vec<Record>, CodeScaling), OptError> {
@@ -303,7 +324,7 @@ pub(crate) fn scale_to_code(
             e.to_string(),
         )
     })?;
-    let (period, range, stuck, mass_90) = scaling_range(building, c.period_s);
+    let (period, range, stuck, mass_90) = scaling_range(basis, c.period_s);
     // a period the study gives: the range's lower end must be one the records resolve
     // (a response spectrum below twice a record's sample interval reads the sampling, not
     // the ground motion)

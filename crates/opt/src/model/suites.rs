@@ -3,7 +3,7 @@
 //! pair run `worst`, and each suite's [`SuiteInfo`].
 
 use crate::base::error::OptError;
-use crate::model::code_scaling::{CodeScaling, scale_to_code};
+use crate::model::code_scaling::{CodeScaling, ScalingBasis, scale_to_code};
 use crate::model::config::{MIN_STUDY_PGA_G, RecordEntry, ScaleConfig, StudyConfig};
 use crate::model::orientation::PairRun;
 use serde::{Deserialize, Serialize};
@@ -323,8 +323,15 @@ pub(crate) fn load_suites(
                 }
             }
             if let Some(ScaleConfig::CodeSpectrum(c)) = &s.scale {
-                let (scaled, scaling) =
-                    scale_to_code(&unscaled, &pairs, c, s.limits.as_ref(), building, path, i)?;
+                let (scaled, scaling) = scale_to_code(
+                    &unscaled,
+                    &pairs,
+                    c,
+                    s.limits.as_ref(),
+                    &ScalingBasis::of(building),
+                    path,
+                    i,
+                )?;
                 if pairs.is_empty() || pair_run == PairRun::Components {
                     records.extend(scaled.into_iter().map(Arc::new));
                 } else {

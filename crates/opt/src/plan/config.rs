@@ -63,9 +63,16 @@ pub struct PlanSuiteConfig {
     /// The pairs: `[first, second]` record files (relative to the study), the two
     /// horizontal components of one event, the second at 90° to the first.
     pub pairs: Vec<[PathBuf; 2]>,
-    /// One scale factor on both components of every pair (default 1).
+    /// One scale factor on both components of every pair (default 1). Exclusive with
+    /// `code_spectrum`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factor: Option<f64>,
+    /// Scale the pairs to a code spectrum by their maximum-direction (RotD100) spectra,
+    /// as a chain study's `scale.code_spectrum` scales pairs (ASCE 7-16 §16.2.3: the
+    /// pairs' mean at or above 90 % of the target over the period range, here built from
+    /// the plan's first-mode periods along x and y). Exclusive with `factor`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub code_spectrum: Option<crate::model::config::CodeSpectrumConfig>,
     /// The orientations the pairs run at: the first component's angle from the plan's x
     /// axis, degrees (the second at +90°); default `[0, 90]`. Each pair's responses are
     /// the largest over its orientations.

@@ -483,7 +483,18 @@ pub fn summary(study: &PlanStudy, report: &PlanReport) -> String {
             "  suite {}: {} pairs x scale {} at {} orientation(s) ({} deg; the second component at +90 deg), each pair's largest response over them",
             su.name,
             su.pairs.len(),
-            trim(su.factor),
+            match &su.code {
+                None => trim(su.factor),
+                Some(c) => format!(
+                    "{:.4} (scaled to a code spectrum, {}: the pairs' mean maximum-direction spectrum at or above 90 % of the {} target over [{:.3}, {:.3}] s, met at {:.3} s)",
+                    c.factor,
+                    c.target_text(),
+                    c.hazard.as_str(),
+                    c.range_s[0],
+                    c.range_s[1],
+                    c.controlling_period_s
+                ),
+            },
             su.angles_deg.len(),
             su.angles_deg
                 .iter()

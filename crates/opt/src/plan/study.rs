@@ -66,8 +66,10 @@ pub struct PlanSuite {
     pub pairs: Vec<PlanPair>,
     /// Orientations of the first component from the plan's x axis, degrees.
     pub angles_deg: Vec<f64>,
-    /// The scale factor on both components.
+    /// The scale factor on both components (a code-scaled suite's: its scaling's).
     pub factor: f64,
+    /// How the suite was scaled to a code spectrum, when it was.
+    pub code: Option<crate::model::code_scaling::CodeScaling>,
     /// Simulated time of each run, s (`None`: the longer component's).
     pub duration_s: Option<f64>,
 }
@@ -128,7 +130,7 @@ impl PlanStudy {
         }
         check_metric_needs(&cfg, &building, path)?;
         let cases = property_cases(&cfg, &building, path)?;
-        let suites = load_suites(&cfg, base, path)?;
+        let suites = load_suites(&cfg, &building, base, path)?;
         let space = plan_space(&cfg, &building, &dampers, path)?;
         let method = cfg.fidelity.method.unwrap_or(MethodName::Newmark);
         if !matches!(method, MethodName::Newmark | MethodName::Exact) {
@@ -432,6 +434,7 @@ fn add_torsion_cases(
 /// Reads every suite's pairs and scales them.
 fn load_suites(
     cfg: &PlanStudyConfig,
+    building: &FloorPlan,
     base: &Path,
     path: &Path,
 ) -> Result<Vec<PlanSuite>, OptError> {
@@ -463,6 +466,13 @@ fn load_suites(
                 path,
                 field("pairs"),
                 "lists no pair: give [first, second] record files",
+            ));
+        }
+        if s.factor.is_some() && s.code_spectrum.is_some() {
+            return Err(OptError::invalid(
+                path,
+                field("factor"),
+                "give `factor` or `code_spectrum`, not both: a code-scaled suite's factor is the one that meets the spectrum",
             ));
         }
         let factor = s.factor.unwrap_or(1.0);
@@ -512,21 +522,111 @@ fn load_suites(
                     .map_err(|e| {
                         OptError::invalid(path, format!("suites[{i}].pairs[{k}]"), e.to_string())
                     })?;
-            pairs.push(PlanPair {
-                name: pair.name().to_string(),
-                first: Arc::new(pair.first().clone()),
-                second: Arc::new(pair.second().clone()),
-            });
+            pairs.push(pair);
         }
+        let (pairs, factor, code) = match &s.code_spectrum {
+            None => (pairs, factor, None),
+            Some(c) => {
+                let (pairs, scaling) = scale_pairs_to_code(cfg, building, &pairs, c, path, i)?;
+                (pairs, scaling.factor, Some(scaling))
+            }
+        };
         out.push(PlanSuite {
             name: s.name.clone(),
-            pairs,
+            pairs: pairs
+                .into_iter()
+                .map(|p| PlanPair {
+                    name: p.name().to_string(),
+                    first: Arc::new(p.first().clone()),
+                    second: Arc::new(p.second().clone()),
+                })
+                .collect(),
             angles_deg: angles,
             factor,
+            code,
             duration_s: s.duration_s,
         });
     }
     Ok(out)
+}
+
+/// Suite `i`'s pairs scaled to the code spectrum `c` by their mean maximum-direction
+/// spectrum, over the range built from the plan's principal-direction periods
+/// ([`FloorPlan::scaling_periods`]); with the EN 1998-1 rule and fewer than 7 pairs the
+/// objective must read the largest over them (§4.3.3.4.3(3)).
+fn scale_pairs_to_code(
+    cfg: &PlanStudyConfig,
+    building: &FloorPlan,
+    pairs: &[slipload_motion::RecordPair],
+    c: &crate::model::config::CodeSpectrumConfig,
+    path: &Path,
+    i: usize,
+) -> Result<
+    (
+        Vec<slipload_motion::RecordPair>,
+        crate::model::code_scaling::CodeScaling,
+    ),
+    OptError,
+> {
+    use crate::model::code_scaling::{ScalingBasis, scale_to_code};
+    use crate::model::code_spectrum::{EN1998_MEAN_FROM, ScalingRule};
+    let periods = building.scaling_periods();
+    let basis = ScalingBasis {
+        t1_s: periods.map_or_else(|| building.t1(), |p| p.bare_t1_s),
+        periods,
+    };
+    let (records, scaling) =
+        scale_to_code(&[], pairs, c, None, &basis, path, i).map_err(|e| rename_field(e, i))?;
+    if c.rule().ok() == Some(ScalingRule::En1998)
+        && pairs.len() < EN1998_MEAN_FROM
+        && cfg.objective.statistic == super::config::PlanStatistic::Mean
+    {
+        return Err(OptError::invalid(
+            path,
+            "objective.statistic",
+            format!(
+                "is \"mean\": with {} pairs (fewer than {EN1998_MEAN_FROM}) EN 1998-1 §4.3.3.4.3(3) takes the most unfavourable response; give \"max\", or at least {EN1998_MEAN_FROM} pairs",
+                pairs.len()
+            ),
+        ));
+    }
+    let mut it = records.into_iter();
+    let mut out = Vec::with_capacity(pairs.len());
+    for (k, p) in pairs.iter().enumerate() {
+        if let (Some(a), Some(b)) = (it.next(), it.next()) {
+            out.push(
+                slipload_motion::RecordPair::new(p.name(), a, b).map_err(|e| {
+                    OptError::invalid(path, format!("suites[{i}].pairs[{k}]"), e.to_string())
+                })?,
+            );
+        }
+    }
+    Ok((out, scaling))
+}
+
+/// A chain suite's field names in an error of [`scale_to_code`] as a plan suite's:
+/// `scale.code_spectrum` is `code_spectrum` here, `records` is `pairs`.
+fn rename_field(e: OptError, i: usize) -> OptError {
+    match e {
+        OptError::Invalid {
+            path,
+            field,
+            message,
+        } => OptError::Invalid {
+            path,
+            field: field
+                .replace(
+                    &format!("suites[{i}].scale.code_spectrum"),
+                    &format!("suites[{i}].code_spectrum"),
+                )
+                .replace(
+                    &format!("suites[{i}].records"),
+                    &format!("suites[{i}].pairs"),
+                ),
+            message: message.replace("scale.code_spectrum", "code_spectrum"),
+        },
+        other => other,
+    }
 }
 
 /// The storey-shear shape of the plan (Σ_{j ≥ i} m_j h_j, first storey = 1).

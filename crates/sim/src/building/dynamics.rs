@@ -34,13 +34,17 @@ pub struct ScalingPeriods {
 
 /// The modes (in ascending frequency) whose effective masses first add up to 90 % of the
 /// total, for ground motion along `r`.
-struct MassParticipation {
-    modes: usize,
-    period_s: f64,
+pub(crate) struct MassParticipation {
+    pub(crate) modes: usize,
+    pub(crate) period_s: f64,
 }
 
 impl MassParticipation {
-    fn of(m: &DMatrix<f64>, modes: &Modes, r: &nalgebra::DVector<f64>) -> MassParticipation {
+    pub(crate) fn of(
+        m: &DMatrix<f64>,
+        modes: &Modes,
+        r: &nalgebra::DVector<f64>,
+    ) -> MassParticipation {
         // mass-normalised shapes: effective mass of mode k = (φₖᵀ M r)²; their sum over all
         // modes is rᵀ M r
         let mr = m * r;

@@ -31,5 +31,6 @@ pub use config::{
     BuildingConfig, DampingConfig, DissipatorConfig, PDeltaConfig, RayleighConfig, SlipLoad,
     StoreyYieldConfig,
 };
+pub(crate) use dynamics::MassParticipation;
 pub use dynamics::{Dynamics, ScalingPeriods};
 pub use validated::{Building, Dissipator, StoreyYield};

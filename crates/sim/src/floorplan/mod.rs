@@ -11,11 +11,13 @@
 //!
 //! Files: `config` (the file as written), `model` (the validated building), `build`
 //! (validation and assembly), `compile` (scene to plan), `scene` (a scene in plan as
-//! written and resolved).
+//! written and resolved), `dynamics` (the periods a code-scaled suite's range is built
+//! from).
 
 mod build;
 mod compile;
 mod config;
+mod dynamics;
 mod model;
 mod opensees;
 mod scene;
