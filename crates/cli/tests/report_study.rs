@@ -177,3 +177,54 @@ fn study_report_rounds_warns_on_bounds_and_states_the_costs() {
     );
     let _ = std::fs::remove_dir_all(&out_dir);
 }
+
+#[test]
+fn a_study_in_plan_gets_its_page_summary_check_devices_and_plan_figures() {
+    let dir = root().join("results/plan-ten-story");
+    let out_dir = scratch("report-study", "plan");
+    let page = out_dir.join("page.html");
+    let out = slipload(&[
+        "report",
+        dir.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("report of the study in plan"), "{err}");
+    let html = std::fs::read_to_string(&page).unwrap();
+    // titled by the study, its summary first, as plan-summary.txt says it
+    assert!(html.contains("<title>plan-ten-story"), "title");
+    let summary = section(&html, "summary");
+    assert!(
+        summary.contains("placement of the optimum&#39;s slip load")
+            || summary.contains("placement of the optimum's slip load"),
+        "{summary}"
+    );
+    // the check page before the device table before the damper table
+    let tables = section(&html, "tables");
+    let at = |name: &str| {
+        tables
+            .find(&format!("<p class=\"src\">{name}</p>"))
+            .unwrap_or_else(|| panic!("no {name}"))
+    };
+    assert!(at("plan-check.md") < at("plan-devices.md"));
+    assert!(at("plan-devices.md") < at("plan-dampers.md"));
+    // the plan's figures inlined with their data
+    let figures = section(&html, "figures");
+    for stem in ["plan-view", "line-drift-profiles"] {
+        assert!(
+            figures.contains(&format!("<figure id=\"fig-{stem}\">")),
+            "{stem}"
+        );
+    }
+    // the optimum's file is what the summary and tables show: not repeated as raw JSON
+    assert!(
+        !html.contains("<summary>plan-optimum.json"),
+        "raw optimum repeated"
+    );
+}

@@ -365,7 +365,10 @@ fn a_planar_building_in_plan_has_the_chains_scaling_periods_along_its_line() {
     let plan = floor_plan(&PLANAR.replace("2.0e8, 2.0e8, 2.0e8", "2.0e10, 2.0e10, 2.0e10"))
         .scaling_periods()
         .unwrap();
-    assert!(rel(plan.bare_t1_s, chain.bare_t1_s) < 1e-9, "{plan:?} {chain:?}");
+    assert!(
+        rel(plan.bare_t1_s, chain.bare_t1_s) < 1e-9,
+        "{plan:?} {chain:?}"
+    );
     assert!(plan.stuck_t1_s <= chain.stuck_t1_s * (1.0 + 1e-9));
     assert!(plan.mass_90_period_s <= chain.mass_90_period_s * (1.0 + 1e-9));
     assert!(plan.stuck_t1_s < plan.bare_t1_s);

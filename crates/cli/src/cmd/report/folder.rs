@@ -11,6 +11,8 @@ pub enum FolderKind {
     Optimize,
     /// `slipload sweep --out` (or `merge --out`): `manifest.json` of a study.
     Sweep,
+    /// `slipload optimize --out` of a study in plan: `plan-summary.txt`.
+    PlanStudy,
     /// `slipload accuracy --out`: `NAME.json` with the median and per-record studies.
     Accuracy,
     /// `slipload simulate --plot`: a time-history CSV (first column `t_s`).
@@ -25,6 +27,7 @@ impl FolderKind {
         match self {
             Self::Optimize => "design study",
             Self::Sweep => "design sweep",
+            Self::PlanStudy => "study in plan",
             Self::Accuracy => "accuracy study",
             Self::Simulation => "simulation",
             Self::Figures => "figures",
@@ -36,6 +39,9 @@ impl FolderKind {
         match self {
             Self::Optimize => "design study (slipload optimize: sweep, refinement, design table)",
             Self::Sweep => "design sweep (slipload sweep)",
+            Self::PlanStudy => {
+                "study in plan (slipload optimize on a building in plan: where the dampers go, the optimum beside its planar split)"
+            }
             Self::Accuracy => {
                 "accuracy study (slipload accuracy: error vs cost per method and time step)"
             }
@@ -107,6 +113,22 @@ pub(super) fn recognise(dir: &Path, files: &[Entry]) -> Option<(FolderKind, Stri
             FolderKind::Sweep
         };
         return Some((kind, study.to_string()));
+    }
+    if let Some(summary) = find("plan-summary.txt") {
+        // the study's name, as the optimum's file or the summary's first line gives it
+        let name = find("plan-optimum.json")
+            .and_then(read_json)
+            .and_then(|v| v.get("study").and_then(|s| s.as_str()).map(String::from))
+            .or_else(|| {
+                read(summary).ok().and_then(|t| {
+                    t.lines()
+                        .next()
+                        .and_then(|l| l.strip_prefix("study in plan "))
+                        .and_then(|l| l.split(':').next())
+                        .map(String::from)
+                })
+            });
+        return Some((FolderKind::PlanStudy, name.unwrap_or(dir_name)));
     }
     let accuracy: Vec<&Entry> = files
         .iter()

@@ -61,6 +61,7 @@ fn table_order(kind: FolderKind) -> &'static [&'static str] {
             "rank.md",
             "family.md",
         ],
+        FolderKind::PlanStudy => &["plan-check.md", "plan-devices.md", "plan-dampers.md"],
         _ => &[],
     }
 }
@@ -89,6 +90,8 @@ fn shown_as_table(kind: FolderKind, e: &Entry) -> bool {
             "design-table.json" | "code-check.json" | "device-table.json"
         ),
         FolderKind::Simulation => e.stem.starts_with("response"),
+        // the summary and the check, device and damper tables show the optimum's file
+        FolderKind::PlanStudy => e.name == "plan-optimum.json",
         _ => false,
     }
 }
@@ -119,8 +122,10 @@ pub(super) fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, 
     let by_name = |n: &str| files.iter().find(|e| e.name == n);
 
     // A study's building first: what was designed (building.md, which optimize writes)
-    if matches!(kind, FolderKind::Optimize | FolderKind::Sweep)
-        && let Some(e) = by_name("building.md")
+    if matches!(
+        kind,
+        FolderKind::Optimize | FolderKind::Sweep | FolderKind::PlanStudy
+    ) && let Some(e) = by_name("building.md")
     {
         page.section("building", "Building");
         let _ = writeln!(
@@ -134,7 +139,7 @@ pub(super) fn build(dir: &Path, max_rows: usize) -> anyhow::Result<(FolderKind, 
     }
 
     // Summary: summary.txt and the optimum's key numbers
-    let summary_txt = by_name("summary.txt");
+    let summary_txt = by_name("summary.txt").or_else(|| by_name("plan-summary.txt"));
     let optimum = by_name("optimum.json").and_then(read_json);
     let design_table = by_name("design-table.json").and_then(read_json);
     let manifest = by_name("manifest.json").and_then(read_json);
