@@ -31,6 +31,7 @@
 //! operators and step constants), `link` (one contact as the loops read it), `outcome`
 //! (how a loop ends), `fixed` (the fixed-size loop), `tangent` (the step's derivatives
 //! with respect to the slip loads), `dense` (the dense run and the general loop), `band` (band matrices and their LDLᵀ factorisation),
+//! `spring` (a contact's ends as the banded step reads them, a chain's or a plan's),
 //! `banded` (the banded step), `run` (the integrator and the choice of step).
 
 mod band;
@@ -41,6 +42,7 @@ mod link;
 mod operators;
 mod outcome;
 mod run;
+mod spring;
 mod tangent;
 
 pub use banded::BandedStats;
