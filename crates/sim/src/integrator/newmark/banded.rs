@@ -3,15 +3,17 @@
 //!
 //! The dense step precomputes A⁻¹K, A⁻¹C and the Delassus matrix W = γΔt BᵀG + diag(1/κ)
 //! (all dense: O(N²) per step). When M, C and K are banded (a shear building with storey
-//! stiffness and Rayleigh or storey damping: half-bandwidth 1, [`Plan::half_bandwidth`])
-//! and every contact is an elastic–perfectly plastic element (m′ = 0: a brace k′, c′ in
-//! series with a slider, joining a floor to the floor below), the step stays in the
-//! original variables:
+//! stiffness and Rayleigh or storey damping: half-bandwidth 1; a building in plan with
+//! Rayleigh damping, three DOFs a floor: 5; [`Plan::half_bandwidth`]) and every contact is
+//! an elastic–perfectly plastic element (m′ = 0: a brace k′, c′ in series with a slider,
+//! joining a floor to the floor below, or in plan a line's point on a floor to its point
+//! on the floor below), the step stays in the original variables:
 //!
-//! - the right-hand side r = −K z_u − C z_v − (load) M r_g (+ force, + HHT's friction
-//!   memory α B F_n) is a banded product;
+//! - the right-hand side r = −K z_u − C z_v − (load) M r_g (− a second component's
+//!   M r₂ a_g₂, + force, + HHT's friction memory α B F_n) is a banded product;
 //! - a stick/slip pattern turns each stuck contact into a spring: the QP's variable of a
-//!   contact is w = h₀ + γΔt bᵀa − F/κ (κ = k′βΔt/γ + c′, b = e(floor) − e(floor below);
+//!   contact is w = h₀ + γΔt bᵀa − F/κ (κ = k′βΔt/γ + c′, b = e(floor) − e(floor below)
+//!   in a chain, top − bottom in plan: [`Ends`];
 //!   h₀ its friction-free part at zero acceleration, as the dense step's
 //!   `Link::free_slip_rate` forms it: from the slip of the step for an algebraic element,
 //!   c′ = 0, from the end-of-step slip rate otherwise), so a stuck force is
@@ -117,11 +119,24 @@ pub(super) fn eligible(plan: &Plan) -> Option<usize> {
 }
 
 /// The half-bandwidth when `newmark` takes the banded step by itself: eligible plans of at
-/// least [`MIN_DOFS`] DOFs whose bandwidth is small against their size.
+/// least [`MIN_DOFS`] DOFs whose bandwidth is small against their size, n ≥ k (p + 1) with
+/// k = 4 for a chain and k = 2 in plan ([`SIZE_PER_BAND_IN_PLAN`]).
 pub(super) fn chosen(plan: &Plan) -> Option<usize> {
     let n = plan.dofs();
-    eligible(plan).filter(|&p| n >= MIN_DOFS && 4 * (p + 1) <= n)
+    let k = if plan.is_chain() {
+        4
+    } else {
+        SIZE_PER_BAND_IN_PLAN
+    };
+    eligible(plan).filter(|&p| n >= MIN_DOFS && k * (p + 1) <= n)
 }
+
+/// A building in plan takes the banded step by itself from n ≥ 2 (p + 1) DOFs: twelve, four
+/// storeys (p = 5). Measured on plans of two and of four lines per direction with a
+/// massless damper on every line and storey, both components at once: the banded step
+/// is 1.2–1.5× faster at four storeys, 1.1–1.4× at three, and 0.9–1.2× at one or two
+/// (results/performance/README.md, "Buildings in plan").
+pub(super) const SIZE_PER_BAND_IN_PLAN: usize = 2;
 
 /// What the banded step keeps of the dense operators, for the steps [`BoxQp`] answers.
 struct Dense {

@@ -19,8 +19,9 @@
 //! once per small DOF count (1–8, 10, 12, 20) with the count a constant and once for any
 //! other count.
 //! Banded frames of at least ten DOFs whose contacts are all elastic–perfectly plastic
-//! (m′ = 0 shear buildings with Rayleigh or storey damping) step in O(N) in
-//! `newmark/banded.rs`: the same QP, solved in the original banded variables.
+//! (m′ = 0 shear buildings with Rayleigh or storey damping; buildings in plan with
+//! Rayleigh damping, from twelve DOFs) step in O(N) in `newmark/banded.rs`: the same QP,
+//! solved in the original banded variables.
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
