@@ -445,7 +445,8 @@ fn the_fallback_to_the_dense_box_qp_gives_the_same_answer() {
 }
 
 /// Dampers with mass add DOFs after the floors' (not banded): such a plan, and one asking
-/// for histories, takes the dense step, and forcing the banded step is refused.
+/// for histories, takes the dense step, and forcing the banded step is refused; a plan of
+/// fewer than twelve DOFs takes the dense step by itself.
 #[test]
 fn plans_the_banded_step_cannot_run_stay_dense() {
     let text = SMALL.replace(
@@ -464,6 +465,10 @@ fn plans_the_banded_step_cannot_run_stay_dense() {
     assert_eq!(plan.dofs(), 10);
     assert!(run_on_path(&plan, StepPath::Auto).unwrap().1.is_none());
     assert!(run_on_path(&plan, StepPath::Banded).is_err());
+    // below twelve DOFs (2 (p + 1)) a plan keeps the dense step by itself
+    let three = small(&[(a.clone(), 0.0)], 0.0);
+    assert_eq!(three.dofs(), 9);
+    assert!(run_on_path(&three, StepPath::Auto).unwrap().1.is_none());
     let mut hist = small(&[(a, 0.0)], 0.0);
     hist.outputs.histories = true;
     assert!(run_on_path(&hist, StepPath::Banded).is_err());
