@@ -2,12 +2,13 @@
 //! per direction (massless dampers on every line, stiffness eccentricity 15 % of the
 //! width) under both components of a 15 s synthetic pair, `newmark` at its default step
 //! against `exact` and each one's time per simulation; a sixty-storey plan's time per
-//! step (peaks only: memory independent of the record's length); and the example study
-//! in plan's wall-clock time (`configs/study-plan-ten-story.json`, into a scratch folder,
+//! step (peaks only: memory independent of the record's length); the same plans with
+//! Rayleigh damping (banded operators) on `newmark`'s banded and dense steps, per step,
+//! and the banded step's speed-up; and the example study in plan's wall-clock time (`configs/study-plan-ten-story.json`, into a scratch folder,
 //! on every core, one run) with what it found.
 
 use super::figure::Figure;
-use super::measure::{Bench, max_rel, seconds_per_run};
+use super::measure::{Bench, max_rel, seconds_banded_dense, seconds_per_run};
 use anyhow::Context;
 use slipload_motion::{DEFAULT_SUITE_PGA_G, DEFAULT_SUITE_SEED, G, SuiteTarget, Synthetic};
 use slipload_sim::floorplan::{FloorPlan, FloorPlanConfig, FloorPlanScene, GroundComponent};
@@ -20,8 +21,10 @@ use std::sync::Arc;
 /// y at x = 0, 10, 20, 30 m carrying 40/30/20/10 % of the storey stiffness (the centre of
 /// rigidity at 10 m, 5 m = 17 % of the width from the centre of mass), four equal lines
 /// along x; a massless damper per line and storey on a brace as stiff as the line's storey,
-/// its slip load 1.5 % of the weight above times the line's share.
-fn building(storeys: usize) -> anyhow::Result<FloorPlan> {
+/// its slip load 1.5 % of the weight above times the line's share. Modal damping 2 % (full
+/// operators: the dense step), or with `rayleigh` 2 % Rayleigh damping at the first and
+/// sixth modes (operators of half-bandwidth 5: the banded step can run it).
+fn building(storeys: usize, rayleigh: bool) -> anyhow::Result<FloorPlan> {
     let k = |i: usize| 480e6 * (1.0 - 0.5 * i as f64 / storeys as f64);
     let weight_above = |i: usize| 350e3 * 9.80665 * (storeys - i) as f64;
     let line = |name: String, dir: &str, at: f64, share: f64| {
@@ -45,7 +48,11 @@ fn building(storeys: usize) -> anyhow::Result<FloorPlan> {
         "plan_size": [30.0, 18.0],
         "floors": (0..storeys).map(|_| serde_json::json!({"mass": 350e3})).collect::<Vec<_>>(),
         "storey_heights": vec![3.5; storeys],
-        "damping": {"modal": {"ratio": 0.02}},
+        "damping": if rayleigh {
+            serde_json::json!({"rayleigh": {"ratio": 0.02, "modes": [1, 6]}})
+        } else {
+            serde_json::json!({"modal": {"ratio": 0.02}})
+        },
         "lines": lines,
     });
     let cfg: FloorPlanConfig = serde_json::from_value(cfg).context("the bench's plan")?;
@@ -89,7 +96,7 @@ fn plan(b: &FloorPlan, method: MethodName, duration: Option<f64>) -> anyhow::Res
 pub(super) fn plans(bench: &mut Bench) -> anyhow::Result<()> {
     let case = "building in plan: ten storeys, four lines per direction, pair of 15 s synthetic";
     if bench.want(case) {
-        let b = building(10)?;
+        let b = building(10, false)?;
         let nm = plan(&b, MethodName::Newmark, None)?;
         let ex = plan(&b, MethodName::Exact, None)?;
         let reference = slipload_sim::run_plan(&ex)?;
@@ -119,7 +126,7 @@ pub(super) fn plans(bench: &mut Bench) -> anyhow::Result<()> {
     example_study(bench)?;
     let case = "building in plan: sixty storeys, four lines per direction, newmark";
     if bench.want(case) {
-        let b = building(60)?;
+        let b = building(60, false)?;
         let nm = plan(&b, MethodName::Newmark, Some(5.0))?;
         let s = seconds_per_run(&nm, &bench.clock, bench.budget)?;
         bench.figs.push(Figure::new(
@@ -129,8 +136,52 @@ pub(super) fn plans(bench: &mut Bench) -> anyhow::Result<()> {
             "µs",
         ));
     }
+    banded(bench)
+}
+
+/// The plans of [`building`] with Rayleigh damping (ten and sixty storeys, 5 s of the
+/// pair, peaks only) on the banded and the dense step, timed in alternation: each one's
+/// time per step and the banded step's speed-up. The guards sit 20 % under the speed-ups
+/// recorded when the banded step learnt plans (results/performance/README.md, "Buildings
+/// in plan"), as the chain's banded rows' guards are set.
+fn banded(bench: &mut Bench) -> anyhow::Result<()> {
+    let case = "building in plan, Rayleigh damping: banded vs dense step, newmark, 5 s of the pair";
+    if !bench.want(case) {
+        return Ok(());
+    }
+    for (storeys, guard) in [(10, GUARD_10), (60, GUARD_60)] {
+        let b = building(storeys, true)?;
+        let nm = plan(&b, MethodName::Newmark, Some(5.0))?;
+        let (banded, dense) = seconds_banded_dense(&nm, &bench.clock, bench.budget)?;
+        let per_step = |s: f64| s / nm.steps as f64 * 1e6;
+        bench.figs.push(Figure::new(
+            case,
+            &format!("banded step: time per step, {storeys} storeys"),
+            per_step(banded),
+            "µs",
+        ));
+        bench.figs.push(Figure::new(
+            case,
+            &format!("dense step: time per step, {storeys} storeys"),
+            per_step(dense),
+            "µs",
+        ));
+        bench.figs.push(
+            Figure::new(
+                case,
+                &format!("banded step's speed-up over the dense step, {storeys} storeys"),
+                dense / banded,
+                "x",
+            )
+            .at_least(guard),
+        );
+    }
     Ok(())
 }
+
+/// The banded step's speed-up guards on the ten- and sixty-storey plans in plan.
+const GUARD_10: f64 = 1.7;
+const GUARD_60: f64 = 16.0;
 
 /// The example study in plan, where a clone of the project holds it.
 const EXAMPLE: &str = concat!(

@@ -3,15 +3,17 @@
 //!
 //! The dense step precomputes A⁻¹K, A⁻¹C and the Delassus matrix W = γΔt BᵀG + diag(1/κ)
 //! (all dense: O(N²) per step). When M, C and K are banded (a shear building with storey
-//! stiffness and Rayleigh or storey damping: half-bandwidth 1, [`Plan::half_bandwidth`])
-//! and every contact is an elastic–perfectly plastic element (m′ = 0: a brace k′, c′ in
-//! series with a slider, joining a floor to the floor below), the step stays in the
-//! original variables:
+//! stiffness and Rayleigh or storey damping: half-bandwidth 1; a building in plan with
+//! Rayleigh damping, three DOFs a floor: 5; [`Plan::half_bandwidth`]) and every contact is
+//! an elastic–perfectly plastic element (m′ = 0: a brace k′, c′ in series with a slider,
+//! joining a floor to the floor below, or in plan a line's point on a floor to its point
+//! on the floor below), the step stays in the original variables:
 //!
-//! - the right-hand side r = −K z_u − C z_v − (load) M r_g (+ force, + HHT's friction
-//!   memory α B F_n) is a banded product;
+//! - the right-hand side r = −K z_u − C z_v − (load) M r_g (− a second component's
+//!   M r₂ a_g₂, + force, + HHT's friction memory α B F_n) is a banded product;
 //! - a stick/slip pattern turns each stuck contact into a spring: the QP's variable of a
-//!   contact is w = h₀ + γΔt bᵀa − F/κ (κ = k′βΔt/γ + c′, b = e(floor) − e(floor below);
+//!   contact is w = h₀ + γΔt bᵀa − F/κ (κ = k′βΔt/γ + c′, b = e(floor) − e(floor below)
+//!   in a chain, top − bottom in plan: [`Ends`];
 //!   h₀ its friction-free part at zero acceleration, as the dense step's
 //!   `Link::free_slip_rate` forms it: from the slip of the step for an algebraic element,
 //!   c′ = 0, from the end-of-step slip rate otherwise), so a stuck force is
@@ -38,6 +40,7 @@ use super::band::{Band, Ldl, tri_rhs};
 use super::link::{EppPred, Link};
 use super::operators::StepConstants;
 use super::outcome::{non_finite, outcome};
+use super::spring::{ChainEnds, Ends, PlanEnds, Spring};
 use crate::error::SimError;
 use crate::friction::BoxQp;
 use crate::friction::box_qp::Bound;
@@ -48,8 +51,23 @@ use crate::integrator::state::{
 use crate::plan::{ContactKind, Plan};
 use crate::response::{Outcome, Peaks};
 
-/// Largest half-bandwidth the banded step takes (its factorisation costs O(N p²)).
+/// Largest half-bandwidth the banded step takes for a chain of floors (its factorisation
+/// costs O(N p²)).
 pub(super) const MAX_HALF_BANDWIDTH: usize = 3;
+
+/// Largest half-bandwidth the banded step takes for a building in plan: three DOFs a
+/// floor, storey elements between consecutive floors, give 5 ([`Plan::half_bandwidth`]).
+pub(super) const MAX_PLAN_HALF_BANDWIDTH: usize = 5;
+
+/// The largest half-bandwidth the banded step takes for `plan` (a chain's limit is the
+/// one it always had, so a chain's choice of step is unchanged).
+pub(super) fn max_half_bandwidth(plan: &Plan) -> usize {
+    if plan.is_chain() {
+        MAX_HALF_BANDWIDTH
+    } else {
+        MAX_PLAN_HALF_BANDWIDTH
+    }
+}
 
 /// Fewest DOFs for which `newmark` chooses the banded step by itself (below, the dense
 /// fixed-size loops are as fast; results/performance/README.md, "banded frames").
@@ -76,16 +94,19 @@ pub struct BandedStats {
 }
 
 /// The plan's half-bandwidth when the banded step can run it exactly: no histories, every
-/// contact an elastic–perfectly plastic element between a floor and the floor below (or
-/// the ground) with a finite box of positive width, and
-/// banded operators (half-bandwidth at most [`MAX_HALF_BANDWIDTH`]).
+/// contact an elastic–perfectly plastic element with a finite box of positive width
+/// (in a chain between a floor and the floor below, or the ground; in plan between two
+/// points, b = top − bottom), and banded operators (half-bandwidth at most
+/// [`max_half_bandwidth`]: [`MAX_HALF_BANDWIDTH`] for a chain, [`MAX_PLAN_HALF_BANDWIDTH`]
+/// in plan). Dampers with mass (DOFs after the floors') and full damping (modal) are not.
 pub(super) fn eligible(plan: &Plan) -> Option<usize> {
-    if plan.outputs.histories || plan.outputs.sensitivities || !plan.is_chain() {
+    if plan.outputs.histories || plan.outputs.sensitivities {
         return None;
     }
+    let chain = plan.is_chain();
     let epp_only = plan.contacts.iter().all(|c| {
         c.kind == ContactKind::Epp
-            && c.below() == c.floor.checked_sub(1)
+            && (!chain || c.below() == c.floor.checked_sub(1))
             && c.lower.is_finite()
             && c.upper.is_finite()
             && c.lower < c.upper
@@ -94,47 +115,28 @@ pub(super) fn eligible(plan: &Plan) -> Option<usize> {
         return None;
     }
     let p = plan.half_bandwidth();
-    (p <= MAX_HALF_BANDWIDTH).then_some(p)
+    (p <= max_half_bandwidth(plan)).then_some(p)
 }
 
 /// The half-bandwidth when `newmark` takes the banded step by itself: eligible plans of at
-/// least [`MIN_DOFS`] DOFs whose bandwidth is small against their size.
+/// least [`MIN_DOFS`] DOFs whose bandwidth is small against their size, n ≥ k (p + 1) with
+/// k = 4 for a chain and k = 2 in plan ([`SIZE_PER_BAND_IN_PLAN`]).
 pub(super) fn chosen(plan: &Plan) -> Option<usize> {
     let n = plan.dofs();
-    eligible(plan).filter(|&p| n >= MIN_DOFS && 4 * (p + 1) <= n)
+    let k = if plan.is_chain() {
+        4
+    } else {
+        SIZE_PER_BAND_IN_PLAN
+    };
+    eligible(plan).filter(|&p| n >= MIN_DOFS && k * (p + 1) <= n)
 }
 
-/// One contact as the banded step reads it. Vectors of floor quantities are stored with
-/// the ground first (index 0, always 0; a sink for the ground's share of a force), so a
-/// contact reads and writes both its ends without a branch.
-#[derive(Debug, Clone, Copy)]
-struct Spring {
-    /// 1 + its floor.
-    f1: usize,
-    /// 1 + the floor below, 0 for the ground.
-    j1: usize,
-    kappa: f64,
-    inv_kappa: f64,
-    /// k′/κ.
-    k_over_kappa: f64,
-    lo: f64,
-    hi: f64,
-}
-
-impl Spring {
-    /// bᵀx = x(floor) − x(floor below), `x` ground first.
-    #[inline(always)]
-    fn diff(&self, x: &[f64]) -> f64 {
-        x[self.f1] - x[self.j1]
-    }
-
-    /// x −= s·b, `x` ground first (its ground entry then holds garbage).
-    #[inline(always)]
-    fn sub(&self, x: &mut [f64], s: f64) {
-        x[self.f1] -= s;
-        x[self.j1] += s;
-    }
-}
+/// A building in plan takes the banded step by itself from n ≥ 2 (p + 1) DOFs: twelve, four
+/// storeys (p = 5). Measured on plans of two and of four lines per direction with a
+/// massless damper on every line and storey, both components at once: the banded step
+/// is 1.2–1.5× faster at four storeys, 1.1–1.4× at three, and 0.9–1.2× at one or two
+/// (results/performance/README.md, "Buildings in plan").
+pub(super) const SIZE_PER_BAND_IN_PLAN: usize = 2;
 
 /// What the banded step keeps of the dense operators, for the steps [`BoxQp`] answers.
 struct Dense {
@@ -150,18 +152,18 @@ struct Dense {
 /// them: an algebraic element's (c′ = 0) from the slip of the step (the return mapping),
 /// a damped brace's from its end-of-step slip rate; writes the friction-free part h0 of
 /// the QP's variable at zero acceleration, the element's predictors and κ h0.
-fn general_predictors(
-    (epp, links, springs): (&[EppState], &[Link], &[Spring]),
+fn general_predictors<E: Ends>(
+    (epp, links, springs): (&[EppState], &[Link], &[Spring<E>]),
     (u, ut, vt): (&[f64], &[f64], &[f64]),
     (dt, c_u, c_v, bg): (f64, f64, f64, f64),
     (h0, pred, g0): (&mut [f64], &mut [EppPred], &mut [f64]),
 ) {
     for (c, s) in springs.iter().enumerate() {
         let e = epp[c];
-        let (uj, vj) = (ut[s.j1], vt[s.j1]);
+        let (uj, vj) = (s.ends.bottom(ut), s.ends.bottom(vt));
         if links[c].algebraic {
-            let base = e.u - u[s.f1 - 1];
-            h0[c] = (ut[s.f1] - uj + base) * s.k_over_kappa;
+            let base = e.u - s.ends.top_dof(u);
+            h0[c] = (s.ends.top(ut) - uj + base) * s.k_over_kappa;
             pred[c] = EppPred {
                 base,
                 ..EppPred::default()
@@ -181,11 +183,11 @@ fn general_predictors(
 /// below, every element algebraic): the same arithmetic, on slices of one length, with no
 /// gathers.
 #[allow(clippy::needless_range_loop)] // the indices are the formula's
-fn aligned_predictors(
+fn aligned_predictors<E: Ends>(
     epp: &[EppState],
     u: &[f64],
     ut: &[f64],
-    springs: &[Spring],
+    springs: &[Spring<E>],
     (h0, pred, g0): (&mut [f64], &mut [EppPred], &mut [f64]),
 ) {
     let n = springs.len();
@@ -230,9 +232,9 @@ struct PatternView<'a> {
 /// The forces and slip rates of the candidate whose accelerations are `x` (ground
 /// first), written to `f` and `w`; `aligned` as in [`aligned_predictors`] (the same
 /// arithmetic without gathers).
-fn candidate(
+fn candidate<E: Ends>(
     aligned: bool,
-    (springs, x, gdt): (&[Spring], &[f64], f64),
+    (springs, x, gdt): (&[Spring<E>], &[f64], f64),
     pattern: PatternView,
     out: (&mut [f64], &mut [f64]),
 ) -> Candidate {
@@ -248,12 +250,12 @@ fn candidate(
 /// [`candidate`] with bᵀx of contact c given by `diff(c, spring)`.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // the indices are the formula's
-fn candidate_with(
-    springs: &[Spring],
+fn candidate_with<E: Ends>(
+    springs: &[Spring<E>],
     gdt: f64,
     pattern: PatternView,
     (f, w): (&mut [f64], &mut [f64]),
-    diff: impl Fn(usize, &Spring) -> f64,
+    diff: impl Fn(usize, &Spring<E>) -> f64,
 ) -> Candidate {
     let nc = springs.len();
     let PatternView {
@@ -293,8 +295,28 @@ fn candidate_with(
     out
 }
 
-/// Runs `plan` (half-bandwidth `p`, [`eligible`]) with the banded step.
-pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimError> {
+/// Runs `plan` (half-bandwidth `p`, [`eligible`]) with the banded step, a step's
+/// active-set iteration handed to [`BoxQp`] after `max_passes` passes ([`MAX_PASSES`]
+/// unless a test asks for fewer): a chain's contacts read as two floors, a building in
+/// plan's as two points.
+pub(super) fn run(
+    plan: &Plan,
+    p: usize,
+    max_passes: u32,
+) -> Result<(Outcome, BandedStats), SimError> {
+    if plan.is_chain() {
+        run_with::<ChainEnds>(plan, p, max_passes)
+    } else {
+        run_with::<PlanEnds>(plan, p, max_passes)
+    }
+}
+
+/// [`run`] with the contacts' ends read by `E`.
+fn run_with<E: Ends>(
+    plan: &Plan,
+    p: usize,
+    max_passes: u32,
+) -> Result<(Outcome, BandedStats), SimError> {
     let n = plan.dofs();
     let nc = plan.contacts.len();
     let dt = plan.method.dt;
@@ -322,21 +344,10 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         factorizations: 1,
         ..Default::default()
     };
-    let springs: Vec<Spring> = plan
+    let springs: Vec<Spring<E>> = plan
         .contacts
         .iter()
-        .map(|ct| {
-            let kappa = ct.brace_stiffness * beta * dt / gamma + ct.brace_damping;
-            Spring {
-                f1: ct.floor + 1,
-                j1: ct.below().map_or(0, |j| j + 1),
-                kappa,
-                inv_kappa: 1.0 / kappa,
-                k_over_kappa: ct.brace_stiffness / kappa,
-                lo: ct.lower,
-                hi: ct.upper,
-            }
-        })
+        .map(|ct| Spring::of(ct, (beta, gamma, dt)))
         .collect();
     let links: Vec<Link> = plan
         .contacts
@@ -384,13 +395,35 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     let tol_factor = 8.0 * (nc as f64 + 1.0) * f64::EPSILON;
     let tol_w = tol_factor * dense.w_norm;
 
-    let ones = vec![1.0; n];
-    let mut mr = vec![0.0; n];
-    mb.mul_sub(&ones, &mut mr);
-    for x in &mut mr {
-        *x = -*x;
-    }
-    let msum: f64 = mr.iter().sum();
+    // M r and rᵀM r: a chain's r is 1 on every floor (its band product, as it always
+    // was); a plan's as the dense step forms them.
+    let (mr, msum) = if plan.is_chain() {
+        let ones = vec![1.0; n];
+        let mut mr = vec![0.0; n];
+        mb.mul_sub(&ones, &mut mr);
+        for x in &mut mr {
+            *x = -*x;
+        }
+        let msum: f64 = mr.iter().sum();
+        (mr, msum)
+    } else {
+        (
+            plan.mass_influence().as_slice().to_vec(),
+            plan.influence_mass(),
+        )
+    };
+    // A second ground component (a plan under both of a pair): M r₂, and r₁ᵀM r₂ for the
+    // base shear along the first component's direction.
+    let mr2: Option<Vec<f64>> = plan.mass_influence2().map(|m| m.as_slice().to_vec());
+    let cross = plan.cross_mass();
+    let base_shear = |a: &[f64], ag: f64, p: f64, ag2: f64| {
+        if mr2.is_some() {
+            // signed along the first component, then its size (as the dense step)
+            (state::signed_base_shear(&mr, msum, a, ag, p) + cross * ag2).abs()
+        } else {
+            state::base_shear(&mr, msum, a, ag, p)
+        }
+    };
 
     let start = initial_state(plan)?;
     let (mut u, mut v, mut a) = (start.u.clone(), start.v.clone(), start.a.clone());
@@ -419,8 +452,9 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     for c in 0..nc {
         (fr[c], fb[c], sg[c]) = coded(status[c], &springs[c]);
     }
-    // Per padded floor: the friction forces acting on the contacts of that floor (the
-    // floor below takes their opposite, B F = φ(i) − φ(i+1)).
+    // The friction forces gathered for the right-hand side ([`Ends::gather`]): a chain's
+    // per padded floor, on the contacts of that floor (the floor below takes their
+    // opposite, B F = φ(i) − φ(i+1)); a plan's B F itself.
     let mut phi = vec![0.0; n + 2];
     // `pattern` holds the factorisation of the stuck set of `status` in its rows before
     // `dirty` (n: all of them).
@@ -438,10 +472,12 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     let mut peaks = Peaks::for_plan(plan);
     let mut ag0 = plan.ground_accel(0.0);
     let mut ground = plan.ground_steps();
+    let mut ag2_0 = plan.ground2_accel(0.0);
+    let mut ground2 = plan.ground2_steps();
     let mut p0 = plan.force(0.0);
     let force_floor = plan.harmonic.map(|h| h.floor);
-    peaks.observe_floors(&u, &a, ag0);
-    peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag0, p0));
+    peaks.observe_floors2(&u, &a, ag0, ag2_0);
+    peaks.observe_base_shear(base_shear(&a, ag0, p0, ag2_0));
     for (c, l) in links.iter().enumerate() {
         l.observe_start(&u, epp[c].u, &mut peaks);
     }
@@ -476,7 +512,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         && springs
             .iter()
             .enumerate()
-            .all(|(c, s)| s.f1 == c + 1 && s.j1 == c)
+            .all(|(c, s)| s.ends.chain() == Some((c + 1, c)))
         && links.iter().all(|l| l.algebraic);
     stats.aligned = aligned;
     let op = 1.0 + alpha;
@@ -484,6 +520,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
     for step in 0..plan.steps {
         let t1 = (step + 1) as f64 * dt;
         let ag1 = ground.next_accel();
+        let ag2_1 = ground2.next_accel();
         let p1 = if force_floor.is_some() {
             plan.force(t1)
         } else {
@@ -515,6 +552,12 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 kb.mul_sub(zu, r);
                 cb.mul_sub(zv, r);
             }
+            if let Some(mr2) = &mr2 {
+                let load2 = -(op * ag2_1 - alpha * ag2_0);
+                for i in 0..n {
+                    r[i] += load2 * mr2[i];
+                }
+            }
             if let Some(fl) = force_floor {
                 r[fl] += op * p1 - alpha * p0;
             }
@@ -540,7 +583,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         let mut passes = 0u32;
         let mut wfree_norm: Option<f64> = None;
         let settled = loop {
-            if passes == MAX_PASSES {
+            if passes == max_passes {
                 break false;
             }
             passes += 1;
@@ -549,14 +592,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 let w = p + 1;
                 for (s, b) in springs.iter().zip(&status) {
                     if *b == Bound::Free {
-                        let coef = op * gdt * s.kappa;
-                        let f = s.f1 - 1;
-                        a_pattern.a[f * w] += coef;
-                        if s.j1 > 0 {
-                            let j = s.j1 - 1;
-                            a_pattern.a[j * w] += coef;
-                            a_pattern.a[f * w + (f - j)] -= coef;
-                        }
+                        s.ends.stamp(&mut a_pattern.a, w, op * gdt * s.kappa);
                     }
                 }
                 stats.factorizations += 1;
@@ -579,11 +615,11 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 phi.fill(0.0);
                 for (c, s) in springs.iter().enumerate() {
                     let g = if fr[c] { g0[c] } else { fb[c] };
-                    phi[s.f1] += op * g;
+                    s.ends.gather(&mut phi, op * g);
                 }
             }
             x[0] = 0.0;
-            pattern.solve_with(&mut x[1..], |_, i| (r0[i + 1] - phi[i + 1]) + phi[i + 2]);
+            pattern.solve_with(&mut x[1..], |_, i| E::rhs(&r0, &phi, i));
             // Forces and slip rates of the candidate.
             let Candidate {
                 f_norm,
@@ -654,7 +690,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
                 (fr[c], fb[c], sg[c]) = coded(next, s);
                 changed = true;
                 // the first row of A its stuck spring enters (its lower floor's)
-                dirty = dirty.min(if s.j1 > 0 { s.j1 - 1 } else { s.f1 - 1 });
+                dirty = dirty.min(s.ends.first_row());
             }
             if bad {
                 break false;
@@ -737,11 +773,11 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
             }
         }
         state::observe_dampers(plan, &mut peaks, t1, &u, &f_new, &w_new, &epp);
-        peaks.observe_floors(&u, &a, ag1);
-        peaks.observe_base_shear(state::base_shear(&mr, msum, &a, ag1, p1));
+        peaks.observe_floors2(&u, &a, ag1, ag2_1);
+        peaks.observe_base_shear(base_shear(&a, ag1, p1, ag2_1));
         if energies {
             let data = StepEnergyData {
-                second: None,
+                second: mr2.as_deref().map(|m2| (m2, (ag2_0, ag2_1))),
                 dt,
                 mr: &mr,
                 ag: (ag0, ag1),
@@ -765,6 +801,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
         }
         std::mem::swap(&mut f_old, &mut f_new);
         ag0 = ag1;
+        ag2_0 = ag2_1;
         p0 = p1;
         if peaks.collapsed(t1) {
             break;
@@ -777,7 +814,7 @@ pub(super) fn run(plan: &Plan, p: usize) -> Result<(Outcome, BandedStats), SimEr
 }
 
 /// A contact's pattern as the candidate loop reads it: free, the held force, the sign.
-fn coded(b: Bound, s: &Spring) -> (bool, f64, f64) {
+fn coded<E>(b: Bound, s: &Spring<E>) -> (bool, f64, f64) {
     match b {
         Bound::Free => (true, 0.0, 0.0),
         Bound::Lower => (false, s.lo, 1.0),
@@ -787,9 +824,9 @@ fn coded(b: Bound, s: &Spring) -> (bool, f64, f64) {
 
 /// The slip rates w_free of the step without friction forces (one solve with A's own
 /// factor, in the scratch `y`, ground first), written to `wfree`; returns ‖w_free‖∞.
-fn free_slip_rates(
+fn free_slip_rates<E: Ends>(
     base: &Ldl,
-    springs: &[Spring],
+    springs: &[Spring<E>],
     r0: &[f64],
     h0: &[f64],
     gdt: f64,

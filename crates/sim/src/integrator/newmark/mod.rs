@@ -19,8 +19,9 @@
 //! once per small DOF count (1–8, 10, 12, 20) with the count a constant and once for any
 //! other count.
 //! Banded frames of at least ten DOFs whose contacts are all elastic–perfectly plastic
-//! (m′ = 0 shear buildings with Rayleigh or storey damping) step in O(N) in
-//! `newmark/banded.rs`: the same QP, solved in the original banded variables.
+//! (m′ = 0 shear buildings with Rayleigh or storey damping; buildings in plan with
+//! Rayleigh damping, from twelve DOFs) step in O(N) in `newmark/banded.rs`: the same QP,
+//! solved in the original banded variables.
 //!
 //! HHT-α (Hilber, Hughes & Taylor 1977): γ = ½ − α, β = (1 − α)²/4, α ∈ [−⅓, 0]; the
 //! equation of motion is weighted (1+α) at t_{n+1} and −α at t_n, friction forces included.
@@ -31,6 +32,7 @@
 //! operators and step constants), `link` (one contact as the loops read it), `outcome`
 //! (how a loop ends), `fixed` (the fixed-size loop), `tangent` (the step's derivatives
 //! with respect to the slip loads), `dense` (the dense run and the general loop), `band` (band matrices and their LDLᵀ factorisation),
+//! `spring` (a contact's ends as the banded step reads them, a chain's or a plan's),
 //! `banded` (the banded step), `run` (the integrator and the choice of step).
 
 mod band;
@@ -41,6 +43,7 @@ mod link;
 mod operators;
 mod outcome;
 mod run;
+mod spring;
 mod tangent;
 
 pub use banded::BandedStats;

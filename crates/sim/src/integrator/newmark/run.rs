@@ -26,7 +26,7 @@ impl Integrator for Newmark {
         }
         plan.check_method()?;
         if let Some(p) = banded::chosen(plan) {
-            return banded::run(plan, p).map(|(outcome, _)| outcome);
+            return banded::run(plan, p, banded::MAX_PASSES).map(|(outcome, _)| outcome);
         }
         run_dense(plan)
     }
@@ -42,6 +42,10 @@ pub enum StepPath {
     Dense,
     /// The banded step; refused for a plan it cannot run exactly.
     Banded,
+    /// The banded step with at most this many active-set passes a step before the dense
+    /// box QP answers the step (1: every step whose stick/slip pattern changes; tests of
+    /// that fallback).
+    BandedPasses(u32),
 }
 
 /// Runs `plan` with `newmark` on the step `path`; with the banded step's statistics when it
@@ -55,19 +59,30 @@ pub fn run_on_path(
         return Err(SimError::BadTimeStep { dt: plan.method.dt });
     }
     plan.check_method()?;
-    let p = match path {
-        StepPath::Auto => banded::chosen(plan),
-        StepPath::Dense => None,
-        StepPath::Banded => Some(banded::eligible(plan).ok_or_else(|| {
-            SimError::Scene(format!(
-                "the banded step needs no histories, elastic-perfectly plastic contacts only and a half-bandwidth of at most {} (this plan's is {})",
-                banded::MAX_HALF_BANDWIDTH,
-                plan.half_bandwidth()
-            ))
-        })?),
+    let (p, passes) = match path {
+        StepPath::Auto => (banded::chosen(plan), banded::MAX_PASSES),
+        StepPath::Dense => (None, banded::MAX_PASSES),
+        StepPath::Banded | StepPath::BandedPasses(_) => {
+            let passes = match path {
+                StepPath::BandedPasses(k) => k.max(1),
+                _ => banded::MAX_PASSES,
+            };
+            (Some(banded_eligible(plan)?), passes)
+        }
     };
     match p {
-        Some(p) => banded::run(plan, p).map(|(o, s)| (o, Some(s))),
+        Some(p) => banded::run(plan, p, passes).map(|(o, s)| (o, Some(s))),
         None => run_dense(plan).map(|o| (o, None)),
     }
+}
+
+/// The plan's half-bandwidth when the banded step can run it; else what it needs.
+fn banded_eligible(plan: &Plan) -> Result<usize, SimError> {
+    banded::eligible(plan).ok_or_else(|| {
+            SimError::Scene(format!(
+                "the banded step needs no histories, elastic-perfectly plastic contacts only and a half-bandwidth of at most {} (this plan's is {})",
+                banded::max_half_bandwidth(plan),
+                plan.half_bandwidth()
+            ))
+    })
 }
