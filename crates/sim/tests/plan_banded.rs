@@ -88,6 +88,23 @@ fn assert_agree(name: &str, b: &Outcome, d: &Outcome) -> f64 {
         e <= 4.0 * PEAK_REL,
         "{name}: torsional ratios differ by {e:e}"
     );
+    // the base's shears along x and y and its torque: the inertia forces' resultant
+    let base = |i: &slipload_sim::response::InPlan| {
+        i.peak_base
+            .map(|b| vec![b.shear_x_n, b.shear_y_n, b.torque_nm])
+            .unwrap_or_default()
+    };
+    let (bb, bd) = (base(ib), base(id));
+    assert_eq!(bb.len(), 3, "{name}: base forces");
+    for k in 0..3 {
+        let e = (bb[k] - bd[k]).abs() / bd[k].abs().max(f64::MIN_POSITIVE);
+        assert!(
+            e <= PEAK_REL,
+            "{name}: base force {k} differs by {e:e} ({} banded, {} dense)",
+            bb[k],
+            bd[k]
+        );
+    }
     let motion = rd.peak_displacement.iter().fold(0.0f64, |m, v| m.max(*v));
     let mut worst = 0.0f64;
     let plastic = (
@@ -335,14 +352,17 @@ fn sines(pga: f64, (w1, w2, phase): (f64, f64, f64)) -> Arc<Record> {
 /// Three storeys, 20 m × 12 m: a stiff line A and a flexible line D along y (stiffness
 /// eccentricity 27 % of the width), D's first storey yielding and a massless damper on
 /// each of D's storeys (the second with a brace dashpot), two lines along x, the second
-/// with a massless damper on its third storey; Rayleigh damping by its coefficients.
+/// with a massless damper on its third storey; Rayleigh damping by its coefficients and
+/// storey dashpots on line A; a named point at a corner.
 const SMALL: &str = r#"{
   "name": "small asymmetric", "plan_size": [20, 12],
   "floors": [{"mass": "400 t"}, {"mass": "380 t"}, {"mass": "300 t"}],
   "storey_heights": [4.0, 3.5, 3.5],
   "damping": {"rayleigh": {"alpha": 0.3, "beta": 0.002}},
+  "points": [{"name": "NE", "at": [20, 12]}],
   "lines": [
-    {"name": "A", "direction": "y", "at": 0, "storey_stiffness": ["500 MN/m", "450 MN/m", "350 MN/m"]},
+    {"name": "A", "direction": "y", "at": 0, "storey_stiffness": ["500 MN/m", "450 MN/m", "350 MN/m"],
+     "storey_damping": ["1 MN*s/m", "0.8 MN*s/m", "0.6 MN*s/m"]},
     {"name": "D", "direction": "y", "at": 20, "storey_stiffness": ["150 MN/m", "130 MN/m", "100 MN/m"],
      "storey_yield": [{"storey": 1, "yield_drift": 0.006, "post_yield_ratio": 0.05}],
      "dissipators": [
