@@ -8,7 +8,7 @@
 mod common;
 use nalgebra::{DMatrix, DVector};
 use slipload_motion::Record;
-use slipload_sim::floorplan::{FloorPlan, FloorPlanConfig, FloorPlanScene, GroundComponent};
+use slipload_sim::floorplan::{FloorPlan, FloorPlanScene, GroundComponent};
 use slipload_sim::plan::{ContactKind, Plan};
 use slipload_sim::scene::OutputsConfig;
 use slipload_sim::{MethodName, Response, run_plan, simulate};
@@ -18,29 +18,10 @@ use std::sync::Arc;
 /// A short, broadband ground motion (m/s², dt 0.01 s): a few decaying sines, enough to
 /// slip the dampers and yield the weak line.
 fn motion(pga: f64) -> Arc<Record> {
-    let dt = 0.01;
-    let a: Vec<f64> = (0..400)
-        .map(|i| {
-            let t = i as f64 * dt;
-            let env = (t / 0.5).min(1.0) * (-(t - 0.5).max(0.0) / 1.5).exp();
-            env * ((7.3 * t).sin() + 0.6 * (17.1 * t + 0.4).sin() + 0.35 * (3.1 * t).sin())
-        })
-        .collect();
-    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    Arc::new(
-        Record::new(
-            "decaying sines",
-            dt,
-            a.iter().map(|x| x * pga / peak).collect(),
-        )
-        .unwrap(),
-    )
+    common::decaying_sines(pga, 0.0)
 }
 
-fn floor_plan(json: &str) -> FloorPlan {
-    let cfg: FloorPlanConfig = serde_json::from_str(json).unwrap();
-    FloorPlan::from_config(&cfg, Path::new("inline-plan.json")).unwrap()
-}
+use common::{floor_plan, rel};
 
 fn outputs(energies: bool) -> OutputsConfig {
     OutputsConfig {
@@ -128,10 +109,6 @@ const PLANAR: &str = r#"{
     {"name": "Y2", "direction": "y", "at": 8, "storey_stiffness": [2.0e8, 2.0e8, 2.0e8]}
   ]
 }"#;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
-}
 
 #[test]
 fn a_planar_building_written_in_plan_gives_the_chains_answers() {

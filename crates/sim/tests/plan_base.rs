@@ -9,37 +9,11 @@ use slipload_sim::{MethodName, run_plan, simulate};
 use std::path::Path;
 use std::sync::Arc;
 
-/// A short broadband record (m/s², dt 0.01 s), `phase` shifting its content so two
-/// components differ.
+mod common;
+use common::{floor_plan, rel};
+
 fn motion(pga: f64, phase: f64) -> Arc<Record> {
-    let dt = 0.01;
-    let a: Vec<f64> = (0..400)
-        .map(|i| {
-            let t = i as f64 * dt;
-            let env = (t / 0.5).min(1.0) * (-(t - 0.5).max(0.0) / 1.5).exp();
-            env * ((7.3 * t + phase).sin()
-                + 0.6 * (17.1 * t + 0.4).sin()
-                + 0.35 * (3.1 * t - phase).sin())
-        })
-        .collect();
-    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    Arc::new(
-        Record::new(
-            "decaying sines",
-            dt,
-            a.iter().map(|x| x * pga / peak).collect(),
-        )
-        .unwrap(),
-    )
-}
-
-fn floor_plan(json: &str) -> FloorPlan {
-    let cfg: FloorPlanConfig = serde_json::from_str(json).unwrap();
-    FloorPlan::from_config(&cfg, Path::new("inline-plan.json")).unwrap()
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
+    common::decaying_sines(pga, phase)
 }
 
 fn run(

@@ -163,3 +163,39 @@ pub fn assert_peaks_close(what: &str, a: &Response, b: &Response, rel: f64) {
         b.peak_base_shear
     );
 }
+
+/// A short, broadband ground motion (m/s², dt 0.01 s, 4 s): a few decaying sines scaled
+/// to `pga`, enough to slip dampers and yield a weak line; `phase` shifts its content so
+/// two components differ (0: the plan tests' first component).
+pub fn decaying_sines(pga: f64, phase: f64) -> std::sync::Arc<Record> {
+    let dt = 0.01;
+    let a: Vec<f64> = (0..400)
+        .map(|i| {
+            let t = i as f64 * dt;
+            let env = (t / 0.5).min(1.0) * (-(t - 0.5).max(0.0) / 1.5).exp();
+            env * ((7.3 * t + phase).sin()
+                + 0.6 * (17.1 * t + 0.4).sin()
+                + 0.35 * (3.1 * t - phase).sin())
+        })
+        .collect();
+    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    std::sync::Arc::new(
+        Record::new(
+            "decaying sines",
+            dt,
+            a.iter().map(|x| x * pga / peak).collect(),
+        )
+        .unwrap(),
+    )
+}
+
+/// A building in plan from its JSON text (named `inline-plan.json` in errors).
+pub fn floor_plan(json: &str) -> slipload_sim::floorplan::FloorPlan {
+    let cfg: slipload_sim::floorplan::FloorPlanConfig = serde_json::from_str(json).unwrap();
+    slipload_sim::floorplan::FloorPlan::from_config(&cfg, Path::new("inline-plan.json")).unwrap()
+}
+
+/// |a − b| over the larger magnitude.
+pub fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
+}
