@@ -141,13 +141,15 @@ pub struct SecondGround {
 }
 
 /// What a building in plan's base carries: its shear along x and y and its torque about
-/// the plan's origin, each a row of weights on the absolute accelerations. Row k is M·e_k
-/// for the base's rigid motion e_k (a unit translation along x, along y, a unit rotation
-/// about the origin: every floor's origin moving with it, a damper's DOF by its line's
-/// share), so the base's reaction is e_kᵀ M (a + r₁ a_g₁ + r₂ a_g₂): the inertia forces'
-/// resultant, as a chain's base shear Σ mᵢ(aᵢ + a_g) is.
+/// the building's centre of mass, each a row of weights on the absolute accelerations.
+/// Row k is M·e_k for the base's rigid motion e_k (a unit translation along x, along y, a
+/// unit rotation about that centre: every floor's origin moving with it, a damper's DOF
+/// by its line's share), so the base's reaction is e_kᵀ M (a + r₁ a_g₁ + r₂ a_g₂): the
+/// inertia forces' resultant, as a chain's base shear Σ mᵢ(aᵢ + a_g) is.
 #[derive(Debug, Clone)]
 pub struct BaseRows {
+    /// The point the torque is taken about [x, y], m: the floors' masses' centroid.
+    pub about: [f64; 2],
     /// M·e_x, M·e_y, M·e_θ on the plan's DOFs (kg, kg, kg·m).
     pub rows: [DVector<f64>; 3],
     /// Each row times the first component's influence r₁: its ground acceleration's share.

@@ -136,7 +136,7 @@ pub struct InPlan {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub torsional_irregularity: Option<Vec<[f64; 2]>>,
     /// The base's peak shears along the plan's x and y and its peak torque about the
-    /// plan's origin ([`crate::plan::BaseRows`]): the inertia forces' resultant, each the
+    /// building's centre of mass ([`crate::plan::BaseRows`]): the inertia forces' resultant, each the
     /// largest magnitude over the output steps at its own time (the response's
     /// `peak_base_shear` is the shear along the first component).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -150,8 +150,11 @@ pub struct BaseForces {
     pub shear_x_n: f64,
     /// Peak |base shear along y|, N.
     pub shear_y_n: f64,
-    /// Peak |base torque about the plan's origin|, N·m.
+    /// Peak |base torque about `torque_about_m`|, N·m.
     pub torque_nm: f64,
+    /// The point the torque is taken about [x, y], m: the building's centre of mass (the
+    /// floors' masses' centroid).
+    pub torque_about_m: [f64; 2],
 }
 
 /// The derivatives of a run's peak responses with respect to each damper's slip load F
@@ -553,8 +556,8 @@ pub struct Measures {
     pub points2: Vec<f64>,
     /// The base's rows ([`crate::plan::BaseRows`]), when the plan has them.
     pub base: Option<std::sync::Arc<crate::plan::BaseRows>>,
-    /// Peak |base shear along x|, |along y| (N) and |base torque about the plan's origin|
-    /// (N·m), each at its own time.
+    /// Peak |base shear along x|, |along y| (N) and |base torque about the building's
+    /// centre of mass| (N·m), each at its own time.
     pub base_peaks: [f64; 3],
 }
 
@@ -748,11 +751,12 @@ impl Peaks {
         let base = self
             .measures
             .as_ref()
-            .and_then(|m| m.base.as_ref().map(|_| m.base_peaks))
-            .map(|[x, y, t]| BaseForces {
+            .and_then(|m| m.base.as_ref().map(|b| (b.about, m.base_peaks)))
+            .map(|(about, [x, y, t])| BaseForces {
                 shear_x_n: x,
                 shear_y_n: y,
                 torque_nm: t,
+                torque_about_m: about,
             });
         let mut r = self.into_response_slots(
             n,

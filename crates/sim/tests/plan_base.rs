@@ -1,4 +1,5 @@
-//! A building in plan's base forces (shear along x and y, torque about the origin) and
+//! A building in plan's base forces (shear along x and y, torque about the centre of
+//! mass) and
 //! its lines' storey dashpots.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
@@ -70,12 +71,13 @@ const ECCENTRIC: &str = r#"{
 }"#;
 
 #[test]
-fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_origin() {
+fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_centre_of_mass() {
     // Without frame damping, M(a + r a_g) = −(K u + B F): a rigid motion e of the base
     // sees only the first storey's elements (every higher storey's two ends move with
-    // it), so the base's shear along x and y and torque about the origin at each step
-    // are Σ over the lines of (c, s, lever) × (elastic force + damper force + plastic
-    // force) of storey 1, from the history's drifts and forces: an independent sum of
+    // it), so the base's shear along x and y and torque about the building's centre of
+    // mass P at each step are Σ over the lines of (c, s, lever about P) × (elastic force
+    // + damper force + plastic force) of storey 1, from the history's drifts and forces:
+    // an independent sum of
     // the same numbers; round-off (1e-9 of the peak) is all that separates them.
     let b = floor_plan(ECCENTRIC);
     let components = [(motion(4.0, 0.0), 20.0), (motion(3.0, 1.1), 110.0)];
@@ -92,8 +94,13 @@ fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_
         let rows = h.rows.len() / h.columns.len();
         let col = |name: &str| h.column(name);
         let mut sums = vec![[0.0; 3]; rows];
+        // the lever of a line about the building's centre of mass P
+        let total: f64 = b.floors.iter().map(|f| f.mass).sum();
+        let p = [0, 1].map(|k| b.floors.iter().map(|f| f.mass * f.centre[k]).sum::<f64>() / total);
+        assert_eq!(base.torque_about_m, p);
         for line in &b.lines {
-            let w = line.weights();
+            let [c, s, lever] = line.weights();
+            let w = [c, s, lever - (p[0] * s - p[1] * c)];
             let drift = col(&format!("drift_{}/1_m", line.name)).unwrap();
             let mut k = line.stiffness[0];
             let mut forces: Vec<Vec<f64>> = Vec::new();
@@ -231,7 +238,8 @@ fn a_lines_storey_dashpots_are_the_chains_storey_damping() {
             rel(p.peak_base_shear, c.peak_base_shear) < 1e-9,
             "{method:?}"
         );
-        // the chain lies on the origin's x axis: no shear across, no torque
+        // the chain lies on the x axis through the centre of mass: no shear across, no
+        // torque
         assert!(base.shear_y_n <= 1e-12 * base.shear_x_n, "{base:?}");
         assert!(base.torque_nm <= 1e-12 * base.shear_x_n, "{base:?}");
     }

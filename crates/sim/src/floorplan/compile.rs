@@ -317,15 +317,26 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
     let influence = influence_of(psi);
     let second_influence = scene.ground.get(1).map(|g| influence_of(g.angle));
     // The base's rigid motions: translations along x and y are the influences at 0° and
-    // 90°; a unit rotation about the origin turns every floor and moves a damper's DOF
-    // by its line's lever.
+    // 90°; a unit rotation about the building's centre of mass P (the floors' masses'
+    // centroid) turns every floor, moves each floor's origin by (P_y, −P_x) and a damper's
+    // DOF by its line's lever about P.
+    let total: f64 = b.floors.iter().map(|fl| fl.mass).sum();
+    let about = [0, 1].map(|k| {
+        b.floors
+            .iter()
+            .map(|fl| fl.mass * fl.centre[k])
+            .sum::<f64>()
+            / total
+    });
     let base = {
         let mut rot = DVector::zeros(n_dof);
         for f in 0..n {
+            rot[3 * f] = about[1];
+            rot[3 * f + 1] = -about[0];
             rot[3 * f + 2] = 1.0;
         }
-        for &(dof, [_, _, lever]) in &dof_dirs {
-            rot[dof] = lever;
+        for &(dof, [c, s, lever]) in &dof_dirs {
+            rot[dof] = lever - (about[0] * s - about[1] * c);
         }
         let rows = [
             influence_of(0.0),
@@ -335,6 +346,7 @@ pub fn compile(scene: &FloorPlanScene) -> Result<Plan, SimError> {
         .map(|e| &mass * e);
         let share = |r: Option<&DVector<f64>>| [0, 1, 2].map(|k| r.map_or(0.0, |r| rows[k].dot(r)));
         BaseRows {
+            about,
             first: share(scene.ground.first().map(|_| &influence)),
             second: share(second_influence.as_ref()),
             rows,

@@ -133,8 +133,8 @@ fn table(scene: &FloorPlanScene, out: &Outcome) -> String {
     if let Some(b) = &ip.peak_base {
         let _ = writeln!(
             s,
-            "peak base shear along x {:.4e} N, along y {:.4e} N; peak base torque about the plan's origin {:.4e} N m",
-            b.shear_x_n, b.shear_y_n, b.torque_nm
+            "peak base shear along x {:.4e} N, along y {:.4e} N; peak base torque about the centre of mass ({:.3}, {:.3}) m {:.4e} N m",
+            b.shear_x_n, b.shear_y_n, b.torque_about_m[0], b.torque_about_m[1], b.torque_nm
         );
     }
     if let Some(e) = &r.energy {
