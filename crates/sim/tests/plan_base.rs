@@ -1,6 +1,5 @@
 //! A building in plan's base forces (shear along x and y, torque about the centre of
-//! mass) and
-//! its lines' storey dashpots.
+//! mass), its lines' storey dashpots, its named points and its scaling periods.
 #![allow(clippy::unwrap_used)] // in tests a failed unwrap is a failed test
 
 use slipload_motion::Record;
