@@ -544,6 +544,82 @@ fn a_suite_of_pairs_scaled_to_a_code_spectrum_meets_it_by_their_maximum_directio
 }
 
 #[test]
+fn the_device_test_protocol_reads_the_strokes_the_secant_periods_and_the_bounds() {
+    let dir = tmp("protocol");
+    let p = study(&dir, 0.7, |v| {
+        v["property_bounds"] = json!({"slip_load": {"lower": 0.85, "upper": 1.2}});
+        v["devices"] =
+            json!({"test_protocol": {"cycles": 5, "band_percent": 15, "production_cycles": 2}});
+        v["sweep"] = json!({"points": 2});
+        v["refine"] = json!({"max_evaluations": 0});
+    });
+    let out = dir.join("out");
+    let r = run(&p, &out);
+    let s = PlanStudy::load(&p).unwrap();
+    let opt = r.report.row("optimum").unwrap();
+    let demands = slipload_opt::plan::report::device_demands(opt);
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan-optimum.json")).unwrap())
+            .unwrap();
+    let t = &json["test_protocol"];
+    let t1m: Vec<f64> = t["t1m_s"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let t1: Vec<f64> = t["t1_s"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    // slipping dampers add F/δ: the secant plan is stiffer than the bare one (no line yields)
+    assert!(t1m[0] < t1[0] && t1m[1] < t1[1], "{t1m:?} {t1:?}");
+    let rows = t["dampers"].as_array().unwrap();
+    assert_eq!(rows.len(), s.dampers.len());
+    for (k, d) in rows.iter().enumerate() {
+        let a = d["amplitude_mm"].as_f64().unwrap();
+        // one suite: the stroke is the device table's (its worst case), in mm
+        assert!(
+            (a - 1e3 * demands[k][0]).abs() <= 1e-12 * a.max(1e-9),
+            "{d}"
+        );
+        let dir = d["direction"].as_u64().unwrap() as usize;
+        let line = &s.building.lines[s.dampers[k].line];
+        assert_eq!(
+            dir,
+            usize::from(line.direction().1.abs() > line.direction().0.abs())
+        );
+        let v = d["velocity_mm_s"].as_f64().unwrap();
+        assert!((v - 2.0 * std::f64::consts::PI * a / t1m[dir]).abs() <= 1e-12 * v.max(1e-9));
+        let f: Vec<f64> = d["force_kn"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let load = opt.eval.loads[k].unwrap() / 1e3;
+        assert!((f[0] - load).abs() <= 1e-12 * load && (f[1] - 0.85 * load).abs() <= 1e-12 * load);
+        assert!((f[2] - 1.2 * load).abs() <= 1e-12 * load);
+        let e = d["loop_energy_kj"][0].as_f64().unwrap();
+        assert!((e - 4.0 * load * a / 1e3).abs() <= 1e-12 * e.max(1e-12));
+    }
+    let md = std::fs::read_to_string(out.join("plan-devices.md")).unwrap();
+    assert!(
+        md.contains("## Test protocol") && md.contains("**Production test**"),
+        "{md}"
+    );
+    assert_eq!(md.matches("| D\\/").count(), 2 * 3, "{md}"); // device table and protocol rows
+    // a band out of range is refused by its field
+    let bad = study(&dir, 0.7, |v| {
+        v["devices"] = json!({"test_protocol": {"cycles": 5, "band_percent": 150}});
+    });
+    let e = PlanStudy::load(&bad).unwrap_err().to_string();
+    assert!(e.contains("devices.test_protocol.band_percent"), "{e}");
+}
+
+#[test]
 fn the_least_slip_load_that_passes_an_edge_drift_limit_passes_it() {
     let dir = tmp("least");
     // the limit between the bare frame's edge drift and the file design's

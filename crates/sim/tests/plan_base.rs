@@ -354,3 +354,41 @@ fn a_planar_building_in_plan_has_the_chains_scaling_periods_along_its_line() {
     assert!(plan.mass_90_period_s <= chain.mass_90_period_s * (1.0 + 1e-9));
     assert!(plan.stuck_t1_s < plan.bare_t1_s);
 }
+
+#[test]
+fn the_secant_periods_of_a_one_storey_plan_have_their_closed_forms() {
+    // Symmetric about its centre of mass, so x, y and the twist are uncoupled: along x two
+    // lines each with a damper (1 MN on a 1000 MN/m brace) that slips at 50 mm (its brace
+    // would carry 50 MN), adding F/δ each; along y two lines yielding at 10 mm (2 MN,
+    // 10 % after), at 50 mm each at its secant 2.8 MN / 50 mm. Eigensolver round-off:
+    // 1e-12.
+    let b = floor_plan(
+        r#"{
+      "floors": [{"mass": 500000, "inertia_kg_m2": 3.0e7, "centre_of_mass": [0, 0]}],
+      "storey_heights": [4.0],
+      "lines": [
+        {"name": "X1", "direction": "x", "at": -5, "storey_stiffness": [1.5e8],
+         "dissipators": [{"floor": 1, "brace_stiffness": 1.0e9, "slip_load": 1.0e6}]},
+        {"name": "X2", "direction": "x", "at": 5, "storey_stiffness": [1.5e8],
+         "dissipators": [{"floor": 1, "brace_stiffness": 1.0e9, "slip_load": 1.0e6}]},
+        {"name": "Y1", "direction": "y", "at": -9, "storey_stiffness": [2.0e8],
+         "storey_yield": [{"storey": 1, "yield_drift": "10 mm", "post_yield_ratio": 0.1}]},
+        {"name": "Y2", "direction": "y", "at": 9, "storey_stiffness": [2.0e8],
+         "storey_yield": [{"storey": 1, "yield_drift": "10 mm", "post_yield_ratio": 0.1}]}
+      ]
+    }"#,
+    );
+    let period = |k: f64| 2.0 * std::f64::consts::PI * (5e5 / k).sqrt();
+    let drift = vec![vec![Some(0.05)]; 4];
+    let force = vec![vec![1e6]; 4];
+    let [tx, ty] = b.secant_periods(&drift, &force).unwrap();
+    assert!(rel(tx, period(3.0e8 + 2.0 * 1e6 / 0.05)) < 1e-12, "{tx}");
+    assert!(rel(ty, period(2.0 * 2.8e6 / 0.05)) < 1e-12, "{ty}");
+    // a slip load the brace does not reach: stuck, the brace in parallel
+    let stuck = vec![vec![1e8]; 4];
+    let [tx, _] = b.secant_periods(&drift, &stuck).unwrap();
+    assert!(rel(tx, period(3.0e8 + 2.0e9)) < 1e-12, "{tx}");
+    // no drift: the initial stiffnesses
+    let [tx, ty] = b.secant_periods(&vec![vec![None]; 4], &force).unwrap();
+    assert!(rel(tx, period(3.0e8)) < 1e-12 && rel(ty, period(4.0e8)) < 1e-12);
+}

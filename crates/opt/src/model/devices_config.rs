@@ -242,43 +242,53 @@ impl DevicesConfig {
             }
         }
         if let Some(t) = self.test_protocol {
-            let field = |f: &str| format!("devices.test_protocol.{f}");
-            for (name, n) in [
-                ("cycles", Some(t.cycles)),
-                ("wind_cycles", t.wind_cycles),
-                ("production_cycles", t.production_cycles),
-            ] {
-                if let Some(n) = n
-                    && !(1..=MAX_TEST_CYCLES).contains(&n)
-                {
-                    return Err(OptError::invalid(
-                        path,
-                        field(name),
-                        format!("must be a count of cycles from 1 to {MAX_TEST_CYCLES}, got {n}"),
-                    ));
-                }
-            }
-            if !(t.band_percent.is_finite() && t.band_percent > 0.0 && t.band_percent < 100.0) {
-                return Err(OptError::invalid(
-                    path,
-                    field("band_percent"),
-                    format!(
-                        "must be a band in (0, 100) percent of the test's average, got {}",
-                        t.band_percent
-                    ),
-                ));
-            }
-            if let Some(f) = t.displacement_factor
-                && !(f.is_finite() && (1.0..=10.0).contains(&f))
+            t.validate(path)?;
+        }
+        Ok(())
+    }
+}
+
+impl TestProtocolConfig {
+    /// Counts and band in range; errors name `devices.test_protocol.…` of the study at
+    /// `path` (a chain study's or a study in plan's: the key is the same).
+    pub fn validate(&self, path: &Path) -> Result<(), OptError> {
+        let t = self;
+        let field = |f: &str| format!("devices.test_protocol.{f}");
+        for (name, n) in [
+            ("cycles", Some(t.cycles)),
+            ("wind_cycles", t.wind_cycles),
+            ("production_cycles", t.production_cycles),
+        ] {
+            if let Some(n) = n
+                && !(1..=MAX_TEST_CYCLES).contains(&n)
             {
                 return Err(OptError::invalid(
                     path,
-                    field("displacement_factor"),
-                    format!(
-                        "must be a factor from 1 to 10 on the maximum damper displacement, got {f}"
-                    ),
+                    field(name),
+                    format!("must be a count of cycles from 1 to {MAX_TEST_CYCLES}, got {n}"),
                 ));
             }
+        }
+        if !(t.band_percent.is_finite() && t.band_percent > 0.0 && t.band_percent < 100.0) {
+            return Err(OptError::invalid(
+                path,
+                field("band_percent"),
+                format!(
+                    "must be a band in (0, 100) percent of the test's average, got {}",
+                    t.band_percent
+                ),
+            ));
+        }
+        if let Some(f) = t.displacement_factor
+            && !(f.is_finite() && (1.0..=10.0).contains(&f))
+        {
+            return Err(OptError::invalid(
+                path,
+                field("displacement_factor"),
+                format!(
+                    "must be a factor from 1 to 10 on the maximum damper displacement, got {f}"
+                ),
+            ));
         }
         Ok(())
     }

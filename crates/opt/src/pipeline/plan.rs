@@ -16,6 +16,7 @@ use crate::model::fingerprint::Fnv64;
 use crate::phases::refine::{Evaluations, Point, refine};
 use crate::plan::config::Placement;
 use crate::plan::evaluate::{DesignEval, Step, evaluate_loads};
+use crate::plan::protocol::PlanTestProtocol;
 use crate::plan::report::{
     PlanReport, PlanRow, check_md, dampers_csv, dampers_md, devices_csv, devices_md, figure_data,
     planar_split, profiles_csv, summary,
@@ -327,7 +328,14 @@ pub fn optimize_in_plan(
         check_dt_factor: factor,
     };
     let text = summary(study, &report);
-    let json = serde_json::to_string_pretty(&serde_json::json!({
+    // the device tests of the optimum, when the study asks for them
+    let protocol = study
+        .config
+        .devices
+        .and_then(|d| d.test_protocol)
+        .zip(report.row("optimum"))
+        .map(|(c, row)| PlanTestProtocol::of(study, c, row));
+    let mut value = serde_json::json!({
         "study": report.study,
         "variables": report.variables,
         "z": report.z,
@@ -357,8 +365,14 @@ pub fn optimize_in_plan(
                 "collapsed_runs": c.peaks.collapsed,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-    }))
-    .map_err(|e| OptError::Argument(format!("plan-optimum.json: {e}")))?;
+    });
+    if let (Some(p), Some(o)) = (&protocol, value.as_object_mut()) {
+        let v = serde_json::to_value(p)
+            .map_err(|e| OptError::Argument(format!("plan-optimum.json: {e}")))?;
+        o.insert("test_protocol".into(), v);
+    }
+    let json = serde_json::to_string_pretty(&value)
+        .map_err(|e| OptError::Argument(format!("plan-optimum.json: {e}")))?;
     folder.write("plan-summary.txt", text.as_bytes())?;
     folder.write("plan-optimum.json", format!("{json}\n").as_bytes())?;
     folder.write("plan-designs.csv", designs_csv(study, &folder)?.as_bytes())?;
@@ -366,7 +380,11 @@ pub fn optimize_in_plan(
     folder.write("plan-dampers.md", dampers_md(study, &report).as_bytes())?;
     folder.write("plan-check.md", check_md(study, &report).as_bytes())?;
     folder.write("plan-devices.csv", devices_csv(study, &report).as_bytes())?;
-    folder.write("plan-devices.md", devices_md(study, &report).as_bytes())?;
+    let mut devices = devices_md(study, &report);
+    if let Some(p) = &protocol {
+        devices.push_str(&p.to_markdown());
+    }
+    folder.write("plan-devices.md", devices.as_bytes())?;
     folder.write("plan-profiles.csv", profiles_csv(study, &report).as_bytes())?;
     let names: Vec<String> = crate::store::folder::PLAN_FIGURE_STEMS
         .iter()

@@ -43,6 +43,9 @@ pub struct PlanStudyConfig {
     /// (`worst`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub property_bounds: Option<crate::model::check::PropertyBoundsConfig>,
+    /// The devices: the prototype and production test protocol `plan-devices.md` writes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub devices: Option<PlanDevicesConfig>,
     /// The runs' method and step.
     #[serde(default)]
     pub fidelity: PlanFidelityConfig,
@@ -52,6 +55,16 @@ pub struct PlanStudyConfig {
     /// The refinement.
     #[serde(default)]
     pub refine: PlanRefineConfig,
+}
+
+/// The devices of a study in plan.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanDevicesConfig {
+    /// The device tests (as a chain study's `devices.test_protocol`): the counts and bands
+    /// the specification uses; amplitudes, frequencies and velocities come from the runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub test_protocol: Option<crate::model::config::TestProtocolConfig>,
 }
 
 /// One suite of two-component ground motions.

@@ -7,11 +7,12 @@
 //! Files: `config` (the study file as written), `study` (validated and loaded: the cases,
 //! the pairs, the design space over the dampers by line), `evaluate` (designs run in
 //! parallel, reduced to the objective and the limits' ratios), `report` (the final
-//! table's text, CSV, Markdown and figure data). The run itself, with its journal, folder
+//! table's text, CSV, Markdown and figure data), `protocol` (the optimum's device tests). The run itself, with its journal, folder
 //! and figures, is [`crate::pipeline::optimize_in_plan`].
 
 pub mod config;
 pub mod evaluate;
+pub mod protocol;
 pub mod report;
 pub mod study;
 

@@ -129,6 +129,9 @@ impl PlanStudy {
             ));
         }
         check_metric_needs(&cfg, &building, path)?;
+        if let Some(t) = cfg.devices.and_then(|d| d.test_protocol) {
+            t.validate(path)?;
+        }
         let cases = property_cases(&cfg, &building, path)?;
         let suites = load_suites(&cfg, &building, base, path)?;
         let space = plan_space(&cfg, &building, &dampers, path)?;

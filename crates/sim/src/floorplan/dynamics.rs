@@ -1,7 +1,8 @@
 //! The periods a code-scaled suite of a study in plan is built on
 //! ([`FloorPlan::scaling_periods`]): the first-mode period of each principal horizontal
 //! direction, with the dampers slipping (the bare frame) and stuck (every brace a spring
-//! along its line), and the modes that make up 90 % of the mass along each direction.
+//! along its line), and the modes that make up 90 % of the mass along each direction;
+//! and the secant periods a device test is run at ([`FloorPlan::secant_periods`]).
 
 use super::build::{line_ends, line_point};
 use super::model::FloorPlan;
@@ -84,5 +85,63 @@ impl FloorPlan {
             stuck_modes_90: count(&stuck),
             mass_90_period_s: shortest,
         })
+    }
+}
+
+impl FloorPlan {
+    /// The first-mode periods along x and along y (s) of the plan with every line's storey
+    /// at its secant stiffness at the drift `drift[line][storey]` (m, along the line;
+    /// `None` or 0: its initial stiffness): a yielding storey at its bilinear secant, a
+    /// damper with slip load `force[line][storey]` (N) as F/δ in series with nothing once
+    /// its brace would carry more than F (it slips), else its brace k′ — the frame whose
+    /// period ASCE 7-16 §18.6.2 runs the prototype test at (T_1M at the maximum
+    /// displacement). Damper masses are left out (they set no frame period). `None` when
+    /// the secant plan has no positive mode.
+    pub fn secant_periods(
+        &self,
+        drift: &[Vec<Option<f64>>],
+        force: &[Vec<f64>],
+    ) -> Option<[f64; 2]> {
+        let mut k = self.stiffness.clone();
+        for (l, line) in self.lines.iter().enumerate() {
+            for f in 0..self.storeys() {
+                let Some(d) = drift
+                    .get(l)
+                    .and_then(|v| v.get(f))
+                    .copied()
+                    .flatten()
+                    .map(f64::abs)
+                    .filter(|d| *d > 0.0)
+                else {
+                    continue;
+                };
+                let mut add = 0.0;
+                if let Some(y) = line.storey_yield[f]
+                    && d > y.yield_drift()
+                {
+                    let secant = (y.yield_shear
+                        + y.post_yield_ratio * y.stiffness * (d - y.yield_drift()))
+                        / d;
+                    add -= y.stiffness - secant;
+                }
+                if let Some(b) = line.dissipators[f] {
+                    let fs = force.get(l).and_then(|v| v.get(f)).copied().unwrap_or(0.0);
+                    add += if d * b.brace_stiffness > fs {
+                        fs / d
+                    } else {
+                        b.brace_stiffness
+                    };
+                }
+                if add != 0.0 {
+                    let (top, bottom) = line_ends(line, f);
+                    add_between(&mut k, &top, &bottom, add);
+                }
+            }
+        }
+        let modes = Modes::compute(&self.mass, &k)?;
+        if !modes.omega.iter().all(|w| *w > 0.0 && w.is_finite()) {
+            return None;
+        }
+        Some(directions(&self.mass, &modes).first)
     }
 }
