@@ -109,6 +109,42 @@ pub fn secant_period(building: &Building, drift: &[Option<f64>], force: &[f64]) 
     (w > 0.0 && w.is_finite()).then(|| 2.0 * std::f64::consts::PI / w)
 }
 
+/// A friction damper's test figures at slip load `f_kn` (kN) and amplitude `a_mm` (mm)
+/// between the factors `lo` and `hi`: the force at zero displacement F, λ_min F, λ_max F
+/// (kN) and the loop energy 4 F A at each (kJ).
+pub(crate) fn forces_and_energies(f_kn: f64, a_mm: f64, lo: f64, hi: f64) -> ([f64; 3], [f64; 3]) {
+    let force = [f_kn, lo * f_kn, hi * f_kn];
+    (force, force.map(|f| 4.0 * f * a_mm / 1e3))
+}
+
+/// The columns of a damper's test row after its name: A, velocity, force and its range,
+/// loop energy and its range.
+pub(crate) fn value_cells(
+    a_mm: f64,
+    velocity: Option<f64>,
+    force: [f64; 3],
+    energy: [f64; 3],
+) -> String {
+    format!(
+        "{:.1} | {} | {:.1} | {:.1}–{:.1} | {} | {}–{} |",
+        a_mm,
+        velocity.map_or_else(|| "—".to_string(), |v| format!("{v:.0}")),
+        force[0],
+        force[1],
+        force[2],
+        short(energy[0]),
+        short(energy[1]),
+        short(energy[2])
+    )
+}
+
+/// The prototype test's acceptance, as the protocols state it.
+pub(crate) fn acceptance(band: f64) -> String {
+    format!(
+        "Accepted when, in every cycle, the largest and the smallest force at zero displacement and the loop energy are within ±{band} % of their averages over the test, and those averages within the ranges below (the property bounds)."
+    )
+}
+
 impl TestProtocol {
     /// The tests of the design `slip_loads_n` (N per damper) from its runs (every run of
     /// `study`); `strokes_mm[k]`: damper k's mean stroke in each suite (the device table's
@@ -174,14 +210,14 @@ impl TestProtocol {
             .enumerate()
             .map(|(k, &floor)| {
                 let a = factor * strokes_mm[k][suite];
-                let f = slip_loads_n[k] / 1e3;
-                let energy = |force_kn: f64| 4.0 * force_kn * a / 1e3;
+                let (force_kn, loop_energy_kj) =
+                    forces_and_energies(slip_loads_n[k] / 1e3, a, lo, hi);
                 DeviceTest {
                     floor: floor + 1,
                     amplitude_mm: a,
                     velocity_mm_s: t1m.map(|t| 2.0 * std::f64::consts::PI * a / t),
-                    force_kn: [f, lo * f, hi * f],
-                    loop_energy_kj: [energy(f), energy(lo * f), energy(hi * f)],
+                    force_kn,
+                    loop_energy_kj,
                 }
             })
             .collect();
@@ -227,8 +263,9 @@ impl TestProtocol {
         );
         let _ = writeln!(
             s,
-            "- **Prototype test**, each damper type: {} fully reversed sinusoidal cycles at amplitude ±A at {freq}. Accepted when, in every cycle, the largest and the smallest force at zero displacement and the loop energy are within ±{band} % of their averages over the test, and those averages within the ranges below (the property bounds).",
-            c.cycles
+            "- **Prototype test**, each damper type: {} fully reversed sinusoidal cycles at amplitude ±A at {freq}. {}",
+            c.cycles,
+            acceptance(band)
         );
         let _ = writeln!(
             s,
@@ -256,17 +293,14 @@ impl TestProtocol {
         for d in &self.dampers {
             let _ = writeln!(
                 s,
-                "| {} | {:.1} | {} | {:.1} | {:.1}–{:.1} | {} | {}–{} |",
+                "| {} | {}",
                 d.floor,
-                d.amplitude_mm,
-                d.velocity_mm_s
-                    .map_or_else(|| "—".to_string(), |v| format!("{v:.0}")),
-                d.force_kn[0],
-                d.force_kn[1],
-                d.force_kn[2],
-                short(d.loop_energy_kj[0]),
-                short(d.loop_energy_kj[1]),
-                short(d.loop_energy_kj[2])
+                value_cells(
+                    d.amplitude_mm,
+                    d.velocity_mm_s,
+                    d.force_kn,
+                    d.loop_energy_kj
+                )
             );
         }
         s
