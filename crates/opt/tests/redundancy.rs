@@ -90,7 +90,7 @@ fn few_devices_raise_the_design_values_and_the_test_amplitudes() {
     );
     assert_eq!(p.dampers.len(), 3);
     for (a, b) in p.dampers.iter().zip(&q.dampers) {
-        let (a, b) = (a.amplitude_mm, b.amplitude_mm);
+        let (a, b) = (a.figures.amplitude_mm, b.figures.amplitude_mm);
         assert!((b - 1.3 * a).abs() <= 1e-12 * b, "{a} {b}");
     }
     let md = two.to_markdown();

@@ -36,15 +36,56 @@ use std::fmt::Write as _;
 pub struct DeviceTest {
     /// Floor (from 1).
     pub floor: usize,
+    /// Its amplitude, velocity, forces and loop energies.
+    #[serde(flatten)]
+    pub figures: TestFigures,
+}
+
+/// What one damper's test runs at and should show (a chain's damper or a plan's).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TestFigures {
     /// Test amplitude each way, mm.
     pub amplitude_mm: f64,
-    /// The sinusoid's peak velocity 2π f A, mm/s (with T_1M).
+    /// The sinusoid's peak velocity 2π A / T_1M, mm/s (with T_1M).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity_mm_s: Option<f64>,
     /// The force at zero displacement: nominal slip load and its bounds, kN.
     pub force_kn: [f64; 3],
     /// Loop energy per cycle 4 F A at the nominal slip load and at the bounds, kJ.
     pub loop_energy_kj: [f64; 3],
+}
+
+impl TestFigures {
+    /// A friction damper of slip load `f_kn` (kN) tested at amplitude `a_mm` (mm) at the
+    /// period `t1m_s` (s), its slip load between the factors `lo` and `hi`: its force at
+    /// zero displacement is F (λ_min F to λ_max F), its loop dissipates 4 F A a cycle.
+    pub fn of(f_kn: f64, a_mm: f64, t1m_s: Option<f64>, lo: f64, hi: f64) -> TestFigures {
+        let force_kn = [f_kn, lo * f_kn, hi * f_kn];
+        TestFigures {
+            amplitude_mm: a_mm,
+            velocity_mm_s: t1m_s.map(|t| 2.0 * std::f64::consts::PI * a_mm / t),
+            force_kn,
+            loop_energy_kj: force_kn.map(|f| 4.0 * f * a_mm / 1e3),
+        }
+    }
+
+    /// The columns of its row after the damper's name: A, velocity, force and its
+    /// range, loop energy and its range.
+    pub fn cells(&self) -> String {
+        let (force, energy) = (self.force_kn, self.loop_energy_kj);
+        format!(
+            "{:.1} | {} | {:.1} | {:.1}–{:.1} | {} | {}–{} |",
+            self.amplitude_mm,
+            self.velocity_mm_s
+                .map_or_else(|| "—".to_string(), |v| format!("{v:.0}")),
+            force[0],
+            force[1],
+            force[2],
+            short(energy[0]),
+            short(energy[1]),
+            short(energy[2])
+        )
+    }
 }
 
 /// The device tests of one design.
@@ -107,35 +148,6 @@ pub fn secant_period(building: &Building, drift: &[Option<f64>], force: &[f64]) 
     let modes = slipload_sim::modes::Modes::compute(&building.mass, &k)?;
     let w = *modes.omega.iter().next()?;
     (w > 0.0 && w.is_finite()).then(|| 2.0 * std::f64::consts::PI / w)
-}
-
-/// A friction damper's test figures at slip load `f_kn` (kN) and amplitude `a_mm` (mm)
-/// between the factors `lo` and `hi`: the force at zero displacement F, λ_min F, λ_max F
-/// (kN) and the loop energy 4 F A at each (kJ).
-pub(crate) fn forces_and_energies(f_kn: f64, a_mm: f64, lo: f64, hi: f64) -> ([f64; 3], [f64; 3]) {
-    let force = [f_kn, lo * f_kn, hi * f_kn];
-    (force, force.map(|f| 4.0 * f * a_mm / 1e3))
-}
-
-/// The columns of a damper's test row after its name: A, velocity, force and its range,
-/// loop energy and its range.
-pub(crate) fn value_cells(
-    a_mm: f64,
-    velocity: Option<f64>,
-    force: [f64; 3],
-    energy: [f64; 3],
-) -> String {
-    format!(
-        "{:.1} | {} | {:.1} | {:.1}–{:.1} | {} | {}–{} |",
-        a_mm,
-        velocity.map_or_else(|| "—".to_string(), |v| format!("{v:.0}")),
-        force[0],
-        force[1],
-        force[2],
-        short(energy[0]),
-        short(energy[1]),
-        short(energy[2])
-    )
 }
 
 /// The prototype test's acceptance, as the protocols state it.
@@ -210,14 +222,9 @@ impl TestProtocol {
             .enumerate()
             .map(|(k, &floor)| {
                 let a = factor * strokes_mm[k][suite];
-                let (force_kn, loop_energy_kj) =
-                    forces_and_energies(slip_loads_n[k] / 1e3, a, lo, hi);
                 DeviceTest {
                     floor: floor + 1,
-                    amplitude_mm: a,
-                    velocity_mm_s: t1m.map(|t| 2.0 * std::f64::consts::PI * a / t),
-                    force_kn,
-                    loop_energy_kj,
+                    figures: TestFigures::of(slip_loads_n[k] / 1e3, a, t1m, lo, hi),
                 }
             })
             .collect();
@@ -291,17 +298,7 @@ impl TestProtocol {
         }
         s.push_str("\n| floor | A (mm) | velocity 2πfA (mm/s) | force at zero displacement (kN) | range (kN) | loop energy 4FA (kJ) | range (kJ) |\n|---:|---:|---:|---:|---:|---:|---:|\n");
         for d in &self.dampers {
-            let _ = writeln!(
-                s,
-                "| {} | {}",
-                d.floor,
-                value_cells(
-                    d.amplitude_mm,
-                    d.velocity_mm_s,
-                    d.force_kn,
-                    d.loop_energy_kj
-                )
-            );
+            let _ = writeln!(s, "| {} | {}", d.floor, d.figures.cells());
         }
         s
     }

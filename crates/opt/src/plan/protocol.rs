@@ -23,7 +23,7 @@ use super::report::PlanRow;
 use super::study::PlanStudy;
 use crate::model::check::{md_text, short};
 use crate::model::config::{Hazard, TestProtocolConfig};
-use crate::phases::protocol::{acceptance, forces_and_energies, value_cells};
+use crate::phases::protocol::{TestFigures, acceptance};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -34,15 +34,9 @@ pub struct PlanDeviceTest {
     pub damper: String,
     /// The direction whose T_1M it is tested at: 0 x, 1 y.
     pub direction: usize,
-    /// Test amplitude each way, mm.
-    pub amplitude_mm: f64,
-    /// The sinusoid's peak velocity 2π A / T_1M, mm/s (with T_1M).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub velocity_mm_s: Option<f64>,
-    /// The force at zero displacement: nominal slip load and its bounds, kN.
-    pub force_kn: [f64; 3],
-    /// Loop energy per cycle 4 F A at the nominal slip load and at the bounds, kJ.
-    pub loop_energy_kj: [f64; 3],
+    /// Its amplitude, velocity, forces and loop energies.
+    #[serde(flatten)]
+    pub figures: TestFigures,
 }
 
 /// The device tests of a study in plan's optimum.
@@ -112,12 +106,20 @@ impl PlanTestProtocol {
                 }
             }
         }
+        // each damper's nominal slip load, N (the file's upper bound where the design keeps it)
+        let nominal: Vec<f64> = study
+            .dampers
+            .iter()
+            .zip(&row.eval.loads)
+            .map(|(site, load)| {
+                load.unwrap_or_else(|| {
+                    b.lines[site.line].dissipators[site.storey].map_or(0.0, |d| d.upper)
+                })
+            })
+            .collect();
         let mut force = vec![vec![0.0; n]; b.lines.len()];
-        for (site, load) in study.dampers.iter().zip(&row.eval.loads) {
-            let nominal = load.unwrap_or_else(|| {
-                b.lines[site.line].dissipators[site.storey].map_or(0.0, |d| d.upper)
-            });
-            force[site.line][site.storey] = lo * nominal;
+        for (site, f) in study.dampers.iter().zip(&nominal) {
+            force[site.line][site.storey] = lo * f;
         }
         let t1m = b.secant_periods(&drift, &force);
         let t1 = b.secant_periods(&vec![vec![None; n]; b.lines.len()], &force);
@@ -130,17 +132,11 @@ impl PlanTestProtocol {
                 let (c, s) = b.lines[site.line].direction();
                 let direction = usize::from(s.abs() > c.abs());
                 let a = factor * stroke(suite, k) * 1e3;
-                let f = row.eval.loads[k].unwrap_or_else(|| {
-                    b.lines[site.line].dissipators[site.storey].map_or(0.0, |d| d.upper)
-                }) / 1e3;
-                let (force_kn, loop_energy_kj) = forces_and_energies(f, a, lo, hi);
+                let f = nominal[k] / 1e3;
                 PlanDeviceTest {
                     damper: site.name.clone(),
                     direction,
-                    amplitude_mm: a,
-                    velocity_mm_s: t1m.map(|t| 2.0 * std::f64::consts::PI * a / t[direction]),
-                    force_kn,
-                    loop_energy_kj,
+                    figures: TestFigures::of(f, a, t1m.map(|t| t[direction]), lo, hi),
                 }
             })
             .collect();
@@ -216,12 +212,7 @@ impl PlanTestProtocol {
                 "| {} | {} | {}",
                 md_text(&d.damper),
                 ["x", "y"][d.direction],
-                value_cells(
-                    d.amplitude_mm,
-                    d.velocity_mm_s,
-                    d.force_kn,
-                    d.loop_energy_kj
-                )
+                d.figures.cells()
             );
         }
         s
