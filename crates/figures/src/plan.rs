@@ -8,6 +8,7 @@
 use crate::error::FigureError;
 use crate::plot::{Figure, Legend, Marker, Panel, Series, style};
 use slipload_opt::plan::PlanFigureData;
+use slipload_sim::response::csv_field;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -150,13 +151,4 @@ pub fn write_plan(data: &PlanFigureData, dir: &Path) -> Result<Vec<String>, Figu
     fig.save(&dir.join("line-drift-profiles"))?;
     names.push("line-drift-profiles".to_string());
     Ok(names)
-}
-
-/// A CSV field: quoted where it holds a comma, quote or line break.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }

@@ -19,6 +19,7 @@ use slipload_opt::base::collapse::objective_text;
 use slipload_opt::phases::figures::{
     Convergence, DriftLimit, DriftProfile, FigureData, ObjectiveMap, RecordScatter, SuiteFigures,
 };
+use slipload_sim::response::csv_field;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -140,15 +141,6 @@ pub fn design_colors(names: &[&str]) -> Vec<plotters::style::RGBColor> {
             }
         })
         .collect()
-}
-
-/// A CSV field, quoted when it holds a comma, a quote or a line break.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }
 
 /// Writes every figure of `data` present (`NAME.svg`, `NAME.png`, in the shared plot

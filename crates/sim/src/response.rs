@@ -485,7 +485,9 @@ pub struct History {
 impl History {
     /// CSV text with a header line.
     pub fn to_csv(&self) -> String {
-        let mut s = self.columns.join(",");
+        // a plan's columns carry its lines', dampers' and points' names: user text
+        let header: Vec<String> = self.columns.iter().map(|c| csv_field(c)).collect();
+        let mut s = header.join(",");
         s.push('\n');
         let w = self.columns.len().max(1);
         for row in self.rows.chunks(w) {
@@ -854,5 +856,15 @@ impl Peaks {
             sensitivity: None,
             in_plan: None,
         }
+    }
+}
+
+/// A CSV field: the text as it is, or quoted (its quotes doubled) where it holds a comma,
+/// a quote or a line break, so a name read from a file stays one field.
+pub fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
     }
 }

@@ -14,6 +14,7 @@ use slipload_motion::{
     RecordFormat, Spectrum, SuiteTarget, Synthetic, Units, default_periods, default_suite,
     format_csv, read_record, synthetic_suite,
 };
+use slipload_sim::response::csv_field;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -437,15 +438,6 @@ fn spectrum(args: &SpectrumArgs) -> anyhow::Result<()> {
     }
     out!("{text}");
     Ok(())
-}
-
-/// A CSV field: quoted when it holds a comma or a quote.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }
 
 /// A record's name for legends and CSV headers: its file name without folders.

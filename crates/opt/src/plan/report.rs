@@ -9,6 +9,7 @@ use super::evaluate::DesignEval;
 use super::study::PlanStudy;
 use crate::model::check::md_text;
 use serde::Serialize;
+use slipload_sim::response::csv_field;
 use std::fmt::Write as _;
 
 /// A row of the final table.
@@ -162,8 +163,8 @@ pub fn dampers_csv(study: &PlanStudy, report: &PlanReport) -> String {
                 s,
                 "{},{},{},{},{},{:.3}",
                 row.design,
-                csv(&site.name),
-                csv(&study.building.lines[site.line].name),
+                csv_field(&site.name),
+                csv_field(&study.building.lines[site.line].name),
                 site.storey + 1,
                 kn(row.eval.loads[k]),
                 cell.peaks.slip.get(k).copied().unwrap_or(0.0) * 1e3
@@ -258,8 +259,8 @@ pub fn devices_csv(study: &PlanStudy, report: &PlanReport) -> String {
         let _ = writeln!(
             s,
             "{},{},{},{},{:.2},{:.1},{:.1},{:.2},{:.1}",
-            csv(&site.name),
-            csv(&study.building.lines[site.line].name),
+            csv_field(&site.name),
+            csv_field(&study.building.lines[site.line].name),
             site.storey + 1,
             kn(*load),
             d[0] * 1e3,
@@ -414,9 +415,9 @@ pub fn profiles_csv(study: &PlanStudy, report: &PlanReport) -> String {
                         s,
                         "{},{},{},drift_pct line {},{},{}",
                         row.design,
-                        csv(suite),
+                        csv_field(suite),
                         case,
-                        csv(&line.name),
+                        csv_field(&line.name),
                         f + 1,
                         pct(c.peaks.line_drift[l * n + f])
                     );
@@ -427,7 +428,7 @@ pub fn profiles_csv(study: &PlanStudy, report: &PlanReport) -> String {
                     s,
                     "{},{},{},drift_pct edges,{},{}",
                     row.design,
-                    csv(suite),
+                    csv_field(suite),
                     case,
                     f + 1,
                     pct(*v)
@@ -438,7 +439,7 @@ pub fn profiles_csv(study: &PlanStudy, report: &PlanReport) -> String {
                     s,
                     "{},{},{},torsional_ratio,{},{:.4}",
                     row.design,
-                    csv(suite),
+                    csv_field(suite),
                     case,
                     f + 1,
                     v
@@ -447,15 +448,6 @@ pub fn profiles_csv(study: &PlanStudy, report: &PlanReport) -> String {
         }
     }
     s
-}
-
-/// A CSV field: quoted where it holds a comma, quote or line break.
-fn csv(v: &str) -> String {
-    if v.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", v.replace('"', "\"\""))
-    } else {
-        v.to_string()
-    }
 }
 
 /// `plan-summary.txt`, also what `slipload optimize` prints for a study in plan.
