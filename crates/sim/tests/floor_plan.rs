@@ -11,7 +11,7 @@ use slipload_motion::Record;
 use slipload_sim::floorplan::{FloorPlan, FloorPlanScene, GroundComponent};
 use slipload_sim::plan::{ContactKind, Plan};
 use slipload_sim::scene::OutputsConfig;
-use slipload_sim::{MethodName, Response, run_plan, simulate};
+use slipload_sim::{MethodName, Response, run_plan};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -119,20 +119,9 @@ fn a_planar_building_written_in_plan_gives_the_chains_answers() {
     for method in [MethodName::Exact, MethodName::Newmark] {
         let (plan, p) = run_in_plan(&plan_b, &record, 0.0, method, Some(0.002), true);
         assert!(!plan.is_chain());
-        let mut scene = slipload_sim::Scene {
-            name: "chain".into(),
-            building: chain_b.clone(),
-            record: Some(record.clone()),
-            harmonic: None,
-            initial: slipload_sim::scene::InitialState::rest(3),
-            duration: record.duration(),
-            method: plan.method,
-            outputs: outputs(true),
-            reduce: true,
-            notes: Vec::new(),
-        };
-        scene.method.dt = 0.002;
-        let c = simulate(&scene).unwrap().response;
+        let mut settings = plan.method;
+        settings.dt = 0.002;
+        let c = common::chain_response(&chain_b, &record, settings, outputs(true));
         let labels = p.in_plan.as_ref().unwrap();
         // Round-off: the plan's operators hold the chain's in their x block (the y and
         // rotation DOFs are uncoupled from it exactly), summed in another order; 1e-9
@@ -782,20 +771,9 @@ fn p_delta_of_a_planar_building_in_plan_is_the_chains() {
     }
     for method in [MethodName::Exact, MethodName::Newmark] {
         let (plan, p) = run_in_plan(&plan_b, &record, 0.0, method, Some(0.002), false);
-        let mut scene = slipload_sim::Scene {
-            name: "chain".into(),
-            building: chain_b.clone(),
-            record: Some(record.clone()),
-            harmonic: None,
-            initial: slipload_sim::scene::InitialState::rest(3),
-            duration: record.duration(),
-            method: plan.method,
-            outputs: outputs(false),
-            reduce: true,
-            notes: Vec::new(),
-        };
-        scene.method.dt = 0.002;
-        let c = simulate(&scene).unwrap().response;
+        let mut settings = plan.method;
+        settings.dt = 0.002;
+        let c = common::chain_response(&chain_b, &record, settings, outputs(false));
         let without = run_in_plan(
             &floor_plan(PLANAR),
             &record,

@@ -5,7 +5,7 @@
 use slipload_motion::Record;
 use slipload_sim::floorplan::{FloorPlan, FloorPlanConfig, FloorPlanScene, GroundComponent};
 use slipload_sim::scene::OutputsConfig;
-use slipload_sim::{MethodName, run_plan, simulate};
+use slipload_sim::{MethodName, run_plan};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -41,6 +41,19 @@ fn run(
     scene.method.dt = 0.002;
     let plan = slipload_sim::floorplan::compile(&scene).unwrap();
     (plan.method, run_plan(&plan).unwrap())
+}
+
+/// A run of `b` under `components` that keeps its history.
+fn with_history(
+    b: &FloorPlan,
+    components: &[(Arc<Record>, f64)],
+    method: MethodName,
+) -> slipload_sim::response::Outcome {
+    let outputs = OutputsConfig {
+        histories: true,
+        ..OutputsConfig::default()
+    };
+    run(b, components, method, outputs).1
 }
 
 /// Eccentric masses, a line at 30°, massless dampers slipping on two lines, a yielding
@@ -81,11 +94,7 @@ fn the_base_forces_are_the_first_storeys_element_forces_resolved_on_x_y_and_the_
     let b = floor_plan(ECCENTRIC);
     let components = [(motion(4.0, 0.0), 20.0), (motion(3.0, 1.1), 110.0)];
     for method in [MethodName::Newmark, MethodName::Exact] {
-        let outputs = OutputsConfig {
-            histories: true,
-            ..OutputsConfig::default()
-        };
-        let (_, out) = run(&b, &components, method, outputs);
+        let out = with_history(&b, &components, method);
         let h = out.history.as_ref().unwrap();
         let r = &out.response;
         let base = r.in_plan.as_ref().unwrap().peak_base.unwrap();
@@ -194,20 +203,9 @@ fn a_lines_storey_dashpots_are_the_chains_storey_damping() {
     for method in [MethodName::Exact, MethodName::Newmark] {
         let (settings, out) = run(&plan_b, &[(record.clone(), 0.0)], method, outputs);
         let p = out.response;
-        let mut scene = slipload_sim::Scene {
-            name: "chain".into(),
-            building: chain_b.clone(),
-            record: Some(record.clone()),
-            harmonic: None,
-            initial: slipload_sim::scene::InitialState::rest(3),
-            duration: record.duration(),
-            method: settings,
-            outputs,
-            reduce: true,
-            notes: Vec::new(),
-        };
-        scene.method.dt = 0.002;
-        let c = simulate(&scene).unwrap().response;
+        let mut settings = settings;
+        settings.dt = 0.002;
+        let c = common::chain_response(&chain_b, &record, settings, outputs);
         let names = &p.in_plan.as_ref().unwrap().drifts;
         for s in 0..3 {
             let k = names
@@ -281,11 +279,7 @@ fn a_named_point_moves_with_its_floor_as_a_rigid_body() {
     let b = floor_plan(&json);
     let components = [(motion(4.0, 0.0), 20.0), (motion(3.0, 1.1), 110.0)];
     for method in [MethodName::Newmark, MethodName::Exact] {
-        let outputs = OutputsConfig {
-            histories: true,
-            ..OutputsConfig::default()
-        };
-        let (_, out) = run(&b, &components, method, outputs);
+        let out = with_history(&b, &components, method);
         let (r, h) = (&out.response, out.history.as_ref().unwrap());
         let names = &r.in_plan.as_ref().unwrap().points;
         assert_eq!(names.len(), 3 * 3 + 2 * 2 * 3, "{names:?}");
@@ -391,4 +385,29 @@ fn the_secant_periods_of_a_one_storey_plan_have_their_closed_forms() {
     // no drift: the initial stiffnesses
     let [tx, ty] = b.secant_periods(&vec![vec![None]; 4], &force).unwrap();
     assert!(rel(tx, period(3.0e8)) < 1e-12 && rel(ty, period(4.0e8)) < 1e-12);
+}
+
+#[test]
+fn a_plans_history_csv_keeps_a_name_with_a_comma_in_one_column() {
+    // names come from the file: a comma or a quote in one is quoted, not a new column
+    let b = floor_plan(&ECCENTRIC.replacen(r#""name": "A""#, r#""name": "A, \"west\"""#, 1));
+    let out = with_history(&b, &[(motion(1.0, 0.0), 0.0)], MethodName::Newmark);
+    let h = out.history.unwrap();
+    let csv = h.to_csv();
+    let header = csv.lines().next().unwrap();
+    assert!(header.contains(r#""drift_A,_""west""/1_m""#), "{header}");
+    let data_fields = csv.lines().nth(1).unwrap().split(',').count();
+    assert_eq!(data_fields, h.columns.len());
+    // outside the quotes the header has one comma fewer than columns
+    let mut quoted = false;
+    let commas = header
+        .chars()
+        .filter(|c| {
+            if *c == '"' {
+                quoted = !quoted;
+            }
+            *c == ',' && !quoted
+        })
+        .count();
+    assert_eq!(commas + 1, h.columns.len(), "{header}");
 }

@@ -199,3 +199,27 @@ pub fn floor_plan(json: &str) -> slipload_sim::floorplan::FloorPlan {
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE)
 }
+
+/// The chain `building` from rest under `record` for its whole duration, with the method
+/// settings `method` (its step included) and `outputs`: the response a plan's run is
+/// compared with.
+pub fn chain_response(
+    building: &slipload_sim::Building,
+    record: &std::sync::Arc<Record>,
+    method: slipload_sim::scene::MethodSettings,
+    outputs: slipload_sim::scene::OutputsConfig,
+) -> Response {
+    let scene = Scene {
+        name: "chain".into(),
+        building: building.clone(),
+        record: Some(record.clone()),
+        harmonic: None,
+        initial: slipload_sim::scene::InitialState::rest(building.floors()),
+        duration: record.duration(),
+        method,
+        outputs,
+        reduce: true,
+        notes: Vec::new(),
+    };
+    slipload_sim::simulate(&scene).unwrap().response
+}
